@@ -1,0 +1,34 @@
+# inertest: the two commands of the quick start are `make demo` and `make test`.
+# Each installs the Debian packages it needs (scripts/install-deps.sh), then builds in build/.
+
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+PYTHON ?= /usr/bin/python3
+CMAKE_FLAGS ?=
+
+.PHONY: all deps configure build test demo bench clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_TESTS=ON $(CMAKE_FLAGS) > /dev/null
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@$(BUILD_DIR)/bin/inertest demo --out demo
+
+bench: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+	@$(PYTHON) bench/compare.py --build-dir $(BUILD_DIR)
+
+clean:
+	@rm -rf $(BUILD_DIR) demo

@@ -1,0 +1,58 @@
+// Reading numeric columns from lab records in text form: CSV, TSV, semicolon or whitespace
+// separated; with a header row or without; with comment lines. The file is memory-mapped and
+// parsed with fast_float; no iostreams. Every problem is an Error naming file, line and column.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace inertest {
+
+// A column chosen by its header name or by its 1-based position.
+struct ColumnSelector {
+  std::string name;       // used when index == 0
+  std::size_t index = 0;  // 1-based; 0 means "by name"
+
+  // "3" selects the third column; anything else selects by name.
+  static ColumnSelector parse(std::string_view text);
+  std::string to_string() const;
+};
+
+struct TextTableOptions {
+  enum class Header { kDetect, kPresent, kAbsent };
+  // '\0' detects the delimiter from the first data line: ',', '\t', ';', else whitespace runs.
+  char delimiter = '\0';
+  Header header = Header::kDetect;
+  // Lines whose first non-blank character is this are skipped, as are blank lines.
+  char comment = '#';
+  // Columns to return, in this order; empty returns every column.
+  std::vector<ColumnSelector> columns;
+  // Minimum number of data rows; fewer is an Error.
+  std::size_t minimum_rows = 1;
+  // Keep the line number of every row (TextTable::row_lines). Off for records of 10^8+ samples.
+  bool record_row_lines = true;
+};
+
+struct TextTable {
+  std::string source;                       // file name, for messages
+  std::vector<std::string> names;           // header names of the returned columns ("" without header)
+  std::vector<std::vector<double>> columns; // column-major values
+  std::size_t first_data_line = 0;          // 1-based line of the first data row
+  // 1-based line of each data row, so procedures can point at the offending row (empty unless
+  // TextTableOptions::record_row_lines).
+  std::vector<std::size_t> row_lines;
+
+  std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
+  // The returned column of that header name; throws Error listing the names present.
+  const std::vector<double>& column(std::string_view name) const;
+  bool has_column(std::string_view name) const;
+};
+
+TextTable read_text_table(const std::string& path, const TextTableOptions& options = {});
+
+// The same, on text already in memory; `source` names it in messages.
+TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options = {});
+
+}  // namespace inertest

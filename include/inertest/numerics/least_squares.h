@@ -1,0 +1,68 @@
+// Linear least squares with covariance, residuals and a rank check that names what a design
+// cannot identify. Solved by QR with column pivoting (Golub & Van Loan, 4th ed., 5.4.2), so that a
+// rank-deficient design is detected instead of producing huge, meaningless parameters.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace inertest {
+
+// A dense row-major matrix, the interchange type of the public numerics API.
+struct Matrix {
+  Matrix() = default;
+  Matrix(std::size_t row_count, std::size_t col_count)
+      : rows(row_count), cols(col_count), data(row_count * col_count, 0.0) {}
+  double& operator()(std::size_t r, std::size_t c) { return data[r * cols + c]; }
+  double operator()(std::size_t r, std::size_t c) const { return data[r * cols + c]; }
+
+  std::size_t rows = 0;
+  std::size_t cols = 0;
+  std::vector<double> data;
+};
+
+struct LeastSquaresOptions {
+  // Optional names of the parameters, used in the rank-deficiency message.
+  std::vector<std::string> parameter_names;
+  // Optional weights (1/sigma^2 of each observation); empty means all ones.
+  std::vector<double> weights;
+  // Relative threshold on |R_ii| / |R_00| below which a column counts as dependent.
+  double rank_tolerance = 1e-10;
+  // Throw Error when the design is rank deficient (otherwise report it in the result).
+  bool require_full_rank = true;
+};
+
+struct LeastSquaresResult {
+  std::vector<double> parameters;
+  // Covariance of the parameters, row-major n x n: s^2 (A^T W A)^-1 with s^2 the residual variance
+  // RSS / (m - n) (weights taken as relative). Zero-filled when m == n.
+  Matrix covariance;
+  std::vector<double> residuals;  // y - A x
+  double residual_rms = 0.0;      // sqrt(sum r^2 / m)
+  std::size_t degrees_of_freedom = 0;
+  std::size_t rank = 0;
+  // Parameters the design cannot separate from the others (empty when full rank).
+  std::vector<std::size_t> unidentifiable;
+
+  double standard_error(std::size_t i) const;
+};
+
+// Solves min || W^(1/2) (A x - y) ||. Throws Error if A has fewer rows than columns, if sizes
+// disagree, or (with require_full_rank) if the design is rank deficient, naming the parameters.
+LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const double> observations,
+                                       const LeastSquaresOptions& options = {});
+
+// Straight-line fit y = slope * x + intercept (GJB 2426A eqs. 4-6), computed on centred sums,
+// which equals eqs. (5)-(6) algebraically but does not cancel when |x| is large.
+struct LineFit {
+  double slope = 0.0;
+  double intercept = 0.0;
+  double slope_standard_error = 0.0;      // 0 when only two points
+  double intercept_standard_error = 0.0;
+  double residual_rms = 0.0;
+};
+LineFit fit_line(std::span<const double> x, std::span<const double> y);
+
+}  // namespace inertest

@@ -1,0 +1,20 @@
+// Sample statistics computed for long records: compensated sums, mean removed before squaring.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace inertest {
+
+double mean(std::span<const double> values);
+
+// Sample standard deviation with n - 1 in the denominator (two-pass: mean removed first, so that a
+// large common offset does not cancel the spread). Throws Error for fewer than two values.
+double sample_standard_deviation(std::span<const double> values);
+
+// Means of consecutive, non-overlapping windows of `window` samples; a partial last window is
+// dropped. Throws Error if window is zero or longer than the record.
+std::vector<double> window_means(std::span<const double> values, std::size_t window);
+
+}  // namespace inertest

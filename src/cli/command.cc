@@ -1,0 +1,48 @@
+#include "command.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fmt/format.h>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+namespace inertest::cli {
+namespace {
+
+std::map<std::string, CommandSetup>& registry() {
+  static std::map<std::string, CommandSetup> commands;
+  return commands;
+}
+
+}  // namespace
+
+bool register_command(const std::string& name, CommandSetup setup) {
+  registry().emplace(name, std::move(setup));
+  return true;
+}
+
+std::vector<std::pair<CLI::App*, CommandAction>> add_registered_commands(CLI::App& root) {
+  std::vector<std::pair<CLI::App*, CommandAction>> added;
+  for (const auto& [name, setup] : registry()) {
+    CommandAction action = setup(root);
+    added.emplace_back(root.get_subcommand(name), std::move(action));
+  }
+  return added;
+}
+
+void print_result(const nlohmann::json& json, const std::string& report, bool as_json) {
+  const std::string text = as_json ? json.dump(2) + "\n" : report;
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  std::fflush(stdout);
+}
+
+ProgressCallback terminal_progress() {
+  if (::isatty(STDERR_FILENO) == 0) return {};
+  return [](std::string_view stage, double fraction) {
+    fmt::print(stderr, "\r{:<40} {:5.1f} %{}", stage, 100.0 * fraction, fraction >= 1.0 ? "\n" : "");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace inertest::cli

@@ -1,0 +1,270 @@
+#include "inertest/core/units.h"
+
+#include <cctype>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "inertest/core/error.h"
+
+namespace inertest {
+namespace {
+
+using constants::kArcsecond;
+using constants::kDegree;
+using constants::kPi;
+
+struct NamedUnit {
+  double factor;
+  Dimension::Base base;  // kBaseCount for dimensionless
+  int power = 1;         // power of base (whole), e.g. Hz = time^-1
+};
+
+Dimension dimension_of(Dimension::Base base, int power) {
+  Dimension d;
+  if (base != Dimension::kBaseCount) d.half_powers[base] = 2 * power;
+  return d;
+}
+
+// Named units that are not products of others. Composite ones (g, W, ohm) are expanded below.
+const std::unordered_map<std::string_view, NamedUnit>& simple_units() {
+  static const std::unordered_map<std::string_view, NamedUnit> table = {
+      // angle
+      {"rad", {1.0, Dimension::kAngle}},
+      {"mrad", {1e-3, Dimension::kAngle}},
+      {"urad", {1e-6, Dimension::kAngle}},
+      {"deg", {kDegree, Dimension::kAngle}},
+      {"°", {kDegree, Dimension::kAngle}},
+      {"arcmin", {kDegree / 60.0, Dimension::kAngle}},
+      {"arcsec", {kArcsecond, Dimension::kAngle}},
+      {"mdeg", {1e-3 * kDegree, Dimension::kAngle}},
+      {"rev", {2.0 * kPi, Dimension::kAngle}},
+      // time
+      {"s", {1.0, Dimension::kTime}},
+      {"ms", {1e-3, Dimension::kTime}},
+      {"us", {1e-6, Dimension::kTime}},
+      {"min", {60.0, Dimension::kTime}},
+      {"h", {3600.0, Dimension::kTime}},
+      {"hr", {3600.0, Dimension::kTime}},
+      {"day", {86400.0, Dimension::kTime}},
+      {"Hz", {1.0, Dimension::kTime, -1}},
+      {"kHz", {1e3, Dimension::kTime, -1}},
+      // length and mass
+      {"m", {1.0, Dimension::kLength}},
+      {"mm", {1e-3, Dimension::kLength}},
+      {"cm", {1e-2, Dimension::kLength}},
+      {"km", {1e3, Dimension::kLength}},
+      {"kg", {1.0, Dimension::kMass}},
+      // temperature difference (sensitivities are per degree; no offsets are converted)
+      {"degC", {1.0, Dimension::kTemperature}},
+      {"K", {1.0, Dimension::kTemperature}},
+      // electrical
+      {"V", {1.0, Dimension::kVoltage}},
+      {"mV", {1e-3, Dimension::kVoltage}},
+      {"uV", {1e-6, Dimension::kVoltage}},
+      {"kV", {1e3, Dimension::kVoltage}},
+      {"A", {1.0, Dimension::kCurrent}},
+      {"mA", {1e-3, Dimension::kCurrent}},
+      {"uA", {1e-6, Dimension::kCurrent}},
+      // instrument counts
+      {"pulse", {1.0, Dimension::kCount}},
+      {"count", {1.0, Dimension::kCount}},
+      {"LSB", {1.0, Dimension::kCount}},
+      // dimensionless ratios
+      {"1", {1.0, Dimension::kBaseCount}},
+      {"ppm", {1e-6, Dimension::kBaseCount}},
+      {"%", {1e-2, Dimension::kBaseCount}},
+  };
+  return table;
+}
+
+struct Parsed {
+  double factor = 1.0;
+  Dimension dimension;
+};
+
+void accumulate(Parsed& into, const Parsed& term, int half_power) {
+  into.factor *= std::pow(term.factor, half_power / 2.0);
+  for (int i = 0; i < Dimension::kBaseCount; ++i) {
+    into.dimension.half_powers[static_cast<std::size_t>(i)] +=
+        term.dimension.half_powers[static_cast<std::size_t>(i)] * half_power / 2;
+  }
+}
+
+Parsed named(std::string_view name, std::string_view whole) {
+  const auto& table = simple_units();
+  if (auto it = table.find(name); it != table.end()) {
+    return {it->second.factor, dimension_of(it->second.base, it->second.power)};
+  }
+  Parsed p;
+  auto add = [&p](Dimension::Base base, int half) { p.dimension.half_powers[base] += half; };
+  if (name == "g") {  // standard gravity as a unit of specific force
+    p.factor = constants::kStandardGravity;
+    add(Dimension::kLength, 2);
+    add(Dimension::kTime, -4);
+    return p;
+  }
+  if (name == "W" || name == "mW") {
+    p.factor = name == "W" ? 1.0 : 1e-3;
+    add(Dimension::kVoltage, 2);
+    add(Dimension::kCurrent, 2);
+    return p;
+  }
+  if (name == "ohm" || name == "kohm" || name == "Mohm" || name == "MOhm" || name == "Ω" || name == "MΩ") {
+    p.factor = (name == "ohm" || name == "Ω") ? 1.0 : (name == "kohm" ? 1e3 : 1e6);
+    add(Dimension::kVoltage, 2);
+    add(Dimension::kCurrent, -2);
+    return p;
+  }
+  throw Error("unknown unit '" + std::string(name) + "' in '" + std::string(whole) +
+              "' (known: rad, deg, arcsec, s, h, Hz, g, V, mV, A, pulse, ppm, %, ...)");
+}
+
+class UnitParser {
+ public:
+  explicit UnitParser(std::string_view text) : text_(text) {}
+
+  Parsed parse_all() {
+    Parsed result = parse_product();
+    skip_spaces();
+    if (pos_ != text_.size()) fail("unexpected '" + std::string(1, text_[pos_]) + "'");
+    return result;
+  }
+
+ private:
+  // product := term (('/' | '*' | '.') term)*  -- '/' divides by the next term only.
+  Parsed parse_product() {
+    Parsed result;
+    int sign = 1;
+    for (;;) {
+      Parsed term = parse_term();
+      int half_power = 2 * sign;
+      skip_spaces();
+      if (peek() == '^') {
+        ++pos_;
+        half_power = sign * parse_power_in_halves();
+      }
+      accumulate(result, term, half_power);
+      skip_spaces();
+      const char c = peek();
+      if (c == '/') {
+        sign = -1;
+      } else if (c == '*' || c == '.') {
+        sign = 1;
+      } else {
+        return result;
+      }
+      ++pos_;
+    }
+  }
+
+  // term := name | 'sqrt(' product ')' | '(' product ')'
+  Parsed parse_term() {
+    skip_spaces();
+    if (text_.substr(pos_, 5) == "sqrt(") {
+      pos_ += 5;
+      Parsed inner = parse_product();
+      expect(')');
+      Parsed root;
+      accumulate(root, inner, 1);
+      return root;
+    }
+    if (peek() == '(') {
+      ++pos_;
+      Parsed inner = parse_product();
+      expect(')');
+      return inner;
+    }
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && text_[pos_] != '/' && text_[pos_] != '*' && text_[pos_] != '^' &&
+           text_[pos_] != '(' && text_[pos_] != ')' && text_[pos_] != ' ' &&
+           !(text_[pos_] == '.' && pos_ > start)) {
+      ++pos_;
+    }
+    if (pos_ == start) fail("expected a unit name");
+    return named(text_.substr(start, pos_ - start), text_);
+  }
+
+  // Whole powers, or halves written 0.5 / -0.5 / 1.5; returned in halves (2 for a power of 1).
+  int parse_power_in_halves() {
+    skip_spaces();
+    const std::size_t start = pos_;
+    if (peek() == '-' || peek() == '+') ++pos_;
+    while (pos_ < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '.')) ++pos_;
+    const std::string number(text_.substr(start, pos_ - start));
+    double value = 0.0;
+    try {
+      value = std::stod(number);
+    } catch (const std::exception&) {
+      fail("expected a power after '^'");
+    }
+    const double halves = 2.0 * value;
+    if (halves != std::round(halves)) fail("powers must be whole or half numbers");
+    return static_cast<int>(halves);
+  }
+
+  void expect(char c) {
+    skip_spaces();
+    if (peek() != c) fail(std::string("expected '") + c + "'");
+    ++pos_;
+  }
+  char peek() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
+  void skip_spaces() {
+    while (pos_ < text_.size() && text_[pos_] == ' ') ++pos_;
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error("cannot parse unit '" + std::string(text_) + "' at character " + std::to_string(pos_ + 1) +
+                ": " + what);
+  }
+
+  std::string_view text_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::string Dimension::to_string() const {
+  static constexpr std::array<const char*, kBaseCount> names = {"angle", "time",    "length",  "mass",
+                                                                "temperature", "voltage", "current", "count"};
+  std::string text;
+  for (std::size_t i = 0; i < half_powers.size(); ++i) {
+    if (half_powers[i] == 0) continue;
+    if (!text.empty()) text += "*";
+    text += names[i];
+    if (half_powers[i] != 2) {
+      text += "^";
+      text += half_powers[i] % 2 == 0 ? std::to_string(half_powers[i] / 2)
+                                      : std::to_string(half_powers[i] / 2.0).substr(0, 4);
+    }
+  }
+  return text.empty() ? "dimensionless" : text;
+}
+
+Unit Unit::parse(std::string_view text) {
+  std::size_t begin = 0;
+  std::size_t end = text.size();
+  while (begin < end && std::isspace(static_cast<unsigned char>(text[begin]))) ++begin;
+  while (end > begin && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
+  const std::string_view trimmed = text.substr(begin, end - begin);
+  if (trimmed.empty()) throw Error("empty unit string");
+  Parsed parsed = UnitParser(trimmed).parse_all();
+  Unit unit;
+  unit.symbol_ = std::string(trimmed);
+  unit.factor_ = parsed.factor;
+  unit.dimension_ = parsed.dimension;
+  return unit;
+}
+
+double convert(double value, const Unit& from, const Unit& to) {
+  if (from.dimension() != to.dimension()) {
+    throw Error("cannot convert '" + from.symbol() + "' (" + from.dimension().to_string() + ") to '" +
+                to.symbol() + "' (" + to.dimension().to_string() + ")");
+  }
+  return value * (from.factor() / to.factor());
+}
+
+double convert(double value, std::string_view from, std::string_view to) {
+  return convert(value, Unit::parse(from), Unit::parse(to));
+}
+
+}  // namespace inertest

@@ -1,0 +1,7 @@
+#include "inertest/version.h"
+
+namespace inertest {
+
+std::string version() { return INERTEST_VERSION; }
+
+}  // namespace inertest

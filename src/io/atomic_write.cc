@@ -1,0 +1,51 @@
+#include "inertest/io/atomic_write.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "inertest/core/error.h"
+
+namespace inertest {
+
+void write_file_atomically(const std::string& path, std::string_view content) {
+  std::string pattern = path + ".tmp-XXXXXX";
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0) throw Error(SourceLocation{path, 0, 0}, std::string("cannot create: ") + std::strerror(errno));
+  const std::string temporary(name.data());
+  auto fail = [&](const char* what) {
+    const int saved = errno;
+    ::close(fd);
+    ::unlink(temporary.c_str());
+    throw Error(SourceLocation{path, 0, 0}, std::string(what) + ": " + std::strerror(saved));
+  };
+  std::size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("cannot write");
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fchmod(fd, 0644) != 0) fail("cannot set permissions");
+  if (::fsync(fd) != 0) fail("cannot flush");
+  if (::close(fd) != 0) {
+    ::unlink(temporary.c_str());
+    throw Error(SourceLocation{path, 0, 0}, std::string("cannot close: ") + std::strerror(errno));
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    ::unlink(temporary.c_str());
+    throw Error(SourceLocation{path, 0, 0}, std::string("cannot rename into place: ") + std::strerror(saved));
+  }
+}
+
+}  // namespace inertest

@@ -1,0 +1,269 @@
+#include "inertest/io/text_table.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cctype>
+#include <cstring>
+#include <fast_float/fast_float.h>
+#include <optional>
+
+#include "inertest/core/error.h"
+#include "inertest/io/mapped_file.h"
+
+namespace inertest {
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+struct Line {
+  std::string_view text;  // without '\n' and trailing '\r'
+  std::size_t number;     // 1-based
+};
+
+// Iterates lines of a buffer with memchr.
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text) : text_(text) {}
+  bool next(Line& line) {
+    if (pos_ >= text_.size()) return false;
+    const char* begin = text_.data() + pos_;
+    const void* found = std::memchr(begin, '\n', text_.size() - pos_);
+    const std::size_t end = found ? static_cast<std::size_t>(static_cast<const char*>(found) - text_.data()) : text_.size();
+    std::size_t stop = end;
+    if (stop > pos_ && text_[stop - 1] == '\r') --stop;
+    line = {text_.substr(pos_, stop - pos_), ++number_};
+    pos_ = end + 1;
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t number_ = 0;
+};
+
+bool is_skipped(std::string_view line, char comment) {
+  std::size_t i = 0;
+  while (i < line.size() && is_blank(line[i])) ++i;
+  return i == line.size() || (comment != '\0' && line[i] == comment);
+}
+
+char detect_delimiter(std::string_view line) {
+  for (char candidate : {'\t', ',', ';'}) {
+    if (line.find(candidate) != std::string_view::npos) return candidate;
+  }
+  return ' ';
+}
+
+// A field: its text trimmed of blanks, and its 1-based column in the line.
+struct Field {
+  std::string_view text;
+  std::size_t column;
+};
+
+// Splits a line into fields. delimiter ' ' means runs of blanks.
+void split(std::string_view line, char delimiter, std::vector<Field>& fields) {
+  fields.clear();
+  std::size_t i = 0;
+  const std::size_t n = line.size();
+  if (delimiter == ' ') {
+    while (i < n) {
+      while (i < n && is_blank(line[i])) ++i;
+      if (i == n) break;
+      const std::size_t start = i;
+      while (i < n && !is_blank(line[i])) ++i;
+      fields.push_back({line.substr(start, i - start), start + 1});
+    }
+    return;
+  }
+  for (;;) {
+    std::size_t start = i;
+    while (i < n && line[i] != delimiter) ++i;
+    std::size_t stop = i;
+    while (start < stop && is_blank(line[start])) ++start;
+    while (stop > start && is_blank(line[stop - 1])) --stop;
+    fields.push_back({line.substr(start, stop - start), start + 1});
+    if (i == n) break;
+    ++i;
+  }
+}
+
+std::string printable(std::string_view text) {
+  std::string out(text.substr(0, 40));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  }
+  return text.size() > 40 ? out + "..." : out;
+}
+
+// Parses one numeric cell; nullopt when the text is not exactly one finite number.
+std::optional<double> parse_number(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (*begin == '+') ++begin;  // fast_float rejects a leading '+'
+  double value = 0.0;
+  const auto result = fast_float::from_chars(begin, end, value);
+  if (result.ec != std::errc() || result.ptr != end) return std::nullopt;
+  return value;
+}
+
+[[noreturn]] void fail_cell(const std::string& source, const Line& line, const Field& field,
+                            const std::string& column_name) {
+  const std::string where = column_name.empty() ? "" : " in column '" + column_name + "'";
+  const SourceLocation location{source, line.number, field.column};
+  if (field.text.empty()) throw Error(location, "empty cell" + where + ", expected a number");
+  // Decimal commas ("1,25" in a ';' or whitespace separated file) are a common lab export.
+  if (field.text.find(',') != std::string_view::npos &&
+      std::all_of(field.text.begin(), field.text.end(),
+                  [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == ',' || c == '-' || c == '+'; })) {
+    throw Error(location, "'" + printable(field.text) + "'" + where +
+                              " looks like a decimal comma; inertest expects a decimal point");
+  }
+  throw Error(location, "expected a number" + where + ", found '" + printable(field.text) + "'");
+}
+
+}  // namespace
+
+ColumnSelector ColumnSelector::parse(std::string_view text) {
+  ColumnSelector selector;
+  std::size_t index = 0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), index);
+  if (result.ec == std::errc() && result.ptr == text.data() + text.size()) {
+    if (index == 0) throw Error("column numbers are 1-based; 0 is not a column");
+    selector.index = index;
+  } else {
+    selector.name = std::string(text);
+  }
+  return selector;
+}
+
+std::string ColumnSelector::to_string() const {
+  return index > 0 ? "column " + std::to_string(index) : "column '" + name + "'";
+}
+
+const std::vector<double>& TextTable::column(std::string_view name) const {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return columns[i];
+  }
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw Error(SourceLocation{source, 0, 0}, "no column '" + std::string(name) + "' (columns: " + known + ")");
+}
+
+bool TextTable::has_column(std::string_view name) const {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options) {
+  TextTable table;
+  table.source = source;
+  LineCursor cursor(text);
+  Line line{};
+  std::vector<Field> fields;
+
+  // The first line that is neither blank nor a comment decides delimiter and header.
+  bool found = false;
+  while (cursor.next(line)) {
+    if (!is_skipped(line.text, options.comment)) {
+      found = true;
+      break;
+    }
+  }
+  if (!found) throw Error(SourceLocation{source, 0, 0}, "no data: the file is empty or holds only comments");
+  if (line.text.find('\0') != std::string_view::npos) {
+    throw Error(SourceLocation{source, line.number, line.text.find('\0') + 1},
+                "binary data in a text record (use a binary format option)");
+  }
+
+  const char delimiter = options.delimiter != '\0' ? options.delimiter : detect_delimiter(line.text);
+  split(line.text, delimiter, fields);
+  const std::size_t width = fields.size();
+
+  bool has_header = options.header == TextTableOptions::Header::kPresent;
+  if (options.header == TextTableOptions::Header::kDetect) {
+    has_header = std::any_of(fields.begin(), fields.end(), [](const Field& f) { return !parse_number(f.text); });
+  }
+  std::vector<std::string> header_names(width);
+  if (has_header) {
+    for (std::size_t i = 0; i < width; ++i) header_names[i] = std::string(fields[i].text);
+  }
+
+  // Resolve the selected columns to 0-based positions.
+  std::vector<std::size_t> positions;
+  if (options.columns.empty()) {
+    for (std::size_t i = 0; i < width; ++i) positions.push_back(i);
+  } else {
+    for (const auto& selector : options.columns) {
+      if (selector.index > 0) {
+        if (selector.index > width) {
+          throw Error(SourceLocation{source, line.number, 0},
+                      "column " + std::to_string(selector.index) + " asked for, but the record has " +
+                          std::to_string(width) + " columns");
+        }
+        positions.push_back(selector.index - 1);
+        continue;
+      }
+      if (!has_header) {
+        throw Error(SourceLocation{source, line.number, 0},
+                    "column '" + selector.name + "' asked for by name, but the record has no header row");
+      }
+      const auto it = std::find(header_names.begin(), header_names.end(), selector.name);
+      if (it == header_names.end()) {
+        std::string known;
+        for (const auto& n : header_names) known += (known.empty() ? "" : ", ") + n;
+        throw Error(SourceLocation{source, line.number, 0},
+                    "no column '" + selector.name + "' in the header (columns: " + known + ")");
+      }
+      positions.push_back(static_cast<std::size_t>(it - header_names.begin()));
+    }
+  }
+  for (std::size_t p : positions) table.names.push_back(header_names[p]);
+  table.columns.resize(positions.size());
+  // Rough reservation: the number of lines bounds the number of rows.
+  const std::size_t estimate = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  for (auto& c : table.columns) c.reserve(estimate);
+  if (options.record_row_lines) table.row_lines.reserve(estimate);
+  std::size_t row_count = 0;
+
+  auto parse_row = [&](const Line& row) {
+    split(row.text, delimiter, fields);
+    if (fields.size() != width) {
+      throw Error(SourceLocation{source, row.number, 0},
+                  "expected " + std::to_string(width) + " columns, found " + std::to_string(fields.size()) +
+                      (has_header ? " (a stray header or a truncated line?)" : ""));
+    }
+    for (std::size_t k = 0; k < positions.size(); ++k) {
+      const Field& field = fields[positions[k]];
+      const auto value = parse_number(field.text);
+      if (!value) fail_cell(source, row, field, header_names[positions[k]]);
+      if (!std::isfinite(*value)) {
+        throw Error(SourceLocation{source, row.number, field.column},
+                    "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
+      }
+      table.columns[k].push_back(*value);
+    }
+    if (options.record_row_lines) table.row_lines.push_back(row.number);
+    if (row_count++ == 0) table.first_data_line = row.number;
+  };
+
+  if (!has_header) parse_row(line);
+  while (cursor.next(line)) {
+    if (is_skipped(line.text, options.comment)) continue;
+    parse_row(line);
+  }
+  if (row_count == 0 || row_count < options.minimum_rows) {
+    throw Error(SourceLocation{source, 0, 0}, "expected at least " + std::to_string(std::max<std::size_t>(options.minimum_rows, 1)) +
+                                                  " data rows, found " + std::to_string(row_count));
+  }
+  for (auto& c : table.columns) c.shrink_to_fit();
+  return table;
+}
+
+TextTable read_text_table(const std::string& path, const TextTableOptions& options) {
+  const MappedFile file(path);
+  return parse_text_table(file.bytes(), path, options);
+}
+
+}  // namespace inertest

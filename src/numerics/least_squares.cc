@@ -1,0 +1,138 @@
+#include "inertest/numerics/least_squares.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <string>
+
+#include "inertest/core/error.h"
+#include "inertest/numerics/compensated_sum.h"
+
+namespace inertest {
+
+double LeastSquaresResult::standard_error(std::size_t i) const { return std::sqrt(covariance(i, i)); }
+
+LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const double> observations,
+                                       const LeastSquaresOptions& options) {
+  const std::size_t m = design.rows;
+  const std::size_t n = design.cols;
+  if (observations.size() != m) {
+    throw Error("least squares: " + std::to_string(m) + " design rows but " +
+                std::to_string(observations.size()) + " observations");
+  }
+  if (n == 0 || m < n) {
+    throw Error("least squares: " + std::to_string(m) + " observations cannot determine " + std::to_string(n) +
+                " parameters");
+  }
+  if (!options.weights.empty() && options.weights.size() != m) {
+    throw Error("least squares: weights must have one entry per observation");
+  }
+
+  const auto rows = static_cast<Eigen::Index>(m);
+  const auto cols = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd a(rows, cols);
+  Eigen::VectorXd y(rows);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const double w = options.weights.empty() ? 1.0 : std::sqrt(options.weights[static_cast<std::size_t>(r)]);
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      a(r, c) = w * design(static_cast<std::size_t>(r), static_cast<std::size_t>(c));
+    }
+    y(r) = w * observations[static_cast<std::size_t>(r)];
+  }
+  // Scale columns to unit norm so that the rank test does not depend on the parameters' units.
+  Eigen::VectorXd scale = a.colwise().norm().transpose();
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    if (scale(c) == 0.0) scale(c) = 1.0;
+  }
+  const Eigen::MatrixXd scaled = a * scale.cwiseInverse().asDiagonal();
+
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+  qr.setThreshold(options.rank_tolerance);
+  LeastSquaresResult result;
+  result.rank = static_cast<std::size_t>(qr.rank());
+  if (result.rank < n) {
+    // The columns pivoted last are the ones that depend on the others.
+    const auto& permutation = qr.colsPermutation().indices();
+    std::string names;
+    for (Eigen::Index k = qr.rank(); k < cols; ++k) {
+      const auto index = static_cast<std::size_t>(permutation(k));
+      result.unidentifiable.push_back(index);
+      if (!names.empty()) names += ", ";
+      names += index < options.parameter_names.size() ? options.parameter_names[index]
+                                                      : "parameter " + std::to_string(index + 1);
+    }
+    if (options.require_full_rank) {
+      throw Error("least squares: the design cannot identify " + names + " (rank " + std::to_string(result.rank) +
+                  " of " + std::to_string(n) + ")");
+    }
+  }
+
+  const Eigen::VectorXd x_scaled = qr.solve(y);
+  const Eigen::VectorXd x = x_scaled.cwiseQuotient(scale);
+  const Eigen::VectorXd weighted_residuals = y - a * x;
+
+  result.parameters.assign(x.data(), x.data() + n);
+  result.residuals.resize(m);
+  CompensatedSum rss;
+  CompensatedSum unweighted_rss;
+  for (std::size_t r = 0; r < m; ++r) {
+    double fitted = 0.0;
+    for (std::size_t c = 0; c < n; ++c) fitted += design(r, c) * result.parameters[c];
+    result.residuals[r] = observations[r] - fitted;
+    unweighted_rss.add(result.residuals[r] * result.residuals[r]);
+    const double wr = weighted_residuals(static_cast<Eigen::Index>(r));
+    rss.add(wr * wr);
+  }
+  result.residual_rms = std::sqrt(unweighted_rss.value() / static_cast<double>(m));
+  result.degrees_of_freedom = m - result.rank;
+
+  result.covariance = Matrix(n, n);
+  if (result.degrees_of_freedom > 0 && result.rank == n) {
+    const double s2 = rss.value() / static_cast<double>(result.degrees_of_freedom);
+    // (A^T W A)^-1 = P R^-1 R^-T P^T in scaled coordinates, then unscaled.
+    const Eigen::MatrixXd r_upper = qr.matrixR().topLeftCorner(cols, cols).triangularView<Eigen::Upper>();
+    const Eigen::MatrixXd r_inverse =
+        r_upper.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(cols, cols));
+    const Eigen::MatrixXd permuted = r_inverse * r_inverse.transpose();
+    const Eigen::MatrixXd p = qr.colsPermutation();
+    const Eigen::MatrixXd unpermuted = p * permuted * p.transpose();
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) {
+        result.covariance(i, j) = s2 * unpermuted(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
+                                  (scale(static_cast<Eigen::Index>(i)) * scale(static_cast<Eigen::Index>(j)));
+      }
+    }
+  }
+  return result;
+}
+
+LineFit fit_line(std::span<const double> x, std::span<const double> y) {
+  if (x.size() != y.size()) throw Error("line fit: x and y differ in length");
+  if (x.size() < 2) throw Error("line fit: needs at least 2 points, got " + std::to_string(x.size()));
+  const auto m = static_cast<double>(x.size());
+  const double x_mean = compensated_sum(x) / m;
+  const double y_mean = compensated_sum(y) / m;
+  CompensatedSum sxx;
+  CompensatedSum sxy;
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    sxx.add((x[j] - x_mean) * (x[j] - x_mean));
+    sxy.add((x[j] - x_mean) * (y[j] - y_mean));
+  }
+  if (sxx.value() == 0.0) throw Error("line fit: all x values are equal");
+  LineFit fit;
+  fit.slope = sxy.value() / sxx.value();          // eq. (5), centred form
+  fit.intercept = y_mean - fit.slope * x_mean;    // eq. (6)
+  CompensatedSum rss;
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const double r = y[j] - (fit.slope * x[j] + fit.intercept);
+    rss.add(r * r);
+  }
+  fit.residual_rms = std::sqrt(rss.value() / m);
+  if (x.size() > 2) {
+    const double s2 = rss.value() / (m - 2.0);
+    fit.slope_standard_error = std::sqrt(s2 / sxx.value());
+    fit.intercept_standard_error = std::sqrt(s2 * (1.0 / m + x_mean * x_mean / sxx.value()));
+  }
+  return fit;
+}
+
+}  // namespace inertest

@@ -1,0 +1,175 @@
+#include "inertest/procedures/scale_factor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/numerics/least_squares.h"
+#include "inertest/numerics/statistics.h"
+
+namespace inertest {
+namespace {
+
+constexpr double kPpm = 1e6;
+
+struct DirectionFit {
+  LineFit fit;
+  std::size_t count = 0;
+};
+
+DirectionFit fit_direction(const std::vector<double>& rates, const std::vector<double>& outputs, bool positive) {
+  std::vector<double> x;
+  std::vector<double> y;
+  for (std::size_t j = 0; j < rates.size(); ++j) {
+    if ((rates[j] > 0.0) == positive) {
+      x.push_back(rates[j]);
+      y.push_back(outputs[j]);
+    }
+  }
+  if (x.size() < 2) {
+    throw Error(fmt::format("scale factor: {} {} rate(s); the asymmetry (GJB 2426A eq. 10) needs at least 2 "
+                            "rates on each side of zero",
+                            x.size(), positive ? "positive" : "negative"));
+  }
+  if (std::all_of(x.begin(), x.end(), [&](double v) { return v == x.front(); })) {
+    throw Error(fmt::format("scale factor: the {} rates are all equal; a slope needs two distinct rates",
+                            positive ? "positive" : "negative"));
+  }
+  return {fit_line(x, y), x.size()};
+}
+
+}  // namespace
+
+void ScaleFactorOptions::validate() const {
+  const Unit rate = Unit::parse(rate_unit);
+  if (rate.dimension() != Unit::parse("rad/s").dimension()) {
+    throw Error("scale factor: rate unit '" + rate_unit + "' is not an angular rate");
+  }
+  Unit::parse(output_unit);
+}
+
+ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const ScaleFactorOptions& options) {
+  options.validate();
+  const auto first_moving = std::find_if(points.begin(), points.end(), [](const auto& p) { return p.rate != 0.0; });
+  if (first_moving == points.end()) throw Error("scale factor: no nonzero rate among the test points");
+  const auto last_moving =
+      std::find_if(points.rbegin(), points.rend(), [](const auto& p) { return p.rate != 0.0; }).base();
+  if (first_moving == points.begin()) {
+    throw Error("scale factor: missing the static run at the start (zero-rate points before the first rate, "
+                "GJB 2426A 5.8.1.3 d)");
+  }
+  if (last_moving == points.end()) {
+    throw Error("scale factor: missing the static run at the end (zero-rate points after the last rate, "
+                "GJB 2426A 5.8.1.3 d)");
+  }
+
+  std::vector<double> start_outputs;
+  std::vector<double> end_outputs;
+  for (auto it = points.begin(); it != first_moving; ++it) start_outputs.push_back(it->output);
+  for (auto it = last_moving; it != points.end(); ++it) end_outputs.push_back(it->output);
+  const double static_start = mean(start_outputs);  // F̄s
+  const double static_end = mean(end_outputs);      // F̄e
+  const double static_mean = 0.5 * (static_start + static_end);  // F̄r, eq. (2)
+
+  std::vector<double> rates;
+  std::vector<double> outputs;  // F_j = F̄_j - F̄r, eq. (3)
+  for (auto it = first_moving; it != last_moving; ++it) {
+    if (it->rate == 0.0) continue;  // a zero rate inside the sequence carries no scale information
+    rates.push_back(it->rate);
+    outputs.push_back(it->output - static_mean);
+  }
+
+  const DirectionFit positive = fit_direction(rates, outputs, true);
+  const DirectionFit negative = fit_direction(rates, outputs, false);
+  const LineFit fit = fit_line(rates, outputs);  // eqs. (4)-(6)
+  const double k = fit.slope;
+  if (k == 0.0) throw Error("scale factor: the fitted scale factor is zero; the output does not follow the rate");
+
+  // Eqs. (7)-(9): deviation of each point from the line, relative to the largest |F_j|.
+  double largest_output = 0.0;
+  for (double f : outputs) largest_output = std::max(largest_output, std::abs(f));
+  ScaleFactorResult result;
+  double largest_deviation = 0.0;
+  for (std::size_t j = 0; j < rates.size(); ++j) {
+    const double fitted = k * rates[j] + fit.intercept;               // eq. (7)
+    const double alpha = (fitted - outputs[j]) / largest_output;      // eq. (8)
+    largest_deviation = std::max(largest_deviation, std::abs(alpha));  // eq. (9)
+    result.nonlinearity_curve.push_back({rates[j], alpha * kPpm});
+  }
+
+  // Eqs. (10)-(11).
+  const double k_positive = positive.fit.slope;
+  const double k_negative = negative.fit.slope;
+  const double k_mean = 0.5 * (k_positive + k_negative);
+  const double asymmetry = std::abs(k_positive - k_negative) / std::abs(k_mean);
+
+  const std::string k_unit = options.output_unit + "/(" + options.rate_unit + ")";
+  // A standard error of zero means "not estimable" (two points only): reported as unknown.
+  auto with_error = [](double error) { return error > 0.0 ? std::optional<double>(error) : std::nullopt; };
+  result.rate_unit = options.rate_unit;
+  result.scale_factor = {k, k_unit, with_error(fit.slope_standard_error)};
+  result.zero_offset = {fit.intercept, options.output_unit, with_error(fit.intercept_standard_error)};
+  result.nonlinearity = {largest_deviation * kPpm, "ppm", std::nullopt};
+  result.asymmetry = {asymmetry * kPpm, "ppm", std::nullopt};
+  result.scale_factor_positive = {k_positive, k_unit, with_error(positive.fit.slope_standard_error)};
+  result.scale_factor_negative = {k_negative, k_unit, with_error(negative.fit.slope_standard_error)};
+  result.static_output_start = {static_start, options.output_unit, std::nullopt};
+  result.static_output_end = {static_end, options.output_unit, std::nullopt};
+  result.fit_residual_rms = {fit.residual_rms, options.output_unit, std::nullopt};
+
+  for (const auto* direction : {&positive, &negative}) {
+    if (direction->count < options.recommended_rates_per_direction) {
+      result.warnings.push_back(fmt::format("{} {} rates; GJB 2426A 5.8.1.3 asks for at least {} each way",
+                                            direction->count, direction == &positive ? "positive" : "negative",
+                                            options.recommended_rates_per_direction));
+    }
+  }
+  return result;
+}
+
+nlohmann::json ScaleFactorResult::to_json() const {
+  nlohmann::json curve = nlohmann::json::array();
+  for (const auto& point : nonlinearity_curve) {
+    curve.push_back({{"rate", Figure{point.rate, rate_unit, std::nullopt}},
+                     {"deviation", Figure{point.deviation, "ppm", std::nullopt}}});
+  }
+  return {
+      {"procedure", "scale_factor"},
+      {"clause", "GJB 2426A-2004 5.8.1-5.8.3, eqs. (1)-(11)"},
+      {"scale_factor", scale_factor},
+      {"zero_offset", zero_offset},
+      {"nonlinearity", nonlinearity},
+      {"asymmetry", asymmetry},
+      {"scale_factor_positive", scale_factor_positive},
+      {"scale_factor_negative", scale_factor_negative},
+      {"static_output_start", static_output_start},
+      {"static_output_end", static_output_end},
+      {"fit_residual_rms", fit_residual_rms},
+      {"nonlinearity_curve", curve},
+      {"warnings", warnings},
+  };
+}
+
+std::string ScaleFactorResult::report() const {
+  auto line = [](const char* name, const Figure& f) {
+    return f.uncertainty ? fmt::format("  {:<28} {:.9g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
+                         : fmt::format("  {:<28} {:.9g} {}\n", name, f.value, f.unit);
+  };
+  std::string text = "Scale factor (GJB 2426A-2004 5.8.1-5.8.3)\n";
+  text += line("scale factor K", scale_factor);
+  text += line("zero offset F0", zero_offset);
+  text += line("nonlinearity Kn", nonlinearity);
+  text += line("asymmetry Ka", asymmetry);
+  text += line("scale factor K(+)", scale_factor_positive);
+  text += line("scale factor K(-)", scale_factor_negative);
+  text += line("static output at start", static_output_start);
+  text += line("static output at end", static_output_end);
+  text += line("fit residual rms", fit_residual_rms);
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
+  return text;
+}
+
+}  // namespace inertest

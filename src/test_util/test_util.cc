@@ -1,0 +1,77 @@
+#include "test_util/test_util.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace inertest::testing {
+
+::testing::AssertionResult near_relative(double actual, double expected, double tolerance) {
+  const double error = std::abs(actual - expected);
+  const double bound = expected == 0.0 ? tolerance : tolerance * std::abs(expected);
+  if (error <= bound) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "actual " << actual << " differs from expected " << expected << " by "
+                                       << error << " (relative " << error / std::abs(expected) << "), more than "
+                                       << tolerance << (expected == 0.0 ? " absolute" : " relative");
+}
+
+double log_relative_error(double actual, double expected) {
+  if (actual == expected) return 17.0;
+  return -std::log10(std::abs(actual - expected) / std::abs(expected));
+}
+
+CliRun run_cli(const std::vector<std::string>& arguments) {
+  // stdout and stderr go to files, so neither pipe can block the other.
+  ScratchDirectory scratch;
+  const std::string out_path = scratch.path() + "/out";
+  const std::string err_path = scratch.path() + "/err";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    std::string program = INERTEST_CLI_PATH;
+    argv.push_back(program.data());
+    std::vector<std::string> copies = arguments;
+    for (auto& a : copies) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    if (!std::freopen(out_path.c_str(), "w", stdout) || !std::freopen(err_path.c_str(), "w", stderr)) _exit(127);
+    ::execv(program.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  CliRun run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  std::ifstream out(out_path, std::ios::binary);
+  run.out.assign(std::istreambuf_iterator<char>(out), {});
+  std::ifstream err(err_path, std::ios::binary);
+  run.err.assign(std::istreambuf_iterator<char>(err), {});
+  return run;
+}
+
+ScratchDirectory::ScratchDirectory() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "inertest-test-XXXXXX").string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  path_ = name.data();
+}
+
+ScratchDirectory::~ScratchDirectory() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string ScratchDirectory::write(const std::string& name, const std::string& content) const {
+  const std::string path = path_ + "/" + name;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream file(path, std::ios::binary);
+  file << content;
+  return path;
+}
+
+std::string source_path(const std::string& relative) { return std::string(INERTEST_SOURCE_DIR) + "/" + relative; }
+
+}  // namespace inertest::testing

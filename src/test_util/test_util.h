@@ -1,0 +1,50 @@
+// Helpers shared by the tests: relative tolerances, running the CLI, scratch files.
+#pragma once
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace inertest::testing {
+
+// |actual - expected| <= tolerance * |expected| (absolute tolerance when expected is 0).
+::testing::AssertionResult near_relative(double actual, double expected, double tolerance);
+
+#define EXPECT_NEAR_RELATIVE(actual, expected, tolerance) \
+  EXPECT_TRUE(::inertest::testing::near_relative((actual), (expected), (tolerance)))
+
+// Log relative error, as Ceres checks certified data: -log10(|a - e| / |e|), the number of
+// matching significant digits.
+double log_relative_error(double actual, double expected);
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs build/bin/inertest with the arguments (no shell quoting; each is one argv entry).
+CliRun run_cli(const std::vector<std::string>& arguments);
+
+// A fresh scratch directory for this test, removed when the object dies.
+class ScratchDirectory {
+ public:
+  ScratchDirectory();
+  ~ScratchDirectory();
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  const std::string& path() const { return path_; }
+  // Writes a file under the directory and returns its path.
+  std::string write(const std::string& name, const std::string& content) const;
+
+ private:
+  std::string path_;
+};
+
+// Path of a file in the source tree, e.g. source_path("data/scale_factor/points.csv").
+std::string source_path(const std::string& relative);
+
+}  // namespace inertest::testing

@@ -1,0 +1,246 @@
+#include "inertest/campaign/campaign.h"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "campaign/plan_table.h"
+#include "campaign/step_registry.h"
+#include "inertest/core/error.h"
+#include "inertest/core/figure.h"
+#include "inertest/core/units.h"
+#include "inertest/io/atomic_write.h"
+#include "inertest/version.h"
+
+namespace inertest {
+namespace {
+
+using campaign::PlanContext;
+using campaign::PlanTable;
+
+// A specification limit on one figure of a procedure's result (IEEE Std 952-1997 specification
+// format: "bias stability at most 0.01 deg/h"). `figure` is a key of the result or a JSON pointer
+// into it (e.g. "/bias_stability/1").
+struct Limit {
+  std::string figure;
+  std::optional<double> min;
+  std::optional<double> max;
+  std::string unit;  // empty: the figure's own unit
+  SourceLocation where;
+};
+
+struct PreparedStep {
+  std::string name;
+  std::string kind;
+  std::vector<Limit> limits;
+  campaign::StepAction action;
+};
+
+struct Plan {
+  std::string path;
+  nlohmann::json header;  // [plan] title, date, operator ... as given
+  PlanContext context;
+  std::vector<PreparedStep> steps;
+};
+
+toml::table parse_toml(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(SourceLocation{path, 0, 0}, "plan file not found");
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    const auto& begin = e.source().begin;
+    throw Error(SourceLocation{path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)},
+                std::string(e.description()));
+  }
+}
+
+std::vector<Limit> read_limits(PlanTable& step) {
+  std::vector<Limit> limits;
+  auto table = step.optional_table("limits");
+  if (!table) return limits;
+  for (const auto& [key, node] : table->raw()) {
+    const std::string figure(key.str());
+    auto limit_table = table->optional_table(figure);
+    Limit limit;
+    limit.figure = figure;
+    limit.min = limit_table->optional_number("min");
+    limit.max = limit_table->optional_number("max");
+    limit.unit = limit_table->string_or("unit", "");
+    const auto& begin = node.source().begin;
+    limit.where = {step.plan_path(), static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
+    if (!limit.min && !limit.max) limit_table->fail("a limit needs 'min', 'max' or both");
+    if (!limit.unit.empty()) Unit::parse(limit.unit);
+    limit_table->require_all_used();
+    limits.push_back(std::move(limit));
+  }
+  return limits;
+}
+
+Plan load_plan(const std::string& path) {
+  const toml::table root = parse_toml(path);
+  const std::string directory = std::filesystem::path(path).parent_path().string();
+  PlanTable top(root, path, directory.empty() ? "." : directory, "plan");
+  Plan plan;
+  plan.path = path;
+
+  if (auto header = top.optional_table("plan")) {
+    plan.header = nlohmann::json::object();
+    for (const char* key : {"title", "date", "operator", "laboratory", "standard"}) {
+      if (auto value = header->optional_string(key)) plan.header[key] = *value;
+    }
+    header->require_all_used();
+  }
+
+  auto instrument = top.optional_table("instrument");
+  if (!instrument) top.fail("missing [instrument] table");
+  auto& in = plan.context.instrument;
+  in.id = instrument->string("id");
+  in.type = instrument->string_or("type", "gyro");
+  if (in.type != "gyro" && in.type != "accelerometer") instrument->fail_at("type", "must be \"gyro\" or \"accelerometer\"");
+  in.output_unit = instrument->string_or("output_unit", "1");
+  try {
+    Unit::parse(in.output_unit);
+  } catch (const Error& e) {
+    instrument->fail_at("output_unit", e.message());
+  }
+  in.nominal_scale_factor = instrument->optional_number("nominal_scale_factor");
+  in.sample_rate_hz = instrument->optional_number("sample_rate_hz");
+  if (in.sample_rate_hz && *in.sample_rate_hz <= 0) instrument->fail_at("sample_rate_hz", "must be positive");
+  instrument->require_all_used();
+
+  if (auto site = top.optional_table("site")) {
+    auto& s = plan.context.site;
+    s.name = site->string_or("name", "");
+    s.latitude_deg = site->number_or("latitude_deg", 0.0);
+    if (s.latitude_deg < -90 || s.latitude_deg > 90) site->fail_at("latitude_deg", "must lie in [-90, 90]");
+    s.gravity_m_s2 = site->number_or("gravity_m_s2", 9.80665);
+    if (s.gravity_m_s2 <= 0) site->fail_at("gravity_m_s2", "must be positive");
+    s.heading_deg = site->number_or("heading_deg", 0.0);
+    site->require_all_used();
+  }
+
+  auto steps = top.tables("procedure");
+  if (steps.empty()) top.fail("no [[procedure]] tables: nothing to run");
+  for (auto& step : steps) {
+    PreparedStep prepared;
+    prepared.kind = step.string("kind");
+    prepared.name = step.string_or("name", prepared.kind);
+    const auto* preparer = campaign::find_step(prepared.kind);
+    if (preparer == nullptr) {
+      std::string known;
+      for (const auto& k : campaign::registered_step_kinds()) known += (known.empty() ? "" : ", ") + k;
+      step.fail_at("kind", "'" + prepared.kind + "' is not a known procedure (known: " + known + ")");
+    }
+    prepared.limits = read_limits(step);
+    prepared.action = (*preparer)(step, plan.context);
+    step.require_all_used();
+    plan.steps.push_back(std::move(prepared));
+  }
+  top.require_all_used();
+  return plan;
+}
+
+const nlohmann::json* find_figure(const nlohmann::json& result, const std::string& figure) {
+  if (!figure.empty() && figure.front() == '/') {
+    const nlohmann::json::json_pointer pointer(figure);
+    return result.contains(pointer) ? &result.at(pointer) : nullptr;
+  }
+  return result.contains(figure) ? &result.at(figure) : nullptr;
+}
+
+nlohmann::json check_limit(const Limit& limit, const std::string& step_name, const nlohmann::json& result) {
+  const nlohmann::json* node = find_figure(result, limit.figure);
+  if (node == nullptr || !node->is_object() || !node->contains("value") || !node->contains("unit")) {
+    throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name + "' reports no such figure");
+  }
+  const Figure figure = node->get<Figure>();
+  const std::string unit = limit.unit.empty() ? figure.unit : limit.unit;
+  double value = 0.0;
+  try {
+    value = convert(figure.value, figure.unit, unit);
+  } catch (const Error& e) {
+    throw Error(limit.where, "limit on '" + limit.figure + "': " + e.message());
+  }
+  const bool pass = (!limit.min || value >= *limit.min) && (!limit.max || value <= *limit.max);
+  nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", value},
+                            {"unit", unit},           {"pass", pass}};
+  if (limit.min) verdict["min"] = *limit.min;
+  if (limit.max) verdict["max"] = *limit.max;
+  return verdict;
+}
+
+}  // namespace
+
+nlohmann::json validate_plan(const std::string& plan_path) {
+  const Plan plan = load_plan(plan_path);
+  nlohmann::json steps = nlohmann::json::array();
+  for (const auto& step : plan.steps) steps.push_back({{"name", step.name}, {"kind", step.kind}});
+  return {{"instrument", plan.context.instrument.to_json()}, {"site", plan.context.site.to_json()}, {"procedures", steps}};
+}
+
+CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
+  const Plan plan = load_plan(plan_path);
+  campaign::StepRunContext context{options.progress};
+
+  nlohmann::json procedures = nlohmann::json::array();
+  nlohmann::json verdicts = nlohmann::json::array();
+  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+    const auto& step = plan.steps[i];
+    if (options.progress) options.progress(step.name, static_cast<double>(i) / static_cast<double>(plan.steps.size()));
+    nlohmann::json result;
+    try {
+      result = step.action(context);
+    } catch (const Error& e) {
+      throw Error("procedure '" + step.name + "': " + std::string(e.what()));
+    }
+    for (const auto& limit : step.limits) verdicts.push_back(check_limit(limit, step.name, result));
+    procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
+  }
+  if (options.progress) options.progress("done", 1.0);
+
+  bool all_pass = true;
+  for (const auto& v : verdicts) all_pass = all_pass && v.at("pass").get<bool>();
+  const char* verdict = verdicts.empty() ? "NONE" : (all_pass ? "PASS" : "FAIL");
+  CampaignSummary summary;
+  summary.results = {
+      {"inertest_version", version()},
+      {"plan", plan.header.is_null() ? nlohmann::json::object() : plan.header},
+      {"instrument", plan.context.instrument.to_json()},
+      {"site", plan.context.site.to_json()},
+      {"procedures", std::move(procedures)},
+      {"verdicts", std::move(verdicts)},
+      {"verdict", verdict},
+  };
+  std::filesystem::create_directories(out_dir);
+  const std::string results_path = (std::filesystem::path(out_dir) / "results.json").string();
+  write_file_atomically(results_path, summary.results.dump(2) + "\n");
+  summary.written_files.push_back(results_path);
+  return summary;
+}
+
+std::string CampaignSummary::report() const {
+  std::string text = fmt::format("Campaign: instrument {}\n", results.at("instrument").at("id").get<std::string>());
+  for (const auto& procedure : results.at("procedures")) {
+    text += fmt::format("\n{} ({})\n", procedure.at("name").get<std::string>(), procedure.at("kind").get<std::string>());
+    for (const auto& [key, value] : procedure.at("result").items()) {
+      if (value.is_object() && value.contains("value") && value.contains("unit")) {
+        const Figure f = value.get<Figure>();
+        text += f.uncertainty ? fmt::format("  {:<32} {:.6g} ± {:.2g} {}\n", key, f.value, *f.uncertainty, f.unit)
+                              : fmt::format("  {:<32} {:.6g} {}\n", key, f.value, f.unit);
+      }
+    }
+  }
+  if (!results.at("verdicts").empty()) {
+    text += "\nSpecification limits\n";
+    for (const auto& v : results.at("verdicts")) {
+      text += fmt::format("  {:<5} {} / {} = {:.6g} {}\n", v.at("pass").get<bool>() ? "PASS" : "FAIL",
+                          v.at("procedure").get<std::string>(), v.at("figure").get<std::string>(),
+                          v.at("value").get<double>(), v.at("unit").get<std::string>());
+    }
+  }
+  text += fmt::format("\nVerdict: {}\n", results.at("verdict").get<std::string>());
+  return text;
+}
+
+}  // namespace inertest

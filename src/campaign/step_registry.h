@@ -1,0 +1,55 @@
+// The procedures a test plan can name. Each procedure registers a preparer under its plan kind
+// (e.g. "scale_factor", "bias", "allan"): the preparer reads and checks its plan table (all
+// validation happens here, before anything runs) and returns the action that computes the result.
+// Registration is from the procedure's own step file (src/campaign/steps/<kind>_step.cc), so
+// adding a procedure touches no shared file.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "campaign/plan_table.h"
+#include "inertest/core/progress.h"
+
+namespace inertest::campaign {
+
+struct Instrument {
+  std::string id;
+  std::string type = "gyro";       // "gyro" or "accelerometer"
+  std::string output_unit = "1";   // the instrument's output unit, e.g. "pulse/s"
+  std::optional<double> nominal_scale_factor;  // output unit per deg/s (per g for accelerometers)
+  std::optional<double> sample_rate_hz;
+  nlohmann::json to_json() const;
+};
+
+struct Site {
+  std::string name;
+  double latitude_deg = 0.0;
+  double gravity_m_s2 = 9.80665;
+  double heading_deg = 0.0;  // azimuth of the instrument's IRA from north, for Earth-rate methods
+  nlohmann::json to_json() const;
+};
+
+struct PlanContext {
+  Instrument instrument;
+  Site site;
+};
+
+struct StepRunContext {
+  ProgressCallback progress;
+};
+
+// Runs the procedure on data validated by the preparer; returns its result (to_json form).
+using StepAction = std::function<nlohmann::json(const StepRunContext&)>;
+// Reads the step's keys (the campaign has already taken kind, name and limits), validates them and
+// the data files, and returns the action. Must read every key it accepts: leftovers are errors.
+using StepPreparer = std::function<StepAction(PlanTable& step, const PlanContext& context)>;
+
+bool register_step(const std::string& kind, StepPreparer preparer);
+const StepPreparer* find_step(const std::string& kind);
+std::vector<std::string> registered_step_kinds();
+
+}  // namespace inertest::campaign

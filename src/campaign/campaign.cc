@@ -1,5 +1,6 @@
 #include "inertest/campaign/campaign.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -59,15 +60,22 @@ std::vector<Limit> read_limits(PlanTable& step) {
   std::vector<Limit> limits;
   auto table = step.optional_table("limits");
   if (!table) return limits;
-  for (const auto& [key, node] : table->raw()) {
-    const std::string figure(key.str());
+  // In the plan's order (toml++ iterates keys sorted), so verdicts follow the plan.
+  std::vector<std::pair<std::string, const toml::node*>> entries;
+  for (const auto& [key, node] : table->raw()) entries.emplace_back(std::string(key.str()), &node);
+  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    const auto& x = a.second->source().begin;
+    const auto& y = b.second->source().begin;
+    return x.line != y.line ? x.line < y.line : x.column < y.column;
+  });
+  for (const auto& [figure, node] : entries) {
     auto limit_table = table->optional_table(figure);
     Limit limit;
     limit.figure = figure;
     limit.min = limit_table->optional_number("min");
     limit.max = limit_table->optional_number("max");
     limit.unit = limit_table->string_or("unit", "");
-    const auto& begin = node.source().begin;
+    const auto& begin = node->source().begin;
     limit.where = {step.plan_path(), static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     if (!limit.min && !limit.max) limit_table->fail("a limit needs 'min', 'max' or both");
     if (!limit.unit.empty()) Unit::parse(limit.unit);
@@ -84,7 +92,13 @@ Plan load_plan(const std::string& path) {
   Plan plan;
   plan.path = path;
 
-  if (auto header = top.optional_table("plan")) {
+  auto header = top.optional_table("plan");
+  auto instrument = top.optional_table("instrument");
+  auto site = top.optional_table("site");
+  auto steps = top.tables("procedure");
+  top.require_all_used();
+
+  if (header) {
     plan.header = nlohmann::json::object();
     for (const char* key : {"title", "date", "operator", "laboratory", "standard"}) {
       if (auto value = header->optional_string(key)) plan.header[key] = *value;
@@ -92,7 +106,6 @@ Plan load_plan(const std::string& path) {
     header->require_all_used();
   }
 
-  auto instrument = top.optional_table("instrument");
   if (!instrument) top.fail("missing [instrument] table");
   auto& in = plan.context.instrument;
   in.id = instrument->string("id");
@@ -109,7 +122,7 @@ Plan load_plan(const std::string& path) {
   if (in.sample_rate_hz && *in.sample_rate_hz <= 0) instrument->fail_at("sample_rate_hz", "must be positive");
   instrument->require_all_used();
 
-  if (auto site = top.optional_table("site")) {
+  if (site) {
     auto& s = plan.context.site;
     s.name = site->string_or("name", "");
     s.latitude_deg = site->number_or("latitude_deg", 0.0);
@@ -120,7 +133,6 @@ Plan load_plan(const std::string& path) {
     site->require_all_used();
   }
 
-  auto steps = top.tables("procedure");
   if (steps.empty()) top.fail("no [[procedure]] tables: nothing to run");
   for (auto& step : steps) {
     PreparedStep prepared;
@@ -137,7 +149,6 @@ Plan load_plan(const std::string& path) {
     step.require_all_used();
     plan.steps.push_back(std::move(prepared));
   }
-  top.require_all_used();
   return plan;
 }
 

@@ -164,7 +164,9 @@ std::vector<PlanTable> PlanTable::tables(std::string_view key) {
 void PlanTable::require_all_used() const {
   for (const auto& [key, node] : *table_) {
     if (!used_.contains(key.str())) {
-      throw Error(location_of(&node), where_ + ": unknown key '" + std::string(key.str()) + "'");
+      const auto& begin = key.source().begin.line > 0 ? key.source().begin : node.source().begin;
+      throw Error(SourceLocation{plan_path_, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)},
+                  where_ + ": unknown key '" + std::string(key.str()) + "'");
     }
   }
 }

@@ -39,7 +39,8 @@ CommandAction setup(CLI::App& root) {
     const TextTable table = read_text_table(arguments->points_file, read);
     std::vector<ScaleFactorPoint> points(table.rows());
     for (std::size_t i = 0; i < points.size(); ++i) points[i] = {table.columns[0][i], table.columns[1][i]};
-    const ScaleFactorResult result = scale_factor(points, arguments->options);
+    const ScaleFactorResult result =
+        with_file_context(arguments->points_file, [&] { return scale_factor(points, arguments->options); });
     print_result(result.to_json(), result.report(), arguments->json);
     return 0;
   };

@@ -20,6 +20,15 @@ namespace inertest::testing {
 // matching significant digits.
 double log_relative_error(double actual, double expected);
 
+// Names parameterised test cases after their param's `name` member:
+//   INSTANTIATE_TEST_SUITE_P(Suite, Fixture, ::testing::Values(...), inertest::testing::NameOfParam());
+struct NameOfParam {
+  template <typename T>
+  std::string operator()(const ::testing::TestParamInfo<T>& param_info) const {
+    return std::string(param_info.param.name);
+  }
+};
+
 struct CliRun {
   int exit_code = -1;
   std::string out;

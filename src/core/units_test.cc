@@ -1,0 +1,72 @@
+#include "inertest/core/units.h"
+
+#include <gtest/gtest.h>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+struct ConversionCase {
+  const char* from;
+  const char* to;
+  double value;
+  double expected;
+};
+
+class UnitConversion : public ::testing::TestWithParam<ConversionCase> {};
+
+TEST_P(UnitConversion, MatchesHandComputedFactor) {
+  const auto& c = GetParam();
+  EXPECT_NEAR_RELATIVE(convert(c.value, c.from, c.to), c.expected, 1e-14);
+}
+
+constexpr double kPi = constants::kPi;
+
+INSTANTIATE_TEST_SUITE_P(
+    Units, UnitConversion,
+    ::testing::Values(ConversionCase{"deg/s", "deg/h", 1.0, 3600.0}, ConversionCase{"deg/h", "rad/s", 3600.0, kPi / 180.0},
+                      ConversionCase{"rad", "arcsec", kPi / 180.0, 3600.0},
+                      // 1 deg/sqrt(h) = 60 deg/h * sqrt(s)  (GJB 2426A 5.12.5: RWC units)
+                      ConversionCase{"deg/sqrt(h)", "deg/h*sqrt(s)", 1.0, 60.0},
+                      ConversionCase{"deg/h/sqrt(h)", "deg/h^1.5", 2.0, 2.0}, ConversionCase{"ppm", "%", 1e4, 1.0},
+                      ConversionCase{"g", "m/s^2", 1.0, 9.80665}, ConversionCase{"mV", "V", 1500.0, 1.5},
+                      ConversionCase{"Hz", "1/s", 10.0, 10.0}, ConversionCase{"kHz", "Hz", 2.0, 2000.0},
+                      ConversionCase{"pulse/s/(deg/s)", "pulse/deg", 4.0, 4.0},
+                      ConversionCase{"Mohm", "ohm", 2.0, 2e6}, ConversionCase{"deg/h/g^2", "deg/h/g/g", 1.0, 1.0},
+                      ConversionCase{"arcmin", "arcsec", 1.0, 60.0}, ConversionCase{"rev", "deg", 1.0, 360.0}));
+
+TEST(Units, IncompatibleDimensionsAreAnError) {
+  EXPECT_THROW(convert(1.0, "deg/h", "deg"), Error);
+  EXPECT_THROW(convert(1.0, "V", "pulse"), Error);
+  try {
+    convert(1.0, "deg/h", "V");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("cannot convert 'deg/h'"));
+  }
+}
+
+TEST(Units, UnknownNamesAreAnErrorNotAGuess) {
+  for (const char* text : {"degs/h", "furlong", "deg//h", "", "deg^x", "sqrt(h", "deg/"}) {
+    EXPECT_THROW(Unit::parse(text), Error) << text;
+  }
+  try {
+    Unit::parse("deg/hour");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("unknown unit 'hour'"));
+  }
+}
+
+TEST(Units, DimensionsOfDerivedUnits) {
+  EXPECT_TRUE(Unit::parse("ppm").is_dimensionless());
+  EXPECT_TRUE(Unit::parse("1").is_dimensionless());
+  EXPECT_EQ(Unit::parse("deg/sqrt(h)").dimension(), Unit::parse("rad/s^0.5").dimension());
+  EXPECT_EQ(Unit::parse("W").dimension(), Unit::parse("V*A").dimension());
+  EXPECT_EQ(Unit::parse(" deg/h ").symbol(), "deg/h");
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,143 @@
+#include "inertest/io/text_table.h"
+
+#include <gtest/gtest.h>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+TextTable parse(const std::string& text, TextTableOptions options = {}) {
+  return parse_text_table(text, "rec.csv", options);
+}
+
+// The error message of parsing `text`, which must fail.
+std::string error_of(const std::string& text, TextTableOptions options = {}) {
+  try {
+    parse(text, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for: " << text;
+  return "";
+}
+
+struct DelimiterCase {
+  const char* name;
+  const char* text;
+};
+
+class Delimiters : public ::testing::TestWithParam<DelimiterCase> {};
+
+TEST_P(Delimiters, ParsesTheSameTable) {
+  const TextTable table = parse(GetParam().text);
+  ASSERT_EQ(table.columns.size(), 2u);
+  EXPECT_EQ(table.names, (std::vector<std::string>{"rate", "output"}));
+  EXPECT_EQ(table.columns[0], (std::vector<double>{1.5, -2.0, 3e-3}));
+  EXPECT_EQ(table.columns[1], (std::vector<double>{10.0, 20.25, -30.0}));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TextTable, Delimiters,
+    ::testing::Values(DelimiterCase{"csv", "rate,output\n1.5,10\n-2,20.25\n3e-3,-30\n"},
+                      DelimiterCase{"tsv", "rate\toutput\n1.5\t10\n-2\t20.25\n3e-3\t-30\n"},
+                      DelimiterCase{"semicolon", "rate;output\n1.5;10\n-2;20.25\n3e-3;-30\n"},
+                      DelimiterCase{"whitespace", "rate   output\n 1.5  10\n-2 20.25\n  3e-3   -30  \n"},
+                      DelimiterCase{"crlf_comments_blank", "# lab export\r\nrate,output\r\n\r\n1.5, 10\r\n# note\r\n-2 ,20.25\r\n+3e-3,-30"}),
+    testing::NameOfParam());
+
+TEST(TextTable, WithoutHeaderColumnsAreChosenByIndex) {
+  TextTableOptions options;
+  options.columns = {ColumnSelector::parse("2")};
+  const TextTable table = parse("1 2 3\n4 5 6\n", options);
+  EXPECT_EQ(table.columns[0], (std::vector<double>{2, 5}));
+  EXPECT_EQ(table.first_data_line, 1u);
+}
+
+TEST(TextTable, ColumnsByNameInTheOrderAsked) {
+  TextTableOptions options;
+  options.columns = {ColumnSelector{"b"}, ColumnSelector{"a"}};
+  const TextTable table = parse("a,b,c\n1,2,3\n", options);
+  EXPECT_EQ(table.names, (std::vector<std::string>{"b", "a"}));
+  EXPECT_EQ(table.columns[0][0], 2.0);
+  EXPECT_EQ(table.columns[1][0], 1.0);
+  EXPECT_EQ(table.row_lines, (std::vector<std::size_t>{2}));
+}
+
+TEST(TextTable, ForcedHeaderHandlesNumericNames) {
+  TextTableOptions options;
+  options.header = TextTableOptions::Header::kPresent;
+  const TextTable table = parse("1,2\n3,4\n", options);
+  EXPECT_EQ(table.names, (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(table.rows(), 1u);
+}
+
+struct BadInput {
+  const char* name;
+  std::string_view text;
+  const char* message;  // expected substring, including the location
+};
+
+class MalformedText : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(MalformedText, GivesLocatedError) {
+  TextTableOptions options;
+  const std::string message = error_of(std::string(GetParam().text), options);
+  EXPECT_THAT(message, HasSubstr(GetParam().message));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TextTable, MalformedText,
+    ::testing::Values(
+        BadInput{"malformed_number", "rate,output\n1,2\n3,4x\n", "rec.csv:3:3: expected a number in column 'output', found '4x'"},
+        BadInput{"too_few_columns", "rate,output\n1,2\n3\n", "rec.csv:3: expected 2 columns, found 1"},
+        BadInput{"too_many_columns", "rate,output\n1,2,5\n", "rec.csv:2: expected 2 columns, found 3"},
+        BadInput{"nan", "rate,output\n1,nan\n", "rec.csv:2:3: 'nan' is not a finite number"},
+        BadInput{"inf", "a b\n-inf 2\n", "rec.csv:2:1: '-inf' is not a finite number"},
+        BadInput{"empty_file", "", "rec.csv: no data"},
+        BadInput{"only_comments", "# nothing\n\n# here\n", "rec.csv: no data"},
+        BadInput{"header_only", "rate,output\n", "expected at least 1 data rows, found 0"},
+        BadInput{"empty_cell", "rate,output\n1,\n", "rec.csv:2:3: empty cell in column 'output'"},
+        BadInput{"decimal_comma", "rate;output\n1;2,5\n", "rec.csv:2:3: '2,5' in column 'output' looks like a decimal comma"},
+        BadInput{"second_header", "rate,output\n1,2\nrate,output\n", "rec.csv:3:1: expected a number in column 'rate'"},
+        BadInput{"binary_garbage", std::string_view("\x01\x00\x02", 3), "rec.csv:1:2: binary data"}),
+    testing::NameOfParam());
+
+TEST(TextTable, UnknownColumnListsTheHeader) {
+  TextTableOptions options;
+  options.columns = {ColumnSelector{"rates"}};
+  EXPECT_THAT(error_of("rate,output\n1,2\n", options),
+              HasSubstr("rec.csv:1: no column 'rates' in the header (columns: rate, output)"));
+  options.columns = {ColumnSelector::parse("3")};
+  EXPECT_THAT(error_of("rate,output\n1,2\n", options), HasSubstr("column 3 asked for, but the record has 2 columns"));
+  options.columns = {ColumnSelector{"rate"}};
+  EXPECT_THAT(error_of("1,2\n3,4\n", options), HasSubstr("asked for by name, but the record has no header row"));
+  EXPECT_THROW(ColumnSelector::parse("0"), Error);
+}
+
+TEST(TextTable, MinimumRowsIsEnforced) {
+  TextTableOptions options;
+  options.minimum_rows = 3;
+  EXPECT_THAT(error_of("x\n1\n2\n", options), HasSubstr("expected at least 3 data rows, found 2"));
+}
+
+TEST(TextTable, ReadsFromFileAndNamesIt) {
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("r.csv", "t,v\n0,1\n1,oops\n");
+  try {
+    read_text_table(path);
+    FAIL();
+  } catch (const Error& e) {
+    ASSERT_TRUE(e.location().has_value());
+    EXPECT_EQ(e.location()->file, path);
+    EXPECT_EQ(e.location()->line, 3u);
+    EXPECT_EQ(e.location()->column, 3u);
+  }
+  EXPECT_THROW(read_text_table(dir.path() + "/missing.csv"), Error);
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,136 @@
+#include "inertest/numerics/least_squares.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "inertest/core/error.h"
+#include "inertest/numerics/statistics.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+TEST(FitLine, ExactLineIsRecovered) {
+  const std::vector<double> x = {-3, -1, 0.5, 2, 7};
+  std::vector<double> y;
+  for (double v : x) y.push_back(2.5 * v - 4.0);
+  const LineFit fit = fit_line(x, y);
+  EXPECT_NEAR_RELATIVE(fit.slope, 2.5, 1e-14);
+  EXPECT_NEAR_RELATIVE(fit.intercept, -4.0, 1e-14);
+  EXPECT_NEAR(fit.residual_rms, 0.0, 1e-13);
+}
+
+TEST(FitLine, HandComputedStandardErrors) {
+  // x = 0,1,2,3; y = 0,2,1,3: slope 0.8, intercept 0.3, residuals -0.3,0.9,-0.9,0.3 (RSS 1.8),
+  // s^2 = 0.9, Sxx = 5: se(slope) = sqrt(0.18), se(intercept) = sqrt(0.9 (1/4 + 2.25/5)).
+  const std::vector<double> x = {0, 1, 2, 3};
+  const std::vector<double> y = {0, 2, 1, 3};
+  const LineFit fit = fit_line(x, y);
+  EXPECT_NEAR_RELATIVE(fit.slope, 0.8, 1e-14);
+  EXPECT_NEAR_RELATIVE(fit.intercept, 0.3, 1e-14);
+  EXPECT_NEAR_RELATIVE(fit.slope_standard_error, std::sqrt(0.18), 1e-14);
+  EXPECT_NEAR_RELATIVE(fit.intercept_standard_error, std::sqrt(0.9 * (0.25 + 0.45)), 1e-14);
+}
+
+TEST(FitLine, LargeOffsetDoesNotCancel) {
+  // x near 1e8: the textbook sums of eq. (5) would lose every digit; the centred form does not.
+  std::vector<double> x;
+  std::vector<double> y;
+  for (int i = 0; i < 100; ++i) {
+    x.push_back(1e8 + i);
+    y.push_back(3.0 * i + 1.0);
+  }
+  EXPECT_NEAR_RELATIVE(fit_line(x, y).slope, 3.0, 1e-12);
+}
+
+TEST(FitLine, DegenerateInputIsAnError) {
+  const std::vector<double> one = {1.0};
+  EXPECT_THROW(fit_line(one, one), Error);
+  const std::vector<double> same = {2.0, 2.0, 2.0};
+  const std::vector<double> y = {1.0, 2.0, 3.0};
+  EXPECT_THROW(fit_line(same, y), Error);
+}
+
+TEST(LeastSquares, AgreesWithLineFitIncludingCovariance) {
+  const std::vector<double> x = {0, 1, 2, 3};
+  const std::vector<double> y = {0, 2, 1, 3};
+  Matrix a(4, 2);
+  for (std::size_t i = 0; i < 4; ++i) {
+    a(i, 0) = x[i];
+    a(i, 1) = 1.0;
+  }
+  const auto result = solve_least_squares(a, y);
+  const LineFit fit = fit_line(x, y);
+  EXPECT_NEAR_RELATIVE(result.parameters[0], fit.slope, 1e-13);
+  EXPECT_NEAR_RELATIVE(result.parameters[1], fit.intercept, 1e-13);
+  EXPECT_NEAR_RELATIVE(result.standard_error(0), fit.slope_standard_error, 1e-12);
+  EXPECT_NEAR_RELATIVE(result.standard_error(1), fit.intercept_standard_error, 1e-12);
+  EXPECT_EQ(result.degrees_of_freedom, 2u);
+  EXPECT_EQ(result.rank, 2u);
+}
+
+TEST(LeastSquares, RankDeficiencyNamesTheParameter) {
+  // Third column = first + second: "c" cannot be told from the others.
+  Matrix a(4, 3);
+  for (std::size_t i = 0; i < 4; ++i) {
+    a(i, 0) = static_cast<double>(i);
+    a(i, 1) = 1.0;
+    a(i, 2) = static_cast<double>(i) + 1.0;
+  }
+  const std::vector<double> y = {1, 2, 3, 4};
+  LeastSquaresOptions options;
+  options.parameter_names = {"a", "b", "c"};
+  try {
+    solve_least_squares(a, y, options);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("cannot identify"));
+  }
+  options.require_full_rank = false;
+  const auto result = solve_least_squares(a, y, options);
+  EXPECT_EQ(result.rank, 2u);
+  EXPECT_EQ(result.unidentifiable.size(), 1u);
+}
+
+TEST(LeastSquares, WeightsActAsRepeatedObservations) {
+  // Weight 2 on a point equals the point given twice.
+  Matrix a(3, 2);
+  Matrix b(4, 2);
+  const std::vector<double> x = {0, 1, 2};
+  const std::vector<double> y = {0.0, 1.5, 1.9};
+  for (std::size_t i = 0; i < 3; ++i) {
+    a(i, 0) = x[i];
+    a(i, 1) = 1.0;
+    b(i, 0) = x[i];
+    b(i, 1) = 1.0;
+  }
+  b(3, 0) = x[2];
+  b(3, 1) = 1.0;
+  LeastSquaresOptions weighted;
+  weighted.weights = {1.0, 1.0, 2.0};
+  const auto w = solve_least_squares(a, y, weighted);
+  const std::vector<double> y4 = {0.0, 1.5, 1.9, 1.9};
+  const auto r = solve_least_squares(b, y4);
+  EXPECT_NEAR_RELATIVE(w.parameters[0], r.parameters[0], 1e-13);
+  EXPECT_NEAR_RELATIVE(w.parameters[1], r.parameters[1], 1e-13);
+}
+
+TEST(Statistics, StandardDeviationSurvivesLargeOffset) {
+  // 1, 2, 3, 4 has sample standard deviation sqrt(5/3); add 1e12 to every value.
+  const std::vector<double> values = {1e12 + 1, 1e12 + 2, 1e12 + 3, 1e12 + 4};
+  EXPECT_NEAR_RELATIVE(sample_standard_deviation(values), std::sqrt(5.0 / 3.0), 1e-12);
+}
+
+TEST(Statistics, WindowMeansDropThePartialWindow) {
+  const std::vector<double> values = {1, 3, 5, 7, 9};
+  const auto means = window_means(values, 2);
+  ASSERT_EQ(means.size(), 2u);
+  EXPECT_EQ(means[0], 2.0);
+  EXPECT_EQ(means[1], 6.0);
+  EXPECT_THROW(window_means(values, 6), Error);
+  EXPECT_THROW(window_means(values, 0), Error);
+}
+
+}  // namespace
+}  // namespace inertest

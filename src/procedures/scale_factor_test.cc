@@ -1,0 +1,203 @@
+#include "inertest/procedures/scale_factor.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/io/text_table.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::vector<ScaleFactorPoint> points(std::initializer_list<std::pair<double, double>> pairs) {
+  std::vector<ScaleFactorPoint> result;
+  for (const auto& [rate, output] : pairs) result.push_back({rate, output});
+  return result;
+}
+
+TEST(ScaleFactor, HandComputedCase) {
+  // F̄s = 1, F̄e = 3, so F̄r = 2 (eq. 2); after subtraction F = -4.1, -2.0, 2.1, 4.0 at -2,-1,1,2.
+  // Eq. (5): sum x = 0, sum x^2 = 10, sum xF = 20.3 -> K = 2.03; eq. (6): F0 = 0.
+  // Eq. (8): F̂ - F = 0.04, -0.03, -0.07, 0.06 over |Fm| = 4.1 -> Kn = 0.07/4.1.
+  // K(+) = (4.0 - 2.1)/1 = 1.9, K(-) = (-2.0 + 4.1)/1 = 2.1, K̄ = 2.0 -> Ka = 0.1 (eqs. 10-11).
+  const auto data = points({{0, 1.0}, {-2, -2.1}, {-1, 0.0}, {1, 4.1}, {2, 6.0}, {0, 3.0}});
+  const ScaleFactorResult r = scale_factor(data);
+  EXPECT_NEAR_RELATIVE(r.scale_factor.value, 2.03, 1e-14);
+  EXPECT_NEAR(r.zero_offset.value, 0.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(r.nonlinearity.value, 0.07 / 4.1 * 1e6, 1e-12);
+  EXPECT_NEAR_RELATIVE(r.scale_factor_positive.value, 1.9, 1e-14);
+  EXPECT_NEAR_RELATIVE(r.scale_factor_negative.value, 2.1, 1e-14);
+  EXPECT_NEAR_RELATIVE(r.asymmetry.value, 1e5, 1e-12);
+  EXPECT_EQ(r.static_output_start.value, 1.0);
+  EXPECT_EQ(r.static_output_end.value, 3.0);
+  ASSERT_EQ(r.nonlinearity_curve.size(), 4u);
+  EXPECT_NEAR_RELATIVE(r.nonlinearity_curve[0].deviation, 0.04 / 4.1 * 1e6, 1e-11);
+  EXPECT_NEAR_RELATIVE(r.nonlinearity_curve[2].deviation, -0.07 / 4.1 * 1e6, 1e-11);
+  EXPECT_EQ(r.warnings.size(), 2u);  // 2 rates each way, the standard asks for 11
+}
+
+TEST(ScaleFactor, ExactLineHasNoNonlinearityOrAsymmetry) {
+  std::vector<ScaleFactorPoint> data = {{0, 7.0}};
+  for (double rate : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 300.0, 400.0, 500.0}) {
+    data.push_back({rate, 7.0 + 1234.5 * rate});
+    data.push_back({-rate, 7.0 - 1234.5 * rate});
+  }
+  data.push_back({0, 7.0});
+  ScaleFactorOptions options;
+  options.output_unit = "pulse/s";
+  const ScaleFactorResult r = scale_factor(data, options);
+  EXPECT_NEAR_RELATIVE(r.scale_factor.value, 1234.5, 1e-13);
+  EXPECT_EQ(r.scale_factor.unit, "pulse/s/(deg/s)");
+  EXPECT_NEAR(r.nonlinearity.value, 0.0, 1e-6);
+  EXPECT_NEAR(r.asymmetry.value, 0.0, 1e-6);
+  EXPECT_TRUE(r.warnings.empty());
+}
+
+// Eqs. (1)-(11) written literally as printed (uncentred sums of eq. 5), independent of the
+// library's implementation.
+struct LiteralStandard {
+  double k, f0, kn, ka, k_pos, k_neg;
+};
+
+std::pair<double, double> literal_fit(const std::vector<double>& w, const std::vector<double>& f) {
+  const double m = static_cast<double>(w.size());
+  double sw = 0, sf = 0, swf = 0, sww = 0;
+  for (std::size_t j = 0; j < w.size(); ++j) {
+    sw += w[j];
+    sf += f[j];
+    swf += w[j] * f[j];
+    sww += w[j] * w[j];
+  }
+  const double k = (swf - sw * sf / m) / (sww - sw * sw / m);  // eq. (5)
+  return {k, sf / m - k / m * sw};                             // eq. (6)
+}
+
+LiteralStandard literal_standard(const std::vector<ScaleFactorPoint>& data) {
+  std::size_t first = 0;
+  while (data[first].rate == 0) ++first;
+  std::size_t last = data.size() - 1;
+  while (data[last].rate == 0) --last;
+  double fs = 0, fe = 0;
+  for (std::size_t i = 0; i < first; ++i) fs += data[i].output / static_cast<double>(first);
+  for (std::size_t i = last + 1; i < data.size(); ++i) fe += data[i].output / static_cast<double>(data.size() - 1 - last);
+  const double fr = (fs + fe) / 2;  // eq. (2)
+  std::vector<double> w, f, wp, fp, wn, fn;
+  for (std::size_t i = first; i <= last; ++i) {
+    w.push_back(data[i].rate);
+    f.push_back(data[i].output - fr);  // eq. (3)
+    (data[i].rate > 0 ? wp : wn).push_back(data[i].rate);
+    (data[i].rate > 0 ? fp : fn).push_back(data[i].output - fr);
+  }
+  const auto [k, f0] = literal_fit(w, f);
+  double fm = 0, kn = 0;
+  for (double v : f) fm = std::max(fm, std::abs(v));
+  for (std::size_t j = 0; j < w.size(); ++j) kn = std::max(kn, std::abs((k * w[j] + f0 - f[j]) / fm));  // eqs. (7)-(9)
+  const double kp = literal_fit(wp, fp).first;
+  const double kneg = literal_fit(wn, fn).first;
+  const double ka = std::abs(kp - kneg) / ((kp + kneg) / 2);  // eqs. (10)-(11)
+  return {k, f0, kn * 1e6, ka * 1e6, kp, kneg};
+}
+
+TEST(ScaleFactor, AgreesWithTheLiteralEquationsOnTheBundledExample) {
+  TextTableOptions read;
+  read.columns = {ColumnSelector{"rate"}, ColumnSelector{"output"}};
+  const TextTable table = read_text_table(testing::source_path("examples/scale_factor/points.csv"), read);
+  std::vector<ScaleFactorPoint> data;
+  for (std::size_t i = 0; i < table.rows(); ++i) data.push_back({table.columns[0][i], table.columns[1][i]});
+  const ScaleFactorResult r = scale_factor(data);
+  const LiteralStandard expected = literal_standard(data);
+  EXPECT_NEAR_RELATIVE(r.scale_factor.value, expected.k, 1e-9);
+  EXPECT_NEAR_RELATIVE(r.zero_offset.value, expected.f0, 1e-9);
+  EXPECT_NEAR_RELATIVE(r.nonlinearity.value, expected.kn, 1e-9);
+  EXPECT_NEAR_RELATIVE(r.asymmetry.value, expected.ka, 1e-9);
+  EXPECT_NEAR_RELATIVE(r.scale_factor_positive.value, expected.k_pos, 1e-9);
+  EXPECT_NEAR_RELATIVE(r.scale_factor_negative.value, expected.k_neg, 1e-9);
+}
+
+TEST(ScaleFactor, SyntheticQuadraticNonlinearityFollowsAnalytically) {
+  // F = K w + c w|w| on symmetric rates: odd-symmetric c w|w| has zero intercept and its
+  // least-squares slope is c sum|w|^3 / sum w^2, so the deviation at every point is known.
+  const double k = 100.0;
+  const double c = 1e-3;
+  const std::vector<double> rates = {1, 2, 4, 8, 16};
+  std::vector<ScaleFactorPoint> data = {{0, 0.0}};
+  for (double w : rates) {
+    data.push_back({w, k * w + c * w * w});
+    data.push_back({-w, -k * w - c * w * w});
+  }
+  data.push_back({0, 0.0});
+  double s2 = 0, s3 = 0;
+  for (double w : rates) {
+    s2 += 2 * w * w;
+    s3 += 2 * w * w * w;
+  }
+  const double slope = k + c * s3 / s2;
+  const ScaleFactorResult r = scale_factor(data);
+  EXPECT_NEAR_RELATIVE(r.scale_factor.value, slope, 1e-12);
+  const double fm = k * 16 + c * 256;
+  double kn = 0;
+  for (double w : rates) kn = std::max(kn, std::abs(slope * w - (k * w + c * w * w)) / fm);
+  EXPECT_NEAR_RELATIVE(r.nonlinearity.value, kn * 1e6, 1e-9);
+  EXPECT_NEAR(r.asymmetry.value, 0.0, 1e-6);
+}
+
+struct BadCase {
+  const char* name;
+  std::vector<ScaleFactorPoint> data;
+  const char* message;
+};
+
+class ScaleFactorErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(ScaleFactorErrors, SayWhatIsMissing) {
+  try {
+    scale_factor(GetParam().data);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr(GetParam().message));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ScaleFactor, ScaleFactorErrors,
+    ::testing::Values(BadCase{"no_start_static", points({{-1, -1}, {-2, -2}, {1, 1}, {2, 2}, {0, 0}}), "static run at the start"},
+                      BadCase{"no_end_static", points({{0, 0}, {-1, -1}, {-2, -2}, {1, 1}, {2, 2}}), "static run at the end"},
+                      BadCase{"not_bracketing_zero", points({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 0}}), "0 negative rate(s)"},
+                      BadCase{"one_negative", points({{0, 0}, {-1, -1}, {1, 1}, {2, 2}, {0, 0}}), "1 negative rate(s)"},
+                      BadCase{"all_static", points({{0, 0}, {0, 0}}), "no nonzero rate"},
+                      BadCase{"no_response", points({{0, 0}, {-1, 5}, {-2, 5}, {1, 5}, {2, 5}, {0, 5}}), "scale factor is zero"}),
+    testing::NameOfParam());
+
+TEST(ScaleFactor, OptionsAreValidated) {
+  const auto data = points({{0, 1.0}, {-2, -2.1}, {-1, 0.0}, {1, 4.1}, {2, 6.0}, {0, 3.0}});
+  ScaleFactorOptions options;
+  options.rate_unit = "deg";
+  EXPECT_THROW(scale_factor(data, options), Error);
+  options.rate_unit = "deg/s";
+  options.output_unit = "bananas";
+  EXPECT_THROW(scale_factor(data, options), Error);
+}
+
+TEST(ScaleFactor, JsonHasEveryFigureWithItsUnit) {
+  const auto data = points({{0, 1.0}, {-2, -2.1}, {-1, 0.0}, {1, 4.1}, {2, 6.0}, {0, 3.0}});
+  const nlohmann::json json = scale_factor(data).to_json();
+  for (const char* key : {"scale_factor", "zero_offset", "nonlinearity", "asymmetry", "scale_factor_positive",
+                          "scale_factor_negative"}) {
+    ASSERT_TRUE(json.contains(key)) << key;
+    EXPECT_TRUE(json[key].contains("value")) << key;
+    EXPECT_TRUE(json[key].contains("unit")) << key;
+  }
+  EXPECT_EQ(json["nonlinearity"]["unit"], "ppm");
+  ASSERT_EQ(json["nonlinearity_curve"].size(), 4u);
+  EXPECT_EQ(json["nonlinearity_curve"][0]["rate"]["unit"], "deg/s");
+  EXPECT_EQ(json["nonlinearity_curve"][0]["rate"]["value"], -2.0);
+}
+
+}  // namespace
+}  // namespace inertest

@@ -396,8 +396,8 @@ nlohmann::json DriftCalibrationResult::to_json() const {
 
 std::string DriftCalibrationResult::report() const {
   auto line = [](std::string_view name, const Figure& f) {
-    return f.uncertainty ? fmt::format("  {:<14} {:>14.6g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
-                         : fmt::format("  {:<14} {:>14.6g} {}\n", name, f.value, f.unit);
+    return f.uncertainty ? fmt::format("  {:<24} {:>14.6g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
+                         : fmt::format("  {:<24} {:>14.6g} {}\n", name, f.value, f.unit);
   };
   std::string text = fmt::format("Centrifuge drift coefficients ({} g-level(s), {} runs, compensation {})\n", g_levels,
                                  runs.size(), compensation ? "on" : "off");

@@ -42,7 +42,8 @@ CommandAction setup(CLI::App& root) {
       "--no-compensation it defaults to 0 and then only enters the Coriolis term. Unmeasured k1, k2,\n"
       "delta-omega are taken as 0 unless --estimate-errors estimates them (two or more g-levels).\n"
       "Outputs: coefficients (deg/h, deg/h/g, deg/h/g^2, 1-sigma), residual_rms (deg/h), centrifuge_errors,\n"
-      "influence (per error: magnitude, shift and sensitivity of each coefficient), runs (residuals).");
+      "influence (per error alone, paper section 6: its magnitude, the shift of each coefficient it causes\n"
+      "when left uncompensated = (Phi^T Phi)^-1 Phi^T epsilon_i, and that shift per unit error), runs (residuals).");
   command->add_option("FILE", arguments->file, "harmonic amplitudes or raw samples (CSV with header)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -37,7 +37,9 @@ AccelerometerMisalignmentRun fit_run(long run, const std::vector<const Accelerom
   }
   const LeastSquaresResult solution = misalignment_detail::solve_separating(
       design, observations, kUnknownNames, SourceLocation{options.source, rows.front()->line, 0},
-      fmt::format("accelerometer misalignment: the positions of run {}", run));
+      fmt::format("accelerometer misalignment: the positions of run {}", run),
+      "the terms 1, -cos(beta), sin(beta) must be independent over the positions of a run, as with the paper's "
+      "beta = 0, 90, 180, 270");
   const bool estimable = solution.degrees_of_freedom > 0;
   auto sigma = [&](Unknown u) {
     return estimable ? std::optional<double>(solution.standard_error(u)) : std::nullopt;

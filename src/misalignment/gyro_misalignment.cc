@@ -87,7 +87,9 @@ GyroMisalignmentFit fit_pairs(const std::vector<const PositionPair*>& pairs, con
     observations[i] = (p.plus->output - p.minus->output) / (2.0 * options.scale_factor * p.rate_dps);
   }
   const LeastSquaresResult solution = misalignment_detail::solve_separating(
-      design, observations, kAngleNames, SourceLocation{options.source, 0, 0}, what);
+      design, observations, kAngleNames, SourceLocation{options.source, 0, 0}, what,
+      "the terms -cos(beta), sin(beta), -1, -cos(alpha), sin(alpha) of the five angles must be independent over the "
+      "positions, as with the paper's (alpha, beta) = (0,0), (0,180), (180,180), (90,180), (0,90)");
 
   const bool estimable = solution.degrees_of_freedom > 0;
   auto angle = [&](Angle a) {

@@ -41,7 +41,7 @@ double cos_deg(double degrees) {
 
 LeastSquaresResult solve_separating(const Matrix& design, std::span<const double> observations,
                                     const std::vector<std::string>& names, const SourceLocation& where,
-                                    const std::string& what) {
+                                    const std::string& what, const std::string& hint) {
   LeastSquaresOptions options;
   options.parameter_names = names;
   options.require_full_rank = false;
@@ -60,9 +60,8 @@ LeastSquaresResult solve_separating(const Matrix& design, std::span<const double
       if (!unidentified.empty()) unidentified += ", ";
       unidentified += names.at(index);
     }
-    throw Error(where, fmt::format("{} ({} equation(s) for {} unknowns) cannot separate {}: add positions whose "
-                                   "sin/cos of alpha and beta make these angles' terms independent",
-                                   what, design.rows, design.cols, unidentified));
+    throw Error(where, fmt::format("{} ({} equation(s) for {} unknowns) cannot separate {}; {}", what, design.rows,
+                                   design.cols, unidentified, hint));
   }
   return result;
 }

@@ -19,11 +19,11 @@ double sin_deg(double degrees);
 double cos_deg(double degrees);
 
 // Solves the design by least squares. When the equations cannot determine every parameter (too
-// few equations, or dependent columns) throws Error "<what> cannot separate <names> ..." at
+// few equations, or dependent columns) throws Error "<what> cannot separate <names>; <hint>" at
 // `where`, naming the parameters the design leaves unidentified.
 LeastSquaresResult solve_separating(const Matrix& design, std::span<const double> observations,
                                     const std::vector<std::string>& names, const SourceLocation& where,
-                                    const std::string& what);
+                                    const std::string& what, const std::string& hint);
 
 // An angle in rad as a Figure in arcsec, with its 1-sigma uncertainty when given.
 Figure arcsec_figure(double radians, std::optional<double> sigma_radians);

@@ -1,6 +1,6 @@
 // The misalignment command through the real executable: exact JSON keys, records mode, errors.
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/units.h"
@@ -16,8 +16,8 @@ const char* const kGyroKeys[] = {"delta_theta_y0", "delta_theta_x0", "delta_thet
                                  "delta_theta_y2", "delta_theta_z2", "misalignment"};
 
 TEST(MisalignmentCommand, GyroTable1JsonHasTheExactKeys) {
-  const auto run = run_cli({"misalignment", "gyro", source_path("data/misalignment/gyro_table1.csv"),
-                            "--scale-factor", "-2.9222", "--json"});
+  const auto run = run_cli({"misalignment", "gyro", source_path("data/misalignment/gyro_table1.csv"), "--scale-factor",
+                            "-2.9222", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   for (const char* key : kGyroKeys) {
@@ -63,7 +63,7 @@ TEST(MisalignmentCommand, GyroRecordsModeAveragesWholeRevolutions) {
   testing::ScratchDirectory scratch;
   const double k = -2.9222;
   const double horizontal = 15.041067 / 3600.0 * std::cos(45.75 * constants::kDegree);  // deg/s
-  const double y0 = -7.5, x0 = 2.4, y1 = -53.8, y2 = -162.0, z2 = 56.3;              // arcsec
+  const double y0 = -7.5, x0 = 2.4, y1 = -53.8, y2 = -162.0, z2 = 56.3;                 // arcsec
   const std::array<std::array<double, 2>, 5> positions = {{{0, 0}, {0, 180}, {180, 180}, {90, 180}, {0, 90}}};
   std::string listing = "# synthetic records\nalpha_deg,beta_deg,rate_dps,file\n";
   int index = 0;
@@ -71,8 +71,8 @@ TEST(MisalignmentCommand, GyroRecordsModeAveragesWholeRevolutions) {
     for (double rate : {20.0, -20.0}) {
       const double a = alpha_deg * constants::kDegree;
       const double b = beta_deg * constants::kDegree;
-      const double angles = (-y0 * std::cos(b) + x0 * std::sin(b) - y1 + z2 * std::sin(a) - y2 * std::cos(a)) *
-                            constants::kArcsecond;
+      const double angles =
+          (-y0 * std::cos(b) + x0 * std::sin(b) - y1 + z2 * std::sin(a) - y2 * std::cos(a)) * constants::kArcsecond;
       const bool by_time = index % 2 == 1;
       std::string record = by_time ? "time_s,output\n" : "table_angle_deg,output\n";
       for (int s = 0; s < 1000; ++s) {
@@ -103,8 +103,7 @@ TEST(MisalignmentCommand, GyroRecordsModeAveragesWholeRevolutions) {
 
 TEST(MisalignmentCommand, RecordsListingErrorsNameTheLine) {
   testing::ScratchDirectory scratch;
-  const std::string listing =
-      scratch.write("listing.csv", "alpha_deg,beta_deg,rate_dps,file\n0,0,20,missing.csv\n");
+  const std::string listing = scratch.write("listing.csv", "alpha_deg,beta_deg,rate_dps,file\n0,0,20,missing.csv\n");
   const auto run = run_cli({"misalignment", "gyro", listing, "--records", "--scale-factor", "1"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, ::testing::HasSubstr("listing.csv:2:"));
@@ -140,13 +139,15 @@ TEST(MisalignmentCommand, MissingDirectionIsAnErrorAtTheFileLine) {
 TEST(MisalignmentCommand, PositionsThatCannotSeparateAreAnError) {
   testing::ScratchDirectory scratch;
   // Table 1 at 20 deg/s without V5 (0, 90): Δθx0 cannot be separated.
-  const std::string file = scratch.write("positions.csv",
-                                         "alpha_deg,beta_deg,rate_dps,output\n"
-                                         "0,0,20,-0.0614\n0,0,-20,0.0654\n0,180,20,-0.0576\n0,180,-20,0.0606\n"
-                                         "180,180,20,0.0350\n180,180,-20,-0.0306\n90,180,20,-0.0290\n90,180,-20,0.0287\n");
+  const std::string file =
+      scratch.write("positions.csv",
+                    "alpha_deg,beta_deg,rate_dps,output\n"
+                    "0,0,20,-0.0614\n0,0,-20,0.0654\n0,180,20,-0.0576\n0,180,-20,0.0606\n"
+                    "180,180,20,0.0350\n180,180,-20,-0.0306\n90,180,20,-0.0290\n90,180,-20,0.0287\n");
   const auto run = run_cli({"misalignment", "gyro", file, "--scale-factor", "-2.9222", "--json"});
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_THAT(run.err, ::testing::HasSubstr("the positions at 20 deg/s (4 equation(s) for 5 unknowns) cannot separate"));
+  EXPECT_THAT(run.err,
+              ::testing::HasSubstr("the positions at 20 deg/s (4 equation(s) for 5 unknowns) cannot separate"));
   EXPECT_THAT(run.err, ::testing::HasSubstr("delta_theta_x0"));
 }
 

@@ -1,8 +1,8 @@
 #include "inertest/misalignment/accelerometer_misalignment.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -41,15 +41,14 @@ AccelerometerMisalignmentRun fit_run(long run, const std::vector<const Accelerom
       "the terms 1, -cos(beta), sin(beta) must be independent over the positions of a run, as with the paper's "
       "beta = 0, 90, 180, 270");
   const bool estimable = solution.degrees_of_freedom > 0;
-  auto sigma = [&](Unknown u) {
-    return estimable ? std::optional<double>(solution.standard_error(u)) : std::nullopt;
-  };
+  auto sigma = [&](Unknown u) { return estimable ? std::optional<double>(solution.standard_error(u)) : std::nullopt; };
   AccelerometerMisalignmentRun result;
   result.run = run;
   result.angles.delta_theta_y2 = arcsec_figure(solution.parameters[kY2], sigma(kY2));
   result.angles.delta_theta_z2 = arcsec_figure(solution.parameters[kZ2], sigma(kZ2));
   std::optional<misalignment_detail::AnglePairCovariance> covariance;
-  if (estimable) covariance = {solution.covariance(kY2, kY2), solution.covariance(kZ2, kZ2), solution.covariance(kY2, kZ2)};
+  if (estimable)
+    covariance = {solution.covariance(kY2, kY2), solution.covariance(kZ2, kZ2), solution.covariance(kY2, kZ2)};
   result.angles.misalignment =
       misalignment_detail::misalignment_figure(solution.parameters[kY2], solution.parameters[kZ2], covariance);
   result.position_count = rows.size();
@@ -90,18 +89,18 @@ std::string figure_text(const Figure& f) {
 }
 
 std::string angles_text(const AccelerometerMisalignmentAngles& a) {
-  return "    delta_theta_y2        " + figure_text(a.delta_theta_y2) + "\n" +
-         "    delta_theta_z2        " + figure_text(a.delta_theta_z2) + "\n" +
-         "    misalignment gamma    " + figure_text(a.misalignment) + "\n";
+  return "    delta_theta_y2        " + figure_text(a.delta_theta_y2) + "\n" + "    delta_theta_z2        " +
+         figure_text(a.delta_theta_z2) + "\n" + "    misalignment gamma    " + figure_text(a.misalignment) + "\n";
 }
 
 }  // namespace
 
 void AccelerometerMisalignmentOptions::validate() const {
   if (scale_factor == 0.0 || !std::isfinite(scale_factor)) {
-    throw Error(fmt::format("accelerometer misalignment: the scale factor kI must be finite and nonzero, got {}; "
-                            "the angles are output differences divided by 2·kI",
-                            scale_factor));
+    throw Error(
+        fmt::format("accelerometer misalignment: the scale factor kI must be finite and nonzero, got {}; "
+                    "the angles are output differences divided by 2·kI",
+                    scale_factor));
   }
   Unit::parse(output_unit);
 }
@@ -141,7 +140,8 @@ AccelerometerMisalignmentResult accelerometer_misalignment(std::span<const Accel
   AccelerometerMisalignmentResult result;
   result.output_unit = options.output_unit;
   result.scale_factor = options.scale_factor;
-  for (std::size_t i = 0; i < run_order.size(); ++i) result.by_run.push_back(fit_run(run_order[i], run_rows[i], options));
+  for (std::size_t i = 0; i < run_order.size(); ++i)
+    result.by_run.push_back(fit_run(run_order[i], run_rows[i], options));
   result.combined = combine_runs(result.by_run);
   return result;
 }
@@ -159,8 +159,9 @@ std::array<double, 2> four_position_misalignment(double v_0, double v_90, double
 nlohmann::json AccelerometerMisalignmentResult::to_json() const {
   nlohmann::json json = combined.to_json();
   json["procedure"] = "accelerometer_misalignment";
-  json["source"] = "Misalignment separation of inertial instruments (HIT), accelerometer multi-position gravity "
-                   "test; least squares on V = V0 + kI (-dy0 - dy1 + dz2 sin b - dy2 cos b)";
+  json["source"] =
+      "Misalignment separation of inertial instruments (HIT), accelerometer multi-position gravity "
+      "test; least squares on V = V0 + kI (-dy0 - dy1 + dz2 sin b - dy2 cos b)";
   json["scale_factor"] = Figure{scale_factor, output_unit + "/g", std::nullopt};
   json["run_count"] = by_run.size();
   nlohmann::json runs = nlohmann::json::array();
@@ -180,8 +181,8 @@ std::string AccelerometerMisalignmentResult::report() const {
   std::string text = "Accelerometer misalignment, multi-position gravity test (paper 001, HIT)\n";
   text += fmt::format("  scale factor kI {:.9g} {}/g\n", scale_factor, output_unit);
   for (const auto& r : by_run) {
-    text += fmt::format("  run {} ({} positions, {} degrees of freedom)\n", r.run, r.position_count,
-                        r.degrees_of_freedom);
+    text +=
+        fmt::format("  run {} ({} positions, {} degrees of freedom)\n", r.run, r.position_count, r.degrees_of_freedom);
     text += angles_text(r.angles);
   }
   text += fmt::format("  mean of {} run(s)\n", by_run.size());

@@ -76,8 +76,8 @@ TEST(AccelerometerMisalignment, PaperClosedFormsEqualLeastSquares) {
 
 TEST(AccelerometerMisalignment, ClosedFormsByHand) {
   // kI = 2: V(π) − V(0) = 4·Δθy2 and V(π/2) − V(3π/2) = 4·Δθz2 from the model.
-  const auto angles = four_position_misalignment(1.0 - 2.0 * 1e-4, 1.0 + 2.0 * 3e-4, 1.0 + 2.0 * 1e-4,
-                                                 1.0 - 2.0 * 3e-4, 2.0);
+  const auto angles =
+      four_position_misalignment(1.0 - 2.0 * 1e-4, 1.0 + 2.0 * 3e-4, 1.0 + 2.0 * 1e-4, 1.0 - 2.0 * 3e-4, 2.0);
   EXPECT_NEAR_RELATIVE(angles[0], 1e-4, 1e-9);
   EXPECT_NEAR_RELATIVE(angles[1], 3e-4, 1e-9);
   EXPECT_THROW(four_position_misalignment(0, 0, 0, 0, 0.0), Error);

@@ -1,8 +1,8 @@
 #include "inertest/misalignment/gyro_misalignment.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -19,8 +19,8 @@ using misalignment_detail::sin_deg;
 
 // Order of the unknowns of (*) in the design; the names are the JSON keys.
 enum Angle { kY0, kX0, kY1, kY2, kZ2, kAngleCount };
-const std::vector<std::string> kAngleNames = {"delta_theta_y0", "delta_theta_x0", "delta_theta_y1",
-                                              "delta_theta_y2", "delta_theta_z2"};
+const std::vector<std::string> kAngleNames = {"delta_theta_y0", "delta_theta_x0", "delta_theta_y1", "delta_theta_y2",
+                                              "delta_theta_z2"};
 
 // One position at one |ω| with the rows of its two directions.
 struct PositionPair {
@@ -104,15 +104,16 @@ GyroMisalignmentFit fit_pairs(const std::vector<const PositionPair*>& pairs, con
   fit.angles.delta_theta_y2 = angle(kY2);
   fit.angles.delta_theta_z2 = angle(kZ2);
   std::optional<misalignment_detail::AnglePairCovariance> covariance;
-  if (estimable) covariance = {solution.covariance(kY2, kY2), solution.covariance(kZ2, kZ2), solution.covariance(kY2, kZ2)};
+  if (estimable)
+    covariance = {solution.covariance(kY2, kY2), solution.covariance(kZ2, kZ2), solution.covariance(kY2, kZ2)};
   fit.angles.misalignment =
       misalignment_detail::misalignment_figure(solution.parameters[kY2], solution.parameters[kZ2], covariance);
   fit.equation_count = pairs.size();
   fit.degrees_of_freedom = solution.degrees_of_freedom;
   fit.residual_rms = arcsec_figure(solution.residual_rms, std::nullopt);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
-    fit.residuals.push_back({pairs[i]->alpha_deg, pairs[i]->beta_deg, pairs[i]->rate_dps,
-                             solution.residuals[i] / constants::kArcsecond});
+    fit.residuals.push_back(
+        {pairs[i]->alpha_deg, pairs[i]->beta_deg, pairs[i]->rate_dps, solution.residuals[i] / constants::kArcsecond});
   }
   return fit;
 }
@@ -153,17 +154,17 @@ std::string angles_text(const GyroMisalignmentAngles& a) {
 
 void GyroMisalignmentOptions::validate() const {
   if (scale_factor == 0.0 || !std::isfinite(scale_factor)) {
-    throw Error(fmt::format("gyro misalignment: the scale factor kI must be finite and nonzero, got {}; the angles "
-                            "are (V(+) − V(−))/(2·kI·ω)",
-                            scale_factor));
+    throw Error(
+        fmt::format("gyro misalignment: the scale factor kI must be finite and nonzero, got {}; the angles "
+                    "are (V(+) − V(−))/(2·kI·ω)",
+                    scale_factor));
   }
   Unit::parse(output_unit);
 }
 
 nlohmann::json GyroMisalignmentAngles::to_json() const {
-  return {{"delta_theta_y0", delta_theta_y0}, {"delta_theta_x0", delta_theta_x0},
-          {"delta_theta_y1", delta_theta_y1}, {"delta_theta_y2", delta_theta_y2},
-          {"delta_theta_z2", delta_theta_z2}, {"misalignment", misalignment}};
+  return {{"delta_theta_y0", delta_theta_y0}, {"delta_theta_x0", delta_theta_x0}, {"delta_theta_y1", delta_theta_y1},
+          {"delta_theta_y2", delta_theta_y2}, {"delta_theta_z2", delta_theta_z2}, {"misalignment", misalignment}};
 }
 
 GyroMisalignmentResult gyro_misalignment(std::span<const GyroMisalignmentRow> rows,
@@ -209,19 +210,20 @@ std::array<double, 5> five_position_misalignment(const FivePositionOutputs& outp
   for (std::size_t i = 0; i < 5; ++i) d[i] = outputs.plus[i] - outputs.minus[i];
   const double denominator = 4.0 * scale_factor * rate_dps;
   return {
-      (d[1] - d[0]) / denominator,                 // Δθy0
-      (2.0 * d[4] - d[1] - d[0]) / denominator,    // Δθx0
-      (-d[0] - d[2]) / denominator,                // Δθy1
-      (d[2] - d[1]) / denominator,                 // Δθy2
-      (2.0 * d[3] - d[2] - d[1]) / denominator,    // Δθz2
+      (d[1] - d[0]) / denominator,               // Δθy0
+      (2.0 * d[4] - d[1] - d[0]) / denominator,  // Δθx0
+      (-d[0] - d[2]) / denominator,              // Δθy1
+      (d[2] - d[1]) / denominator,               // Δθy2
+      (2.0 * d[3] - d[2] - d[1]) / denominator,  // Δθz2
   };
 }
 
 nlohmann::json GyroMisalignmentResult::to_json() const {
   nlohmann::json json = fit_json(combined);
   json["procedure"] = "gyro_misalignment";
-  json["source"] = "Misalignment separation of inertial instruments (HIT), gyro on a rate table; "
-                   "least squares on V(+) - V(-) = 2 kI w (-dy0 cos b + dx0 sin b - dy1 + dz2 sin a - dy2 cos a)";
+  json["source"] =
+      "Misalignment separation of inertial instruments (HIT), gyro on a rate table; "
+      "least squares on V(+) - V(-) = 2 kI w (-dy0 cos b + dx0 sin b - dy1 + dz2 sin a - dy2 cos a)";
   json["scale_factor"] = Figure{scale_factor, output_unit + "/(deg/s)", std::nullopt};
   nlohmann::json rates = nlohmann::json::array();
   for (const auto& r : by_rate) {

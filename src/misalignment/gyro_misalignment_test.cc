@@ -27,12 +27,13 @@ struct TrueAngles {
 double model_output(const TrueAngles& t, double alpha_deg, double beta_deg, double rate_dps, double v0, double k) {
   const double a = alpha_deg * constants::kDegree;
   const double b = beta_deg * constants::kDegree;
-  const double input = rate_dps * (-t.y0 * std::cos(b) + t.x0 * std::sin(b) - t.y1 + t.z2 * std::sin(a) -
-                                   t.y2 * std::cos(a));
+  const double input =
+      rate_dps * (-t.y0 * std::cos(b) + t.x0 * std::sin(b) - t.y1 + t.z2 * std::sin(a) - t.y2 * std::cos(a));
   return v0 + k * input;
 }
 
-std::vector<GyroMisalignmentRow> synthetic_rows(const TrueAngles& t, const std::vector<std::array<double, 2>>& positions,
+std::vector<GyroMisalignmentRow> synthetic_rows(const TrueAngles& t,
+                                                const std::vector<std::array<double, 2>>& positions,
                                                 const std::vector<double>& rates, double k) {
   std::vector<GyroMisalignmentRow> rows;
   for (double rate : rates) {
@@ -100,7 +101,8 @@ TEST(GyroMisalignment, ReproducesPaperTable1AtEveryRate) {
 }
 
 TEST(GyroMisalignment, CombinedEqualsMeanOfRatesWhenPositionsAgree) {
-  const GyroMisalignmentResult result = gyro_misalignment(read_gyro_misalignment_positions(table1_path()), paper_options());
+  const GyroMisalignmentResult result =
+      gyro_misalignment(read_gyro_misalignment_positions(table1_path()), paper_options());
   double sum = 0.0;
   for (const auto& r : result.by_rate) sum += r.fit.angles.delta_theta_z2.value;
   EXPECT_NEAR_RELATIVE(result.combined.angles.delta_theta_z2.value, sum / 3.0, 1e-12);
@@ -237,8 +239,8 @@ TEST(GyroMisalignment, DependentPositionsNameTheDependentAngle) {
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_THAT(e.message(), ::testing::HasSubstr("delta_theta_z2"));
-    EXPECT_THAT(e.message(), ::testing::AnyOf(::testing::HasSubstr("delta_theta_y1"),
-                                               ::testing::HasSubstr("delta_theta_y2")));
+    EXPECT_THAT(e.message(),
+                ::testing::AnyOf(::testing::HasSubstr("delta_theta_y1"), ::testing::HasSubstr("delta_theta_y2")));
   }
 }
 
@@ -291,10 +293,11 @@ TEST(GyroMisalignment, ZeroRateAndDuplicateRowsAreErrors) {
 }
 
 TEST(GyroMisalignment, JsonHasTheFiguresAndByRate) {
-  const GyroMisalignmentResult result = gyro_misalignment(read_gyro_misalignment_positions(table1_path()), paper_options());
+  const GyroMisalignmentResult result =
+      gyro_misalignment(read_gyro_misalignment_positions(table1_path()), paper_options());
   const nlohmann::json json = result.to_json();
-  for (const char* key : {"delta_theta_y0", "delta_theta_x0", "delta_theta_y1", "delta_theta_y2", "delta_theta_z2",
-                          "misalignment"}) {
+  for (const char* key :
+       {"delta_theta_y0", "delta_theta_x0", "delta_theta_y1", "delta_theta_y2", "delta_theta_z2", "misalignment"}) {
     EXPECT_EQ(json.at(key).at("unit"), "arcsec") << key;
     EXPECT_EQ(json.at("by_rate").at(0).at(key).at("unit"), "arcsec") << key;
   }

@@ -1,10 +1,10 @@
 #include "inertest/misalignment/misalignment_files.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <string_view>
 
 #include "inertest/core/error.h"
@@ -38,7 +38,8 @@ std::vector<Field> split_fields(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    const std::string_view raw = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const std::string_view raw =
+        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     const std::size_t first_text = raw.find_first_not_of(" \t");
     const std::size_t leading = first_text == std::string_view::npos ? raw.size() : first_text;
     fields.push_back({trim(raw), start + leading + 1});

@@ -1,8 +1,8 @@
 #include "misalignment/misalignment_fit.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "inertest/core/units.h"
 
@@ -21,21 +21,31 @@ int exact_quarter(double degrees) {
 
 double sin_deg(double degrees) {
   switch (exact_quarter(degrees)) {
-    case 0: return 0.0;
-    case 1: return 1.0;
-    case 2: return 0.0;
-    case 3: return -1.0;
-    default: return std::sin(degrees * constants::kDegree);
+    case 0:
+      return 0.0;
+    case 1:
+      return 1.0;
+    case 2:
+      return 0.0;
+    case 3:
+      return -1.0;
+    default:
+      return std::sin(degrees * constants::kDegree);
   }
 }
 
 double cos_deg(double degrees) {
   switch (exact_quarter(degrees)) {
-    case 0: return 1.0;
-    case 1: return 0.0;
-    case 2: return -1.0;
-    case 3: return 0.0;
-    default: return std::cos(degrees * constants::kDegree);
+    case 0:
+      return 1.0;
+    case 1:
+      return 0.0;
+    case 2:
+      return -1.0;
+    case 3:
+      return 0.0;
+    default:
+      return std::cos(degrees * constants::kDegree);
   }
 }
 

@@ -1,8 +1,8 @@
 #include "inertest/misalignment/revolution_average.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "inertest/core/error.h"
 #include "inertest/numerics/compensated_sum.h"
@@ -84,8 +84,9 @@ RevolutionMean whole_revolution_mean_by_time(std::span<const double> time_s, std
   const std::size_t n = time_s.size();
   check_sizes(n, output.size(), source, "time");
   if (rate_dps == 0.0 || !std::isfinite(rate_dps)) {
-    throw Error(SourceLocation{source.file, 0, 0},
-                fmt::format("whole-revolution mean: the table rate must be finite and nonzero, got {} deg/s", rate_dps));
+    throw Error(
+        SourceLocation{source.file, 0, 0},
+        fmt::format("whole-revolution mean: the table rate must be finite and nonzero, got {} deg/s", rate_dps));
   }
   for (std::size_t k = 1; k < n; ++k) {
     if (!(time_s[k] > time_s[k - 1])) {
@@ -93,9 +94,9 @@ RevolutionMean whole_revolution_mean_by_time(std::span<const double> time_s, std
     }
   }
   const double interval = (time_s[n - 1] - time_s[0]) / static_cast<double>(n - 1);  // Δt
-  const double duration = interval * static_cast<double>(n);                        // T = N·Δt
-  const double period = 360.0 / std::abs(rate_dps);                                 // s per revolution
-  const std::size_t revolutions = whole_turns(duration / period);                   // floor(T·|ω|/360)
+  const double duration = interval * static_cast<double>(n);                         // T = N·Δt
+  const double period = 360.0 / std::abs(rate_dps);                                  // s per revolution
+  const std::size_t revolutions = whole_turns(duration / period);                    // floor(T·|ω|/360)
   if (revolutions == 0) {
     throw Error(SourceLocation{source.file, 0, 0},
                 fmt::format("whole-revolution mean: the record lasts {:.6g} s, less than one revolution ({:.6g} s "

@@ -81,8 +81,11 @@ TEST(RevolutionAverage, LessThanOneRevolutionIsAnError) {
   const std::vector<double> angle = {0, 90, 180, 270};
   const std::vector<double> short_angle = {0, 90, 180};
   const std::vector<double> output = {1, 2, 3};
-  EXPECT_THAT([&] { whole_revolution_mean_by_angle(short_angle, output, {"rec.csv", {}}); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("less than one revolution")));
+  EXPECT_THAT(
+      [&] {
+        whole_revolution_mean_by_angle(short_angle, output, {"rec.csv", {}});
+      },
+      ::testing::ThrowsMessage<Error>(::testing::HasSubstr("less than one revolution")));
   const std::vector<double> time = {0, 1, 2};
   EXPECT_THAT([&] { whole_revolution_mean_by_time(time, output, 100.0); },
               ::testing::ThrowsMessage<Error>(::testing::HasSubstr("less than one revolution")));
@@ -104,13 +107,19 @@ TEST(RevolutionAverage, BadRecordsAreErrorsAtTheirLine) {
   EXPECT_THAT([&] { whole_revolution_mean_by_angle(half_turn, output); },
               ::testing::ThrowsMessage<Error>(::testing::HasSubstr("half a turn")));
   const std::vector<double> stalled_time = {0, 1, 1, 2};
-  EXPECT_THAT([&] { whole_revolution_mean_by_time(stalled_time, output, 360.0, {"rec.csv", lines}); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("rec.csv:4")));
+  EXPECT_THAT(
+      [&] {
+        whole_revolution_mean_by_time(stalled_time, output, 360.0, {"rec.csv", lines});
+      },
+      ::testing::ThrowsMessage<Error>(::testing::HasSubstr("rec.csv:4")));
   const std::vector<double> time = {0, 1, 2, 3};
   EXPECT_THAT([&] { whole_revolution_mean_by_time(time, output, 0.0); },
               ::testing::ThrowsMessage<Error>(::testing::HasSubstr("nonzero")));
-  EXPECT_THAT([&] { whole_revolution_mean_by_time(time, std::vector<double>{1, 2}, 90.0); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("4 time values but 2 outputs")));
+  EXPECT_THAT(
+      [&] {
+        whole_revolution_mean_by_time(time, std::vector<double>{1, 2}, 90.0);
+      },
+      ::testing::ThrowsMessage<Error>(::testing::HasSubstr("4 time values but 2 outputs")));
 }
 
 }  // namespace

@@ -39,9 +39,9 @@ struct GyroMisalignmentRow {
 };
 
 struct GyroMisalignmentOptions {
-  double scale_factor = 0.0;       // kI, output units per deg/s; must be finite and nonzero
-  std::string output_unit = "1";   // for the report only
-  std::string source;              // file the rows came from, for error locations
+  double scale_factor = 0.0;      // kI, output units per deg/s; must be finite and nonzero
+  std::string output_unit = "1";  // for the report only
+  std::string source;             // file the rows came from, for error locations
 
   // Throws Error for a zero or non-finite scale factor or an unknown output unit.
   void validate() const;
@@ -62,7 +62,7 @@ struct GyroMisalignmentAngles {
 struct GyroMisalignmentResidual {
   double alpha_deg = 0.0;
   double beta_deg = 0.0;
-  double rate_dps = 0.0;  // |ω|
+  double rate_dps = 0.0;         // |ω|
   double residual_arcsec = 0.0;  // observed minus fitted (V(+) − V(−))/(2·kI·ω), arcsec
 };
 
@@ -81,7 +81,7 @@ struct GyroMisalignmentRateResult {
 };
 
 struct GyroMisalignmentResult {
-  GyroMisalignmentFit combined;  // least squares over every rate's equations, in angle units
+  GyroMisalignmentFit combined;                     // least squares over every rate's equations, in angle units
   std::vector<GyroMisalignmentRateResult> by_rate;  // increasing |ω|
   std::string output_unit;
   double scale_factor = 0.0;

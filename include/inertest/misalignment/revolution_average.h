@@ -19,9 +19,9 @@ struct RecordSource {
 };
 
 struct RevolutionMean {
-  double mean = 0.0;                 // mean output over the whole revolutions
-  std::size_t revolutions = 0;       // number of whole revolutions averaged
-  std::size_t samples_used = 0;      // samples 0 .. samples_used-1
+  double mean = 0.0;             // mean output over the whole revolutions
+  std::size_t revolutions = 0;   // number of whole revolutions averaged
+  std::size_t samples_used = 0;  // samples 0 .. samples_used-1
 };
 
 // From the table angle column (deg, may wrap at 360 or -180/180): the angle is unwrapped, the

@@ -9,9 +9,10 @@ namespace inertest {
 namespace {
 
 std::string plan_text(const std::string& instrument_type, const std::string& nominal, const std::string& steps) {
-  return fmt::format("[plan]\ntitle = \"misalignment\"\n\n[instrument]\nid = \"X-1\"\ntype = \"{}\"\n"
-                     "output_unit = \"V\"\n{}\n[site]\nname = \"hall\"\nlatitude_deg = 45.75\n\n{}",
-                     instrument_type, nominal, steps);
+  return fmt::format(
+      "[plan]\ntitle = \"misalignment\"\n\n[instrument]\nid = \"X-1\"\ntype = \"{}\"\n"
+      "output_unit = \"V\"\n{}\n[site]\nname = \"hall\"\nlatitude_deg = 45.75\n\n{}",
+      instrument_type, nominal, steps);
 }
 
 TEST(MisalignmentSteps, GyroStepTakesTheNominalScaleFactorByDefault) {

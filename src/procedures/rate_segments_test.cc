@@ -108,6 +108,22 @@ TEST(RateSegments, ShortSegmentsAreSkipped) {
   EXPECT_EQ(segments[1].rate, 10.0);
 }
 
+TEST(RateSegments, RecordWithoutStaticRunsGivesTheScaleFactorError) {
+  Record record;
+  add_segment(record, 10.0, 3.0);
+  add_segment(record, -10.0, 3.0);
+  add_segment(record, 20.0, 3.0);
+  add_segment(record, -20.0, 3.0);
+  add_segment(record, 0.0, 3.0);
+  const auto points = scale_factor_points(segment_by_rate(record.rate, record.output, options()));
+  try {
+    scale_factor(points);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("missing the static run at the start"));
+  }
+}
+
 TEST(RateSegments, BadInputIsAnError) {
   Record record;
   add_segment(record, 0.0, 1.5);

@@ -44,6 +44,16 @@ TEST(BandwidthStep, GainsTable) {
   EXPECT_NEAR(result.at("delay").at("value").get<double>(), kDelay, kDelay * 1e-9);
 }
 
+TEST(BandwidthStep, TheBundledExamplePlan) {
+  // examples/bandwidth/gains.csv: a 300 Hz lag with a 0.2 ms delay, gains to 6 and phases to 4 decimals.
+  ScratchDirectory scratch;
+  const auto summary = run_campaign(testing::source_path("examples/bandwidth/plan.toml"), scratch.path());
+  const auto& result = summary.results.at("procedures").at(0).at("result");
+  EXPECT_NEAR(result.at("bandwidth").at("value").get<double>(), 300.0, 0.01);
+  EXPECT_NEAR(result.at("delay").at("value").get<double>(), 2e-4, 1e-8);
+  EXPECT_EQ(summary.results.at("verdict"), "PASS");
+}
+
 TEST(BandwidthStep, RawRecordsWithTheirOwnColumnNames) {
   ScratchDirectory scratch;
   std::string runs;

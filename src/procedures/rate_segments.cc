@@ -88,7 +88,7 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
   }
   if (segments.empty()) {
     throw Error(fmt::format("rate segments: no constant-rate segment of at least {} s ({} samples) in a record of {} "
-                            "samples",
+                            "samples (is the rate tolerance below the table-rate column's noise?)",
                             options.minimum_segment_s, minimum_samples, table_rate.size()));
   }
   return segments;

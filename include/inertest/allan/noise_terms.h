@@ -37,6 +37,8 @@ struct NoiseTerms {
   Figure bias_instability;
   Figure rate_random_walk;
   Figure rate_ramp;
+  // GJB 2426A eq. (31): RWC = sqrt(A_-1), the angle random walk N.
+  const Figure& random_walk_coefficient() const { return angle_random_walk; }
   // A_p for p = -2..2, in (input unit)^2 s^p, and their 1-sigma uncertainties.
   std::array<double, 5> coefficients{};
   std::array<double, 5> coefficient_uncertainties{};

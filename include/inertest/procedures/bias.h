@@ -69,7 +69,8 @@ struct BiasResult {
 BiasResult bias(std::span<const double> output, const BiasOptions& options);
 
 // Eq. (19) alone, in deg/h (Earth rate removed if asked): the bias of one run, as bias
-// repeatability and temperature sensitivity use it. Mean by compensated sum.
+// repeatability and temperature sensitivity use it. Mean by compensated sum. Needs no sample rate
+// or smoothing times; throws Error for an empty record or a zero scale factor.
 double bias_deg_h(std::span<const double> output, const BiasOptions& options);
 
 }  // namespace inertest

@@ -1,5 +1,4 @@
 // inertest bias-temperature --run T:FILE --run T:FILE ... --scale-factor K [--json]
-#include <charconv>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -20,17 +19,6 @@ struct Arguments {
   bool json = false;
 };
 
-// "T:FILE" -> (T, FILE); the file name may itself hold ':'.
-std::pair<double, std::string> parse_run(const std::string& text) {
-  const auto colon = text.find(':');
-  double temperature = 0.0;
-  if (colon == std::string::npos || colon == 0 ||
-      std::from_chars(text.data(), text.data() + colon, temperature).ptr != text.data() + colon) {
-    throw Error(fmt::format("--run '{}': expected TEMPERATURE_DEGC:FILE, e.g. 25:run_25C.txt", text));
-  }
-  return {temperature, text.substr(colon + 1)};
-}
-
 CommandAction setup(CLI::App& root) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = root.add_subcommand(
@@ -49,7 +37,7 @@ CommandAction setup(CLI::App& root) {
   return [arguments] {
     std::vector<TemperatureRunBias> runs;
     for (const auto& text : arguments->runs) {
-      auto [temperature, file] = parse_run(text);
+      auto [temperature, file] = parse_number_and_file(text, "--run", "25:run_25C.txt");
       OutputRecordSource source = arguments->source;
       source.path = file;
       runs.push_back({temperature, bias_deg_h(read_output_record(source), arguments->options)});

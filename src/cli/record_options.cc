@@ -1,5 +1,10 @@
 #include "record_options.h"
 
+#include <charconv>
+#include <fmt/format.h>
+
+#include "inertest/core/error.h"
+
 namespace inertest::cli {
 
 void add_record_options(CLI::App& command, OutputRecordSource& source) {
@@ -16,6 +21,18 @@ void add_axis_options(CLI::App& command, AxisOrientation& axis) {
       ->capture_default_str();
   command.add_option("--elevation", axis.elevation_deg, "elevation of the IRA above the horizontal, deg")
       ->capture_default_str();
+}
+
+std::pair<double, std::string> parse_number_and_file(const std::string& text, const std::string& option,
+                                                     const std::string& example) {
+  const auto colon = text.find(':');
+  double number = 0.0;
+  const char* end = text.data() + (colon == std::string::npos ? 0 : colon);
+  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size() ||
+      std::from_chars(text.data(), end, number).ptr != end) {
+    throw Error(fmt::format("{} '{}': expected NUMBER:FILE, e.g. {}", option, text, example));
+  }
+  return {number, text.substr(colon + 1)};
 }
 
 }  // namespace inertest::cli

@@ -40,7 +40,7 @@ ThresholdBranch evaluate_branch(const std::string& name, const std::vector<Sampl
   return branch;
 }
 
-ThresholdResult combine(int method, std::vector<ThresholdBranch> branches, double zero, const ThresholdOptions&) {
+ThresholdResult combine(int method, std::vector<ThresholdBranch> branches, double zero) {
   ThresholdResult result;
   result.method = method;
   double largest = 0.0;
@@ -107,7 +107,7 @@ ThresholdResult threshold_rate_table(std::span<const RateTablePoint> points, con
   std::vector<ThresholdBranch> branches;
   branches.push_back(evaluate_branch("positive", positive, zero, options));
   branches.push_back(evaluate_branch("negative", negative, zero, options));
-  return combine(1, std::move(branches), zero, options);
+  return combine(1, std::move(branches), zero);
 }
 
 ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> points, const ThresholdOptions& options) {
@@ -135,7 +135,7 @@ ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> point
   std::vector<ThresholdBranch> branches;
   branches.push_back(evaluate_branch("toward north", north, zero, options));
   branches.push_back(evaluate_branch("toward south", south, zero, options));
-  return combine(2, std::move(branches), zero, options);
+  return combine(2, std::move(branches), zero);
 }
 
 ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<const double> output,
@@ -172,7 +172,7 @@ ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<con
     }
     branches.push_back(evaluate_branch(kNames[q], quadrants[q], zero, options));
   }
-  ThresholdResult result = combine(3, std::move(branches), zero, options);
+  ThresholdResult result = combine(3, std::move(branches), zero);
   const double revolutions = std::abs(table_rate_deg_s) * (time_s.back() - time_s.front()) / 360.0;
   if (!options.zero_output && std::abs(revolutions - std::round(revolutions)) > 0.02) {
     result.warnings.push_back(fmt::format("the record spans {:.3f} revolutions; the zero output (the record's mean) is "

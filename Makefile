@@ -29,7 +29,7 @@ demo: build
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
-	@$(PYTHON) bench/compare.py --build-dir $(BUILD_DIR)
+	@for script in bench/*_compare.py; do $(PYTHON) $$script --build-dir $(BUILD_DIR) || exit 1; done
 
 clean:
 	@rm -rf $(BUILD_DIR) demo

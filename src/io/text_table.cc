@@ -6,7 +6,9 @@
 #include <cctype>
 #include <cstring>
 #include <fast_float/fast_float.h>
+#include <exception>
 #include <optional>
+#include <thread>
 
 #include "inertest/core/error.h"
 #include "inertest/io/mapped_file.h"
@@ -24,7 +26,9 @@ struct Line {
 // Iterates lines of a buffer with memchr.
 class LineCursor {
  public:
-  explicit LineCursor(std::string_view text) : text_(text) {}
+  explicit LineCursor(std::string_view text, std::size_t lines_before = 0) : text_(text), number_(lines_before) {}
+  // Offset of the next line's first byte.
+  std::size_t position() const { return pos_; }
   bool next(Line& line) {
     if (pos_ >= text_.size()) return false;
     const char* begin = text_.data() + pos_;
@@ -124,6 +128,92 @@ std::optional<double> parse_number(std::string_view text) {
   throw Error(location, "expected a number" + where + ", found '" + printable(field.text) + "'");
 }
 
+// What every data row must look like, decided from the first line.
+struct RowLayout {
+  const std::string& source;
+  char delimiter;
+  std::size_t width;
+  bool has_header;
+  const std::vector<std::size_t>& positions;
+  const std::vector<std::string>& header_names;
+  const TextTableOptions& options;
+};
+
+struct ChunkResult {
+  std::vector<std::vector<double>> columns;
+  std::vector<std::size_t> row_lines;
+  std::size_t row_count = 0;
+  std::size_t first_line = 0;
+  std::exception_ptr error;  // the first error in this chunk
+};
+
+void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, ChunkResult& result) {
+  result.columns.resize(layout.positions.size());
+  const std::size_t estimate = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
+  for (auto& c : result.columns) c.reserve(estimate);
+  if (layout.options.record_row_lines) result.row_lines.reserve(estimate);
+  LineCursor cursor(chunk, first_line - 1);
+  Line row{};
+  std::vector<Field> fields;
+  try {
+    while (cursor.next(row)) {
+      if (is_skipped(row.text, layout.options.comment)) continue;
+      split(row.text, layout.delimiter, fields);
+      if (fields.size() != layout.width) {
+        throw Error(SourceLocation{layout.source, row.number, 0},
+                    "expected " + std::to_string(layout.width) + " columns, found " + std::to_string(fields.size()) +
+                        (layout.has_header ? " (a stray header or a truncated line?)" : ""));
+      }
+      for (std::size_t k = 0; k < layout.positions.size(); ++k) {
+        const Field& field = fields[layout.positions[k]];
+        const auto value = parse_number(field.text);
+        if (!value) fail_cell(layout.source, row, field, layout.header_names[layout.positions[k]]);
+        if (!std::isfinite(*value)) {
+          throw Error(SourceLocation{layout.source, row.number, field.column},
+                      "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
+        }
+        result.columns[k].push_back(*value);
+      }
+      if (layout.options.record_row_lines) result.row_lines.push_back(row.number);
+      if (result.row_count++ == 0) result.first_line = row.number;
+    }
+  } catch (...) {
+    result.error = std::current_exception();
+  }
+}
+
+// Splits data into one chunk per core (at line boundaries; small inputs stay whole) and parses them
+// in parallel; results are in file order.
+std::vector<ChunkResult> parse_chunks(std::string_view data, std::size_t first_line, const RowLayout& layout) {
+  constexpr std::size_t kMinimumChunk = 4 << 20;
+  const std::size_t threads = std::clamp<std::size_t>(data.size() / kMinimumChunk, 1,
+                                                      std::max(1U, std::thread::hardware_concurrency()));
+  std::vector<std::string_view> pieces;
+  std::size_t begin = 0;
+  for (std::size_t t = 1; t <= threads; ++t) {
+    std::size_t end = t == threads ? data.size() : std::max(begin, t * data.size() / threads);
+    if (end < data.size()) {
+      const std::size_t newline = data.find('\n', end);
+      end = newline == std::string_view::npos ? data.size() : newline + 1;
+    }
+    pieces.push_back(data.substr(begin, end - begin));
+    begin = end;
+  }
+  // Each chunk's first line number: lines counted in the chunks before it.
+  std::vector<std::size_t> first_lines(pieces.size(), first_line);
+  for (std::size_t i = 1; i < pieces.size(); ++i) {
+    first_lines[i] = first_lines[i - 1] + static_cast<std::size_t>(std::count(pieces[i - 1].begin(), pieces[i - 1].end(), '\n'));
+  }
+  std::vector<ChunkResult> results(pieces.size());
+  std::vector<std::thread> workers;
+  for (std::size_t i = 1; i < pieces.size(); ++i) {
+    workers.emplace_back(parse_rows, pieces[i], first_lines[i], std::cref(layout), std::ref(results[i]));
+  }
+  parse_rows(pieces[0], first_lines[0], layout, results[0]);
+  for (auto& worker : workers) worker.join();
+  return results;
+}
+
 }  // namespace
 
 ColumnSelector ColumnSelector::parse(std::string_view text) {
@@ -220,44 +310,41 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
     }
   }
   for (std::size_t p : positions) table.names.push_back(header_names[p]);
-  table.columns.resize(positions.size());
-  // Rough reservation: the number of lines bounds the number of rows.
-  const std::size_t estimate = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-  for (auto& c : table.columns) c.reserve(estimate);
-  if (options.record_row_lines) table.row_lines.reserve(estimate);
+
+  // The data rows: from the first data line (the header line excluded) to the end, cut into one
+  // chunk per core at line boundaries and parsed in parallel. Line numbers stay exact: each chunk
+  // starts at the line count of the chunks before it.
+  const std::size_t data_begin = has_header ? cursor.position() : static_cast<std::size_t>(line.text.data() - text.data());
+  const std::size_t data_line = has_header ? line.number + 1 : line.number;
+  const std::string_view data = text.substr(data_begin);
+  const RowLayout layout{source, delimiter, width, has_header, positions, header_names, options};
+  std::vector<ChunkResult> chunks = parse_chunks(data, data_line, layout);
+
   std::size_t row_count = 0;
-
-  auto parse_row = [&](const Line& row) {
-    split(row.text, delimiter, fields);
-    if (fields.size() != width) {
-      throw Error(SourceLocation{source, row.number, 0},
-                  "expected " + std::to_string(width) + " columns, found " + std::to_string(fields.size()) +
-                      (has_header ? " (a stray header or a truncated line?)" : ""));
-    }
-    for (std::size_t k = 0; k < positions.size(); ++k) {
-      const Field& field = fields[positions[k]];
-      const auto value = parse_number(field.text);
-      if (!value) fail_cell(source, row, field, header_names[positions[k]]);
-      if (!std::isfinite(*value)) {
-        throw Error(SourceLocation{source, row.number, field.column},
-                    "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
-      }
-      table.columns[k].push_back(*value);
-    }
-    if (options.record_row_lines) table.row_lines.push_back(row.number);
-    if (row_count++ == 0) table.first_data_line = row.number;
-  };
-
-  if (!has_header) parse_row(line);
-  while (cursor.next(line)) {
-    if (is_skipped(line.text, options.comment)) continue;
-    parse_row(line);
+  for (const auto& chunk : chunks) {
+    if (chunk.error) std::rethrow_exception(chunk.error);
+    row_count += chunk.row_count;
   }
   if (row_count == 0 || row_count < options.minimum_rows) {
-    throw Error(SourceLocation{source, 0, 0}, "expected at least " + std::to_string(std::max<std::size_t>(options.minimum_rows, 1)) +
-                                                  " data rows, found " + std::to_string(row_count));
+    throw Error(SourceLocation{source, 0, 0},
+                "expected at least " + std::to_string(std::max<std::size_t>(options.minimum_rows, 1)) +
+                    " data rows, found " + std::to_string(row_count));
   }
-  for (auto& c : table.columns) c.shrink_to_fit();
+  table.columns.resize(positions.size());
+  for (std::size_t k = 0; k < positions.size(); ++k) {
+    if (chunks.size() == 1) {
+      table.columns[k] = std::move(chunks.front().columns[k]);
+      continue;
+    }
+    table.columns[k].reserve(row_count);
+    for (const auto& chunk : chunks) {
+      table.columns[k].insert(table.columns[k].end(), chunk.columns[k].begin(), chunk.columns[k].end());
+    }
+  }
+  for (const auto& chunk : chunks) {
+    if (table.first_data_line == 0 && chunk.first_line != 0) table.first_data_line = chunk.first_line;
+    table.row_lines.insert(table.row_lines.end(), chunk.row_lines.begin(), chunk.row_lines.end());
+  }
   return table;
 }
 

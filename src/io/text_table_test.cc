@@ -141,3 +141,30 @@ TEST(TextTable, ReadsFromFileAndNamesIt) {
 
 }  // namespace
 }  // namespace inertest
+
+namespace inertest {
+namespace {
+
+// Records over 8 MB are parsed in parallel chunks: values, order and error lines must be exact.
+TEST(TextTable, ParallelChunksKeepOrderAndLineNumbers) {
+  std::string text = "# long record\nindex,value\n";
+  constexpr int kRows = 600000;
+  for (int i = 0; i < kRows; ++i) text += std::to_string(i) + "," + std::to_string(i * 0.5) + "\n";
+  const TextTable table = parse_text_table(text, "long.csv");
+  ASSERT_EQ(table.rows(), static_cast<std::size_t>(kRows));
+  for (int i = 0; i < kRows; i += 997) {
+    EXPECT_EQ(table.columns[0][static_cast<std::size_t>(i)], i);
+    EXPECT_EQ(table.row_lines[static_cast<std::size_t>(i)], static_cast<std::size_t>(i) + 3);
+  }
+  EXPECT_EQ(table.first_data_line, 3u);
+  text += "1,2\n7,x\n";  // line kRows + 4 is bad
+  try {
+    parse_text_table(text, "long.csv");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("long.csv:" + std::to_string(kRows + 4) + ":3: expected a number"));
+  }
+}
+
+}  // namespace
+}  // namespace inertest

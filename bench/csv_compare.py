@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Text-record ingestion: inertest against pandas.read_csv and numpy.loadtxt on the same file.
+
+Writes a two-column CSV record (time, output) of --rows rows, then times, in this run on this
+machine, each reader turning it into numeric columns:
+  - inertest: `inertest inspect FILE --json` (memory-mapped, fast_float; also computes per-column
+    statistics, which only adds to its time);
+  - pandas.read_csv (C engine) and numpy.loadtxt, as a user's script would read it.
+Each is run --repeat times in a fresh process; the best wall time counts. Prints MB/s, peak RSS
+and the ratios. Run with Debian's Python: /usr/bin/python3 bench/csv_compare.py.
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+
+def write_record(path, rows):
+    rng = np.random.default_rng(7)
+    data = np.column_stack([np.arange(rows) * 0.01, rng.normal(100.0, 0.5, rows)])
+    np.savetxt(path, data, fmt="%.6f", delimiter=",", header="time_s,output", comments="")
+
+
+def timed(command):
+    """Runs command in a child process; returns (wall seconds, peak RSS in MiB)."""
+    before = time.perf_counter()
+    child = subprocess.Popen(command, stdout=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    elapsed = time.perf_counter() - before
+    if status != 0:
+        sys.exit(f"failed: {' '.join(command)}")
+    return elapsed, usage.ru_maxrss / 1024.0
+
+
+def best(command, repeat):
+    runs = [timed(command) for _ in range(repeat)]
+    return min(r[0] for r in runs), max(r[1] for r in runs)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build-dir", default="build")
+    parser.add_argument("--rows", type=int, default=10_000_000)
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--skip-loadtxt", action="store_true", help="numpy.loadtxt is slow on large files")
+    args = parser.parse_args()
+
+    inertest = os.path.join(args.build_dir, "bin", "inertest")
+    with tempfile.TemporaryDirectory() as scratch:
+        path = os.path.join(scratch, "record.csv")
+        write_record(path, args.rows)
+        megabytes = os.path.getsize(path) / 1e6
+        python = sys.executable
+        readers = {
+            "inertest": [inertest, "inspect", path, "--json"],
+            "pandas.read_csv": [python, "-c", f"import pandas; pandas.read_csv({path!r})"],
+        }
+        if not args.skip_loadtxt:
+            readers["numpy.loadtxt"] = [python, "-c", f"import numpy; numpy.loadtxt({path!r}, delimiter=',', skiprows=1)"]
+        results = {name: best(command, args.repeat) for name, command in readers.items()}
+
+    print(f"CSV ingestion: {args.rows} rows x 2 columns, {megabytes:.0f} MB, best of {args.repeat}")
+    print(f"{'reader':<18}{'time s':>10}{'MB/s':>10}{'peak MiB':>10}{'inertest faster':>17}")
+    base_time = results["inertest"][0]
+    for name, (seconds, peak) in results.items():
+        print(f"{name:<18}{seconds:>10.3f}{megabytes / seconds:>10.0f}{peak:>10.0f}{seconds / base_time:>16.1f}x")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,38 @@
+// Plan kind "gyro_misalignment": misalignment separation on a rate table (paper 001, HIT).
+//   file = "positions.csv"     # header alpha_deg,beta_deg,rate_dps,output (one row per position and direction)
+//   scale_factor = -2.9222     # optional: kI in output units per deg/s; default [instrument] nominal_scale_factor
+#include "campaign/step_registry.h"
+#include "inertest/misalignment/gyro_misalignment.h"
+#include "inertest/misalignment/misalignment_files.h"
+
+namespace inertest::campaign {
+namespace {
+
+StepAction prepare(PlanTable& step, const PlanContext& context) {
+  const std::string file = step.file("file");
+  GyroMisalignmentOptions options;
+  const std::optional<double> scale_factor = step.optional_number("scale_factor");
+  if (scale_factor) {
+    options.scale_factor = *scale_factor;
+  } else if (context.instrument.nominal_scale_factor) {
+    options.scale_factor = *context.instrument.nominal_scale_factor;
+  } else {
+    step.fail("needs scale_factor (output units per deg/s) or [instrument] nominal_scale_factor");
+  }
+  options.output_unit = context.instrument.output_unit;
+  options.source = file;
+  try {
+    options.validate();
+  } catch (const Error& e) {
+    if (scale_factor) step.fail_at("scale_factor", e.message());
+    step.fail(e.message());
+  }
+  return [file, options](const StepRunContext&) {
+    return gyro_misalignment(read_gyro_misalignment_positions(file), options).to_json();
+  };
+}
+
+const bool registered = register_step("gyro_misalignment", prepare);
+
+}  // namespace
+}  // namespace inertest::campaign

@@ -74,7 +74,7 @@ TEST(SimSimulate, WritesRecordsPlanAndTruth) {
   ScratchDirectory dir;
   const SimulationSummary summary = simulate_text(kSmallPlan, "small", dir.path());
   EXPECT_TRUE(std::filesystem::exists(dir.path() + "/scale_factor/points.csv"));
-  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/centrifuge/g10_beta090.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/centrifuge/samples.csv"));
   const std::string plan = read(summary.plan_path);
   EXPECT_NE(plan.find("kind = \"scale_factor\""), std::string::npos);
   EXPECT_NE(plan.find("nominal_scale_factor = 36000"), std::string::npos);

@@ -33,11 +33,11 @@ std::string report_text(const nlohmann::json& results, const std::string& campai
   std::string text = "inertest demo: a simulated navigation-grade FOG through the virtual lab\n"
                      "==========================================================================\n\n";
   text += campaign_report;
-  text += "\nTruth check (simulated truth against the measured figure; tolerance from the noise)\n";
+  text += "\nTruth check (expected = true value + the predicted systematic of rig and method; tolerance from the noise)\n";
   for (const auto& c : results.at("truth_check")) {
-    text += fmt::format("  {:<7} {:<22} {:<28} true {:>13.7g}  measured {:>13.7g}  ±{:<10.3g} {}\n",
+    text += fmt::format("  {:<7} {:<26} {:<36} true {:>13.7g}  expected {:>13.7g}  measured {:>13.7g}  ±{:<10.3g} {}\n",
                         c.at("within").get<bool>() ? "within" : "OUTSIDE", c.at("procedure").get<std::string>(),
-                        c.at("quantity").get<std::string>(), c.at("true").get<double>(),
+                        c.at("quantity").get<std::string>(), c.at("true").get<double>(), c.at("expected").get<double>(),
                         c.at("measured").get<double>(), c.at("tolerance").get<double>(), c.at("unit").get<std::string>());
   }
   if (!results.at("not_checked").empty()) {
@@ -90,12 +90,17 @@ DemoSummary run_demo(const std::string& out_dir, const DemoOptions& options) {
     const std::string unit = truth.at("unit");
     const double measured = convert(figure.value, figure.unit, unit);
     const double true_value = truth.at("true");
-    const double tolerance = truth.at("tolerance");
-    const bool within = std::abs(measured - true_value) <= tolerance;
+    const double expected = truth.at("expected");
+    double tolerance = truth.at("tolerance");
+    if (truth.contains("tolerance_sigmas")) {
+      if (!figure.uncertainty) throw Error("demo: '" + procedure + "' reports '" + figure_key + "' without uncertainty");
+      tolerance = truth.at("tolerance_sigmas").get<double>() * convert(*figure.uncertainty, figure.unit, unit);
+    }
+    const bool within = std::abs(measured - expected) <= tolerance;
     all_within = all_within && within;
     checks.push_back({{"procedure", procedure}, {"quantity", truth.at("quantity")}, {"true", true_value},
-                      {"measured", measured}, {"unit", unit}, {"tolerance", tolerance}, {"within", within},
-                      {"basis", truth.at("basis")}});
+                      {"expected", expected}, {"measured", measured}, {"unit", unit}, {"tolerance", tolerance},
+                      {"within", within}, {"basis", truth.at("basis")}});
   }
   summary.results["truth_check"] = checks;
   summary.results["not_checked"] = unchecked;

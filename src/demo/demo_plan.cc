@@ -5,7 +5,8 @@
 namespace inertest {
 
 const std::string& demo_simulation_plan() {
-  static const std::string plan = R"toml(# The demo campaign: a navigation-grade fiber optic gyro through every test of the virtual lab.
+  static const std::string plan = R"toml(# The demo campaign: a navigation-grade fiber optic gyro (and an accelerometer for the 4-position
+# test) through every test of the virtual lab that has a processing method.
 # `inertest demo` runs exactly this plan (it is compiled in); `inertest simulate` takes it too:
 #   inertest simulate examples/demo/simulation.toml --out lab && inertest run lab/plan.toml --out results
 seed = 20040601
@@ -26,14 +27,17 @@ maximum_rate_deg_s = 300
 nonlinearity_ppm = [0, 8]       # cubic term: 8 ppm of full scale at full scale
 asymmetry_ppm = 6
 scale_factor_temperature_ppm_per_c = 1.5
+scale_factor_repeatability_ppm = 5
 bias_deg_h = 0.02
-bias_temperature_deg_h_per_c = 0.0004
+bias_temperature_deg_h_per_c = 0.003
+bias_repeatability_deg_h = 0.03
 reference_temperature_c = 20
-turn_on_bias_deg_h = 0.05
-turn_on_time_constant_s = 120
-angle_random_walk_deg_rt_h = 0.002
-bias_instability_deg_h = 0.003
-rate_random_walk_deg_h_rt_h = 0.004
+turn_on_bias_deg_h = 3          # thermal transient after power-on ...
+turn_on_time_constant_s = 150   # ... decaying with this time constant
+angle_random_walk_deg_rt_h = 0.0005
+bias_instability_deg_h = 0.005
+rate_random_walk_deg_h_rt_h = 0.003
+flicker_correlation_s = [1, 1e6]  # the flicker floor of B holds from seconds to days
 bandwidth_hz = 300
 delay_ms = 0.8
 input_axis_misalignment_arcsec = [25, -15]
@@ -49,11 +53,26 @@ DIO = 5.0e-5
 DIS = -4.0e-5
 DOS = 3.0e-5
 
+[accelerometer]
+id = "QA-SIM"
+output_unit = "V"
+sample_rate_hz = 10
+scale_factor = 1.3              # V/g
+bias_mg = 0.5
+misalignment_arcsec = [20, -5]  # IA toward PA, toward OA
+noise_ug_rt_hz = 20
+output_resolution = 1e-6        # voltmeter quantum, V
+
 [rate_table]
 rate_error_ppm = 0.5
 tilt_arcsec = [2, -1]
 wobble_arcsec = 1
 face_arcsec = [5, 3]
+fixture_arcsec = -50            # the misalignment fixture's vertical face
+
+[dividing_head]
+tilt_arcsec = 6
+fixture_arcsec = -3
 
 [centrifuge]
 radius_m = 1.0
@@ -63,12 +82,79 @@ platform_rate_error_rad_s = 1e-5
 [[test]]
 kind = "scale_factor"
 name = "scale_factor"
-seconds_per_rate = 60
+seconds_per_rate = 30
+static_seconds = 30
+
+[[test]]
+kind = "scale_factor_repeatability"
+name = "scale_factor_repeatability"
+runs = 6
+
+[[test]]
+kind = "scale_factor_temperature"
+name = "scale_factor_temperature"
+temperatures_c = [20, -40, 60]
+
+[[test]]
+kind = "maximum_input_rate"
+name = "maximum_input_rate"
+rates_deg_s = [1, 10, 50, 100, 200, 300, 400, 500]
+nonlinearity_limit_ppm = 5
 
 [[test]]
 kind = "bias"
 name = "bias_static"
-seconds = 7200
+seconds = 3600
+
+[[test]]
+kind = "bias_repeatability"
+name = "bias_repeatability"
+runs = 6
+seconds = 300
+
+[[test]]
+kind = "bias_temperature"
+name = "bias_temperature"
+temperatures_c = [20, -40, 60]
+seconds = 600
+
+[[test]]
+kind = "turn_on_time"
+name = "turn_on_time"
+seconds = 1200
+rest_band_deg_h = 0.2
+smoothing_s = 60
+
+[[test]]
+kind = "polarity"
+name = "polarity"
+
+[[test]]
+kind = "threshold"
+name = "threshold"
+
+[[test]]
+kind = "resolution"
+name = "resolution"
+
+[[test]]
+kind = "bandwidth"
+name = "bandwidth"
+
+[[test]]
+kind = "input_axis_misalignment"
+name = "input_axis_misalignment"
+rate_deg_s = 100
+
+[[test]]
+kind = "gyro_misalignment"
+name = "gyro_misalignment"
+rates_deg_s = [20, 30, 40]
+
+[[test]]
+kind = "accelerometer_misalignment"
+name = "accelerometer_misalignment"
+runs = 3
 
 [[test]]
 kind = "allan"

@@ -30,6 +30,8 @@ void GyroParameters::validate() const {
   if (turn_on_bias_deg_h != 0.0 && turn_on_time_constant_s == 0.0) {
     throw Error("gyro: turn_on_bias_deg_h needs a positive turn_on_time_constant_s");
   }
+  not_negative(scale_factor_repeatability_ppm, "scale_factor_repeatability_ppm");
+  not_negative(bias_repeatability_deg_h, "bias_repeatability_deg_h");
   not_negative(quantization_arcsec, "quantization_arcsec");
   not_negative(angle_random_walk_deg_rt_h, "angle_random_walk_deg_rt_h");
   not_negative(bias_instability_deg_h, "bias_instability_deg_h");
@@ -65,6 +67,8 @@ nlohmann::json GyroParameters::to_json() const {
       {"asymmetry_ppm", asymmetry_ppm},
       {"scale_factor_temperature_ppm_per_c", scale_factor_temperature_ppm_per_c},
       {"bias_deg_h", bias_deg_h},
+      {"scale_factor_repeatability_ppm", scale_factor_repeatability_ppm},
+      {"bias_repeatability_deg_h", bias_repeatability_deg_h},
       {"bias_temperature_deg_h_per_c", bias_temperature_deg_h_per_c},
       {"reference_temperature_c", reference_temperature_c},
       {"turn_on_bias_deg_h", turn_on_bias_deg_h},

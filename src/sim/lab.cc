@@ -1,9 +1,11 @@
 #include "sim/lab.h"
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "inertest/core/error.h"
 #include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 
@@ -39,6 +41,101 @@ double noise_of_mean_deg_s(const GyroParameters& gyro, double tau) {
   // Pulse counter: the count over τ is within one pulse of the angle; two such ends per mean.
   const double counter = 1.0 / (std::abs(gyro.scale_factor) * tau) / std::sqrt(6.0);
   return std::sqrt(variance / (constants::kDegree * constants::kDegree) + counter * counter);
+}
+
+std::string f64_record(const std::vector<std::int64_t>& pulses, double sample_rate_hz) {
+  std::string bytes(pulses.size() * 8, '\0');
+  for (std::size_t i = 0; i < pulses.size(); ++i) {
+    const auto bits = std::bit_cast<std::uint64_t>(static_cast<double>(pulses[i]) * sample_rate_hz);
+    for (int b = 0; b < 8; ++b) bytes[i * 8 + b] = static_cast<char>((bits >> (8 * b)) & 0xffu);  // little-endian
+  }
+  return bytes;
+}
+
+double mean_output(const std::vector<std::int64_t>& pulses, double sample_rate_hz) {
+  long double total = 0.0L;
+  for (const auto p : pulses) total += static_cast<long double>(p);
+  return static_cast<double>(total * sample_rate_hz / static_cast<long double>(pulses.size()));
+}
+
+namespace {
+
+// Variance of the mean over T of the stationary noise processes (rad/s)², without the random walk.
+double stationary_mean_variance(const GyroParameters& gyro, double seconds) {
+  const NoiseParameters n = gyro.noise();
+  const double dt = 1.0 / gyro.sample_rate_hz;
+  // White rate noise N²/T; white angle noise Q at both ends, 2Q²/T².
+  double variance = n.angle_random_walk * n.angle_random_walk / seconds + 2.0 * n.quantization * n.quantization / (seconds * seconds);
+  if (n.bias_instability > 0.0) {
+    // The generator's Gauss-Markov grid (noise.h): variance s² = B²·ln r/π each, correlation time T_i;
+    // the mean over T has variance 2s²·(T_i/T)²·(T/T_i − 1 + e^(−T/T_i)).
+    const double ratio = std::pow(10.0, 1.0 / 3.0);
+    const double s2 = n.bias_instability * n.bias_instability * std::log(ratio) / constants::kPi;
+    for (double t = std::max(n.flicker_shortest_s, dt); t <= n.flicker_longest_s * 1.0001; t *= ratio) {
+      const double x = seconds / t;
+      variance += 2.0 * s2 * (x - 1.0 + std::exp(-x)) / (x * x);
+    }
+  }
+  return variance;
+}
+
+}  // namespace
+
+double noise_of_record_mean_deg_s(const GyroParameters& gyro, double seconds) {
+  const NoiseParameters n = gyro.noise();
+  // Rate random walk from zero at the start: the mean of K·W(t) over T has variance K²T/3.
+  const double variance = stationary_mean_variance(gyro, seconds) + n.rate_random_walk * n.rate_random_walk * seconds / 3.0 +
+                          n.rate_ramp * n.rate_ramp * seconds * seconds / 4.0;
+  // Pulse counter: the remainder at each end is uniform over one pulse, variance 2·(1/12)/(K0·T)².
+  const double counter = 1.0 / (std::abs(gyro.scale_factor) * seconds) / std::sqrt(6.0);
+  return std::sqrt(variance / (constants::kDegree * constants::kDegree) + counter * counter);
+}
+
+double expected_window_sd_deg_s(const GyroParameters& gyro, double tau, double windows) {
+  const NoiseParameters n = gyro.noise();
+  const double counter = 1.0 / (std::abs(gyro.scale_factor) * tau) / std::sqrt(6.0) * constants::kDegree;
+  const double stationary = stationary_mean_variance(gyro, tau) + counter * counter -
+                            stationary_mean_variance(gyro, windows * tau);
+  const double variance = windows / (windows - 1.0) * stationary +
+                          windows * n.rate_random_walk * n.rate_random_walk * tau / 6.0;
+  return std::sqrt(variance) / constants::kDegree;
+}
+
+double sample_sd_bound(double sigma, double count, double z) {
+  // Wilson & Hilferty (1931): χ²_k quantile ≈ k·(1 − 2/(9k) + z·√(2/(9k)))³.
+  const double k = count - 1.0;
+  const double c = 2.0 / (9.0 * k);
+  const double quantile = k * std::pow(1.0 - c + z * std::sqrt(c), 3.0);
+  return sigma * std::sqrt(quantile / k);
+}
+
+std::vector<std::vector<double>> invert(std::vector<std::vector<double>> a) {
+  const std::size_t n = a.size();
+  std::vector<std::vector<double>> inv(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i) inv[i][i] = 1.0;
+  for (std::size_t c = 0; c < n; ++c) {
+    std::size_t pivot = c;
+    for (std::size_t r = c + 1; r < n; ++r) {
+      if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
+    }
+    if (a[pivot][c] == 0.0) throw Error("simulation: singular normal matrix (the test cannot identify its parameters)");
+    std::swap(a[c], a[pivot]);
+    std::swap(inv[c], inv[pivot]);
+    const double d = a[c][c];
+    for (std::size_t j = 0; j < n; ++j) {
+      a[c][j] /= d;
+      inv[c][j] /= d;
+    }
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == c || a[r][c] == 0.0) continue;
+      const double f = a[r][c];
+      for (std::size_t j = 0; j < n; ++j) {
+        a[r][j] -= f * a[c][j];
+        inv[r][j] -= f * inv[c][j];
+      }
+    }
+  }
+  return inv;
 }
 
 std::string exact(double value) { return fmt::format("{}", value); }

@@ -9,6 +9,7 @@
 
 #include "campaign/plan_table.h"
 #include "inertest/core/progress.h"
+#include "inertest/sim/accelerometer_model.h"
 #include "inertest/sim/centrifuge.h"
 #include "inertest/sim/gyro_model.h"
 #include "inertest/sim/rigs.h"
@@ -26,6 +27,13 @@ struct TruthEntry {
   std::string unit;
   double tolerance = 0.0;
   std::string basis;  // how the tolerance was derived
+  // A known systematic effect of the rigs or of the method, predicted from the model: the estimate
+  // is expected at value + systematic, within the tolerance.
+  double systematic = 0.0;
+  // > 0: the tolerance is this many times the 1-sigma uncertainty the procedure reports with the
+  // figure (used where that uncertainty is the estimator's own, e.g. the Allan fit's edf-based one);
+  // `tolerance` is then 0.
+  double tolerance_sigmas = 0.0;
 };
 
 struct Lab {
@@ -35,6 +43,12 @@ struct Lab {
   std::string site_name;
   GyroParameters gyro;
   RateTable rate_table;
+  double fixture_tilt_rad = 0.0;  // Δθy1: the rate-table fixture's vertical face leaning (paper 001)
+  // The dividing head of the accelerometer test: its horizontal axis tilted up by Δθy0, the
+  // fixture face by Δθy1 (paper 001).
+  double dividing_head_tilt_rad = 0.0;
+  double dividing_head_fixture_rad = 0.0;
+  AccelerometerParameters accelerometer;
   Centrifuge centrifuge;  // geometry and errors; rate and β are set per run
   ProgressCallback progress;
   // First pass over the plan: generators read and check their keys, then return before simulating.
@@ -63,6 +77,33 @@ std::string time_series_csv(const std::vector<std::int64_t>& pulses, double samp
 // plus the pulse counter's quantization of a τ-mean: the 1-sigma noise of a τ-second mean
 // relative to another, used for the tolerances.
 double noise_of_mean_deg_s(const GyroParameters& gyro, double tau_s);
+
+// The same samples as a raw little-endian f64 record (one channel: the output in the instrument's
+// unit), as the long static records are written.
+std::string f64_record(const std::vector<std::int64_t>& pulses, double sample_rate_hz);
+
+// Mean output (instrument unit) of pulse counts at the sample rate.
+double mean_output(const std::vector<std::int64_t>& pulses, double sample_rate_hz);
+
+// 1-sigma of the mean of a record of length T (s) about the noise-free output, deg/s: the exact
+// variance of the mean of each simulated noise process (the flicker as its Gauss-Markov sum, the
+// rate random walk started at zero, the pulse counter's two ends), for a record at sample_rate_hz.
+double noise_of_record_mean_deg_s(const GyroParameters& gyro, double seconds);
+
+// Expected sample standard deviation (deg/s) of the means of n consecutive windows of tau seconds
+// (GJB 2426A eq. 20): E[s²] = n/(n−1)·(V(τ) − V(nτ)) for the stationary processes (V the variance of
+// a mean) plus n·K²·τ/6 for the rate random walk (Barnes' bias function B1(n, μ = 1) = n/2).
+double expected_window_sd_deg_s(const GyroParameters& gyro, double tau_s, double windows);
+
+// Upper bound, exceeded with probability about that of a z-sigma normal deviate, of the sample
+// standard deviation of `count` independent normal errors of standard deviation sigma: the
+// chi-squared quantile by the Wilson-Hilferty approximation. A sample standard deviation of
+// true values plus such errors differs from that of the true values by at most this (triangle
+// inequality), which bounds repeatability estimates.
+double sample_sd_bound(double sigma, double count, double z = 4.0);
+
+// Inverse of a small square matrix (Gauss-Jordan, partial pivoting); throws Error when singular.
+std::vector<std::vector<double>> invert(std::vector<std::vector<double>> a);
 
 // Formats a number for TOML/CSV so that it reads back exactly.
 std::string exact(double value);

@@ -21,6 +21,19 @@ const std::map<std::string, TestGenerator, std::less<>>& generators() {
       {"bias", generate_static},
       {"allan", generate_allan},
       {"centrifuge", generate_centrifuge},
+      {"gyro_misalignment", generate_gyro_misalignment},
+      {"input_axis_misalignment", generate_input_axis_misalignment},
+      {"accelerometer_misalignment", generate_accelerometer_misalignment},
+      {"bandwidth", generate_bandwidth},
+      {"scale_factor_temperature", generate_scale_factor_temperature},
+      {"scale_factor_repeatability", generate_scale_factor_repeatability},
+      {"maximum_input_rate", generate_maximum_input_rate},
+      {"bias_temperature", generate_bias_temperature},
+      {"bias_repeatability", generate_bias_repeatability},
+      {"turn_on_time", generate_turn_on_time},
+      {"polarity", generate_polarity},
+      {"threshold", generate_threshold},
+      {"resolution", generate_resolution},
   };
   return table;
 }
@@ -43,6 +56,8 @@ void read_gyro(PlanTable& table, GyroParameters& g) {
   g.scale_factor_temperature_ppm_per_c =
       table.number_or("scale_factor_temperature_ppm_per_c", g.scale_factor_temperature_ppm_per_c);
   g.bias_deg_h = table.number_or("bias_deg_h", g.bias_deg_h);
+  g.scale_factor_repeatability_ppm = table.number_or("scale_factor_repeatability_ppm", g.scale_factor_repeatability_ppm);
+  g.bias_repeatability_deg_h = table.number_or("bias_repeatability_deg_h", g.bias_repeatability_deg_h);
   g.bias_temperature_deg_h_per_c = table.number_or("bias_temperature_deg_h_per_c", g.bias_temperature_deg_h_per_c);
   g.reference_temperature_c = table.number_or("reference_temperature_c", g.reference_temperature_c);
   g.turn_on_bias_deg_h = table.number_or("turn_on_bias_deg_h", g.turn_on_bias_deg_h);
@@ -110,7 +125,30 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
     lab.rate_table.face_y_rad = face[1] * constants::kArcsecond;
     lab.rate_table.wobble_rad = table->number_or("wobble_arcsec", 0.0) * constants::kArcsecond;
     lab.rate_table.rate_error = table->number_or("rate_error_ppm", 0.0) * 1e-6;
+    lab.fixture_tilt_rad = table->number_or("fixture_arcsec", 0.0) * constants::kArcsecond;
     table->require_all_used();
+  }
+  if (auto table = top.optional_table("dividing_head")) {
+    lab.dividing_head_tilt_rad = table->number_or("tilt_arcsec", 0.0) * constants::kArcsecond;
+    lab.dividing_head_fixture_rad = table->number_or("fixture_arcsec", 0.0) * constants::kArcsecond;
+    table->require_all_used();
+  }
+  if (auto table = top.optional_table("accelerometer")) {
+    auto& a = lab.accelerometer;
+    a.id = table->string_or("id", a.id);
+    a.output_unit = table->string_or("output_unit", a.output_unit);
+    a.sample_rate_hz = table->number_or("sample_rate_hz", a.sample_rate_hz);
+    a.scale_factor = table->number_or("scale_factor", a.scale_factor);
+    a.bias_g = table->number_or("bias_mg", a.bias_g * 1e3) * 1e-3;
+    a.misalignment_arcsec = pair_or(*table, "misalignment_arcsec", a.misalignment_arcsec);
+    a.noise_ug_rt_hz = table->number_or("noise_ug_rt_hz", a.noise_ug_rt_hz);
+    a.output_resolution = table->number_or("output_resolution", a.output_resolution);
+    table->require_all_used();
+    try {
+      a.validate();
+    } catch (const Error& e) {
+      table->fail(e.message());
+    }
   }
   if (auto table = top.optional_table("centrifuge")) {
     auto& c = lab.centrifuge;
@@ -174,7 +212,9 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   nlohmann::json truth = nlohmann::json::array();
   for (const auto& t : lab.truth) {
     nlohmann::json entry = {{"procedure", t.procedure}, {"quantity", t.quantity}, {"true", t.value},
+                            {"systematic", t.systematic}, {"expected", t.value + t.systematic},
                             {"unit", t.unit},           {"tolerance", t.tolerance}, {"basis", t.basis}};
+    if (t.tolerance_sigmas > 0.0) entry["tolerance_sigmas"] = t.tolerance_sigmas;
     entry["figure"] = t.figure.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.figure);
     truth.push_back(entry);
   }
@@ -183,6 +223,7 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
       {"seed", lab.seed},
       {"site", {{"name", lab.site_name}, {"latitude_deg", lab.site.latitude_deg}, {"gravity_m_s2", lab.site.gravity_m_s2}}},
       {"gyro", g.to_json()},
+      {"accelerometer", lab.accelerometer.to_json()},
       {"tests", lab.tests},
       {"truth", truth},
   };

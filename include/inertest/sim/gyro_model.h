@@ -44,6 +44,10 @@ struct GyroParameters {
   double asymmetry_ppm = 0.0;           // a: K(+) = K(1 + a/2), K(-) = K(1 - a/2)
   double scale_factor_temperature_ppm_per_c = 0.0;  // k_T
   double bias_deg_h = 0.0;              // DF at the reference temperature
+  // Run-to-run (turn-on to turn-on) 1-sigma changes: each power-on of a repeatability test draws
+  // its own offsets of K (relative) and of the bias (GJB 2426A 5.8.4, 5.12.3).
+  double scale_factor_repeatability_ppm = 0.0;
+  double bias_repeatability_deg_h = 0.0;
   double bias_temperature_deg_h_per_c = 0.0;        // b_T
   double reference_temperature_c = 20.0;            // T0
   double turn_on_bias_deg_h = 0.0;      // b_on: extra bias at power-on ...

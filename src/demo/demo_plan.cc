@@ -37,7 +37,7 @@ turn_on_time_constant_s = 150   # ... decaying with this time constant
 angle_random_walk_deg_rt_h = 0.0005
 bias_instability_deg_h = 0.005
 rate_random_walk_deg_h_rt_h = 0.003
-flicker_correlation_s = [1, 1e6]  # the flicker floor of B holds from seconds to days
+flicker_correlation_s = [0.1, 1e6]  # the flicker floor of B holds from seconds to days
 bandwidth_hz = 300
 delay_ms = 0.8
 input_axis_misalignment_arcsec = [25, -15]
@@ -159,8 +159,8 @@ runs = 3
 [[test]]
 kind = "allan"
 name = "allan_long_static"
-hours = 30
-sample_rate_hz = 10
+hours = 60
+sample_rate_hz = 5
 
 [[test]]
 kind = "centrifuge"

@@ -67,7 +67,7 @@ TEST(SimSimulate, SameSeedGivesByteIdenticalFiles) {
   other.replace(other.find("seed = 7"), 8, "seed = 8");
   ScratchDirectory c;
   simulate_text(other, "small", c.path() + "/out");
-  EXPECT_NE(read(a.path() + "/out/bias.csv"), read(c.path() + "/out/bias.csv"));
+  EXPECT_NE(read(a.path() + "/out/bias.f64"), read(c.path() + "/out/bias.f64"));
 }
 
 TEST(SimSimulate, WritesRecordsPlanAndTruth) {
@@ -133,7 +133,8 @@ TEST(Demo, EveryTruthCheckIsWithin) {
   ASSERT_GE(results.at("truth_check").size(), 3u);
   for (const auto& c : results.at("truth_check")) {
     EXPECT_TRUE(c.at("within").get<bool>()) << c.dump();
-    EXPECT_GT(c.at("tolerance").get<double>(), 0.0) << c.dump();
+    // Zero only for exact figures (a sign, an unambiguous choice among tested rates).
+    EXPECT_GE(c.at("tolerance").get<double>(), 0.0) << c.dump();
   }
   EXPECT_TRUE(std::filesystem::exists(dir.path() + "/demo/report.txt"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() + "/demo/lab/truth.json"));

@@ -105,5 +105,8 @@ void wrap_io(py::module_& module);
 void wrap_procedures(py::module_& module);
 void wrap_misalignment(py::module_& module);
 void wrap_centrifuge(py::module_& module);
+void wrap_allan(py::module_& module);
+void wrap_sim(py::module_& module);
+void wrap_campaign(py::module_& module);
 
 }  // namespace inertest::python

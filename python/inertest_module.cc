@@ -14,4 +14,7 @@ PYBIND11_MODULE(inertest, module) {
   wrap_procedures(module);
   wrap_misalignment(module);
   wrap_centrifuge(module);
+  wrap_allan(module);
+  wrap_sim(module);
+  wrap_campaign(module);
 }

@@ -124,7 +124,7 @@ class BiasResult(Result):
     """GJB 2426A-2004 5.12.1 eq. (19), 5.12.2 eq. (20), 5.12.5.4.1 eqs. (23)-(24)."""
 
     bias: Figure  # deg/h
-    bias_stability: list[Record]
+    bias_stability: list[Record]  # smoothing_s, value, unit
     noise_equivalent_rate: Figure
     random_walk_coefficient: Figure  # deg/sqrt(h)
 
@@ -149,11 +149,29 @@ def bias(
 class AllanResult(Result):
     """Allan deviations with chi-squared bounds and the noise terms (GJB eq. 30-31, IEEE 952 C.1)."""
 
-    tau_s: FloatArray
-    curves: Record  # one Record per estimator: values, lower, upper, edf, terms, unit
-    noise: Record  # quantization, angle_random_walk, bias_instability, rate_random_walk, rate_ramp
-    mean: Figure
+    procedure: str
+    standard: str
     sample_count: int
+    sample_rate_hz: float
+    record_length: Figure  # s
+    input_unit: str
+    mean: Figure
+    tau_grid: str
+    confidence_level: float
+    tau: FloatArray  # s
+    averaging_factor: IntArray
+    noise_type: list[str]  # per tau, used for the edf
+    # One Record per estimator asked for (adev, oadev, mdev, hdev, ohdev, totdev): unit, and the numpy
+    # arrays values, lower, upper (confidence bounds), edf, terms.
+    adev: Record
+    oadev: Record
+    mdev: Record
+    hdev: Record
+    ohdev: Record
+    totdev: Record
+    # quantization, angle_random_walk (= random_walk_coefficient, GJB eq. 31), bias_instability,
+    # rate_random_walk, rate_ramp (Figures), fit (GJB eq. 30), slope_method; None when not fitted.
+    noise: Optional[Record]
     warnings: list[str]
 
 def allan_variance(

@@ -68,9 +68,10 @@ void wrap_allan(py::module_& module) {
   bind_result<AllanTag>(
       module, "AllanResult",
       "Allan analysis (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C, NIST SP 1065). Members as in\n"
-      "the JSON: tau_s (numpy array), curves (one Record per estimator: values, lower, upper, edf, terms as\n"
-      "numpy arrays, unit), noise (quantization, angle_random_walk, bias_instability, rate_random_walk,\n"
-      "rate_ramp as Figures; GJB eq. (30) fit; slope_method), mean, sample_count, warnings, ...");
+      "the JSON: tau (s) and averaging_factor (numpy arrays), one Record per estimator (adev, oadev, mdev,\n"
+      "hdev, ohdev, totdev: unit and the numpy arrays values, lower, upper, edf, terms), noise (quantization,\n"
+      "angle_random_walk, bias_instability, rate_random_walk, rate_ramp as Figures; GJB eq. (30) fit;\n"
+      "slope_method), mean, sample_count, warnings, ...");
   const char* options_doc =
       "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
       "taus: 'octave', 'decade', 'all', 'N/decade' or a comma list of tau in s; estimators: 'all' or a comma\n"

@@ -22,11 +22,11 @@ def test_angle_random_walk_of_white_noise_is_found():
     assert arw.unit == "deg/sqrt(h)"
     # Within 4 of its own 1-sigma uncertainties of the truth the simulator was made with.
     assert abs(arw.value - 0.02) < 4 * arw.uncertainty
-    oadev = result.curves.oadev
-    assert isinstance(result.tau_s, np.ndarray) and isinstance(oadev.values, np.ndarray)
+    oadev = result.oadev
+    assert isinstance(result.tau, np.ndarray) and isinstance(oadev.values, np.ndarray)
     # White rate noise: sigma(tau) = N / sqrt(tau), N in deg/sqrt(h) -> deg/h at tau in s: N * 60 / sqrt(tau).
-    expected = 0.02 * 60 / np.sqrt(result.tau_s[:8])
-    np.testing.assert_array_less(np.abs(oadev.values[:8] / expected - 1), 4 / np.sqrt(oadev.edf[:8]))
+    expected = 0.02 * 60 / np.sqrt(result.tau[:8])
+    np.testing.assert_array_less(np.abs(oadev.values[:8] / expected - 1), 4 / np.sqrt(2 * oadev.edf[:8]))  # 4 sigma: sd(sigma)/sigma = 1/sqrt(2 edf)
 
 
 def test_allan_equals_the_cli_on_the_same_file(tmp_path):
@@ -36,7 +36,7 @@ def test_allan_equals_the_cli_on_the_same_file(tmp_path):
     from_file = inertest.allan_variance_of_file(str(path), sample_rate_hz=SAMPLE_RATE_HZ, taus="decade")
     assert from_file.to_dict() == cli_json("allan", path, "--rate", SAMPLE_RATE_HZ, "--taus", "decade")
     in_memory = inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, taus="decade")
-    np.testing.assert_allclose(in_memory.curves.adev.values, from_file.curves.adev.values, rtol=1e-12)
+    np.testing.assert_allclose(in_memory.adev.values, from_file.adev.values, rtol=1e-12)
     np.testing.assert_array_equal(inertest.read_rate_record(str(path)), samples)
 
 

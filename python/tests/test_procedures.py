@@ -54,4 +54,4 @@ def test_bias_of_a_constant_record():
     result = inertest.bias(output, sample_rate_hz=10.0, scale_factor=1.0, smoothing_s=[1.0, 10.0])
     assert result.bias.value == pytest.approx(36.0, rel=1e-12)
     assert result.bias.unit == "deg/h"
-    assert [entry.value.value for entry in result.bias_stability] == pytest.approx([0.0, 0.0], abs=1e-9)
+    assert [entry.value for entry in result.bias_stability] == pytest.approx([0.0, 0.0], abs=1e-9)

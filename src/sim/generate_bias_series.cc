@@ -214,7 +214,7 @@ void generate_polarity(campaign::PlanTable& test, const std::string& name, Lab& 
               time_series_csv(pulses, fs, start, fmt::format("table rate {} deg/s about IA", sign * rate)));
   }
   // The polarity is exact: a sign; nothing but a rate response below the noise could flip it.
-  lab.truth.push_back({name, "polarity (sign)", "sign", gyro.scale_factor > 0 ? 1.0 : -1.0, "1", 0.0,
+  lab.truth.push_back({name, "polarity (sign)", "sign", gyro.scale_factor > 0 ? 1.0 : -1.0, "1", rounding_tolerance(1.0),
                        "exact (a sign)"});
   lab.plan_steps += fmt::format("[[procedure]]\nkind = \"polarity\"\nname = \"{}\"\npositive_file = \"{}/plus.csv\"\n"
                                 "negative_file = \"{}/minus.csv\"\ncolumn = \"output\"\nexpected = \"positive\"\n\n",

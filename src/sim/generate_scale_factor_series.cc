@@ -221,8 +221,9 @@ void generate_maximum_input_rate(campaign::PlanTable& test, const std::string& n
   }
   if (answer == 0.0) test.fail("the noise-free gyro fails nonlinearity_limit_ppm over the smallest range");
   lab.truth.push_back({name, "maximum input rate", "maximum_input_rate", answer, "deg/s",
-                       std::max(answer - lowest, highest - answer),
-                       "the tested rates the noise (4 sigma of each range's Kn) could select; 0: unambiguous"});
+                       std::max(answer - lowest, highest - answer) + rounding_tolerance(answer),
+                       "the tested rates the noise (4 sigma of each range's Kn) could select; else exact but for "
+                       "rounding"});
   lab.plan_steps += fmt::format("[[procedure]]\nkind = \"maximum_input_rate\"\nname = \"{}\"\nfile = \"{}/points.csv\"\n"
                                 "nonlinearity_limit_ppm = {}\n\n",
                                 name, name, exact(limit));

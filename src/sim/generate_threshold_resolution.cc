@@ -1,6 +1,9 @@
 // Simulated threshold (GJB 2426A-2004 5.10, method 2: dividing head) and resolution (5.11) tests.
-// The simulated gyro has no dead zone, so the sim knows no threshold or resolution of its own: these
-// tests give records to process, and their figures are bounded by the noise only (no truth entry).
+// The simulated gyro has no dead zone: every input gives its output, so the 50 % criteria of eqs.
+// (15) and (18) fail only by noise. The truth is then what the walk of 5.10.4 / 5.11.3 gives on the
+// noise-free outputs, the smallest tested input of each branch, the largest over the branches; the
+// tolerance covers every answer the noise could give: from the first input (walking down) whose
+// criterion a 4-sigma error of its mean difference could break, upward.
 //
 // threshold: IA horizontal on the dividing head (zero mark north), at each reading β the gyro
 // senses Ωe·cos φ·cos β (eq. 16). Keys: angles_deg = [0, 30, 60, 80, 85, 88, 89, 90, 91, 92, 95,
@@ -9,13 +12,42 @@
 // resolution: IA up on the rate table at the base rate ±Ω0, then Ω0 + ΔΩj, the base output measured
 // again before every increment. Keys: base_rate_deg_s = 1, increments_deg_s = [1e-2, 5e-3, 2e-3,
 // 1e-3, 5e-4, 2e-4, 1e-4], seconds = 30. Writes <name>/steps.csv (base_rate,base_output,rate,output).
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <fmt/format.h>
 
 #include "inertest/core/units.h"
 #include "sim/generators.h"
 
 namespace inertest::sim {
+namespace {
+
+// The walk of 5.10 / 5.11 on each branch's inputs (any order, positive): from the largest down, the
+// candidate is the smallest input with every larger one passing; the answer the largest candidate.
+// Noise-free every input passes; `surely_passes` says which still pass under a 4-sigma error.
+// Returns {noise-free answer, the largest answer the noise could give}.
+template <class SurelyPasses>
+std::pair<double, double> noise_bounded_walk(std::vector<std::vector<double>> branches, SurelyPasses surely_passes) {
+  double answer = 0.0;
+  double highest = 0.0;
+  for (auto& inputs : branches) {
+    std::sort(inputs.begin(), inputs.end(), std::greater<>());
+    if (inputs.empty()) continue;
+    answer = std::max(answer, inputs.back());
+    double upper = inputs.back();
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      if (!surely_passes(inputs[i])) {
+        upper = i == 0 ? inputs[0] : inputs[i - 1];
+        break;
+      }
+    }
+    highest = std::max(highest, upper);
+  }
+  return {answer, highest};
+}
+
+}  // namespace
 
 void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab& lab) {
   const std::vector<double> angles = test.optional_numbers("angles_deg").value_or(
@@ -38,6 +70,20 @@ void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab&
     fmt::format_to(std::back_inserter(text), "{},{}\n", exact(angle), exact(mean_output(pulses, fs)));
   }
   lab.write(name + "/positions.csv", text);
+  // Eq. (16): Ω_j = Ωe·cos φ·cos β_j. F_j − F0 has σ = √2 times that of a mean; eq. (15) holds for
+  // an error e with −K·Ω/3 <= e <= K·Ω, so it surely holds while 4σ < K·|Ω|/3.
+  const double horizontal = lab.site.earth_rate_enu()[1] / constants::kDegree * 3600.0;  // deg/h
+  const double sigma = std::sqrt(2.0) * noise_of_mean_deg_s(gyro, seconds) * 3600.0;    // deg/h
+  std::vector<double> north, south;
+  for (const double angle : angles) {
+    const double input = horizontal * std::cos(angle * constants::kDegree);
+    if (std::abs(input) < 1e-9 * horizontal) continue;
+    (input > 0 ? north : south).push_back(std::abs(input));
+  }
+  const auto [truth, highest] = noise_bounded_walk({north, south}, [&](double input) { return 4.0 * sigma < input / 3.0; });
+  lab.truth.push_back({name, "threshold (no dead zone)", "threshold", truth, "deg/h",
+                       highest - truth + rounding_tolerance(truth),
+                       "the inputs a 4-sigma error could make fail eq. (15); else exact but for rounding"});
   lab.plan_steps += fmt::format("[[procedure]]\nkind = \"threshold\"\nname = \"{}\"\nmethod = 2\nfile = \"{}/positions.csv\"\n"
                                 "heading_deg = 0\n\n",
                                 name, name);
@@ -77,6 +123,13 @@ void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab
     }
   }
   lab.write(name + "/steps.csv", text);
+  // Eq. (18) with ΔF̂ = K·ΔΩ fails for |e| > K·|ΔΩ|/2; e, the difference of two means, has σ = √2
+  // times that of one.
+  const double sigma = std::sqrt(2.0) * noise_of_mean_deg_s(gyro, seconds);  // deg/s
+  const auto [truth, highest] =
+      noise_bounded_walk({increments, increments}, [&](double increment) { return 4.0 * sigma < increment / 2.0; });
+  lab.truth.push_back({name, "resolution (no dead zone)", "resolution", truth * 3600.0, "deg/h",
+                       (highest - truth) * 3600.0 + rounding_tolerance(truth * 3600.0), "the increments a 4-sigma error could make fail eq. (18); else exact but for rounding"});
   lab.plan_steps += fmt::format("[[procedure]]\nkind = \"resolution\"\nname = \"{}\"\nfile = \"{}/steps.csv\"\n\n", name,
                                 name);
   lab.tests.push_back({{"name", name}, {"kind", "resolution"}, {"base_rate_deg_s", base},

@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <iterator>
 #include <set>
 
 #include "inertest/core/units.h"
 #include "inertest/demo/demo.h"
 #include "inertest/sim/accelerometer_model.h"
+#include "inertest/sim/simulation.h"
 #include "sim/lab.h"
 #include "test_util/test_util.h"
 
@@ -132,15 +134,31 @@ TEST(SimGenerators, EveryKindRecoversItsTruthInAShortCase) {
   }
   for (const char* kind : {"scale_factor", "scale_factor_repeatability", "scale_factor_temperature",
                            "maximum_input_rate", "bias", "bias_repeatability", "bias_temperature", "turn_on_time",
-                           "polarity", "bandwidth", "input_axis_misalignment", "gyro_misalignment",
+                           "polarity", "threshold", "resolution", "bandwidth", "input_axis_misalignment",
+                           "gyro_misalignment",
                            "accelerometer_misalignment", "allan", "centrifuge"}) {
     EXPECT_TRUE(procedures.count(kind)) << kind << " has no truth check";
   }
   EXPECT_TRUE(summary.results.at("not_checked").empty()) << summary.results.at("not_checked").dump();
-  // threshold and resolution are processed (the sim has no dead zone, so no truth).
-  bool threshold = false;
-  for (const auto& p : summary.results.at("procedures")) threshold = threshold || p.at("name") == "threshold";
-  EXPECT_TRUE(threshold);
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(SimGenerators, EveryKindIsByteIdenticalForTheSameSeed) {
+  ScratchDirectory a;
+  ScratchDirectory b;
+  const SimulationSummary first = simulate_text(kEveryKind, "every_kind", a.path());
+  const SimulationSummary second = simulate_text(kEveryKind, "every_kind", b.path());
+  ASSERT_EQ(first.written_files.size(), second.written_files.size());
+  for (std::size_t i = 0; i < first.written_files.size(); ++i) {
+    const auto relative = std::filesystem::relative(first.written_files[i], a.path());
+    ASSERT_EQ(relative, std::filesystem::relative(second.written_files[i], b.path()));
+    EXPECT_EQ(read(first.written_files[i]), read(second.written_files[i])) << relative;
+  }
+  EXPECT_EQ(first.truth.dump(), second.truth.dump());
 }
 
 TEST(SimStatistics, MeanAndWindowNoiseOfPureAngleRandomWalk) {

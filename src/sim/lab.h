@@ -2,6 +2,7 @@
 // to write, and how to record truth and plan steps. Private to src/sim.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,10 @@ double sample_sd_bound(double sigma, double count, double z = 4.0);
 
 // Inverse of a small square matrix (Gauss-Jordan, partial pivoting); throws Error when singular.
 std::vector<std::vector<double>> invert(std::vector<std::vector<double>> a);
+
+// The tolerance of a figure that is exact but for floating-point rounding through unit
+// conversions (a sign, a choice among the tested inputs): 1e-9 relative.
+inline double rounding_tolerance(double value) { return 1e-9 * std::abs(value); }
 
 // Formats a number for TOML/CSV so that it reads back exactly.
 std::string exact(double value);

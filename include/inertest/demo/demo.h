@@ -3,9 +3,10 @@
 // every simulated parameter a procedure measures with its true value.
 //
 // Writes DIR/lab/ (records, plan.toml, truth.json, simulation.toml), DIR/results.json (the
-// campaign's results plus "truth_check": [{"procedure", "quantity", "true", "measured", "unit",
-// "tolerance", "within", "basis"}] and "not_checked": the true parameters no plan step reports
-// yet) and DIR/report.txt.
+// campaign's results plus "truth_check": [{"procedure", "quantity", "true", "expected",
+// "measured", "unit", "tolerance", "within", "basis"}], within meaning |measured − expected| <=
+// tolerance with expected = true + the predicted systematic (truth.json), and "not_checked": the
+// true parameters no plan step reports) and DIR/report.txt.
 #pragma once
 
 #include <string>

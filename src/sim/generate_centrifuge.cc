@@ -109,6 +109,9 @@ void generate_centrifuge(campaign::PlanTable& test, const std::string& name, Lab
   const double a_ia = base.input_axis_misalignment_arcsec[0] * constants::kArcsecond;
   const double b_ia = base.input_axis_misalignment_arcsec[1] * constants::kArcsecond;
   const Vector3 leak_axis = {std::cos(a_ia) * std::cos(b_ia) - 1.0, std::sin(a_ia) * std::cos(b_ia), std::sin(b_ia)};
+  const double df = base.bias_deg_h + base.bias_temperature_deg_h_per_c * (temperature - base.reference_temperature_c);
+  const auto& d = base.drift;
+  const Row drift_truth = {df, d.DI, d.DO, d.DS, d.DII, d.DOO, d.DSS, d.DIO, d.DIS, d.DOS};
   for (const double level : levels) {
     for (const double beta : betas) {
       Centrifuge c = lab.centrifuge;
@@ -139,8 +142,10 @@ void generate_centrifuge(campaign::PlanTable& test, const std::string& name, Lab
       const auto phi = harmonics([&](double g) { return regressors(level, c.beta_rad, g); });
       // Known systematics the method does not model, pushed through the same fit: the Earth rate
       // leaking through the IA misalignment, and the gyro's dynamics (delay d, first-order f_c)
-      // acting on the once- and twice-per-revolution rate the centrifuge errors put on IA: the
-      // harmonic n lags by n·Ω·d + atan(nΩ/(2π f_c)) with gain 1/√(1 + (nΩ/(2π f_c))²).
+      // acting on the once- and twice-per-revolution output (the rate the Earth and the centrifuge
+      // errors put on IA, and the drift of eq. 2 itself): the harmonic n lags by n·Ω·d + atan(nΩ/(2π f_c))
+      // with gain 1/√(1 + (nΩ/(2π f_c))²); and the counter, whose count over 1/M revolution, stamped
+      // at the interval's centre, has the gain sin(nπ/M)/(nπ/M) and no phase.
       const double platform = c.rate_rad_s - c.errors.platform_rate_error;
       auto ia_rate = [&](double g) {
         const double t = (g - c.gamma0_rad) / platform;
@@ -151,11 +156,16 @@ void generate_centrifuge(campaign::PlanTable& test, const std::string& name, Lab
       std::array<double, kHarmonics> leak = misaligned;
       for (int order = 1; order <= 2; ++order) {
         const double w = order * platform;
+        const double counter = std::sin(order * constants::kPi / per_revolution) / (order * constants::kPi / per_revolution);
         const double corner = base.bandwidth_hz > 0.0 ? 2.0 * constants::kPi * base.bandwidth_hz : 0.0;
         const double lag = w * base.delay_ms * 1e-3 + (corner > 0.0 ? std::atan(w / corner) : 0.0);
-        const double gain = corner > 0.0 ? 1.0 / std::sqrt(1.0 + (w / corner) * (w / corner)) : 1.0;
-        const double kc = rate[2 * order - 1];
-        const double ks = rate[2 * order];
+        const double gain = counter * (corner > 0.0 ? 1.0 / std::sqrt(1.0 + (w / corner) * (w / corner)) : 1.0);
+        double kc = rate[2 * order - 1];
+        double ks = rate[2 * order];
+        for (std::size_t j = 0; j < kTerms; ++j) {
+          kc += phi[2 * order - 1][j] * drift_truth[j];
+          ks += phi[2 * order][j] * drift_truth[j];
+        }
         leak[2 * order - 1] += gain * (kc * std::cos(lag) - ks * std::sin(lag)) - kc;
         leak[2 * order] += gain * (kc * std::sin(lag) + ks * std::cos(lag)) - ks;
       }
@@ -171,8 +181,6 @@ void generate_centrifuge(campaign::PlanTable& test, const std::string& name, Lab
   lab.write(name + "/samples.csv", text);
   const auto covariance = inverse(normal);
 
-  const auto& d = base.drift;
-  const double df = base.bias_deg_h + base.bias_temperature_deg_h_per_c * (temperature - base.reference_temperature_c);
   const std::array<std::pair<const char*, double>, kTerms> truth = {{{"DF", df}, {"DI", d.DI}, {"DO", d.DO},
                                                                      {"DS", d.DS}, {"DII", d.DII}, {"DOO", d.DOO},
                                                                      {"DSS", d.DSS}, {"DIO", d.DIO}, {"DIS", d.DIS},

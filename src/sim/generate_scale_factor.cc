@@ -36,13 +36,14 @@ void generate_scale_factor(campaign::PlanTable& test, const std::string& name, L
 
   // Truth: the GJB 2426A definitions (eqs. 2-11) applied to the noise-free instrument at these
   // rates; expected: the same on the noise-free run on the real table (its rate error scales K).
-  // Tolerances: 4 sigma of each estimator from the noise of one rate's mean (σ_F).
+  // Tolerances: 4 sigma of K and Ka from the covariance of all the points' noise (the flicker and the
+  // random walk correlate them over the run), of Kn from the noise of one rate's mean (σ_F).
   const ScaleFactorTruth& t = run.truth;
   const ScaleFactorTruth& e = run.expected;
-  const double sigma_k = run.sigma_point / std::sqrt(t.sxx);
-  const double sigma_asymmetry = run.sigma_point * std::sqrt(t.asymmetry_sxx_term) / std::abs(t.scale_factor);
+  const double sigma_k = run.sigma_scale_factor;
+  const double sigma_asymmetry = run.sigma_asymmetry;
   const std::string k_unit = gyro.output_unit + "/(deg/s)";
-  const std::string basis = fmt::format("4 sigma from the noise of a {} s mean", seconds);
+  const std::string basis = fmt::format("4 sigma from the noise of the {} s means", seconds);
   lab.truth.push_back({name, "scale factor", "scale_factor", t.scale_factor, k_unit, 4.0 * sigma_k,
                        basis + "; expected includes the rate table's rate error", e.scale_factor - t.scale_factor});
   lab.truth.push_back({name, "scale factor nonlinearity", "nonlinearity", t.nonlinearity * 1e6, "ppm",

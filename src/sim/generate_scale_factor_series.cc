@@ -116,7 +116,7 @@ void generate_scale_factor_temperature(campaign::PlanTable& test, const std::str
     lab.write(file, run.points_csv);
     k_true.push_back(scale_factor_at(model, lab, run.rates, temperatures[i]));
     k_expected.push_back(run.expected.scale_factor);
-    sigma.push_back(run.sigma_point / std::sqrt(run.truth.sxx));
+    sigma.push_back(run.sigma_scale_factor);
     runs += fmt::format("[[procedure.run]]\ntemperature_degC = {}\nfile = \"{}\"\n", exact(temperatures[i]), file);
   }
   // |max|a + e| − max|a|| <= max|e|: 4 sigma of the noisiest ratio.
@@ -159,7 +159,7 @@ void generate_scale_factor_repeatability(campaign::PlanTable& test, const std::s
     lab.write(file, run.points_csv);
     k_true.push_back(run.truth.scale_factor);
     k_expected.push_back(run.expected.scale_factor);
-    sigma = std::max(sigma, run.sigma_point / std::sqrt(run.truth.sxx));
+    sigma = std::max(sigma, run.sigma_scale_factor);
     files += fmt::format("{}\"{}\"", q == 1 ? "" : ", ", file);
   }
   // Eq. (12) on the K each power-on had; the noise of each K moves the sample sd by at most the

@@ -101,6 +101,50 @@ double expected_window_sd_deg_s(const GyroParameters& gyro, double tau, double w
   return std::sqrt(variance) / constants::kDegree;
 }
 
+std::vector<std::vector<double>> interval_mean_covariance(const GyroParameters& gyro,
+                                                          const std::vector<std::array<double, 2>>& intervals,
+                                                          double t0) {
+  const NoiseParameters n = gyro.noise();
+  const std::size_t m = intervals.size();
+  std::vector<std::vector<double>> cov(m, std::vector<double>(m, 0.0));
+  std::vector<double> correlation_times;
+  const double ratio = std::pow(10.0, 1.0 / 3.0);
+  const double s2 = n.bias_instability * n.bias_instability * std::log(ratio) / constants::kPi;
+  if (n.bias_instability > 0.0) {
+    for (double t = std::max(n.flicker_shortest_s, 1.0 / gyro.sample_rate_hz); t <= n.flicker_longest_s * 1.0001;
+         t *= ratio) {
+      correlation_times.push_back(t);
+    }
+  }
+  const double k2 = n.rate_random_walk * n.rate_random_walk;
+  const double counter = constants::kDegree / std::abs(gyro.scale_factor);  // one pulse, rad
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t j = 0; j < m; ++j) {
+      const auto& p = intervals[i][0] <= intervals[j][0] ? intervals[i] : intervals[j];  // the earlier
+      const auto& q = intervals[i][0] <= intervals[j][0] ? intervals[j] : intervals[i];
+      const double lp = p[1] - p[0];
+      const double lq = q[1] - q[0];
+      double c = 0.0;
+      if (i == j) {
+        c = n.angle_random_walk * n.angle_random_walk / lp + 2.0 * n.quantization * n.quantization / (lp * lp) +
+            2.0 / 12.0 * counter * counter / (lp * lp) + k2 * (p[0] - t0 + lp / 3.0);
+        for (const double t : correlation_times) {
+          const double x = lp / t;
+          c += 2.0 * s2 * (x - 1.0 + std::exp(-x)) / (x * x);
+        }
+      } else {
+        const double gap = std::max(0.0, q[0] - p[1]);
+        c = k2 * (0.5 * (p[0] + p[1]) - t0);
+        for (const double t : correlation_times) {
+          c += s2 * t * t * (1.0 - std::exp(-lp / t)) * (1.0 - std::exp(-lq / t)) * std::exp(-gap / t) / (lp * lq);
+        }
+      }
+      cov[i][j] = c / (constants::kDegree * constants::kDegree);
+    }
+  }
+  return cov;
+}
+
 double sample_sd_bound(double sigma, double count, double z) {
   // Wilson & Hilferty (1931): χ²_k quantile ≈ k·(1 − 2/(9k) + z·√(2/(9k)))³.
   const double k = count - 1.0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,15 @@ double noise_of_record_mean_deg_s(const GyroParameters& gyro, double seconds);
 // (GJB 2426A eq. 20): E[s²] = n/(n−1)·(V(τ) − V(nτ)) for the stationary processes (V the variance of
 // a mean) plus n·K²·τ/6 for the rate random walk (Barnes' bias function B1(n, μ = 1) = n/2).
 double expected_window_sd_deg_s(const GyroParameters& gyro, double tau_s, double windows);
+
+// Covariance, (deg/s)², of the noise's means over the given intervals [start, end] (seconds since
+// power-on, in any order) of one GyroModel whose noise started at t0 (the rate random walk at zero
+// there, the flicker stationary): white terms on the diagonal; each flicker Gauss-Markov process
+// (variance s², correlation time T) with s²·T²·(1 − e^(−L1/T))·(1 − e^(−L2/T))·e^(−gap/T)/(L1·L2)
+// between disjoint intervals; the random walk with K²·(mean of min(s, u) − t0).
+std::vector<std::vector<double>> interval_mean_covariance(const GyroParameters& gyro,
+                                                          const std::vector<std::array<double, 2>>& intervals,
+                                                          double t0);
 
 // Upper bound, exceeded with probability about that of a z-sigma normal deviate, of the sample
 // standard deviation of `count` independent normal errors of standard deviation sigma: the

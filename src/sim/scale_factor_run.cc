@@ -73,8 +73,6 @@ ScaleFactorTruth scale_factor_truth(const std::vector<double>& rates, const std:
   const double mean_k = 0.5 * (positive.slope + negative.slope);
   t.scale_factor = all.slope;
   t.asymmetry = std::abs(positive.slope - negative.slope) / std::abs(mean_k);
-  t.sxx = all.sxx;
-  t.asymmetry_sxx_term = 1.0 / positive.sxx + 1.0 / negative.sxx;
   return t;
 }
 
@@ -89,6 +87,8 @@ ScaleFactorRun record_scale_factor_run(Lab& lab, GyroModel& model, const std::ve
   run.points_csv = "# " + title + "\nrate,output\n";
   std::vector<double> clean;
   std::vector<double> ideal;
+  std::vector<std::array<double, 2>> intervals;
+  const double t0 = model.time_s();
   for (std::size_t j = 0; j < run.rates.size(); ++j) {
     const double rate = run.rates[j];
     const double duration = rate == 0.0 ? static_seconds : seconds;
@@ -101,6 +101,7 @@ ScaleFactorRun record_scale_factor_run(Lab& lab, GyroModel& model, const std::ve
                 time_series_csv(pulses, fs, start, fmt::format("table rate {} deg/s", rate)));
     }
     run.outputs.push_back(mean_output(pulses, fs));
+    intervals.push_back({start, model.time_s()});
     fmt::format_to(std::back_inserter(run.points_csv), "{},{}\n", exact(rate), exact(run.outputs.back()));
     // Noise-free: the instrument at the rate the table gives (Earth rate and table errors included),
     // at the gyro's temperature at the middle of the point.
@@ -115,6 +116,44 @@ ScaleFactorRun record_scale_factor_run(Lab& lab, GyroModel& model, const std::ve
   run.truth = scale_factor_truth(run.rates, ideal);
   run.expected = scale_factor_truth(run.rates, clean);
   run.sigma_point = std::abs(gyro.scale_factor) * noise_of_mean_deg_s(gyro, seconds);
+  // The estimators as linear combinations of the point means: the slope of the rate points (the
+  // rest output shifts every y alike and drops out), c_j = (x_j − x̄)/Sxx, over all of them, the
+  // positive and the negative ones; Ka = (K+ − K−)/K̄.
+  const auto cov = interval_mean_covariance(gyro, intervals, t0);
+  auto slope_weights = [&](int sign) {
+    std::vector<double> c(run.rates.size(), 0.0);
+    double mean = 0.0;
+    int count = 0;
+    for (const double r : run.rates) {
+      if (r != 0.0 && (sign == 0 || (r > 0) == (sign > 0))) {
+        mean += r;
+        ++count;
+      }
+    }
+    mean /= count;
+    double sxx = 0.0;
+    for (const double r : run.rates) {
+      if (r != 0.0 && (sign == 0 || (r > 0) == (sign > 0))) sxx += (r - mean) * (r - mean);
+    }
+    for (std::size_t j = 0; j < run.rates.size(); ++j) {
+      const double r = run.rates[j];
+      if (r != 0.0 && (sign == 0 || (r > 0) == (sign > 0))) c[j] = (r - mean) / sxx;
+    }
+    return c;
+  };
+  auto sigma_of = [&](const std::vector<double>& c) {
+    double v = 0.0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      for (std::size_t j = 0; j < c.size(); ++j) v += c[i] * cov[i][j] * c[j];
+    }
+    return std::abs(gyro.scale_factor) * std::sqrt(v);
+  };
+  run.sigma_scale_factor = sigma_of(slope_weights(0));
+  const auto plus = slope_weights(1);
+  const auto minus = slope_weights(-1);
+  std::vector<double> difference(plus.size());
+  for (std::size_t j = 0; j < plus.size(); ++j) difference[j] = plus[j] - minus[j];
+  run.sigma_asymmetry = sigma_of(difference) / std::abs(run.truth.scale_factor);
   return run;
 }
 

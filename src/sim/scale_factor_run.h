@@ -16,8 +16,6 @@ struct ScaleFactorTruth {
   double nonlinearity = 0.0;  // Kn, relative (eqs. 7-9)
   double asymmetry = 0.0;     // Ka, relative (eqs. 10-11)
   double largest_output = 0.0;      // the largest |F − F0| of the run
-  double sxx = 0.0;                 // Σ(Ω − Ω̄)² of the fit, (deg/s)²
-  double asymmetry_sxx_term = 0.0;  // 1/Sxx(+) + 1/Sxx(−)
 };
 
 struct ScaleFactorRun {
@@ -29,6 +27,10 @@ struct ScaleFactorRun {
   // What the noise-free run on the real rig gives (table rate error, tilt, wobble, face errors).
   ScaleFactorTruth expected;
   double sigma_point = 0.0;     // 1-sigma noise of one point's mean, output unit
+  // 1-sigma of K and of the asymmetry (relative) from the full covariance of the points' noise
+  // (interval_mean_covariance: the flicker and random walk correlate the points of a run).
+  double sigma_scale_factor = 0.0;
+  double sigma_asymmetry = 0.0;
   std::string points_csv;       // rate,output
 };
 
@@ -39,8 +41,8 @@ std::vector<double> scale_factor_rates(const std::vector<double>& magnitudes);
 // library's fit; zero rates are the static runs (their mean is the rest output).
 ScaleFactorTruth scale_factor_truth(const std::vector<double>& rates, const std::vector<double>& outputs);
 
-// Records one run on the rate table with `model` (continuing its time), 1 s of settling before each
-// point. raw_prefix non-empty: each point's record is also written as <raw_prefix>NN.csv.
+// Records one run on the rate table with `model`, which must be fresh (its noise starts with the run),
+// 1 s of settling before each point. raw_prefix non-empty: each point's record is also written as <raw_prefix>NN.csv.
 ScaleFactorRun record_scale_factor_run(Lab& lab, GyroModel& model, const std::vector<double>& magnitudes,
                                        double seconds, double static_seconds, const TemperatureProfile& temperature,
                                        const std::string& title, const std::string& raw_prefix = "");

@@ -213,7 +213,30 @@ void draw_series(SvgWriter& svg, const Series& series, const std::string& color,
   }
 }
 
-void draw_legend(SvgWriter& svg, const Panel& panel, const std::vector<std::string>& colors, const Box& area) {
+// The data of a panel in pixels: every point, and points along every line, for placing the legend.
+std::vector<Point> data_pixels(const Panel& panel, const AxisMap& x_map, const AxisMap& y_map) {
+  std::vector<Point> pixels;
+  for (const auto& series : panel.series) {
+    bool joined = false;  // whether the previous point was placed and a line joins it to this one
+    for (std::size_t i = 0; i < std::min(series.x.size(), series.y.size()); ++i) {
+      if (!x_map.placeable(series.x[i]) || !y_map.placeable(series.y[i])) {
+        joined = false;
+        continue;
+      }
+      const Point p{x_map.to_pixel(series.x[i]), y_map.to_pixel(series.y[i])};
+      if (joined) {
+        const Point q = pixels.back();
+        for (double t = 0.125; t < 1.0; t += 0.125) pixels.push_back({q.x + t * (p.x - q.x), q.y + t * (p.y - q.y)});
+      }
+      pixels.push_back(p);
+      joined = series.line != LineStyle::none;
+    }
+  }
+  return pixels;
+}
+
+void draw_legend(SvgWriter& svg, const Panel& panel, const std::vector<std::string>& colors, const Box& area,
+                 const std::vector<Point>& data) {
   if (panel.legend == LegendPosition::none) return;
   std::vector<std::size_t> entries;
   double widest = 0.0;
@@ -227,10 +250,30 @@ void draw_legend(SvgWriter& svg, const Panel& panel, const std::vector<std::stri
   constexpr double kSample = 26.0;
   const double width = 8.0 + kSample + 6.0 + widest + 8.0;
   const double height = 6.0 + kRow * static_cast<double>(entries.size()) + 2.0;
-  const bool right = panel.legend == LegendPosition::top_right || panel.legend == LegendPosition::bottom_right;
-  const bool top = panel.legend == LegendPosition::top_right || panel.legend == LegendPosition::top_left;
-  const double left = right ? area.right - 8.0 - width : area.left + 8.0;
-  const double upper = top ? area.top + 8.0 : area.bottom - 8.0 - height;
+  auto box_at = [&](LegendPosition position) {
+    const bool right = position == LegendPosition::top_right || position == LegendPosition::bottom_right;
+    const bool top = position == LegendPosition::top_right || position == LegendPosition::top_left;
+    const double left = right ? area.right - 8.0 - width : area.left + 8.0;
+    const double upper = top ? area.top + 8.0 : area.bottom - 8.0 - height;
+    return Box{left, upper, left + width, upper + height};
+  };
+  LegendPosition position = panel.legend;
+  if (position == LegendPosition::automatic) {
+    std::size_t fewest = std::numeric_limits<std::size_t>::max();
+    for (const auto corner : {LegendPosition::top_right, LegendPosition::top_left, LegendPosition::bottom_right,
+                              LegendPosition::bottom_left}) {
+      const Box box = box_at(corner);
+      const auto covered = static_cast<std::size_t>(
+          std::count_if(data.begin(), data.end(), [&](Point p) { return box.contains(p); }));
+      if (covered < fewest) {
+        fewest = covered;
+        position = corner;
+      }
+    }
+  }
+  const Box box = box_at(position);
+  const double left = box.left;
+  const double upper = box.top;
   svg.line(fmt::format("<g class=\"legend\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\" "
                        "fill-opacity=\"0.88\" stroke=\"#bbbbbb\"/>",
                        pixel(left), pixel(upper), pixel(width), pixel(height)));
@@ -356,7 +399,7 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
     svg.line(fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"{}\" font-weight=\"bold\">{}</text>", pixel(area.left),
                          pixel(frame.top + 12.0 + kTitleFont * 0.8), kTitleFont, escape_xml(panel.title)));
   }
-  draw_legend(svg, panel, colors, area);
+  draw_legend(svg, panel, colors, area, data_pixels(panel, x_map, y_map));
 }
 
 }  // namespace
@@ -502,6 +545,14 @@ std::optional<std::pair<Point, Point>> clip_segment(Point a, Point b, const Box&
   const Point start = t0 == 0.0 ? a : Point{a.x + t0 * dx, a.y + t0 * dy};
   const Point end = t1 == 1.0 ? b : Point{a.x + t1 * dx, a.y + t1 * dy};
   return std::pair{start, end};
+}
+
+Axis make_axis(std::string label, std::string unit, AxisScale scale) {
+  Axis axis;
+  axis.label = std::move(label);
+  axis.unit = std::move(unit);
+  axis.scale = scale;
+  return axis;
 }
 
 Box plot_area(const Panel& panel, const Box& frame) { return layout(panel, frame).area; }

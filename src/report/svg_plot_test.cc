@@ -223,8 +223,12 @@ std::vector<Point> polyline_points(const std::string& svg) {
 
 TEST(SvgPlotRender, LinesAreClippedToThePlotArea) {
   Panel panel;
-  panel.x = {"Averaging time", "s", AxisScale::log, 1.0, 100.0};
-  panel.y = {"Allan deviation", "deg/h", AxisScale::log, 0.01, 1.0};
+  panel.x = make_axis("Averaging time", "s", AxisScale::log);
+  panel.x.min = 1.0;
+  panel.x.max = 100.0;
+  panel.y = make_axis("Allan deviation", "deg/h", AxisScale::log);
+  panel.y.min = 0.01;
+  panel.y.max = 1.0;
   Series series;
   series.name = "data";
   series.x = {0.1, 1.0, 10.0, 1000.0};  // first and last points lie outside the fixed x range
@@ -316,6 +320,22 @@ TEST(SvgPlotRender, StackedPanelsShareTheWidth) {
   const Box lower = plot_area(bottom, Box{0, 200, 500, 350});
   EXPECT_LT(upper.bottom, lower.top);
   EXPECT_DOUBLE_EQ(upper.left, lower.left);
+}
+
+TEST(SvgPlotRender, AutomaticLegendAvoidsTheData) {
+  Panel panel;
+  // A rising line: it runs through the bottom-left and top-right corners, so the legend goes top-left
+  // (the first corner tried that covers nothing after top-right).
+  panel.series.push_back(make_series("rising", {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5}));
+  Plot plot;
+  plot.width = 600;
+  plot.panels.push_back(panel);
+  const std::string svg = render_svg(plot);
+  const Box area = plot_area(panel, Box{0, 0, 600, panel.height});
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(svg, match, std::regex("<g class=\"legend\"><rect x=\"([0-9.]+)\" y=\"([0-9.]+)\"")));
+  EXPECT_NEAR(std::stod(match[1].str()), area.left + 8.0, 0.05);
+  EXPECT_NEAR(std::stod(match[2].str()), area.top + 8.0, 0.05);
 }
 
 TEST(SvgPlotText, EscapesMarkup) { EXPECT_EQ(escape_xml("a<b & \"c\"'"), "a&lt;b &amp; &quot;c&quot;&#39;"); }

@@ -110,6 +110,9 @@ struct Axis {
   bool include_zero = false;  // linear auto range: stretch to include 0
 };
 
+// An axis with a label and a unit, its range from the data.
+Axis make_axis(std::string label, std::string unit, AxisScale scale = AxisScale::linear);
+
 // A horizontal (y = value) or vertical (x = value) dashed line across the panel, labelled.
 struct ReferenceLine {
   enum class Direction { horizontal, vertical };
@@ -127,7 +130,8 @@ struct Note {
   std::string color = "#222222";
 };
 
-enum class LegendPosition { none, top_right, top_left, bottom_right, bottom_left };
+// automatic: the inside corner where the legend covers the fewest data points.
+enum class LegendPosition { automatic, none, top_right, top_left, bottom_right, bottom_left };
 
 struct Panel {
   std::string title;
@@ -136,13 +140,13 @@ struct Panel {
   std::vector<Series> series;
   std::vector<ReferenceLine> references;
   std::vector<Note> notes;
-  LegendPosition legend = LegendPosition::top_right;
+  LegendPosition legend = LegendPosition::automatic;
   double height = 300.0;  // pixels, margins included
 };
 
 // One figure: panels stacked top to bottom, all as wide as the plot.
 struct Plot {
-  double width = 720.0;
+  double width = 900.0;
   std::vector<Panel> panels;
 };
 

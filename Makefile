@@ -23,7 +23,8 @@ test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 demo: build
-	@$(BUILD_DIR)/bin/inertest run examples/scale_factor/plan.toml --out demo
+	@$(BUILD_DIR)/bin/inertest demo --out demo > /dev/null; status=$$?; \
+	  echo "demo: report in demo/report.txt, results (with truth_check) in demo/results.json"; exit $$status
 
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null

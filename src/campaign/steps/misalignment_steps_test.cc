@@ -1,0 +1,63 @@
+// Plan kinds gyro_misalignment and accelerometer_misalignment through the campaign runner.
+#include <fmt/format.h>
+
+#include "inertest/campaign/campaign.h"
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+std::string plan_text(const std::string& instrument_type, const std::string& nominal, const std::string& steps) {
+  return fmt::format(
+      "[plan]\ntitle = \"misalignment\"\n\n[instrument]\nid = \"X-1\"\ntype = \"{}\"\n"
+      "output_unit = \"V\"\n{}\n[site]\nname = \"hall\"\nlatitude_deg = 45.75\n\n{}",
+      instrument_type, nominal, steps);
+}
+
+TEST(MisalignmentSteps, GyroStepTakesTheNominalScaleFactorByDefault) {
+  testing::ScratchDirectory scratch;
+  const std::string plan = scratch.write(
+      "plan.toml", plan_text("gyro", "nominal_scale_factor = -2.9222",
+                             fmt::format("[[procedure]]\nkind = \"gyro_misalignment\"\nfile = \"{}\"\n\n"
+                                         "[procedure.limits]\nmisalignment = {{ max = 180, unit = \"arcsec\" }}\n",
+                                         testing::source_path("data/misalignment/gyro_table1.csv"))));
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& result = summary.results["procedures"][0]["result"];
+  EXPECT_EQ(result["procedure"], "gyro_misalignment");
+  EXPECT_NEAR(result["by_rate"][0]["delta_theta_y2"]["value"].get<double>(), -162.2, 0.1);
+  EXPECT_EQ(result["scale_factor"]["unit"], "V/(deg/s)");
+}
+
+TEST(MisalignmentSteps, AccelerometerStepWithItsOwnScaleFactor) {
+  testing::ScratchDirectory scratch;
+  const std::string plan = scratch.write(
+      "plan.toml", plan_text("accelerometer", "",
+                             fmt::format("[[procedure]]\nkind = \"accelerometer_misalignment\"\nfile = \"{}\"\n"
+                                         "scale_factor = 1.299\n",
+                                         testing::source_path("data/misalignment/accelerometer_table2.csv"))));
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& result = summary.results["procedures"][0]["result"];
+  EXPECT_NEAR(result["delta_theta_z2"]["value"].get<double>(), 20.5, 0.1);
+  EXPECT_EQ(result["by_run"].size(), 3u);
+}
+
+TEST(MisalignmentSteps, ZeroOrMissingScaleFactorFailsAtValidation) {
+  testing::ScratchDirectory scratch;
+  const std::string data = testing::source_path("data/misalignment/accelerometer_table2.csv");
+  const std::string zero = scratch.write(
+      "zero.toml", plan_text("accelerometer", "",
+                             fmt::format("[[procedure]]\nkind = \"accelerometer_misalignment\"\nfile = \"{}\"\n"
+                                         "scale_factor = 0.0\n",
+                                         data)));
+  EXPECT_THAT([&] { validate_plan(zero); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("scale factor kI must be finite and nonzero")));
+  const std::string missing = scratch.write(
+      "missing.toml",
+      plan_text("gyro", "", fmt::format("[[procedure]]\nkind = \"gyro_misalignment\"\nfile = \"{}\"\n", data)));
+  EXPECT_THAT([&] { validate_plan(missing); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("needs scale_factor")));
+}
+
+}  // namespace
+}  // namespace inertest

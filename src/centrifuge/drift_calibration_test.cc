@@ -1,0 +1,357 @@
+#include "inertest/centrifuge/drift_calibration.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "inertest/centrifuge/centrifuge_record.h"
+#include "test_util/test_util.h"
+
+namespace inertest::centrifuge {
+namespace {
+
+using ::testing::HasSubstr;
+constexpr double kPi = constants::kPi;
+constexpr double kDegPerHourPerRadPerSecond = 3600.0 / constants::kDegree;
+
+// The reference case (reference README section 1): R0 = 1 m, phi = 45.75 deg, g = 9.8 m/s^2,
+// omega_e = 15.04107 deg/h, k1 = -2e-5 rad, k2 = +2e-5 rad, dOmega = 1e-5 rad/s.
+DriftCalibrationOptions paper_options() {
+  DriftCalibrationOptions options;
+  options.site.radius_m = 1.0;
+  options.site.latitude_rad = 45.75 * constants::kDegree;
+  options.site.gravity_m_s2 = 9.8;
+  options.site.earth_rate_rad_s = 15.04107 / kDegPerHourPerRadPerSecond;
+  options.k1_rad = -2e-5;
+  options.k2_rad = 2e-5;
+  options.delta_omega_rad_s = 1e-5;
+  return options;
+}
+
+std::vector<CentrifugeRun> table3_runs() {
+  return read_centrifuge_record(testing::source_path("data/centrifuge/table3_harmonics.csv")).runs();
+}
+
+// |actual - printed| within half a unit of the printed value's last digit.
+void expect_to_last_digit(const Figure& actual, double printed, double last_digit) {
+  EXPECT_NEAR(actual.value, printed, 0.5 * last_digit) << "printed " << printed;
+}
+
+TEST(CentrifugeDriftCalibration, ReproducesTheReferenceFitOfTable3) {
+  const auto runs = table3_runs();
+  ASSERT_EQ(runs.size(), 8u);
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, paper_options());
+  const auto& q = result.coefficients;
+  expect_to_last_digit(q[kF], 0.90605, 1e-5);
+  expect_to_last_digit(q[kI], 1.5366, 1e-4);
+  expect_to_last_digit(q[kO], 0.7431, 1e-4);
+  expect_to_last_digit(q[kS], -0.021962, 1e-6);
+  expect_to_last_digit(q[kOO], 3.2411e-4, 1e-8);
+  expect_to_last_digit(q[kSS], 2.0991e-4, 1e-8);
+  expect_to_last_digit(q[kOS], 2.5223e-5, 1e-9);
+  EXPECT_NEAR_RELATIVE(q[kII].value, -1.9246e-4, 0.01);
+  EXPECT_NEAR_RELATIVE(q[kIO].value, 1.3698e-5, 0.01);
+  EXPECT_NEAR_RELATIVE(q[kIS].value, -2.4943e-5, 0.01);
+  expect_to_last_digit(result.residual_rms, 0.0014, 1e-4);
+  EXPECT_EQ(result.residual_rms.unit, "deg/h");
+  EXPECT_EQ(result.degrees_of_freedom, 30u);
+  EXPECT_EQ(result.g_levels, 2u);
+  EXPECT_EQ(q[kF].unit, "deg/h");
+  EXPECT_EQ(q[kI].unit, "deg/h/g");
+  EXPECT_EQ(q[kOS].unit, "deg/h/g^2");
+  // The table's rounding (5e-5 deg/h) bounds what the fit can resolve: uncertainties are small
+  // but present.
+  ASSERT_TRUE(q[kI].uncertainty.has_value());
+  EXPECT_GT(*q[kI].uncertainty, 0.0);
+  EXPECT_LT(*q[kI].uncertainty, 1e-3);
+  EXPECT_TRUE(result.warnings.empty());
+}
+
+TEST(CentrifugeDriftCalibration, WithoutCompensationDIIsThePapersWrongValue) {
+  DriftCalibrationOptions options = paper_options();
+  options.compensation = false;
+  const DriftCalibrationResult result = calibrate_drift_coefficients(table3_runs(), options);
+  expect_to_last_digit(result.coefficients[kI], -1.5268, 1e-4);
+  EXPECT_FALSE(result.compensation);
+  EXPECT_EQ(result.errors.k1_rad, 0.0);
+}
+
+// Paper section 6: k1 and dOmega move D_I (and the k1c/k0 partners), k2 moves D_OS; each shift is
+// exactly the difference between the uncompensated and the compensated estimates.
+TEST(CentrifugeDriftCalibration, ErrorInfluenceOfEachErrorAlone) {
+  const auto runs = table3_runs();
+  const DriftCalibrationOptions options = paper_options();
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, options);
+  ASSERT_EQ(result.influence.size(), 4u);
+  const auto find = [&](const std::string& name) {
+    for (const auto& i : result.influence) {
+      if (i.error == name) return i;
+    }
+    ADD_FAILURE() << "no influence for " << name;
+    return ErrorInfluence{};
+  };
+  const ErrorInfluence k1 = find("k1");
+  const ErrorInfluence k2 = find("k2");
+  const ErrorInfluence delta_omega = find("delta_omega");
+  const ErrorInfluence earth = find("earth_rate");
+  EXPECT_EQ(k1.magnitude.value, -2e-5);
+  EXPECT_EQ(k1.magnitude.unit, "rad");
+  EXPECT_EQ(delta_omega.magnitude.unit, "rad/s");
+  // k1 alone: at beta = 0, k1c gets -k1 Omega = 2e-5 * 9.9 rad/s = 40.8 deg/h at 10 g (57.7 at 20 g),
+  // which the fit reads as -A * D_I: about -3.1 deg/h/g.
+  EXPECT_NEAR(k1.shift[kI].value, -3.1145, 5e-4);
+  EXPECT_EQ(k1.shift[kI].unit, "deg/h/g");
+  ASSERT_TRUE(k1.sensitivity.has_value());
+  EXPECT_EQ((*k1.sensitivity)[kI].unit, "deg/h/g/rad");
+  EXPECT_NEAR((*k1.sensitivity)[kI].value * -2e-5, k1.shift[kI].value, 1e-12);
+  // k2 alone moves D_OS, not D_I; dOmega alone moves D_I through the sin(beta) constant term.
+  EXPECT_GT(std::abs(k2.shift[kOS].value), 1e-2);
+  EXPECT_LT(std::abs(k2.shift[kI].value), 1e-9);
+  EXPECT_GT(std::abs(delta_omega.shift[kI].value), 1e-3);
+  EXPECT_EQ((*delta_omega.sensitivity)[kI].unit, "deg/h/g/(rad/s)");
+  EXPECT_FALSE(earth.sensitivity.has_value());
+  // The paper's section 6 figures are e = -(Phi^T Phi)^-1 Phi^T epsilon with epsilon holding ONE
+  // angle of 1e-5 rad (half of k1 or k2, with the simulation's sign) or dOmega = 1e-5 rad/s, PLUS
+  // the Earth-rate terms. With that reading the model reproduces all five printed numbers:
+  // dtheta_y2t -> D_I 1.5143, D_S -0.0418; dtheta_x2t -> D_I -0.0429, D_OS -0.0182;
+  // dOmega -> D_I -0.0511.
+  const auto paper_figure = [&](const ErrorInfluence& error, double amount, std::size_t j) {
+    return -((*error.sensitivity)[j].value * amount + earth.shift[j].value);
+  };
+  EXPECT_NEAR(paper_figure(k1, -1e-5, kI), 1.5143, 0.5e-4);
+  EXPECT_NEAR(paper_figure(k1, -1e-5, kS), -0.0418, 0.5e-4);
+  EXPECT_NEAR(paper_figure(k2, 1e-5, kI), -0.0429, 0.5e-4);
+  EXPECT_NEAR(paper_figure(k2, 1e-5, kOS), -0.0182, 0.5e-4);
+  EXPECT_NEAR(paper_figure(delta_omega, 1e-5, kI), -0.0511, 0.5e-4);
+  // The shifts add up to uncompensated minus compensated, coefficient by coefficient.
+  DriftCalibrationOptions uncompensated = options;
+  uncompensated.compensation = false;
+  const DriftCalibrationResult raw = calibrate_drift_coefficients(runs, uncompensated);
+  for (std::size_t j = 0; j < kDriftTermCount; ++j) {
+    const double total = k1.shift[j].value + k2.shift[j].value + delta_omega.shift[j].value + earth.shift[j].value;
+    EXPECT_NEAR(total, raw.coefficients[j].value - result.coefficients[j].value,
+                1e-9 * std::max(1.0, std::abs(total)))
+        << drift_term_name(j);
+  }
+  // Unit strings parse (they are meant for Figure::in).
+  for (std::size_t j = 0; j < kDriftTermCount; ++j) {
+    EXPECT_NO_THROW(Unit::parse((*delta_omega.sensitivity)[j].unit));
+  }
+}
+
+// --- Synthetic records from the first-order model ---
+
+const DriftCoefficients kTrueCoefficients = {0.9043,   1.5365,  0.7431,  -0.0221,  -1.9e-4,
+                                             3.2e-4,   2.1e-4,  1.4e-5,  -2.5e-5,  2.5e-5};
+const CentrifugeErrors kTrueErrors{-2e-5, 2e-5, 1e-5};
+
+std::vector<CentrifugeSampleRun> simulate(const CentrifugeSite& site, const std::vector<double>& g_levels,
+                                          const std::vector<double>& betas_deg, bool irregular) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * kPi);
+  std::vector<CentrifugeSampleRun> runs;
+  for (double a : g_levels) {
+    const double omega = std::sqrt(a * site.gravity_m_s2 / site.radius_m);
+    for (double beta_deg : betas_deg) {
+      CentrifugeSampleRun run;
+      run.accel_g = a;
+      run.beta_rad = beta_deg * constants::kDegree;
+      for (int i = 0; i < 36; ++i) {
+        const double gamma = irregular ? angle(random) : 2.0 * kPi * i / 36.0;
+        run.gamma_rad.push_back(gamma);
+        run.output.push_back(
+            centrifuge_model_output(kTrueCoefficients, site, kTrueErrors, omega, run.beta_rad, gamma));
+      }
+      runs.push_back(run);
+    }
+  }
+  return runs;
+}
+
+void expect_true_coefficients(const DriftCalibrationResult& result, double tolerance) {
+  for (std::size_t j = 0; j < kDriftTermCount; ++j) {
+    EXPECT_NEAR_RELATIVE(result.coefficients[j].value, kTrueCoefficients[j], tolerance) << drift_term_name(j);
+  }
+}
+
+TEST(CentrifugeDriftCalibration, RecoversCoefficientsFromSimulatedSamples) {
+  const DriftCalibrationOptions options = paper_options();
+  const auto samples = simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, false);
+  const auto runs = analyse_sample_runs(samples);
+  for (const auto& run : runs) {
+    ASSERT_TRUE(run.harmonic_fit.has_value());
+    EXPECT_EQ(run.harmonic_fit->method, HarmonicFit::Method::kDiscreteFourier);
+  }
+  DriftCalibrationOptions exact = options;
+  exact.k1_rad = kTrueErrors.k1_rad;
+  exact.k2_rad = kTrueErrors.k2_rad;
+  exact.delta_omega_rad_s = kTrueErrors.delta_omega_rad_s;
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, exact);
+  expect_true_coefficients(result, 1e-6);
+  EXPECT_LT(result.residual_rms.value, 1e-10);
+  ASSERT_TRUE(result.runs[0].harmonic_fit.has_value());
+  EXPECT_LT(result.runs[0].harmonic_fit->residual_rms, 1e-10);
+}
+
+// Any platform angles, three g-levels, irregular sampling (least-squares harmonic fit).
+TEST(CentrifugeDriftCalibration, RecoversCoefficientsForAnyBetasAndIrregularSampling) {
+  const DriftCalibrationOptions options = paper_options();
+  const auto samples = simulate(options.site, {5.0, 12.0, 30.0}, {10.0, 100.0, 200.0, 330.0, 45.0}, true);
+  const auto runs = analyse_sample_runs(samples);
+  EXPECT_EQ(runs[0].harmonic_fit->method, HarmonicFit::Method::kLeastSquares);
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, options);
+  expect_true_coefficients(result, 1e-6);
+  EXPECT_EQ(result.g_levels, 3u);
+}
+
+// Beyond the paper: the unmeasured k1, k2, dOmega are estimated with the coefficients.
+TEST(CentrifugeDriftCalibration, EstimatesUnmeasuredCentrifugeErrors) {
+  DriftCalibrationOptions options = paper_options();
+  options.k1_rad.reset();
+  options.k2_rad.reset();
+  options.delta_omega_rad_s.reset();
+  options.estimate_errors = true;
+  const auto runs = analyse_sample_runs(simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, false));
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, options);
+  expect_true_coefficients(result, 1e-6);
+  ASSERT_EQ(result.estimated_errors.size(), 3u);
+  EXPECT_NEAR_RELATIVE(result.estimated_errors[0].value.value, kTrueErrors.k1_rad, 1e-6);
+  EXPECT_NEAR_RELATIVE(result.estimated_errors[1].value.value, kTrueErrors.k2_rad, 1e-6);
+  EXPECT_NEAR_RELATIVE(result.estimated_errors[2].value.value, kTrueErrors.delta_omega_rad_s, 1e-6);
+  EXPECT_EQ(result.estimated_errors[0].name, "k1");
+  EXPECT_EQ(result.estimated_errors[0].value.unit, "rad");
+  EXPECT_EQ(result.estimated_errors[2].value.unit, "rad/s");
+  // 12 other parameters; k1 and D_I share the k1c cos(beta) column up to sqrt(A) vs A: strongly
+  // correlated.
+  ASSERT_EQ(result.estimated_errors[0].correlation.size(), 12u);
+  double k1_with_di = 0.0;
+  for (const auto& [name, rho] : result.estimated_errors[0].correlation) {
+    EXPECT_LE(std::abs(rho), 1.0 + 1e-12);
+    if (name == "D_I") k1_with_di = rho;
+  }
+  EXPECT_GT(std::abs(k1_with_di), 0.9);
+  EXPECT_EQ(result.errors.k2_rad, result.estimated_errors[1].value.value);
+  const nlohmann::json json = result.to_json();
+  EXPECT_EQ(json["centrifuge_errors"]["k1"]["source"], "estimated");
+  EXPECT_TRUE(json["centrifuge_errors"]["k1"]["correlation"].contains("D_I"));
+}
+
+// On the paper's own table the errors come out of the fit at the values that made it (which
+// confirms the reconstruction of eq. 5): k1 = -2e-5, k2 = 2e-5, dOmega = 1e-5, within the
+// uncertainty that the table's rounding leaves.
+TEST(CentrifugeDriftCalibration, EstimatesErrorsFromTable3) {
+  DriftCalibrationOptions options = paper_options();
+  options.k1_rad.reset();
+  options.k2_rad.reset();
+  options.delta_omega_rad_s.reset();
+  options.estimate_errors = true;
+  const DriftCalibrationResult result = calibrate_drift_coefficients(table3_runs(), options);
+  ASSERT_EQ(result.estimated_errors.size(), 3u);
+  EXPECT_TRUE(result.measured_errors.empty());
+  const std::array<double, 3> truth = {-2e-5, 2e-5, 1e-5};
+  for (std::size_t e = 0; e < 3; ++e) {
+    const Figure& value = result.estimated_errors[e].value;
+    ASSERT_TRUE(value.uncertainty.has_value());
+    EXPECT_NEAR(value.value, truth[e], 4.0 * *value.uncertainty) << result.estimated_errors[e].name;
+    EXPECT_NEAR_RELATIVE(value.value, truth[e], 1e-3);
+  }
+  expect_to_last_digit(result.coefficients[kF], 0.90605, 1e-5);
+  expect_to_last_digit(result.coefficients[kS], -0.021962, 1e-6);
+}
+
+TEST(CentrifugeDriftCalibration, OneGLevelCannotIdentifyAllTen) {
+  auto runs = table3_runs();
+  runs.resize(4);  // the 10 g level only
+  try {
+    calibrate_drift_coefficients(runs, paper_options());
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("cannot identify D_F, D_II, D_OO, D_SS"));
+    EXPECT_THAT(e.message(), HasSubstr("second g-level"));
+  }
+}
+
+TEST(CentrifugeDriftCalibration, TwoPlatformAnglesCannotIdentifyAllTen) {
+  auto runs = table3_runs();
+  std::vector<CentrifugeRun> two_betas;
+  for (const auto& run : runs) {
+    if (run.beta_rad < 1.6) two_betas.push_back(run);  // beta = 0 and 90 deg
+  }
+  EXPECT_THROW(calibrate_drift_coefficients(two_betas, paper_options()), Error);
+}
+
+TEST(CentrifugeDriftCalibration, EstimatingErrorsNeedsTwoGLevels) {
+  auto runs = table3_runs();
+  runs.resize(4);
+  DriftCalibrationOptions options = paper_options();
+  options.k1_rad.reset();
+  options.estimate_errors = true;
+  try {
+    calibrate_drift_coefficients(runs, options);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("cannot identify"));
+    EXPECT_THAT(e.message(), HasSubstr("second g-level"));
+  }
+}
+
+TEST(CentrifugeDriftCalibration, MissingPlatformAngleIsAnErrorAtTheLevel) {
+  auto runs = table3_runs();
+  runs.pop_back();  // 20 g without beta = 270 deg
+  try {
+    calibrate_drift_coefficients(runs, paper_options());
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("the 20 g level has no run at beta = 270 deg"));
+    ASSERT_TRUE(e.location().has_value());
+    EXPECT_EQ(e.location()->line, 11u);  // the first 20 g row of the file
+  }
+}
+
+TEST(CentrifugeDriftCalibration, DuplicatedRunIsAnError) {
+  auto runs = table3_runs();
+  runs.push_back(runs[1]);
+  runs.back().beta_rad += 2.0 * kPi;  // the same angle, one turn on
+  EXPECT_THROW(calibrate_drift_coefficients(runs, paper_options()), Error);
+}
+
+TEST(CentrifugeDriftCalibration, InvalidInputsAreErrors) {
+  auto runs = table3_runs();
+  DriftCalibrationOptions options = paper_options();
+  options.estimate_errors = true;
+  options.compensation = false;
+  EXPECT_THROW(calibrate_drift_coefficients(runs, options), Error);
+  options = paper_options();
+  options.site.radius_m = 0.0;
+  EXPECT_THROW(calibrate_drift_coefficients(runs, options), Error);
+  runs[2].accel_g = -1.0;
+  EXPECT_THROW(calibrate_drift_coefficients(runs, paper_options()), Error);
+  EXPECT_THROW(calibrate_drift_coefficients(std::vector<CentrifugeRun>{}, paper_options()), Error);
+}
+
+TEST(CentrifugeDriftCalibration, UnmeasuredErrorsAreZeroWithAWarning) {
+  DriftCalibrationOptions options = paper_options();
+  options.k2_rad.reset();
+  const DriftCalibrationResult result = calibrate_drift_coefficients(table3_runs(), options);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], HasSubstr("k2 not measured"));
+  const nlohmann::json json = result.to_json();
+  EXPECT_EQ(json["centrifuge_errors"]["k2"]["source"], "not measured (0)");
+  EXPECT_EQ(json["centrifuge_errors"]["k1"]["source"], "measured");
+}
+
+TEST(CentrifugeDriftCalibration, JsonHoldsTheFigures) {
+  const nlohmann::json json = calibrate_drift_coefficients(table3_runs(), paper_options()).to_json();
+  for (const char* name : {"D_F", "D_I", "D_O", "D_S", "D_II", "D_OO", "D_SS", "D_IO", "D_IS", "D_OS"}) {
+    ASSERT_TRUE(json["coefficients"].contains(name)) << name;
+    EXPECT_TRUE(json["coefficients"][name].contains("uncertainty")) << name;
+  }
+  EXPECT_EQ(json["coefficients"]["D_SS"]["unit"], "deg/h/g^2");
+  EXPECT_EQ(json["residual_rms"]["unit"], "deg/h");
+  EXPECT_TRUE(json["influence"]["k1"]["shift"].contains("D_OS"));
+  EXPECT_EQ(json["runs"].size(), 8u);
+  EXPECT_NEAR(json["runs"][4]["omega"]["value"].get<double>(), std::sqrt(20.0 * 9.8), 1e-12);
+}
+
+}  // namespace
+}  // namespace inertest::centrifuge

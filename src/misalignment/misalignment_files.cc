@@ -1,0 +1,168 @@
+#include "inertest/misalignment/misalignment_files.h"
+
+#include <fmt/format.h>
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <string_view>
+
+#include "inertest/core/error.h"
+#include "inertest/io/mapped_file.h"
+#include "inertest/io/text_table.h"
+#include "inertest/misalignment/revolution_average.h"
+
+namespace inertest {
+namespace {
+
+TextTable read_with_header(const std::string& path) {
+  TextTableOptions read;
+  read.header = TextTableOptions::Header::kPresent;
+  return read_text_table(path, read);
+}
+
+std::string_view trim(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
+  return text;
+}
+
+// One comma-separated field with its 1-based column in the line.
+struct Field {
+  std::string_view text;
+  std::size_t column = 0;
+};
+
+std::vector<Field> split_fields(std::string_view line) {
+  std::vector<Field> fields;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::string_view raw =
+        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const std::size_t first_text = raw.find_first_not_of(" \t");
+    const std::size_t leading = first_text == std::string_view::npos ? raw.size() : first_text;
+    fields.push_back({trim(raw), start + leading + 1});
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+double parse_number(const Field& field, const SourceLocation& line_location, const char* name) {
+  double value = 0.0;
+  const char* first = field.text.data();
+  const char* last = first + field.text.size();
+  if (!field.text.empty() && *first == '+') ++first;
+  const auto [end, error] = std::from_chars(first, last, value);
+  if (error != std::errc() || end != last || field.text.empty()) {
+    throw Error(SourceLocation{line_location.file, line_location.line, field.column},
+                fmt::format("{} '{}' is not a number", name, field.text));
+  }
+  return value;
+}
+
+}  // namespace
+
+std::vector<GyroMisalignmentRow> read_gyro_misalignment_positions(const std::string& path) {
+  const TextTable table = read_with_header(path);
+  const auto& alpha = table.column("alpha_deg");
+  const auto& beta = table.column("beta_deg");
+  const auto& rate = table.column("rate_dps");
+  const auto& output = table.column("output");
+  std::vector<GyroMisalignmentRow> rows(table.rows());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i] = {alpha[i], beta[i], rate[i], output[i], table.row_lines.empty() ? 0 : table.row_lines[i]};
+  }
+  return rows;
+}
+
+std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::string& listing_path) {
+  const MappedFile listing(listing_path);
+  const std::filesystem::path directory = std::filesystem::path(listing_path).parent_path();
+  const std::string_view text = listing.bytes();
+  const std::vector<std::string> names = {"alpha_deg", "beta_deg", "rate_dps", "file"};
+  std::vector<std::size_t> index_of;  // field index of each name
+  std::vector<GyroMisalignmentRow> rows;
+  std::size_t line_number = 0;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    ++line_number;
+    if (trim(line).empty() || trim(line).front() == '#') continue;
+    const SourceLocation where{listing_path, line_number, 0};
+    const std::vector<Field> fields = split_fields(line);
+    if (index_of.empty()) {
+      for (const std::string& name : names) {
+        const auto found = std::find_if(fields.begin(), fields.end(), [&](const Field& f) { return f.text == name; });
+        if (found == fields.end()) {
+          throw Error(where, fmt::format("record listing: the header has no column '{}'; expected "
+                                         "alpha_deg,beta_deg,rate_dps,file",
+                                         name));
+        }
+        index_of.push_back(static_cast<std::size_t>(found - fields.begin()));
+      }
+      continue;
+    }
+    if (fields.size() <= *std::max_element(index_of.begin(), index_of.end())) {
+      throw Error(where, fmt::format("record listing: {} field(s), the header has more", fields.size()));
+    }
+    GyroMisalignmentRow row;
+    row.alpha_deg = parse_number(fields[index_of[0]], where, "alpha_deg");
+    row.beta_deg = parse_number(fields[index_of[1]], where, "beta_deg");
+    row.rate_dps = parse_number(fields[index_of[2]], where, "rate_dps");
+    row.line = line_number;
+    const Field& file_field = fields[index_of[3]];
+    if (file_field.text.empty()) {
+      throw Error(SourceLocation{listing_path, line_number, file_field.column}, "record listing: empty file name");
+    }
+    std::filesystem::path record_path{std::string(file_field.text)};
+    if (record_path.is_relative()) record_path = directory / record_path;
+    const std::string record = record_path.string();
+    if (!std::filesystem::exists(record_path)) {
+      throw Error(SourceLocation{listing_path, line_number, file_field.column},
+                  fmt::format("record listing: record file '{}' does not exist", record));
+    }
+    const TextTable table = read_with_header(record);
+    const RecordSource source{record, table.row_lines};
+    RevolutionMean mean;
+    if (table.has_column("table_angle_deg")) {
+      mean = whole_revolution_mean_by_angle(table.column("table_angle_deg"), table.column("output"), source);
+    } else if (table.has_column("time_s")) {
+      mean = whole_revolution_mean_by_time(table.column("time_s"), table.column("output"), row.rate_dps, source);
+    } else {
+      throw Error(SourceLocation{record, table.first_data_line > 0 ? table.first_data_line - 1 : 0, 0},
+                  "record: needs a 'table_angle_deg' or a 'time_s' column to cut whole revolutions");
+    }
+    row.output = mean.mean;
+    rows.push_back(row);
+  }
+  if (index_of.empty()) throw Error(SourceLocation{listing_path, 0, 0}, "record listing: no header line");
+  if (rows.empty()) throw Error(SourceLocation{listing_path, 0, 0}, "record listing: no records listed");
+  return rows;
+}
+
+std::vector<AccelerometerMisalignmentRow> read_accelerometer_misalignment_positions(const std::string& path) {
+  const TextTable table = read_with_header(path);
+  const auto& beta = table.column("beta_deg");
+  const auto& output = table.column("output");
+  const std::vector<double>* run = table.has_column("run") ? &table.column("run") : nullptr;
+  std::vector<AccelerometerMisalignmentRow> rows(table.rows());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const std::size_t line = table.row_lines.empty() ? 0 : table.row_lines[i];
+    long run_number = 1;
+    if (run != nullptr) {
+      const double value = (*run)[i];
+      if (value != std::floor(value) || std::abs(value) > 1e15) {
+        throw Error(SourceLocation{path, line, 0}, fmt::format("run '{}' is not an integer", value));
+      }
+      run_number = static_cast<long>(value);
+    }
+    rows[i] = {beta[i], output[i], run_number, line};
+  }
+  return rows;
+}
+
+}  // namespace inertest

@@ -60,6 +60,20 @@ constexpr Translation kTable[] = {
     {"ui.at_most", "at most", "不大于"},
     {"ui.at_least", "at least", "不小于"},
     {"ui.fit", "fit", "拟合"},
+    {"ui.slope", "slope", "斜率"},
+    {"ui.noise_model", "fitted noise model", "噪声模型拟合"},
+    {"ui.smoothing", "smoothing", "平滑"},
+    {"ui.bandwidth_marker", "bandwidth", "带宽"},
+    {"ui.minus_3db", "−3 dB", "−3 dB"},
+    {"ui.slope_half", "slope −1/2", "斜率 −1/2"},
+    {"ui.room_temperature", "room temperature", "室温"},
+    {"ui.reference_temperature", "reference temperature", "参考温度"},
+    {"ui.positions", "Test positions", "测试位置"},
+    {"ui.run", "Run", "测试次序"},
+    {"ui.truth_check", "Simulated truth check", "仿真真值核对"},
+    {"ui.true_value", "True value", "真值"},
+    {"ui.tolerance", "Tolerance", "容差"},
+    {"checks", "Checks", "检查项目"},
     {"ui.data", "measured", "实测"},
     {"ui.positive", "positive rates", "正向"},
     {"ui.negative", "negative rates", "负向"},
@@ -96,17 +110,31 @@ constexpr Translation kTable[] = {
      "和零位 F0。各点相对拟合直线的最大偏差与最大输出之比为标度因数非线性度；正、负输入角速度分别拟合的标度因数之差为标度因数不对称性。"},
     {"method.allan",
      "Overlapping Allan variance of the rate record (IEEE Std 952-1997 Annex C) with confidence intervals; the "
-     "noise model sigma^2(tau) = sum A_m tau^m (m = -2..2) is fitted and each term read at its characteristic "
-     "slope.",
+     "noise model σ²(τ) = Σ A_m·τ^m (m = −2…2) is fitted and each term read at its characteristic slope.",
      "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = -2..2），"
      "各噪声项按其特征斜率读取。"},
     {"method.bias",
      "The bias is the mean output over the record; the bias stability is the standard deviation of the output "
      "averaged over the smoothing time, expressed as an input rate.",
      "零偏为记录时间内输出的平均值折算成输入角速度；零偏稳定性为按平滑时间平均后输出的标准偏差折算成输入角速度。"},
+    {"method.centrifuge",
+     "One platform revolution at each angle β and g-level gives the harmonic amplitudes of eq. (11); stacking "
+     "them, Y = Φq + ε (eqs. 13-16) is solved by least squares for the ten drift coefficients, the centrifuge "
+     "errors and Earth rate compensated in ε.",
+     "在各平台角 β 与过载下采集平台一周数据，由谐波分析得式 (11) 的各谐波幅值；组成 Y = Φq + ε（式 13-16），"
+     "以最小二乘法求十项漂移系数，离心机误差与地球自转角速度在 ε 中补偿。"},
+    {"method.gyro_misalignment",
+     "The gyro turns at +ω and −ω in five positions (α, β) of the fixture on a single-axis rate table; the "
+     "differences V(+) − V(−) give the table, fixture and input-axis error angles by least squares.",
+     "陀螺在单轴速率转台上以 +ω、−ω 分别在五个夹具位置 (α, β) 测试；由 V(+) − V(−) 以最小二乘法分离台面、夹具面和输入轴失准角。"},
+    {"method.accelerometer_misalignment",
+     "The accelerometer's input axis lies horizontal on a vertical face turned through β = 0°, 90°, 180°, 270°; "
+     "the outputs give Δθy2 = (V(π) − V(0))/(2kI) and Δθz2 = (V(π/2) − V(3π/2))/(2kI).",
+     "加速度计输入轴水平置于竖直基准面上，绕面法线转 β = 0°、90°、180°、270°；由输出求 Δθy2 = (V(π) − V(0))/(2kI)、"
+     "Δθz2 = (V(π/2) − V(3π/2))/(2kI)。"},
     {"method.bandwidth",
      "Sinusoidal rate inputs at logarithmically spaced frequencies; the gains fit the first-order model "
-     "G^2 = K^2 - G^2 omega^2 T^2 and the bandwidth is 1/(2 pi T); the phases give the output delay.",
+     "G² = K² − G²·ω²·T² and the bandwidth is 1/(2πT); the phases give the output delay.",
      "在按对数分布的各频率点施加正弦角速度输入；由各频率增益按一阶模型 G² = K² − G²ω²T² 拟合，带宽为 1/(2πT)；由相位求输出延迟时间。"},
 
     // Figures and quantities.
@@ -150,6 +178,50 @@ constexpr Translation kTable[] = {
     {"smoothing_time", "Smoothing time", "平滑时间"},
     {"sampling_interval", "Sampling interval", "采样间隔"},
     {"temperature", "Temperature", "温度"},
+    {"delta_theta_y0", "Δθy0 (table face)", "Δθy0（台面）"},
+    {"delta_theta_x0", "Δθx0 (table face)", "Δθx0（台面）"},
+    {"delta_theta_y1", "Δθy1 (fixture face)", "Δθy1（夹具面）"},
+    {"delta_theta_y2", "Δθy2 (input axis)", "Δθy2（输入轴）"},
+    {"delta_theta_z2", "Δθz2 (input axis)", "Δθz2（输入轴）"},
+    {"coefficients", "Drift coefficients", "漂移系数"},
+    {"D_F", "DF", "DF"},
+    {"D_I", "DI", "DI"},
+    {"D_O", "DO", "DO"},
+    {"D_S", "DS", "DS"},
+    {"D_II", "DII", "DII"},
+    {"D_OO", "DOO", "DOO"},
+    {"D_SS", "DSS", "DSS"},
+    {"D_IO", "DIO", "DIO"},
+    {"D_IS", "DIS", "DIS"},
+    {"D_OS", "DOS", "DOS"},
+    {"k1", "k1 (platform axis tilt)", "k1（平台轴倾角）"},
+    {"k2", "k2 (platform axis tilt)", "k2（平台轴倾角）"},
+    {"delta_omega", "ΔΩ (platform rate error)", "ΔΩ（平台转速误差）"},
+    {"earth_rate", "Earth rate", "地球自转角速度"},
+    {"magnitude", "Magnitude", "幅值"},
+    {"residual_rms", "RMS residual", "残差均方根"},
+    {"centrifuge_errors", "Centrifuge errors", "离心机误差"},
+    {"noise", "Noise terms", "噪声项"},
+    {"noise_equivalent_rate", "Noise equivalent rate", "噪声等效角速度"},
+    {"duration", "Record length", "记录时长"},
+    {"record_length", "Record length", "记录时长"},
+    {"mean", "Mean", "均值"},
+    {"delay", "Output delay", "输出延迟时间"},
+    {"dc_gain", "Static gain K", "静态增益 K"},
+    {"gain_fit_residual_rms", "RMS residual of the gain fit", "增益拟合残差均方根"},
+    {"phase_fit_residual_rms", "RMS residual of the phase fit", "相位拟合残差均方根"},
+    {"room_temperature", "Room temperature", "室温"},
+    {"room_temperature_bias", "Bias at room temperature", "室温零偏"},
+    {"worst_temperature", "Temperature of the largest change", "最大变化温度"},
+    {"reference_temperature", "Reference temperature", "参考温度"},
+    {"reference_scale_factor", "Scale factor at the reference temperature", "参考温度标度因数"},
+    {"mean_bias", "Mean bias", "零偏均值"},
+    {"run_biases", "Bias of run", "各次零偏"},
+    {"mean_scale_factor", "Mean scale factor", "标度因数均值"},
+    {"run_scale_factors", "Scale factor of run", "各次标度因数"},
+    {"longest_run", "Longest run", "最长一次"},
+    {"earth_rate_removed", "Earth rate removed", "扣除的地速分量"},
+    {"sensitivity", "Sensitivity", "灵敏度"},
 
     // Axis quantities.
     {"axis.rate", "Input rate", "输入角速度"},
@@ -166,6 +238,9 @@ constexpr Translation kTable[] = {
     {"axis.harmonic", "Harmonic amplitude", "谐波幅值"},
     {"axis.position", "Position", "位置"},
     {"axis.angle", "Angle", "角度"},
+    {"axis.input", "Input rate", "输入角速度"},
+    {"axis.increment", "Input rate increment", "输入角速度增量"},
+    {"axis.relative_error", "Relative error of the output", "输出相对误差"},
 };
 
 const std::unordered_map<std::string_view, const Translation*>& index() {
@@ -200,6 +275,12 @@ std::string Labels::operator()(std::string_view key) const {
 }
 
 bool Labels::known(std::string_view key) { return index().contains(key); }
+
+std::vector<std::string_view> Labels::keys() {
+  std::vector<std::string_view> all;
+  for (const auto& t : kTable) all.push_back(t.key);
+  return all;
+}
 
 std::size_t Labels::rank(std::string_view key) {
   const auto found = index().find(key);

@@ -7,6 +7,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "inertest/report/report.h"
 
@@ -22,6 +23,8 @@ class Labels {
   static bool known(std::string_view key);
   // The key's place in the table (figures are listed in this order); keys not in it come last.
   static std::size_t rank(std::string_view key);
+  // Every key of the table, in its order.
+  static std::vector<std::string_view> keys();
 
  private:
   Language language_;

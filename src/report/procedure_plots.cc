@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
 #include "report/result_access.h"
 
 namespace inertest::report {
@@ -15,7 +18,7 @@ std::map<std::string, PlotBuilder>& registry() {
 }
 
 bool spans_decades(const std::vector<double>& values, double decades) {
-  double lo = INFINITY;
+  double lo = std::numeric_limits<double>::infinity();
   double hi = 0.0;
   for (double v : values) {
     if (!std::isfinite(v)) continue;
@@ -52,8 +55,18 @@ std::vector<ReportPlot> generic_plots(const PlotContext& context) {
   if (!context.result.is_object()) return plots;
   for (const auto& [key, curve] : context.result.items()) {
     if (!curve.is_array() || curve.size() < 3 || !curve.front().is_object()) continue;
-    const auto keys = numeric_members(curve.front());
+    auto keys = numeric_members(curve.front());
     if (keys.size() < 2) continue;
+    // The abscissa: the first member named like one, else the first numeric member.
+    static const char* kAbscissae[] = {"rate", "input", "increment", "temperature", "frequency_hz", "tau_s", "tau",
+                                       "smoothing_s", "time", "beta", "beta_deg", "rate_dps", "run"};
+    for (const char* name : kAbscissae) {
+      const auto found = std::find(keys.begin(), keys.end(), name);
+      if (found != keys.end()) {
+        std::rotate(keys.begin(), found, found + 1);
+        break;
+      }
+    }
     const Column x = column(curve, keys.front());
     std::map<std::string, std::vector<std::string>> by_unit;  // ordinates sharing a unit share a panel
     std::vector<std::string> unit_order;
@@ -85,6 +98,59 @@ std::vector<ReportPlot> generic_plots(const PlotContext& context) {
     plots.push_back(std::move(plot));
   }
   return plots;
+}
+
+std::vector<double> log_spaced(double lo, double hi, std::size_t count) {
+  std::vector<double> values;
+  if (!(lo > 0.0) || !(hi > 0.0) || count < 2) return values;
+  const double a = std::log10(lo);
+  const double b = std::log10(hi);
+  for (std::size_t i = 0; i < count; ++i) {
+    values.push_back(std::pow(10.0, a + (b - a) * static_cast<double>(i) / static_cast<double>(count - 1)));
+  }
+  return values;
+}
+
+Series make_series(std::string name, std::vector<double> x, std::vector<double> y, LineStyle line, Marker marker) {
+  Series series;
+  series.name = std::move(name);
+  series.x = std::move(x);
+  series.y = std::move(y);
+  series.line = line;
+  series.marker = marker;
+  return series;
+}
+
+std::optional<double> converted(double value, const std::string& from, const std::string& to) {
+  if (from == to) return value;
+  try {
+    return convert(value, from, to);
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+void reduce_to_envelope(std::vector<double>& x, std::vector<double>& y, std::size_t buckets) {
+  const std::size_t count = std::min(x.size(), y.size());
+  if (buckets == 0 || count <= 2 * buckets) return;
+  std::vector<double> ex;
+  std::vector<double> ey;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const std::size_t begin = b * count / buckets;
+    const std::size_t end = (b + 1) * count / buckets;
+    std::size_t low = begin;
+    std::size_t high = begin;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (y[i] < y[low]) low = i;
+      if (y[i] > y[high]) high = i;
+    }
+    for (std::size_t i : {std::min(low, high), std::max(low, high)}) {
+      ex.push_back(x[i]);
+      ey.push_back(y[i]);
+    }
+  }
+  x = std::move(ex);
+  y = std::move(ey);
 }
 
 std::vector<ReportPlot> procedure_plots(const std::string& kind, const PlotContext& context) {

@@ -36,6 +36,18 @@ const PlotBuilder* find_plots(const std::string& kind);
 // per unit). Log abscissa when it is positive and spans more than two decades.
 std::vector<ReportPlot> generic_plots(const PlotContext& context);
 
+// Helpers for builders.
+// count values from lo to hi evenly spaced in log10 (lo, hi > 0; count >= 2).
+std::vector<double> log_spaced(double lo, double hi, std::size_t count);
+// A series with a name, data and style.
+Series make_series(std::string name, std::vector<double> x, std::vector<double> y, LineStyle line = LineStyle::solid,
+                   Marker marker = Marker::none);
+// The value converted between units, or nothing when either unit is unknown or they differ in kind.
+std::optional<double> converted(double value, const std::string& from, const std::string& to);
+// A long series reduced to its envelope: the minimum and the maximum of each of `buckets` runs of
+// consecutive points, in order, so a dense noisy record draws as its band.
+void reduce_to_envelope(std::vector<double>& x, std::vector<double>& y, std::size_t buckets);
+
 // The plots of one procedure: its builder's, else the generic ones.
 std::vector<ReportPlot> procedure_plots(const std::string& kind, const PlotContext& context);
 

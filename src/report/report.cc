@@ -59,15 +59,46 @@ struct FigureRow {
   std::string pointer;
   std::string name;
   json figure;
+  int depth = 0;           // tokens in the pointer
+  bool headline = true;    // shown in the summary (not a detail of a fit, an influence study...)
 };
 
+// Members whose figures are details of the analysis: listed in the procedure's section only.
+bool is_detail_member(const std::string& key) {
+  static const char* kDetails[] = {"influence", "fit", "site", "slope_method", "harmonic_fit", "by_rate", "by_run"};
+  for (const char* detail : kDetails) {
+    if (key == detail) return true;
+  }
+  return false;
+}
+
+// " (10 s)" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value": ...}.
+std::string qualifier_of(const json& element) {
+  static const std::pair<const char*, const char*> kSuffixes[] = {
+      {"_s", "s"}, {"_hz", "Hz"}, {"_deg", "°"}, {"_dps", "°/s"}, {"_g", "g"}, {"_degC", "°C"}};
+  std::string text;
+  for (const auto& [key, value] : element.items()) {
+    if (key == "value" || key == "uncertainty" || !value.is_number()) continue;
+    std::string unit;
+    for (const auto& [suffix, readable] : kSuffixes) {
+      const std::string s(suffix);
+      if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0) unit = readable;
+    }
+    if (!text.empty()) text += ", ";
+    text += format_number(value.get<double>());
+    if (!unit.empty()) text += " " + unit;
+  }
+  if (text.empty()) return text;
+  return " (" + text + ")";
+}
+
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
-                     int depth, std::vector<FigureRow>& rows) {
+                     int depth, bool headline, std::vector<FigureRow>& rows) {
   if (is_figure(node)) {
-    rows.push_back({pointer, name, node});
+    rows.push_back({pointer, name, node, depth, headline && depth <= 2});
     return;
   }
-  if (depth > 4) return;
+  if (depth >= 3) return;
   if (node.is_object()) {
     // In the order of the label table (scale factor before its nonlinearity...), then by name.
     std::vector<std::pair<std::size_t, std::string>> keys;
@@ -78,16 +109,27 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
       if (!is_listed_member(key, value)) continue;
       const std::string label = labels(key);
       collect_figures(value, pointer + "/" + escape_pointer_token(key), name.empty() ? label : name + " · " + label,
-                      labels, depth + 1, rows);
+                      labels, depth + 1, headline && !is_detail_member(key), rows);
     }
   } else if (node.is_array()) {
+    // Arrays of figures are listed, each under its qualifier (" (10 s)") or number.
+    const bool of_figures = std::all_of(node.begin(), node.end(), [](const json& e) { return is_figure(e); });
     for (std::size_t i = 0; i < node.size(); ++i) {
-      // An element may name itself ("name", "label", "position"); else it is numbered from 1.
-      std::string element = fmt::format("#{}", i + 1);
+      if (of_figures) {
+        const std::string qualifier = qualifier_of(node[i]);
+        rows.push_back({fmt::format("{}/{}", pointer, i), name + (qualifier.empty() ? fmt::format(" #{}", i + 1) : qualifier),
+                        node[i], depth + 1, headline && depth + 1 <= 2});
+        continue;
+      }
+      // Elements that name themselves ("name", "label", "position") are listed under their names;
+      // other arrays of objects are tables of data, plotted rather than listed.
+      std::string element;
       for (const char* naming : {"name", "label", "position"}) {
         if (const auto* n = member(node[i], naming); n != nullptr && n->is_string()) element = n->get<std::string>();
       }
-      collect_figures(node[i], fmt::format("{}/{}", pointer, i), name + " " + element, labels, depth + 1, rows);
+      if (element.empty()) continue;
+      collect_figures(node[i], fmt::format("{}/{}", pointer, i), name + " " + element, labels, depth + 1, headline,
+                      rows);
     }
   }
 }
@@ -157,6 +199,7 @@ class ReportWriter {
     write_compliance();
     const json& procedures = results_.at("procedures");
     for (std::size_t i = 0; i < procedures.size(); ++i) write_procedure(procedures[i], i);
+    write_truth_check();
     out_ += fmt::format("<footer>{} {}{}</footer>\n</body>\n</html>\n", html(labels_("ui.generated")),
                         html(results_.value("inertest_version", "")),
                         options_.run_date.empty() ? "" : " · " + html(options_.run_date));
@@ -274,12 +317,15 @@ class ReportWriter {
     for (std::size_t i = 0; i < procedures.size(); ++i) {
       out_ += fmt::format("<li><a href=\"#procedure-{}\">{}</a></li>\n", i + 1, html(procedure_title(procedures[i])));
     }
+    if (const auto* checks = member(results_, "truth_check"); checks != nullptr && checks->is_array() && !checks->empty()) {
+      out_ += fmt::format("<li><a href=\"#truth-check\">{}</a></li>\n", html(labels_("ui.truth_check")));
+    }
     out_ += "</ol></nav>\n";
   }
 
   std::vector<FigureRow> figures_of(const json& procedure) const {
     std::vector<FigureRow> rows;
-    if (const auto* result = member(procedure, "result")) collect_figures(*result, "", "", labels_, 0, rows);
+    if (const auto* result = member(procedure, "result")) collect_figures(*result, "", "", labels_, 0, true, rows);
     return rows;
   }
 
@@ -295,6 +341,7 @@ class ReportWriter {
       const auto [value, uncertainty] = format_figure(row.figure);
       const auto found = verdict_by_figure_.find(verdict_key(name, row.pointer));
       const json* verdict = found == verdict_by_figure_.end() ? nullptr : found->second;
+      if (group_heading && !row.headline && verdict == nullptr) continue;
       out_ += fmt::format("<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
                           verdict ? fmt::format(" data-verdict=\"{}\"",
                                                 verdict->value("pass", false) ? "pass" : "fail")
@@ -326,7 +373,8 @@ class ReportWriter {
 
   void write_summary() {
     const bool with_limits = !verdicts().empty();
-    out_ += fmt::format("<section class=\"summary\" id=\"summary\">\n<h2>1 {}</h2>\n", html(labels_("ui.summary")));
+    out_ += fmt::format("<section class=\"summary\" id=\"summary\">\n<h2>{} {}</h2>\n", ++section_,
+                        html(labels_("ui.summary")));
     out_ += "<table class=\"figures\">\n";
     figure_table_head(with_limits);
     out_ += "<tbody>\n";
@@ -338,7 +386,7 @@ class ReportWriter {
 
   void write_compliance() {
     if (verdicts().empty()) return;
-    out_ += fmt::format("<section class=\"compliance\" id=\"compliance\">\n<h2>2 {}</h2>\n",
+    out_ += fmt::format("<section class=\"compliance\" id=\"compliance\">\n<h2>{} {}</h2>\n", ++section_,
                         html(labels_("ui.compliance")));
     out_ += fmt::format("<table class=\"limits\">\n<thead><tr><th>{}</th><th>{}</th><th>{}</th>"
                         "<th class=\"num\">{}</th><th>{}</th></tr></thead>\n<tbody>\n",
@@ -347,8 +395,13 @@ class ReportWriter {
     for (const auto& v : verdicts()) {
       const std::string figure = v.value("figure", "");
       const std::string pointer = normalised_pointer(figure);
-      std::string name = labels_(pointer.substr(1));
-      if (pointer.find('/', 1) != std::string::npos) name = figure;
+      std::string name = figure;
+      for (const auto& procedure : results_.at("procedures")) {
+        if (procedure.value("name", "") != v.value("procedure", "")) continue;
+        for (const auto& row : figures_of(procedure)) {
+          if (row.pointer == pointer) name = row.name;
+        }
+      }
       const bool pass = v.value("pass", false);
       const std::string unit = pretty_unit(v.value("unit", ""));
       out_ += fmt::format("<tr data-procedure=\"{}\" data-figure=\"{}\" data-verdict=\"{}\"><td>{}</td><td>{}</td>"
@@ -363,8 +416,66 @@ class ReportWriter {
                         html(labels_("ui.overall_verdict")), verdict_cell(overall == "PASS", labels_));
   }
 
+  // Arrays of named pass/fail items (e.g. the examination and electrical checks) as a table.
+  void write_checklists(const json& result) {
+    if (!result.is_object()) return;
+    for (const auto& [key, items] : result.items()) {
+      if (!items.is_array() || items.empty()) continue;
+      const bool checklist = std::all_of(items.begin(), items.end(), [](const json& item) {
+        return item.is_object() && item.contains("name") && item.contains("pass") && item.at("pass").is_boolean();
+      });
+      if (!checklist) continue;
+      out_ += fmt::format("<h3>{}</h3>\n<table class=\"checks\">\n<thead><tr><th>{}</th><th class=\"num\">{}</th>"
+                          "<th>{}</th><th>{}</th></tr></thead>\n<tbody>\n",
+                          html(labels_(key)), html(labels_("ui.name")), html(labels_("ui.measured")),
+                          html(labels_("ui.specification")), html(labels_("ui.verdict")));
+      for (const auto& item : items) {
+        std::string measured;
+        if (const auto* v = member(item, "value"); v != nullptr) {
+          measured = v->is_string() ? labels_("ui." + v->get<std::string>()) : v->is_number() ? format_number(v->get<double>()) : "";
+        }
+        const std::string unit = pretty_unit(item.value("unit", ""));
+        if (!unit.empty() && !measured.empty()) measured += " " + unit;
+        json limit = {{"unit", item.value("unit", "")}};
+        if (item.contains("min")) limit["min"] = item.at("min");
+        if (item.contains("max")) limit["max"] = item.at("max");
+        out_ += fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td>{}</tr>\n",
+                            html(item.value("name", "")), html(measured), html(limit_text(limit)),
+                            verdict_cell(item.at("pass").get<bool>(), labels_));
+      }
+      out_ += "</tbody></table>\n";
+    }
+  }
+
+  // The demo's comparison of each measured figure with the simulated truth (results "truth_check").
+  void write_truth_check() {
+    const auto* checks = member(results_, "truth_check");
+    if (checks == nullptr || !checks->is_array() || checks->empty()) return;
+    out_ += fmt::format("<section class=\"truth\" id=\"truth-check\">\n<h2>{} {}</h2>\n", ++section_,
+                        html(labels_("ui.truth_check")));
+    out_ += fmt::format("<table class=\"truth\">\n<thead><tr><th>{}</th><th>{}</th><th class=\"num\">{}</th>"
+                        "<th class=\"num\">{}</th><th class=\"num\">{}</th><th>{}</th><th>{}</th></tr></thead>\n"
+                        "<tbody>\n",
+                        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.true_value")),
+                        html(labels_("ui.measured")), html(labels_("ui.tolerance")), html(labels_("ui.unit")),
+                        html(labels_("ui.verdict")));
+    for (const auto& c : *checks) {
+      auto number = [&](const char* key) {
+        const auto* v = member(c, key);
+        return v != nullptr && v->is_number() ? format_number(v->get<double>()) : "";
+      };
+      const bool within = c.value("within", false);
+      out_ += fmt::format("<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+                          "<td class=\"num\">± {}</td><td>{}</td>{}</tr>\n",
+                          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")),
+                          html(number("measured")), html(number("tolerance")), html(pretty_unit(c.value("unit", ""))),
+                          verdict_cell(within, labels_));
+    }
+    out_ += "</tbody></table>\n</section>\n";
+  }
+
   void write_procedure(const json& procedure, std::size_t index) {
-    const std::size_t number = index + (verdicts().empty() ? 2 : 3);
+    const int number = ++section_;
     const std::string kind = procedure.value("kind", "");
     const json& result = procedure.contains("result") ? procedure.at("result") : json::object();
     out_ += fmt::format("<section class=\"procedure\" id=\"procedure-{}\" data-kind=\"{}\">\n", index + 1, html(kind));
@@ -372,8 +483,12 @@ class ReportWriter {
                         html(procedure_title(procedure)), html(labels_("kind." + kind)), html(kind));
 
     out_ += fmt::format("<div class=\"method\"><h3>{}</h3>\n", html(labels_("ui.method")));
-    if (const auto* clause = member(result, "clause"); clause != nullptr && clause->is_string()) {
-      out_ += fmt::format("<p class=\"clause\">{}</p>\n", html(clause->get<std::string>()));
+    // Procedures cite their source as "clause" (standards), "standard" or "source" (papers).
+    for (const char* citation : {"clause", "standard", "source"}) {
+      if (const auto* text = member(result, citation); text != nullptr && text->is_string()) {
+        out_ += fmt::format("<p class=\"clause\">{}</p>\n", html(text->get<std::string>()));
+        break;
+      }
     }
     if (Labels::known("method." + kind)) out_ += fmt::format("<p>{}</p>\n", html(labels_("method." + kind)));
     out_ += "</div>\n";
@@ -395,6 +510,8 @@ class ReportWriter {
       out_ += "</ul></div>\n";
     }
 
+    write_checklists(result);
+
     json procedure_verdicts = json::array();
     for (const auto& v : verdicts()) {
       if (v.value("procedure", "") == procedure.value("name", "")) procedure_verdicts.push_back(v);
@@ -415,6 +532,7 @@ class ReportWriter {
   std::map<std::string, const json*> verdict_by_figure_;
   std::string out_;
   int figure_number_ = 0;
+  int section_ = 0;
 };
 
 }  // namespace

@@ -51,7 +51,7 @@ footer { margin-top: 32px; padding-top: 8px; border-top: 1px solid var(--rule); 
   h1 { font-size: 20pt; }
   h2 { font-size: 14pt; }
   .contents { display: none; }
-  section.procedure, section.compliance { break-before: page; }
+  section.procedure, section.truth { break-before: page; }
   h2, h3 { break-after: avoid; }
   figure, tr, .facts table, .overall { break-inside: avoid; }
   thead { display: table-header-group; }

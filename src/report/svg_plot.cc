@@ -54,8 +54,15 @@ Range resolve_range(const Axis& axis, std::vector<double> values) {
   return range;
 }
 
-std::vector<Tick> ticks_for(Range range, AxisScale scale) {
-  return scale == AxisScale::log ? log_ticks(range.lo, range.hi) : linear_ticks(range.lo, range.hi);
+std::vector<Tick> ticks_for(const Axis& axis, Range range) {
+  if (!axis.ticks.empty()) {
+    std::vector<Tick> ticks;
+    double step = range.hi - range.lo;
+    for (std::size_t i = 1; i < axis.ticks.size(); ++i) step = std::min(step, std::abs(axis.ticks[i] - axis.ticks[i - 1]));
+    for (double value : axis.ticks) ticks.push_back({value, format_tick(value, step > 0.0 ? step : 1.0), true});
+    return ticks;
+  }
+  return axis.scale == AxisScale::log ? log_ticks(range.lo, range.hi) : linear_ticks(range.lo, range.hi);
 }
 
 // Everything that places one panel: its ranges, ticks and plot area.
@@ -82,8 +89,8 @@ PanelGeometry layout(const Panel& panel, const Box& frame) {
   PanelGeometry geometry;
   geometry.x_range = resolve_range(panel.x, xs);
   geometry.y_range = resolve_range(panel.y, ys);
-  geometry.x_ticks = ticks_for(geometry.x_range, panel.x.scale);
-  geometry.y_ticks = ticks_for(geometry.y_range, panel.y.scale);
+  geometry.x_ticks = ticks_for(panel.x, geometry.x_range);
+  geometry.y_ticks = ticks_for(panel.y, geometry.y_range);
 
   double widest_label = 0.0;
   for (const auto& tick : geometry.y_ticks) widest_label = std::max(widest_label, text_width(tick.label, kTickFont));
@@ -494,13 +501,20 @@ Range auto_range(std::span<const double> values, AxisScale scale) {
     return {std::pow(10.0, first), std::pow(10.0, last)};
   }
   if (lo > hi) return {0.0, 1.0};
+  const double data_lo = lo;
+  const double data_hi = hi;
   if (lo == hi) {
     const double half_width = lo == 0.0 ? 1.0 : 0.1 * std::abs(lo);
     lo -= half_width;
     hi += half_width;
   }
   const double step = nice_step((hi - lo) / 5.0);
-  return {std::floor(lo / step + kSlack) * step, std::ceil(hi / step - kSlack) * step};
+  Range range{std::floor(lo / step + kSlack) * step, std::ceil(hi / step - kSlack) * step};
+  // Keep the data off the frame, where markers would be cut in half.
+  const double margin = 0.01 * (range.hi - range.lo);
+  if (data_lo - range.lo < margin && data_lo != 0.0) range.lo -= step;
+  if (range.hi - data_hi < margin && data_hi != 0.0) range.hi += step;
+  return range;
 }
 
 AxisMap::AxisMap(Range range, AxisScale scale, double pixel_lo, double pixel_hi)

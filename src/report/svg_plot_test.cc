@@ -13,6 +13,8 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
+Series make_series(const std::string& name, std::vector<double> x, std::vector<double> y);
+
 std::vector<std::string> labels_of(const std::vector<Tick>& ticks) {
   std::vector<std::string> labels;
   for (const auto& t : ticks) {
@@ -114,6 +116,27 @@ TEST(SvgPlotRange, LinearWidensToNiceTicks) {
   const Range range = auto_range(values, AxisScale::linear);
   EXPECT_DOUBLE_EQ(range.lo, 3.0);
   EXPECT_DOUBLE_EQ(range.hi, 8.0);
+}
+
+TEST(SvgPlotRange, LinearKeepsDataOffTheFrame) {
+  const std::vector<double> on_ticks{20.0, 30.0, 40.0};  // nice step 5: [20, 40] would put both ends on the frame
+  const Range range = auto_range(on_ticks, AxisScale::linear);
+  EXPECT_DOUBLE_EQ(range.lo, 15.0);
+  EXPECT_DOUBLE_EQ(range.hi, 45.0);
+  const std::vector<double> from_zero{0.0, 7.9};  // a zero end stays (a baseline, not a datum on the frame)
+  EXPECT_DOUBLE_EQ(auto_range(from_zero, AxisScale::linear).lo, 0.0);
+}
+
+TEST(SvgPlotRender, ExplicitTicksReplaceTheAutomaticOnes) {
+  Panel panel;
+  panel.x = make_axis("β", "°");
+  panel.x.ticks = {0, 90, 180, 270};
+  panel.series.push_back(make_series("", {0, 90, 180, 270}, {1, 2, 3, 4}));
+  Plot plot;
+  plot.panels.push_back(panel);
+  const std::string svg = render_svg(plot);
+  for (const char* label : {">0<", ">90<", ">180<", ">270<"}) EXPECT_THAT(svg, HasSubstr(label)) << label;
+  EXPECT_THAT(svg, Not(HasSubstr(">100<")));
 }
 
 TEST(SvgPlotRange, LogWidensToDecadesAndIgnoresNonPositiveValues) {
@@ -327,6 +350,8 @@ TEST(SvgPlotRender, AutomaticLegendAvoidsTheData) {
   // A rising line: it runs through the bottom-left and top-right corners, so the legend goes top-left
   // (the first corner tried that covers nothing after top-right).
   panel.series.push_back(make_series("rising", {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5}));
+  panel.x.min = panel.y.min = 0.0;
+  panel.x.max = panel.y.max = 5.0;
   Plot plot;
   plot.width = 600;
   plot.panels.push_back(panel);

@@ -46,7 +46,8 @@ struct Range {
 };
 
 // The axis range for the values (non-finite values ignored; non-positive ones too on a log axis):
-// a linear range is widened to the enclosing nice ticks, a log range to the enclosing decades.
+// a linear range is widened to the enclosing nice ticks (one step further where a value would sit
+// on the frame, within 1 % of the span), a log range to the enclosing decades.
 // Never degenerate: no values gives [0, 1] (log [1, 10]); equal values get a range around them.
 Range auto_range(std::span<const double> values, AxisScale scale);
 
@@ -108,6 +109,7 @@ struct Axis {
   std::optional<double> min;  // fixed ends; otherwise from the data (auto_range)
   std::optional<double> max;
   bool include_zero = false;  // linear auto range: stretch to include 0
+  std::vector<double> ticks;  // labelled ticks at these values instead of the automatic ones
 };
 
 // An axis with a label and a unit, its range from the data.

@@ -101,7 +101,7 @@ def run_chromium(browser, profile, extra, url):
     command = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-extensions",
                "--disable-default-apps", "--hide-scrollbars", f"--user-data-dir={profile}",
-               "--enable-logging=stderr", "--v=0"] + extra + [url]
+               "--enable-logging=stderr", "--log-level=0", "--v=0"] + extra + [url]
     return subprocess.run(command, capture_output=True, text=True, timeout=180)
 
 
@@ -185,6 +185,15 @@ def main():
         return 1
 
     failures = []
+    # The console check must be able to fail: a page that logs an error has to show up in the log.
+    probe = os.path.join(work, "console_probe.html")
+    with open(probe, "w", encoding="utf-8") as page:
+        page.write("<!DOCTYPE html><html><body><script>console.error('probe')</script></body></html>")
+    with tempfile.TemporaryDirectory(dir=work) as profile:
+        probed = run_chromium(browser, profile, ["--dump-dom"], "file://" + probe)
+    if not any("probe" in line for line in console_problems(probed.stderr)):
+        failures.append("chromium's log does not show console messages; the console check would see nothing")
+
     url = check_report(browser, english, "en", work, failures)
     check_report(browser, chinese, "zh", work, failures)
     with open(chinese, encoding="utf-8") as page:

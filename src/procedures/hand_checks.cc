@@ -7,6 +7,7 @@
 #include <set>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 namespace {
@@ -53,6 +54,11 @@ HandChecksResult hand_checks(std::span<const HandCheck> checks) {
     }
     if (check.min && check.max && *check.min > *check.max) {
       throw Error(fmt::format("hand checks: '{}' has min {} above max {}", check.name, *check.min, *check.max));
+    }
+    try {
+      Unit::parse(check.unit);
+    } catch (const Error& e) {
+      throw Error(fmt::format("hand checks: '{}': {}", check.name, e.message()));
     }
     HandCheckResult entry;
     entry.key = key;

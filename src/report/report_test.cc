@@ -1,7 +1,9 @@
 #include "inertest/report/report.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -160,6 +162,128 @@ asymmetry = { max = 10, unit = "ppm" }
     EXPECT_THAT(page, HasSubstr(term)) << term;
   }
   EXPECT_THAT(page, Not(HasSubstr(">Overall verdict<")));
+}
+
+// A white-noise rate record (deg/h) at 10 Hz from a fixed-seed generator, one sample a line.
+std::string white_noise_record(std::size_t samples) {
+  std::string text = "rate\n";
+  std::uint64_t state = 12345;
+  for (std::size_t i = 0; i < samples; ++i) {
+    double sum = 0.0;  // Irwin-Hall: the sum of 12 uniforms minus 6 is near-Gaussian, unit variance
+    for (int k = 0; k < 12; ++k) {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      sum += static_cast<double>(state >> 11) / 9007199254740992.0;
+    }
+    text += std::to_string(0.5 + 0.05 * (sum - 6.0)) + "\n";
+  }
+  return text;
+}
+
+// The sections of the page, by kind, each with the number of plots in it.
+std::map<std::string, int> plots_by_kind(const std::string& page) {
+  std::map<std::string, int> plots;
+  const std::regex section("<section class=\"procedure\" id=\"procedure-[0-9]+\" data-kind=\"([a-z_]+)\">");
+  auto it = std::sregex_iterator(page.begin(), page.end(), section);
+  std::vector<std::pair<std::string, std::size_t>> starts;
+  for (; it != std::sregex_iterator(); ++it) starts.emplace_back((*it)[1].str(), static_cast<std::size_t>(it->position()));
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const std::size_t end = i + 1 < starts.size() ? starts[i + 1].second : page.size();
+    const std::string body = page.substr(starts[i].second, end - starts[i].second);
+    int count = 0;
+    for (auto at = body.find("<svg class=\"plot\""); at != std::string::npos; at = body.find("<svg class=\"plot\"", at + 1)) {
+      ++count;
+    }
+    plots[starts[i].first] += count;
+  }
+  return plots;
+}
+
+TEST(Report, EveryProcedureOfAMixedCampaignGetsItsPlots) {
+  ScratchDirectory scratch;
+  scratch.write("rate.csv", white_noise_record(20000));
+  const std::string plan = R"([instrument]
+id = "FOG-MIX"
+output_unit = "pulse/s"
+sample_rate_hz = 10
+
+[[procedure]]
+kind = "scale_factor"
+file = ")" + source_path("examples/scale_factor/points.csv") + R"("
+
+[[procedure]]
+kind = "bias"
+file = "rate.csv"
+input = "deg/h"
+
+[[procedure]]
+kind = "allan"
+file = "rate.csv"
+input_unit = "deg/h"
+
+[[procedure]]
+kind = "bandwidth"
+file = ")" + source_path("examples/bandwidth/gains.csv") + R"("
+
+[[procedure]]
+kind = "gyro_misalignment"
+file = ")" + source_path("data/misalignment/gyro_table1.csv") + R"("
+scale_factor = -2.9222
+
+[[procedure]]
+kind = "accelerometer_misalignment"
+file = ")" + source_path("data/misalignment/accelerometer_table2.csv") + R"("
+scale_factor = 1.299
+
+[[procedure]]
+kind = "centrifuge"
+file = ")" + source_path("data/centrifuge/table3_harmonics.csv") + R"("
+radius_m = 1.0
+)";
+  const auto results = run_plan(scratch, plan);
+  const std::string page = render_report(results, {Language::english, "2024-01-02"});
+  const auto plots = plots_by_kind(page);
+  EXPECT_EQ(plots.at("scale_factor"), 1);
+  EXPECT_EQ(plots.at("bias"), 2);          // the smoothed records, and Bs(τ) of the normalisation method
+  EXPECT_EQ(plots.at("allan"), 1);
+  EXPECT_EQ(plots.at("bandwidth"), 1);     // magnitude over phase in one figure
+  EXPECT_EQ(plots.at("gyro_misalignment"), 2);
+  EXPECT_EQ(plots.at("accelerometer_misalignment"), 1);  // the angles of each run (no per-position data)
+  EXPECT_EQ(plots.at("centrifuge"), 2);    // harmonics, residuals
+  EXPECT_THAT(page, HasSubstr("−3 dB"));
+  EXPECT_THAT(page, HasSubstr("Bw = 300"));
+  EXPECT_THAT(page, HasSubstr("(slope −1/2)"));  // an Allan noise term with its slope
+  EXPECT_THAT(page, HasSubstr("10 s smoothing"));
+  EXPECT_THAT(page, HasSubstr("k1s, 10 g"));
+  EXPECT_THAT(page, HasSubstr("α = 180°"));
+  EXPECT_THAT(page, HasSubstr("Bias stability (10 s)"));
+  EXPECT_NE(page.find("Drift coefficients · DI<"), std::string::npos);
+}
+
+TEST(Report, ChecklistsAndTheDemoTruthCheckAreTabulated) {
+  const nlohmann::json results = {
+      {"inertest_version", "1.0.0"},
+      {"plan", nlohmann::json::object()},
+      {"instrument", {{"id", "X"}}},
+      {"procedures",
+       {{{"name", "checks"},
+         {"kind", "hand_checks"},
+         {"result",
+          {{"clause", "GJB 2426A-2004 5.2-5.4"},
+           {"checks",
+            {{{"key", "appearance"}, {"name", "Appearance"}, {"pass", true}, {"value", "pass"}},
+             {{"key", "insulation"}, {"name", "Insulation resistance"}, {"pass", false}, {"value", 5.0},
+              {"unit", "MOhm"}, {"min", 20.0}}}}}}}}},
+      {"verdicts", nlohmann::json::array()},
+      {"verdict", "NONE"},
+      {"truth_check",
+       {{{"procedure", "scale_factor"}, {"quantity", "scale factor"}, {"true", 36000.0}, {"measured", 36000.2},
+         {"unit", "pulse/s/(deg/s)"}, {"tolerance", 0.1}, {"within", false}}}}};
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("<td>Appearance</td><td class=\"num\">PASS</td><td></td><td class=\"verdict-cell pass\">"));
+  EXPECT_THAT(page, HasSubstr("<td>Insulation resistance</td><td class=\"num\">5 MOhm</td><td>≥ 20 MOhm</td>"
+                              "<td class=\"verdict-cell fail\">"));
+  EXPECT_THAT(page, HasSubstr("id=\"truth-check\""));
+  EXPECT_THAT(page, HasSubstr("<td class=\"num\">36000.2</td><td class=\"num\">± 0.1</td>"));
 }
 
 TEST(Report, LanguageCodes) {

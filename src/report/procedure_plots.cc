@@ -153,6 +153,34 @@ void reduce_to_envelope(std::vector<double>& x, std::vector<double>& y, std::siz
   y = std::move(ey);
 }
 
+const nlohmann::json* limit_on(const PlotContext& context, const std::string& figure) {
+  for (const auto& verdict : context.verdicts) {
+    const std::string name = verdict.value("figure", "");
+    if (name == figure || name == "/" + figure) return &verdict;
+  }
+  return nullptr;
+}
+
+std::vector<ReferenceLine> limit_lines(const PlotContext& context, const std::string& figure,
+                                       ReferenceLine::Direction direction, const std::string& unit,
+                                       const std::string& label) {
+  std::vector<ReferenceLine> lines;
+  const nlohmann::json* verdict = limit_on(context, figure);
+  if (verdict == nullptr) return lines;
+  const std::string limit_unit = verdict->value("unit", unit);
+  for (const char* end : {"min", "max"}) {
+    const auto* bound = member(*verdict, end);
+    if (bound == nullptr || !bound->is_number()) continue;
+    if (const auto value = converted(bound->get<double>(), limit_unit, unit)) {
+      lines.push_back({direction, *value,
+                       label + (std::string(end) == "min" ? " ≥ " : " ≤ ") + format_number(bound->get<double>()) +
+                           " " + pretty_unit(limit_unit),
+                       "#e07b00"});
+    }
+  }
+  return lines;
+}
+
 std::vector<ReportPlot> procedure_plots(const std::string& kind, const PlotContext& context) {
   if (const auto* builder = find_plots(kind)) return (*builder)(context);
   return generic_plots(context);

@@ -48,6 +48,13 @@ std::optional<double> converted(double value, const std::string& from, const std
 // consecutive points, in order, so a dense noisy record draws as its band.
 void reduce_to_envelope(std::vector<double>& x, std::vector<double>& y, std::size_t buckets);
 
+// The plan's specification limit on a figure of this procedure (a verdict of the campaign), if any.
+const nlohmann::json* limit_on(const PlotContext& context, const std::string& figure);
+// Reference lines at a limit's min and max, converted into `unit` (none when it does not convert).
+std::vector<ReferenceLine> limit_lines(const PlotContext& context, const std::string& figure,
+                                       ReferenceLine::Direction direction, const std::string& unit,
+                                       const std::string& label);
+
 // The plots of one procedure: its builder's, else the generic ones.
 std::vector<ReportPlot> procedure_plots(const std::string& kind, const PlotContext& context);
 

@@ -96,6 +96,7 @@ scale_factor = { min = 4990, max = 5010 }
   expect_rows(page, "/scale_factor", "pass", 3);
   EXPECT_THAT(page, HasSubstr("class=\"overall verdict-pass\" data-verdict=\"PASS\""));
   EXPECT_THAT(page, Not(HasSubstr("verdict-cell fail")));
+  EXPECT_THAT(page, HasSubstr(">Specification Kn ≤ 100 ppm<"));  // the limit drawn on the nonlinearity curve
 }
 
 TEST(Report, WithoutLimitsThereIsNoVerdictColumn) {

@@ -346,6 +346,7 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
   if (!major_grid.empty()) svg.line(fmt::format("<path d=\"{}\" stroke=\"#d8d8d8\" stroke-width=\"1\"/>", major_grid));
 
   // References behind the data.
+  int vertical_labels = 0;
   for (const auto& reference : panel.references) {
     const bool horizontal = reference.direction == ReferenceLine::Direction::horizontal;
     const AxisMap& map = horizontal ? y_map : x_map;
@@ -362,8 +363,9 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
         svg.line(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\" font-size=\"{}\" fill=\"{}\">{}</text>",
                              pixel(area.right - 4.0), pixel(at - 4.0), kTickFont, reference.color, text));
       } else {
+        // Labels of vertical lines stack upward from the bottom, so neighbours do not overprint.
         svg.line(fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{}\">{}</text>", pixel(at + 4.0),
-                             pixel(area.bottom - 6.0), kTickFont, reference.color, text));
+                             pixel(area.bottom - 6.0 - 14.0 * vertical_labels++), kTickFont, reference.color, text));
       }
     }
   }

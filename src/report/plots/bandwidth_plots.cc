@@ -71,6 +71,10 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
     magnitude.references.push_back({ReferenceLine::Direction::vertical, *bandwidth,
                                      "Bw = " + format_number(*bandwidth, 4) + " Hz", "#c62828"});
   }
+  for (auto& line : limit_lines(context, "bandwidth", ReferenceLine::Direction::vertical, "Hz",
+                               context.labels("ui.specification"))) {
+    magnitude.references.push_back(std::move(line));
+  }
   magnitude.legend = LegendPosition::bottom_left;
 
   Panel phase_panel;

@@ -40,6 +40,14 @@ std::vector<ReportPlot> scale_factor_plots(const PlotContext& context) {
     panel.references.push_back({ReferenceLine::Direction::horizontal, -value, "", "#c62828"});
   }
   panel.references.push_back({ReferenceLine::Direction::vertical, 0.0, "", "#999999"});
+  // The specification on Kn = max |αj| bounds the curve on both sides.
+  for (auto line : limit_lines(context, "nonlinearity", ReferenceLine::Direction::horizontal, deviation.unit,
+                               context.labels("ui.specification") + " Kn")) {
+    panel.references.push_back(line);
+    line.value = -line.value;
+    line.label.clear();
+    panel.references.push_back(line);
+  }
 
   ReportPlot plot;
   plot.caption = context.labels("nonlinearity_curve") + " — GJB 2426A-2004 5.8.2.4, eqs. (7)-(9)";

@@ -106,12 +106,16 @@ constexpr Translation kTable[] = {
      "each table rate; a least-squares line through these gives the scale factor K and the zero offset F0. The "
      "nonlinearity is the largest deviation of a point from the line relative to the largest output; the "
      "asymmetry compares the slopes fitted to the positive and to the negative rates alone.",
-     "以转速序列前、后静态测试输出的平均值作为零位，从各转台角速度下的输出平均值中扣除；对其作最小二乘直线拟合得标度因数 K "
-     "和零位 F0。各点相对拟合直线的最大偏差与最大输出之比为标度因数非线性度；正、负输入角速度分别拟合的标度因数之差为标度因数不对称性。"},
+     "以转速序列前、后静态测试输出的平均值作为零位，从各转台角速度下的输出平均值中扣除；对其作最小二乘直线拟合得标度因"
+     "数 K "
+     "和零位 "
+     "F0。各点相对拟合直线的最大偏差与最大输出之比为标度因数非线性度；正、负输入角速度分别拟合的标度因数之差为标度因数"
+     "不对称性。"},
     {"method.allan",
      "Overlapping Allan variance of the rate record (IEEE Std 952-1997 Annex C) with confidence intervals; the "
      "noise model σ²(τ) = Σ A_m·τ^m (m = −2…2) is fitted and each term read at its characteristic slope.",
-     "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = -2..2），"
+     "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
+     "-2..2），"
      "各噪声项按其特征斜率读取。"},
     {"method.bias",
      "The bias is the mean output over the record; the bias stability is the standard deviation of the output "
@@ -126,7 +130,8 @@ constexpr Translation kTable[] = {
     {"method.gyro_misalignment",
      "The gyro turns at +ω and −ω in five positions (α, β) of the fixture on a single-axis rate table; the "
      "differences V(+) − V(−) give the table, fixture and input-axis error angles by least squares.",
-     "陀螺在单轴速率转台上以 +ω、−ω 分别在五个夹具位置 (α, β) 测试；由 V(+) − V(−) 以最小二乘法分离台面、夹具面和输入轴失准角。"},
+     "陀螺在单轴速率转台上以 +ω、−ω 分别在五个夹具位置 (α, β) 测试；由 V(+) − V(−) "
+     "以最小二乘法分离台面、夹具面和输入轴失准角。"},
     {"method.accelerometer_misalignment",
      "The accelerometer's input axis lies horizontal on a vertical face turned through β = 0°, 90°, 180°, 270°; "
      "the outputs give Δθy2 = (V(π) − V(0))/(2kI) and Δθz2 = (V(π/2) − V(3π/2))/(2kI).",
@@ -135,7 +140,8 @@ constexpr Translation kTable[] = {
     {"method.bandwidth",
      "Sinusoidal rate inputs at logarithmically spaced frequencies; the gains fit the first-order model "
      "G² = K² − G²·ω²·T² and the bandwidth is 1/(2πT); the phases give the output delay.",
-     "在按对数分布的各频率点施加正弦角速度输入；由各频率增益按一阶模型 G² = K² − G²ω²T² 拟合，带宽为 1/(2πT)；由相位求输出延迟时间。"},
+     "在按对数分布的各频率点施加正弦角速度输入；由各频率增益按一阶模型 G² = K² − G²ω²T² 拟合，带宽为 "
+     "1/(2πT)；由相位求输出延迟时间。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},

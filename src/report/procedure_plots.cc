@@ -58,8 +58,9 @@ std::vector<ReportPlot> generic_plots(const PlotContext& context) {
     auto keys = numeric_members(curve.front());
     if (keys.size() < 2) continue;
     // The abscissa: the first member named like one, else the first numeric member.
-    static const char* kAbscissae[] = {"rate", "input", "increment", "temperature", "frequency_hz", "tau_s", "tau",
-                                       "smoothing_s", "time", "beta", "beta_deg", "rate_dps", "run"};
+    static const char* kAbscissae[] = {"rate",     "input",    "increment",   "temperature", "frequency_hz",
+                                       "tau_s",    "tau",      "smoothing_s", "time",        "beta",
+                                       "beta_deg", "rate_dps", "run"};
     for (const char* name : kAbscissae) {
       const auto found = std::find(keys.begin(), keys.end(), name);
       if (found != keys.end()) {
@@ -173,8 +174,8 @@ std::vector<ReferenceLine> limit_lines(const PlotContext& context, const std::st
     if (bound == nullptr || !bound->is_number()) continue;
     if (const auto value = converted(bound->get<double>(), limit_unit, unit)) {
       lines.push_back({direction, *value,
-                       label + (std::string(end) == "min" ? " ≥ " : " ≤ ") + format_number(bound->get<double>()) +
-                           " " + pretty_unit(limit_unit),
+                       label + (std::string(end) == "min" ? " ≥ " : " ≤ ") + format_number(bound->get<double>()) + " " +
+                           pretty_unit(limit_unit),
                        "#e07b00"});
     }
   }

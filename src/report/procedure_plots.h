@@ -20,7 +20,7 @@ struct ReportPlot {
 };
 
 struct PlotContext {
-  const nlohmann::json& result;    // the procedure's to_json()
+  const nlohmann::json& result;  // the procedure's to_json()
   const Labels& labels;
   const nlohmann::json& verdicts;  // the campaign's verdicts on this procedure (array)
 };

@@ -1,11 +1,11 @@
 #include "inertest/report/report.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
-#include <fmt/format.h>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -59,8 +59,8 @@ struct FigureRow {
   std::string pointer;
   std::string name;
   json figure;
-  int depth = 0;           // tokens in the pointer
-  bool headline = true;    // shown in the summary (not a detail of a fit, an influence study...)
+  int depth = 0;         // tokens in the pointer
+  bool headline = true;  // shown in the summary (not a detail of a fit, an influence study...)
 };
 
 // Members whose figures are details of the analysis: listed in the procedure's section only.
@@ -74,8 +74,8 @@ bool is_detail_member(const std::string& key) {
 
 // " (10 s)" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value": ...}.
 std::string qualifier_of(const json& element) {
-  static const std::pair<const char*, const char*> kSuffixes[] = {
-      {"_s", "s"}, {"_hz", "Hz"}, {"_deg", "°"}, {"_dps", "°/s"}, {"_g", "g"}, {"_degC", "°C"}};
+  static const std::pair<const char*, const char*> kSuffixes[] = {{"_s", "s"},     {"_hz", "Hz"}, {"_deg", "°"},
+                                                                  {"_dps", "°/s"}, {"_g", "g"},   {"_degC", "°C"}};
   std::string text;
   for (const auto& [key, value] : element.items()) {
     if (key == "value" || key == "uncertainty" || !value.is_number()) continue;
@@ -117,8 +117,9 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     for (std::size_t i = 0; i < node.size(); ++i) {
       if (of_figures) {
         const std::string qualifier = qualifier_of(node[i]);
-        rows.push_back({fmt::format("{}/{}", pointer, i), name + (qualifier.empty() ? fmt::format(" #{}", i + 1) : qualifier),
-                        node[i], depth + 1, headline && depth + 1 <= 2});
+        rows.push_back({fmt::format("{}/{}", pointer, i),
+                        name + (qualifier.empty() ? fmt::format(" #{}", i + 1) : qualifier), node[i], depth + 1,
+                        headline && depth + 1 <= 2});
         continue;
       }
       // Elements that name themselves ("name", "label", "position") are listed under their names;
@@ -179,8 +180,8 @@ std::string verdict_cell(bool pass, const Labels& labels) {
 
 class ReportWriter {
  public:
-  ReportWriter(const json& results, const ReportOptions& options) : results_(results), options_(options),
-                                                                      labels_(options.language) {}
+  ReportWriter(const json& results, const ReportOptions& options)
+      : results_(results), options_(options), labels_(options.language) {}
 
   std::string render() {
     check_shape();
@@ -189,10 +190,11 @@ class ReportWriter {
     const std::string title = plan.contains("title") && plan.at("title").is_string()
                                   ? plan.at("title").get<std::string>()
                                   : labels_("ui.test_report") + " — " + instrument_id();
-    out_ += fmt::format("<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n"
-                        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-                        "<title>{}</title>\n<style>\n{}</style>\n</head>\n<body>\n",
-                        options_.language == Language::chinese ? "zh-CN" : "en", html(title), report_css());
+    out_ += fmt::format(
+        "<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+        "<title>{}</title>\n<style>\n{}</style>\n</head>\n<body>\n",
+        options_.language == Language::chinese ? "zh-CN" : "en", html(title), report_css());
     write_cover(title);
     write_contents();
     write_summary();
@@ -261,8 +263,9 @@ class ReportWriter {
                                                           : labels_("ui.no_limits");
     out_ += "<header class=\"cover\">\n";
     out_ += fmt::format("<p class=\"kicker\">{}</p>\n<h1>{}</h1>\n", html(labels_("ui.test_report")), html(title));
-    out_ += fmt::format("<div class=\"overall verdict-{}\" data-verdict=\"{}\"><span>{}</span> <strong>{}</strong></div>\n",
-                        verdict_class, html(verdict), html(labels_("ui.overall_verdict")), html(verdict_label));
+    out_ +=
+        fmt::format("<div class=\"overall verdict-{}\" data-verdict=\"{}\"><span>{}</span> <strong>{}</strong></div>\n",
+                    verdict_class, html(verdict), html(labels_("ui.overall_verdict")), html(verdict_label));
 
     const json& instrument = results_.at("instrument");
     const json& plan = results_.contains("plan") ? results_.at("plan") : json::object();
@@ -317,7 +320,8 @@ class ReportWriter {
     for (std::size_t i = 0; i < procedures.size(); ++i) {
       out_ += fmt::format("<li><a href=\"#procedure-{}\">{}</a></li>\n", i + 1, html(procedure_title(procedures[i])));
     }
-    if (const auto* checks = member(results_, "truth_check"); checks != nullptr && checks->is_array() && !checks->empty()) {
+    if (const auto* checks = member(results_, "truth_check");
+        checks != nullptr && checks->is_array() && !checks->empty()) {
       out_ += fmt::format("<li><a href=\"#truth-check\">{}</a></li>\n", html(labels_("ui.truth_check")));
     }
     out_ += "</ol></nav>\n";
@@ -342,10 +346,9 @@ class ReportWriter {
       const auto found = verdict_by_figure_.find(verdict_key(name, row.pointer));
       const json* verdict = found == verdict_by_figure_.end() ? nullptr : found->second;
       if (group_heading && !row.headline && verdict == nullptr) continue;
-      out_ += fmt::format("<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
-                          verdict ? fmt::format(" data-verdict=\"{}\"",
-                                                verdict->value("pass", false) ? "pass" : "fail")
-                                  : "");
+      out_ += fmt::format(
+          "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
+          verdict ? fmt::format(" data-verdict=\"{}\"", verdict->value("pass", false) ? "pass" : "fail") : "");
       out_ += fmt::format("<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", html(row.name),
                           html(value), uncertainty.empty() ? "—" : "± " + html(uncertainty),
                           html(pretty_unit(row.figure.at("unit").get<std::string>())));
@@ -388,10 +391,11 @@ class ReportWriter {
     if (verdicts().empty()) return;
     out_ += fmt::format("<section class=\"compliance\" id=\"compliance\">\n<h2>{} {}</h2>\n", ++section_,
                         html(labels_("ui.compliance")));
-    out_ += fmt::format("<table class=\"limits\">\n<thead><tr><th>{}</th><th>{}</th><th>{}</th>"
-                        "<th class=\"num\">{}</th><th>{}</th></tr></thead>\n<tbody>\n",
-                        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.specification")),
-                        html(labels_("ui.measured")), html(labels_("ui.verdict")));
+    out_ += fmt::format(
+        "<table class=\"limits\">\n<thead><tr><th>{}</th><th>{}</th><th>{}</th>"
+        "<th class=\"num\">{}</th><th>{}</th></tr></thead>\n<tbody>\n",
+        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.specification")),
+        html(labels_("ui.measured")), html(labels_("ui.verdict")));
     for (const auto& v : verdicts()) {
       const std::string figure = v.value("figure", "");
       const std::string pointer = normalised_pointer(figure);
@@ -404,12 +408,12 @@ class ReportWriter {
       }
       const bool pass = v.value("pass", false);
       const std::string unit = pretty_unit(v.value("unit", ""));
-      out_ += fmt::format("<tr data-procedure=\"{}\" data-figure=\"{}\" data-verdict=\"{}\"><td>{}</td><td>{}</td>"
-                          "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
-                          html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail",
-                          html(v.value("procedure", "")), html(name), html(limit_text(v)),
-                          html(format_number(v.value("value", 0.0)) + (unit.empty() ? "" : " " + unit)),
-                          verdict_cell(pass, labels_));
+      out_ += fmt::format(
+          "<tr data-procedure=\"{}\" data-figure=\"{}\" data-verdict=\"{}\"><td>{}</td><td>{}</td>"
+          "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
+          html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
+          html(name), html(limit_text(v)),
+          html(format_number(v.value("value", 0.0)) + (unit.empty() ? "" : " " + unit)), verdict_cell(pass, labels_));
     }
     const std::string overall = overall_verdict();
     out_ += fmt::format("</tbody>\n<tfoot><tr><th colspan=\"4\">{}</th>{}</tr></tfoot>\n</table>\n</section>\n",
@@ -425,23 +429,26 @@ class ReportWriter {
         return item.is_object() && item.contains("name") && item.contains("pass") && item.at("pass").is_boolean();
       });
       if (!checklist) continue;
-      out_ += fmt::format("<h3>{}</h3>\n<table class=\"checks\">\n<thead><tr><th>{}</th><th class=\"num\">{}</th>"
-                          "<th>{}</th><th>{}</th></tr></thead>\n<tbody>\n",
-                          html(labels_(key)), html(labels_("ui.name")), html(labels_("ui.measured")),
-                          html(labels_("ui.specification")), html(labels_("ui.verdict")));
+      out_ += fmt::format(
+          "<h3>{}</h3>\n<table class=\"checks\">\n<thead><tr><th>{}</th><th class=\"num\">{}</th>"
+          "<th>{}</th><th>{}</th></tr></thead>\n<tbody>\n",
+          html(labels_(key)), html(labels_("ui.name")), html(labels_("ui.measured")), html(labels_("ui.specification")),
+          html(labels_("ui.verdict")));
       for (const auto& item : items) {
         std::string measured;
         if (const auto* v = member(item, "value"); v != nullptr) {
-          measured = v->is_string() ? labels_("ui." + v->get<std::string>()) : v->is_number() ? format_number(v->get<double>()) : "";
+          measured = v->is_string()   ? labels_("ui." + v->get<std::string>())
+                     : v->is_number() ? format_number(v->get<double>())
+                                      : "";
         }
         const std::string unit = pretty_unit(item.value("unit", ""));
         if (!unit.empty() && !measured.empty()) measured += " " + unit;
         json limit = {{"unit", item.value("unit", "")}};
         if (item.contains("min")) limit["min"] = item.at("min");
         if (item.contains("max")) limit["max"] = item.at("max");
-        out_ += fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td>{}</tr>\n",
-                            html(item.value("name", "")), html(measured), html(limit_text(limit)),
-                            verdict_cell(item.at("pass").get<bool>(), labels_));
+        out_ +=
+            fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td>{}</tr>\n", html(item.value("name", "")),
+                        html(measured), html(limit_text(limit)), verdict_cell(item.at("pass").get<bool>(), labels_));
       }
       out_ += "</tbody></table>\n";
     }
@@ -453,23 +460,24 @@ class ReportWriter {
     if (checks == nullptr || !checks->is_array() || checks->empty()) return;
     out_ += fmt::format("<section class=\"truth\" id=\"truth-check\">\n<h2>{} {}</h2>\n", ++section_,
                         html(labels_("ui.truth_check")));
-    out_ += fmt::format("<table class=\"truth\">\n<thead><tr><th>{}</th><th>{}</th><th class=\"num\">{}</th>"
-                        "<th class=\"num\">{}</th><th class=\"num\">{}</th><th>{}</th><th>{}</th></tr></thead>\n"
-                        "<tbody>\n",
-                        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.true_value")),
-                        html(labels_("ui.measured")), html(labels_("ui.tolerance")), html(labels_("ui.unit")),
-                        html(labels_("ui.verdict")));
+    out_ += fmt::format(
+        "<table class=\"truth\">\n<thead><tr><th>{}</th><th>{}</th><th class=\"num\">{}</th>"
+        "<th class=\"num\">{}</th><th class=\"num\">{}</th><th>{}</th><th>{}</th></tr></thead>\n"
+        "<tbody>\n",
+        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.true_value")),
+        html(labels_("ui.measured")), html(labels_("ui.tolerance")), html(labels_("ui.unit")),
+        html(labels_("ui.verdict")));
     for (const auto& c : *checks) {
       auto number = [&](const char* key) {
         const auto* v = member(c, key);
         return v != nullptr && v->is_number() ? format_number(v->get<double>()) : "";
       };
       const bool within = c.value("within", false);
-      out_ += fmt::format("<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
-                          "<td class=\"num\">± {}</td><td>{}</td>{}</tr>\n",
-                          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")),
-                          html(number("measured")), html(number("tolerance")), html(pretty_unit(c.value("unit", ""))),
-                          verdict_cell(within, labels_));
+      out_ += fmt::format(
+          "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+          "<td class=\"num\">± {}</td><td>{}</td>{}</tr>\n",
+          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")), html(number("measured")),
+          html(number("tolerance")), html(pretty_unit(c.value("unit", ""))), verdict_cell(within, labels_));
     }
     out_ += "</tbody></table>\n</section>\n";
   }
@@ -495,14 +503,15 @@ class ReportWriter {
 
     out_ += fmt::format("<h3>{}</h3>\n<table class=\"figures\">\n", html(labels_("ui.results")));
     bool with_limits = false;
-    for (const auto& v : verdicts()) with_limits = with_limits || v.value("procedure", "") == procedure.value("name", "");
+    for (const auto& v : verdicts())
+      with_limits = with_limits || v.value("procedure", "") == procedure.value("name", "");
     figure_table_head(with_limits);
     out_ += "<tbody>\n";
     write_figure_rows(procedure, with_limits, with_limits ? 6 : 4, false);
     out_ += "</tbody></table>\n";
 
-    if (const auto* warnings = member(result, "warnings"); warnings != nullptr && warnings->is_array() &&
-                                                           !warnings->empty()) {
+    if (const auto* warnings = member(result, "warnings");
+        warnings != nullptr && warnings->is_array() && !warnings->empty()) {
       out_ += fmt::format("<div class=\"warnings\"><h3>{}</h3><ul>\n", html(labels_("ui.warnings")));
       for (const auto& w : *warnings) {
         if (w.is_string()) out_ += fmt::format("<li>{}</li>\n", html(w.get<std::string>()));

@@ -14,10 +14,10 @@
 namespace inertest::report {
 namespace {
 
-using ::testing::HasSubstr;
-using ::testing::Not;
 using inertest::testing::ScratchDirectory;
 using inertest::testing::source_path;
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 // The scale-factor example's points give Kn = 16.99 ppm, Ka = 35.03 ppm, K = 5000.088 pulse/s/(deg/s).
 std::string plan_with_limits(const std::string& limits, const std::string& header = "") {
@@ -32,8 +32,8 @@ name = "Hall 2"
 [[procedure]]
 kind = "scale_factor"
 name = "SF 20 degC"
-file = ")" + source_path("examples/scale_factor/points.csv") +
-         "\"\n\n[procedure.limits]\n" + limits;
+file = ")" +
+         source_path("examples/scale_factor/points.csv") + "\"\n\n[procedure.limits]\n" + limits;
 }
 
 nlohmann::json run_plan(const ScratchDirectory& scratch, const std::string& plan) {
@@ -57,8 +57,7 @@ void expect_rows(const std::string& page, const std::string& figure, const std::
   const std::string other = verdict == "pass" ? "fail" : "pass";
   for (const auto& row : rows) {
     EXPECT_THAT(row, HasSubstr("data-verdict=\"" + verdict + "\"")) << figure;
-    EXPECT_THAT(row, HasSubstr("verdict-cell " + verdict + "\">" + (verdict == "pass" ? "PASS" : "FAIL")))
-        << figure;
+    EXPECT_THAT(row, HasSubstr("verdict-cell " + verdict + "\">" + (verdict == "pass" ? "PASS" : "FAIL"))) << figure;
     EXPECT_THAT(row, Not(HasSubstr("verdict-cell " + other))) << figure;
   }
 }
@@ -115,8 +114,8 @@ TEST(Report, IsSelfContained) {
   const auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n"));
   const std::string page = render_report(results, {Language::english, "2024-01-02"});
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
-  for (const char* outside : {"<script", "<link", "http://", "https://", "url(", "@import", " src=", "<iframe",
-                              "<object", "@font-face"}) {
+  for (const char* outside :
+       {"<script", "<link", "http://", "https://", "url(", "@import", " src=", "<iframe", "<object", "@font-face"}) {
     EXPECT_THAT(page, Not(HasSubstr(outside))) << outside;
   }
   EXPECT_THAT(page, HasSubstr("<style>"));
@@ -128,14 +127,14 @@ TEST(Report, IsSelfContained) {
 TEST(Report, ShowsInstrumentSitePlanVersionMethodAndFigures) {
   ScratchDirectory scratch;
   const auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n",
-                                                         "[plan]\ntitle = \"Acceptance of FOG-T\"\n"
-                                                         "date = \"2024-03-05\"\noperator = \"Li Wei\"\n"));
+                                                          "[plan]\ntitle = \"Acceptance of FOG-T\"\n"
+                                                          "date = \"2024-03-05\"\noperator = \"Li Wei\"\n"));
   const std::string page = render_report(results, {Language::english, "2030-12-31"});
   EXPECT_THAT(page, HasSubstr("<title>Acceptance of FOG-T</title>"));
   EXPECT_THAT(page, HasSubstr("FOG-T"));
   EXPECT_THAT(page, HasSubstr("Hall 2"));
   EXPECT_THAT(page, HasSubstr("Li Wei"));
-  EXPECT_THAT(page, HasSubstr("<td>2024-03-05</td>"));   // the plan's date wins over the run date
+  EXPECT_THAT(page, HasSubstr("<td>2024-03-05</td>"));  // the plan's date wins over the run date
   EXPECT_THAT(page, Not(HasSubstr("<td>2030-12-31</td>")));
   EXPECT_THAT(page, HasSubstr(results.at("inertest_version").get<std::string>()));
   EXPECT_THAT(page, HasSubstr("GJB 2426A-2004 5.8.1-5.8.3, eqs. (1)-(11)"));
@@ -159,7 +158,8 @@ asymmetry = { max = 10, unit = "ppm" }
 )"));
   const std::string page = render_report(results, {Language::chinese, "2024-01-02"});
   EXPECT_THAT(page, HasSubstr("<html lang=\"zh-CN\">"));
-  for (const char* term : {"标度因数", "标度因数非线性度", "标度因数不对称性", "测试报告", "合格", "不合格", "总结论"}) {
+  for (const char* term :
+       {"标度因数", "标度因数非线性度", "标度因数不对称性", "测试报告", "合格", "不合格", "总结论"}) {
     EXPECT_THAT(page, HasSubstr(term)) << term;
   }
   EXPECT_THAT(page, Not(HasSubstr(">Overall verdict<")));
@@ -186,12 +186,14 @@ std::map<std::string, int> plots_by_kind(const std::string& page) {
   const std::regex section("<section class=\"procedure\" id=\"procedure-[0-9]+\" data-kind=\"([a-z_]+)\">");
   auto it = std::sregex_iterator(page.begin(), page.end(), section);
   std::vector<std::pair<std::string, std::size_t>> starts;
-  for (; it != std::sregex_iterator(); ++it) starts.emplace_back((*it)[1].str(), static_cast<std::size_t>(it->position()));
+  for (; it != std::sregex_iterator(); ++it)
+    starts.emplace_back((*it)[1].str(), static_cast<std::size_t>(it->position()));
   for (std::size_t i = 0; i < starts.size(); ++i) {
     const std::size_t end = i + 1 < starts.size() ? starts[i + 1].second : page.size();
     const std::string body = page.substr(starts[i].second, end - starts[i].second);
     int count = 0;
-    for (auto at = body.find("<svg class=\"plot\""); at != std::string::npos; at = body.find("<svg class=\"plot\"", at + 1)) {
+    for (auto at = body.find("<svg class=\"plot\""); at != std::string::npos;
+         at = body.find("<svg class=\"plot\"", at + 1)) {
       ++count;
     }
     plots[starts[i].first] += count;
@@ -209,7 +211,8 @@ sample_rate_hz = 10
 
 [[procedure]]
 kind = "scale_factor"
-file = ")" + source_path("examples/scale_factor/points.csv") + R"("
+file = ")" + source_path("examples/scale_factor/points.csv") +
+                           R"("
 
 [[procedure]]
 kind = "bias"
@@ -223,33 +226,37 @@ input_unit = "deg/h"
 
 [[procedure]]
 kind = "bandwidth"
-file = ")" + source_path("examples/bandwidth/gains.csv") + R"("
+file = ")" + source_path("examples/bandwidth/gains.csv") +
+                           R"("
 
 [[procedure]]
 kind = "gyro_misalignment"
-file = ")" + source_path("data/misalignment/gyro_table1.csv") + R"("
+file = ")" + source_path("data/misalignment/gyro_table1.csv") +
+                           R"("
 scale_factor = -2.9222
 
 [[procedure]]
 kind = "accelerometer_misalignment"
-file = ")" + source_path("data/misalignment/accelerometer_table2.csv") + R"("
+file = ")" + source_path("data/misalignment/accelerometer_table2.csv") +
+                           R"("
 scale_factor = 1.299
 
 [[procedure]]
 kind = "centrifuge"
-file = ")" + source_path("data/centrifuge/table3_harmonics.csv") + R"("
+file = ")" + source_path("data/centrifuge/table3_harmonics.csv") +
+                           R"("
 radius_m = 1.0
 )";
   const auto results = run_plan(scratch, plan);
   const std::string page = render_report(results, {Language::english, "2024-01-02"});
   const auto plots = plots_by_kind(page);
   EXPECT_EQ(plots.at("scale_factor"), 1);
-  EXPECT_EQ(plots.at("bias"), 2);          // the smoothed records, and Bs(τ) of the normalisation method
+  EXPECT_EQ(plots.at("bias"), 2);  // the smoothed records, and Bs(τ) of the normalisation method
   EXPECT_EQ(plots.at("allan"), 1);
-  EXPECT_EQ(plots.at("bandwidth"), 1);     // magnitude over phase in one figure
+  EXPECT_EQ(plots.at("bandwidth"), 1);  // magnitude over phase in one figure
   EXPECT_EQ(plots.at("gyro_misalignment"), 2);
   EXPECT_EQ(plots.at("accelerometer_misalignment"), 1);  // the angles of each run (no per-position data)
-  EXPECT_EQ(plots.at("centrifuge"), 2);    // harmonics, residuals
+  EXPECT_EQ(plots.at("centrifuge"), 2);                  // harmonics, residuals
   EXPECT_THAT(page, HasSubstr("−3 dB"));
   EXPECT_THAT(page, HasSubstr("Bw = 300"));
   EXPECT_THAT(page, HasSubstr("(slope −1/2)"));  // an Allan noise term with its slope
@@ -272,15 +279,25 @@ TEST(Report, ChecklistsAndTheDemoTruthCheckAreTabulated) {
           {{"clause", "GJB 2426A-2004 5.2-5.4"},
            {"checks",
             {{{"key", "appearance"}, {"name", "Appearance"}, {"pass", true}, {"value", "pass"}},
-             {{"key", "insulation"}, {"name", "Insulation resistance"}, {"pass", false}, {"value", 5.0},
-              {"unit", "MOhm"}, {"min", 20.0}}}}}}}}},
+             {{"key", "insulation"},
+              {"name", "Insulation resistance"},
+              {"pass", false},
+              {"value", 5.0},
+              {"unit", "MOhm"},
+              {"min", 20.0}}}}}}}}},
       {"verdicts", nlohmann::json::array()},
       {"verdict", "NONE"},
       {"truth_check",
-       {{{"procedure", "scale_factor"}, {"quantity", "scale factor"}, {"true", 36000.0}, {"measured", 36000.2},
-         {"unit", "pulse/s/(deg/s)"}, {"tolerance", 0.1}, {"within", false}}}}};
+       {{{"procedure", "scale_factor"},
+         {"quantity", "scale factor"},
+         {"true", 36000.0},
+         {"measured", 36000.2},
+         {"unit", "pulse/s/(deg/s)"},
+         {"tolerance", 0.1},
+         {"within", false}}}}};
   const std::string page = render_report(results, {Language::english, ""});
-  EXPECT_THAT(page, HasSubstr("<td>Appearance</td><td class=\"num\">PASS</td><td></td><td class=\"verdict-cell pass\">"));
+  EXPECT_THAT(page,
+              HasSubstr("<td>Appearance</td><td class=\"num\">PASS</td><td></td><td class=\"verdict-cell pass\">"));
   EXPECT_THAT(page, HasSubstr("<td>Insulation resistance</td><td class=\"num\">5 MOhm</td><td>≥ 20 MOhm</td>"
                               "<td class=\"verdict-cell fail\">"));
   EXPECT_THAT(page, HasSubstr("id=\"truth-check\""));

@@ -1,7 +1,7 @@
 #include "report/result_access.h"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 #include <limits>
 
 namespace inertest::report {

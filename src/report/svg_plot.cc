@@ -1,8 +1,8 @@
 #include "inertest/report/svg_plot.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 
 namespace inertest::report {
@@ -58,7 +58,8 @@ std::vector<Tick> ticks_for(const Axis& axis, Range range) {
   if (!axis.ticks.empty()) {
     std::vector<Tick> ticks;
     double step = range.hi - range.lo;
-    for (std::size_t i = 1; i < axis.ticks.size(); ++i) step = std::min(step, std::abs(axis.ticks[i] - axis.ticks[i - 1]));
+    for (std::size_t i = 1; i < axis.ticks.size(); ++i)
+      step = std::min(step, std::abs(axis.ticks[i] - axis.ticks[i - 1]));
     for (double value : axis.ticks) ticks.push_back({value, format_tick(value, step > 0.0 ? step : 1.0), true});
     return ticks;
   }
@@ -148,9 +149,10 @@ std::string polyline(const std::vector<Point>& points, const std::string& color,
     coordinates += ',';
     coordinates += pixel(p.y);
   }
-  return fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" "
-                     "stroke-linejoin=\"round\"{}/>",
-                     coordinates, color, series.line_width, dash_attribute(series.line));
+  return fmt::format(
+      "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" "
+      "stroke-linejoin=\"round\"{}/>",
+      coordinates, color, series.line_width, dash_attribute(series.line));
 }
 
 bool same_point(Point a, Point b) { return std::abs(a.x - b.x) < 1e-6 && std::abs(a.y - b.y) < 1e-6; }
@@ -177,7 +179,8 @@ void draw_series(SvgWriter& svg, const Series& series, const std::string& color,
         if (area.contains(end)) bars += fmt::format("M{} {}h6", pixel(end.x - 3), pixel(end.y));
       }
     }
-    if (!bars.empty()) svg.line(fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"1\" fill=\"none\"/>", bars, color));
+    if (!bars.empty())
+      svg.line(fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"1\" fill=\"none\"/>", bars, color));
   }
 
   if (series.line != LineStyle::none) {
@@ -270,8 +273,8 @@ void draw_legend(SvgWriter& svg, const Panel& panel, const std::vector<std::stri
     for (const auto corner : {LegendPosition::top_right, LegendPosition::top_left, LegendPosition::bottom_right,
                               LegendPosition::bottom_left}) {
       const Box box = box_at(corner);
-      const auto covered = static_cast<std::size_t>(
-          std::count_if(data.begin(), data.end(), [&](Point p) { return box.contains(p); }));
+      const auto covered =
+          static_cast<std::size_t>(std::count_if(data.begin(), data.end(), [&](Point p) { return box.contains(p); }));
       if (covered < fewest) {
         fewest = covered;
         position = corner;
@@ -281,9 +284,10 @@ void draw_legend(SvgWriter& svg, const Panel& panel, const std::vector<std::stri
   const Box box = box_at(position);
   const double left = box.left;
   const double upper = box.top;
-  svg.line(fmt::format("<g class=\"legend\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\" "
-                       "fill-opacity=\"0.88\" stroke=\"#bbbbbb\"/>",
-                       pixel(left), pixel(upper), pixel(width), pixel(height)));
+  svg.line(
+      fmt::format("<g class=\"legend\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#ffffff\" "
+                  "fill-opacity=\"0.88\" stroke=\"#bbbbbb\"/>",
+                  pixel(left), pixel(upper), pixel(width), pixel(height)));
   for (std::size_t row = 0; row < entries.size(); ++row) {
     const Series& series = panel.series[entries[row]];
     const std::string& color = colors[entries[row]];
@@ -326,8 +330,7 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
     tick_marks += fmt::format("M{} {}v{}", pixel(x), pixel(area.bottom), tick.major ? kMajorTick : kMinorTick);
     if (!tick.label.empty()) {
       labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"{}\">{}</text>\n", pixel(x),
-                            pixel(area.bottom + kMajorTick + 4.0 + kTickFont * 0.8), kTickFont,
-                            escape_xml(tick.label));
+                            pixel(area.bottom + kMajorTick + 4.0 + kTickFont * 0.8), kTickFont, escape_xml(tick.label));
     }
   }
   for (const auto& tick : g.y_ticks) {
@@ -337,9 +340,10 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
     (tick.major ? major_grid : minor_grid) += fmt::format("M{} {}H{}", pixel(area.left), pixel(y), pixel(area.right));
     tick_marks += fmt::format("M{} {}h-{}", pixel(area.left), pixel(y), tick.major ? kMajorTick : kMinorTick);
     if (!tick.label.empty()) {
-      labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\" dominant-baseline=\"central\" "
-                            "font-size=\"{}\">{}</text>\n",
-                            pixel(area.left - kMajorTick - 3.0), pixel(y), kTickFont, escape_xml(tick.label));
+      labels += fmt::format(
+          "<text x=\"{}\" y=\"{}\" text-anchor=\"end\" dominant-baseline=\"central\" "
+          "font-size=\"{}\">{}</text>\n",
+          pixel(area.left - kMajorTick - 3.0), pixel(y), kTickFont, escape_xml(tick.label));
     }
   }
   if (!minor_grid.empty()) svg.line(fmt::format("<path d=\"{}\" stroke=\"#eeeeee\" stroke-width=\"1\"/>", minor_grid));
@@ -374,7 +378,8 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
   for (const auto& series : panel.series) {
     colors.push_back(series.color.empty() ? kPalette[palette_index++ % std::size(kPalette)] : series.color);
   }
-  for (std::size_t i = 0; i < panel.series.size(); ++i) draw_series(svg, panel.series[i], colors[i], x_map, y_map, area);
+  for (std::size_t i = 0; i < panel.series.size(); ++i)
+    draw_series(svg, panel.series[i], colors[i], x_map, y_map, area);
 
   for (const auto& note : panel.notes) {
     if (!x_map.placeable(note.x) || !y_map.placeable(note.y)) continue;
@@ -400,9 +405,10 @@ void draw_panel(SvgWriter& svg, const Panel& panel, const Box& frame, std::size_
   if (!y_title.empty()) {
     const double x = frame.left + 8.0 + kLabelFont * 0.8;
     const double y = 0.5 * (area.top + area.bottom);
-    svg.line(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"{}\" "
-                         "transform=\"rotate(-90 {} {})\">{}</text>",
-                         pixel(x), pixel(y), kLabelFont, pixel(x), pixel(y), escape_xml(y_title)));
+    svg.line(
+        fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"{}\" "
+                    "transform=\"rotate(-90 {} {})\">{}</text>",
+                    pixel(x), pixel(y), kLabelFont, pixel(x), pixel(y), escape_xml(y_title)));
   }
   if (!panel.title.empty()) {
     svg.line(fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"{}\" font-weight=\"bold\">{}</text>", pixel(area.left),
@@ -577,9 +583,10 @@ std::string render_svg(const Plot& plot) {
   double height = 0.0;
   for (const auto& panel : plot.panels) height += panel.height;
   SvgWriter svg;
-  svg.line(fmt::format("<svg class=\"plot\" viewBox=\"0 0 {} {}\" width=\"{}\" height=\"{}\" role=\"img\" "
-                       "font-family=\"{}\" fill=\"#222222\">",
-                       pixel(plot.width), pixel(height), pixel(plot.width), pixel(height), kFontFamily));
+  svg.line(
+      fmt::format("<svg class=\"plot\" viewBox=\"0 0 {} {}\" width=\"{}\" height=\"{}\" role=\"img\" "
+                  "font-family=\"{}\" fill=\"#222222\">",
+                  pixel(plot.width), pixel(height), pixel(plot.width), pixel(height), kFontFamily));
   double top = 0.0;
   std::size_t palette_index = 0;
   for (const auto& panel : plot.panels) {

@@ -174,7 +174,7 @@ TEST(SvgPlotAxisMap, LinearMapsEndsAndInteriorProportionally) {
   EXPECT_DOUBLE_EQ(x.to_pixel(0.0), 100.0);
   EXPECT_DOUBLE_EQ(x.to_pixel(10.0), 300.0);
   EXPECT_DOUBLE_EQ(x.to_pixel(2.5), 150.0);
-  EXPECT_DOUBLE_EQ(x.to_pixel(-5.0), 0.0);  // outside the range maps outside the pixels
+  EXPECT_DOUBLE_EQ(x.to_pixel(-5.0), 0.0);                             // outside the range maps outside the pixels
   const AxisMap y(Range{0.0, 10.0}, AxisScale::linear, 400.0, 100.0);  // SVG y grows downward
   EXPECT_DOUBLE_EQ(y.to_pixel(5.0), 250.0);
   EXPECT_DOUBLE_EQ(y.to_pixel(10.0), 100.0);
@@ -295,7 +295,7 @@ TEST(SvgPlotRender, ErrorBarsMarkersAndLegendAreDrawn) {
   const std::string svg = render_svg(plot);
   std::size_t circles = 0;
   for (std::size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
-  EXPECT_EQ(circles, 4u);  // three points and the legend's sample
+  EXPECT_EQ(circles, 4u);             // three points and the legend's sample
   EXPECT_THAT(svg, HasSubstr("h6"));  // error bar caps
   EXPECT_THAT(svg, HasSubstr("measured &lt;σ&gt;"));
   EXPECT_THAT(svg, Not(HasSubstr("<polyline")));

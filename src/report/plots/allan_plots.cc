@@ -108,9 +108,9 @@ std::vector<ReportPlot> allan_plots(const PlotContext& context) {
         total[i] += variance;
         values.push_back(std::sqrt(variance) * scale);
       }
-      Series line = make_series(context.labels(term.label_key) + " (" + context.labels("ui.slope") + " " + term.slope +
-                                    ")",
-                                grid, values, LineStyle::dashed);
+      Series line =
+          make_series(context.labels(term.label_key) + " (" + context.labels("ui.slope") + " " + term.slope + ")", grid,
+                      values, LineStyle::dashed);
       line.color = colours[term.power + 2];
       line.line_width = 1.3;
       panel.series.push_back(std::move(line));
@@ -125,7 +125,8 @@ std::vector<ReportPlot> allan_plots(const PlotContext& context) {
   panel.legend = LegendPosition::automatic;
 
   ReportPlot plot;
-  plot.caption = context.labels("axis.allan_deviation") + " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std "
+  plot.caption = context.labels("axis.allan_deviation") +
+                 " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std "
                  "952-1997 Annex C";
   plot.plot.panels.push_back(std::move(panel));
   return {std::move(plot)};

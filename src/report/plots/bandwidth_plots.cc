@@ -29,7 +29,9 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
   const Column fitted_phase = column(*bode, "fitted_phase_deg");
   const auto* dc = member(context.result, "dc_gain");
   const double k = dc != nullptr && number_of(*dc) && *number_of(*dc) != 0.0 ? std::abs(*number_of(*dc)) : 1.0;
-  const auto decibels = [k](double g) { return g > 0.0 ? 20.0 * std::log10(g / k) : std::numeric_limits<double>::quiet_NaN(); };
+  const auto decibels = [k](double g) {
+    return g > 0.0 ? 20.0 * std::log10(g / k) : std::numeric_limits<double>::quiet_NaN();
+  };
 
   const auto time_constant = figure_in(context.result, "time_constant", "s");
   const auto delay = figure_in(context.result, "delay", "s");
@@ -52,8 +54,8 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
   magnitude.y = make_axis(context.labels("axis.magnitude"), "dB");
   std::vector<double> measured_db;
   for (double g : gain.values) measured_db.push_back(decibels(std::abs(g)));
-  magnitude.series.push_back(make_series(context.labels("ui.data"), frequency.values, measured_db, LineStyle::none,
-                                         Marker::circle));
+  magnitude.series.push_back(
+      make_series(context.labels("ui.data"), frequency.values, measured_db, LineStyle::none, Marker::circle));
   std::vector<double> model_db;
   if (time_constant) {
     for (double f : grid) {
@@ -68,11 +70,11 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
   }
   magnitude.references.push_back({ReferenceLine::Direction::horizontal, -3.0, "−3 dB", "#c62828"});
   if (bandwidth) {
-    magnitude.references.push_back({ReferenceLine::Direction::vertical, *bandwidth,
-                                     "Bw = " + format_number(*bandwidth, 4) + " Hz", "#c62828"});
+    magnitude.references.push_back(
+        {ReferenceLine::Direction::vertical, *bandwidth, "Bw = " + format_number(*bandwidth, 4) + " Hz", "#c62828"});
   }
   for (auto& line : limit_lines(context, "bandwidth", ReferenceLine::Direction::vertical, "Hz",
-                               context.labels("ui.specification"))) {
+                                context.labels("ui.specification"))) {
     magnitude.references.push_back(std::move(line));
   }
   magnitude.legend = LegendPosition::bottom_left;
@@ -82,8 +84,8 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
   phase_panel.title = context.labels("axis.phase");
   phase_panel.x = make_axis(context.labels("axis.frequency"), "Hz", AxisScale::log);
   phase_panel.y = make_axis(context.labels("axis.phase"), "°");
-  phase_panel.series.push_back(make_series(context.labels("ui.data"), frequency.values, phase.values, LineStyle::none,
-                                           Marker::circle));
+  phase_panel.series.push_back(
+      make_series(context.labels("ui.data"), frequency.values, phase.values, LineStyle::none, Marker::circle));
   if (time_constant && delay) {
     std::vector<double> model;
     for (double f : grid) {

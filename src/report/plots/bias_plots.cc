@@ -31,8 +31,9 @@ std::optional<ReportPlot> smoothed_record_plot(const PlotContext& context) {
     for (std::size_t i = 0; i < values.values.size(); ++i) time.push_back((static_cast<double>(i) + 0.5) * s);
     std::vector<double> y = values.values;
     reduce_to_envelope(time, y, kEnvelopeBuckets);
-    Series series = make_series(format_number(s) + " s " + context.labels("ui.smoothing"), std::move(time),
-                                std::move(y), LineStyle::solid, values.values.size() <= 60 ? Marker::circle : Marker::none);
+    Series series =
+        make_series(format_number(s) + " s " + context.labels("ui.smoothing"), std::move(time), std::move(y),
+                    LineStyle::solid, values.values.size() <= 60 ? Marker::circle : Marker::none);
     series.color = colours[std::min(index++, std::size(colours) - 1)];
     series.line_width = index == 1 ? 1.0 : 1.6;
     panel.series.push_back(std::move(series));

@@ -45,7 +45,8 @@ Panel harmonic_panel(const nlohmann::json& runs, const char* member_name, const 
   std::size_t h = 0;
   for (auto& [harmonic, by_level] : series) {
     for (auto& [level, s] : by_level) {
-      const auto g_index = static_cast<std::size_t>(std::find(g_levels.begin(), g_levels.end(), level) - g_levels.begin());
+      const auto g_index =
+          static_cast<std::size_t>(std::find(g_levels.begin(), g_levels.end(), level) - g_levels.begin());
       s.name = harmonic + ", " + format_number(level) + " g";
       s.color = colours[h % std::size(colours)];
       s.marker = shapes[g_index % std::size(shapes)];

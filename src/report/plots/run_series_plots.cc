@@ -22,8 +22,8 @@ std::vector<ReportPlot> runs_plot(const PlotContext& context, const char* runs_k
   panel.y = make_axis(context.labels(runs_key), pretty_unit(values.unit));
   panel.series.push_back(make_series("", run_number, values.values, LineStyle::none, Marker::circle));
   if (const auto* mean = member(context.result, mean_key); mean != nullptr && number_of(*mean)) {
-    panel.references.push_back({ReferenceLine::Direction::horizontal, *number_of(*mean), context.labels(mean_key),
-                                "#555555"});
+    panel.references.push_back(
+        {ReferenceLine::Direction::horizontal, *number_of(*mean), context.labels(mean_key), "#555555"});
   }
   ReportPlot plot;
   plot.caption = context.labels(std::string("kind.") + kind) + " — " + clause;
@@ -53,8 +53,8 @@ std::vector<ReportPlot> maximum_input_rate_plots(const PlotContext& context) {
   if (!meets.x.empty()) panel.series.push_back(std::move(meets));
   if (!fails.x.empty()) panel.series.push_back(std::move(fails));
   if (const auto* limit = member(context.result, "nonlinearity_limit"); limit != nullptr && number_of(*limit)) {
-    panel.references.push_back({ReferenceLine::Direction::horizontal, *number_of(*limit),
-                                context.labels("ui.specification"), "#c62828"});
+    panel.references.push_back(
+        {ReferenceLine::Direction::horizontal, *number_of(*limit), context.labels("ui.specification"), "#c62828"});
   }
   ReportPlot plot;
   plot.caption = context.labels("kind.maximum_input_rate") + " — GJB 2426A-2004 5.9";

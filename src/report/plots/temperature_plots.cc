@@ -15,16 +15,15 @@ struct TemperaturePlotSpec {
   const char* quantity;         // the member plotted against temperature
   const char* reference;        // the result's figure at the reference temperature (a line)
   const char* reference_label;  // its label
-  const char* kind;    // the plan kind, whose label heads the caption
-  const char* clause;  // the clause and equation the plot illustrates
+  const char* kind;             // the plan kind, whose label heads the caption
+  const char* clause;           // the clause and equation the plot illustrates
 };
 
 // The rows of the table in temperature order.
 std::vector<std::size_t> by_temperature(const Column& temperature) {
   std::vector<std::size_t> order(temperature.values.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](auto a, auto b) { return temperature.values[a] < temperature.values[b]; });
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return temperature.values[a] < temperature.values[b]; });
   return order;
 }
 
@@ -46,8 +45,8 @@ std::vector<ReportPlot> temperature_plots(const PlotContext& context, const Temp
   main.height = 300.0;
   main.x = make_axis(context.labels("axis.temperature"), pretty_unit(temperature.unit));
   main.y = make_axis(context.labels(spec.quantity), pretty_unit(quantity.unit));
-  main.series.push_back(make_series("", pick(temperature.values, order), pick(quantity.values, order),
-                                    LineStyle::solid, Marker::circle));
+  main.series.push_back(
+      make_series("", pick(temperature.values, order), pick(quantity.values, order), LineStyle::solid, Marker::circle));
   if (const auto* reference = member(context.result, spec.reference); reference != nullptr && number_of(*reference)) {
     main.references.push_back({ReferenceLine::Direction::horizontal, *number_of(*reference),
                                context.labels(spec.reference_label), "#555555"});
@@ -72,15 +71,14 @@ std::vector<ReportPlot> temperature_plots(const PlotContext& context, const Temp
 }
 
 const bool bias_registered = register_plots("bias_temperature", [](const PlotContext& context) {
-  return temperature_plots(context, {"runs", "bias", "room_temperature_bias", "ui.room_temperature",
-                                     "bias_temperature",
+  return temperature_plots(context, {"runs", "bias", "room_temperature_bias", "ui.room_temperature", "bias_temperature",
                                      "GJB 2426A-2004 5.12.4, eq. (22)"});
 });
 
 const bool scale_factor_registered = register_plots("scale_factor_temperature", [](const PlotContext& context) {
-  return temperature_plots(context, {"test_temperatures", "scale_factor", "reference_scale_factor",
-                                     "ui.reference_temperature",
-                                     "scale_factor_temperature", "GJB 2426A-2004 5.8.5, eq. (13)"});
+  return temperature_plots(context,
+                           {"test_temperatures", "scale_factor", "reference_scale_factor", "ui.reference_temperature",
+                            "scale_factor_temperature", "GJB 2426A-2004 5.8.5, eq. (13)"});
 });
 
 }  // namespace

@@ -27,8 +27,8 @@ std::vector<ReportPlot> criterion_plots(const PlotContext& context, const char* 
     panel.series.push_back(make_series(branch.value("name", ""), input.values, percent, LineStyle::solid,
                                        shapes[index++ % std::size(shapes)]));
     if (const auto* candidate = member(branch, "candidate"); candidate != nullptr && number_of(*candidate)) {
-      panel.references.push_back({ReferenceLine::Direction::vertical, *number_of(*candidate),
-                                  branch.value("name", ""), "#888888"});
+      panel.references.push_back(
+          {ReferenceLine::Direction::vertical, *number_of(*candidate), branch.value("name", ""), "#888888"});
     }
   }
   if (panel.series.empty()) return {};

@@ -55,6 +55,7 @@ std::vector<ReportPlot> generic_plots(const PlotContext& context) {
   if (!context.result.is_object()) return plots;
   for (const auto& [key, curve] : context.result.items()) {
     if (!curve.is_array() || curve.size() < 3 || !curve.front().is_object()) continue;
+    if (curve.front().contains("name") && curve.front().contains("pass")) continue;  // a checklist, tabulated
     auto keys = numeric_members(curve.front());
     if (keys.size() < 2) continue;
     // The abscissa: the first member named like one, else the first numeric member.

@@ -144,6 +144,74 @@ def bias(
 ) -> BiasResult:
     """Bias (GJB 2426A-2004 5.12.1 eq. 19), bias stability (5.12.2 eq. 20), random walk (5.12.5.4.1 eqs. 23-24)."""
 
+class MaximumInputRateResult(Result):
+    """GJB 2426A-2004 5.9."""
+
+    maximum_input_rate: Figure
+    nonlinearity: Figure  # ppm
+    nonlinearity_limit: Figure  # ppm
+
+def maximum_input_rate(
+    rate: ArrayLike, output: ArrayLike, *, nonlinearity_limit_ppm: float, rate_unit: str = "deg/s", output_unit: str = "1"
+) -> MaximumInputRateResult:
+    """Maximum input rate meeting the nonlinearity requirement: GJB 2426A-2004 5.9 (eqs. 1-9 per range)."""
+
+class ScaleFactorRepeatabilityResult(Result):
+    """GJB 2426A-2004 5.8.4, eq. (12)."""
+
+    scale_factor_repeatability: Figure  # ppm
+
+def scale_factor_repeatability(scale_factors: ArrayLike, *, unit: str = "1", minimum_runs: int = 6) -> ScaleFactorRepeatabilityResult:
+    """Scale factor repeatability Kr: GJB 2426A-2004 5.8.4, eq. (12)."""
+
+class BiasRepeatabilityResult(Result):
+    """GJB 2426A-2004 5.12.3, eq. (21)."""
+
+    bias_repeatability: Figure  # deg/h
+
+def bias_repeatability(biases_deg_h: ArrayLike) -> BiasRepeatabilityResult:
+    """Bias repeatability Br: GJB 2426A-2004 5.12.3, eq. (21)."""
+
+class BiasTemperatureSensitivityResult(Result):
+    """GJB 2426A-2004 5.12.4, eq. (22)."""
+
+    bias_temperature_sensitivity: Figure  # deg/h/degC
+
+def bias_temperature_sensitivity(
+    temperature_degC: ArrayLike, bias_deg_h: ArrayLike, *, room_temperature_degC: Optional[float] = None
+) -> BiasTemperatureSensitivityResult:
+    """Bias temperature sensitivity Bt: GJB 2426A-2004 5.12.4, eq. (22)."""
+
+class BandwidthResult(Result):
+    """GJB 2426A-2004 5.13-5.14, eqs. (32)-(46)."""
+
+    bandwidth: Figure  # Hz
+    delay: Figure  # s
+    dc_gain: Figure
+    time_constant: Figure  # s
+    bode: list[Record]
+
+def bandwidth_and_delay(
+    frequency_hz: ArrayLike, gain: ArrayLike, phase_deg: ArrayLike, *, minimum_frequencies: int = 10
+) -> BandwidthResult:
+    """Bandwidth (GJB 2426A-2004 5.13, eqs. 32-41) and output delay (5.14, eqs. 42-46)."""
+
+class InputAxisMisalignmentResult(Result):
+    """GJB 2426A-2004 5.15, eqs. (47)-(50)."""
+
+    misalignment: Figure  # arcsec
+
+def input_axis_misalignment(
+    output_positive: ArrayLike,
+    output_negative: ArrayLike,
+    *,
+    scale_factor: float,
+    rate: float,
+    rate_unit: str = "deg/s",
+    output_unit: str = "1",
+) -> InputAxisMisalignmentResult:
+    """Input-axis misalignment from 2 or 4 positions: GJB 2426A-2004 5.15, eqs. (47)-(50)."""
+
 # allan (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C, NIST SP 1065) ----------------------
 
 class AllanResult(Result):

@@ -6,7 +6,8 @@
 // campaign's results plus "truth_check": [{"procedure", "quantity", "true", "expected",
 // "measured", "unit", "tolerance", "within", "basis"}], within meaning |measured − expected| <=
 // tolerance with expected = true + the predicted systematic (truth.json), and "not_checked": the
-// true parameters no plan step reports) and DIR/report.txt.
+// true parameters no plan step reports), DIR/report.txt and the HTML test report DIR/report.html
+// (report/report.h).
 #pragma once
 
 #include <string>
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/progress.h"
+#include "inertest/report/report.h"
 
 namespace inertest {
 
@@ -21,6 +23,8 @@ struct DemoOptions {
   ProgressCallback progress;
   // The simulation plan; empty: the built-in demo plan (examples/demo/simulation.toml).
   std::string simulation_plan;
+  // Language and run date of DIR/report.html.
+  report::ReportOptions report;
 };
 
 struct DemoSummary {
@@ -28,6 +32,7 @@ struct DemoSummary {
   std::string report;
   std::string results_path;
   std::string report_path;
+  std::string html_report_path;  // DIR/report.html
   bool all_within = false;
 };
 

@@ -89,14 +89,16 @@ void generate_static(campaign::PlanTable& test, const std::string& name, Lab& la
                        4.0 * noise_of_record_mean_deg_s(lab.gyro, seconds) * kDegHourPerDegSecond,
                        fmt::format("4 sigma of the mean of a {} s record", seconds)});
   // Bias stability (eq. 20) at each smoothing time: the expected standard deviation of the n window
-  // means (lab.h, expected_window_sd_deg_s); its estimator's relative 1-sigma is 1/√(2(n − 1)).
+  // means (lab.h, expected_window_sd_deg_s); its estimator's 1-sigma from their autocovariance
+  // (window_sd_sigma_deg_s), about s/√(2(n − 1)) for white noise.
   std::string smoothing_list;
   for (std::size_t i = 0; i < smoothing.size(); ++i) {
     const double windows = std::floor(seconds / smoothing[i] + 1e-9);
     const double expected = expected_window_sd_deg_s(lab.gyro, smoothing[i], windows) * kDegHourPerDegSecond;
     lab.truth.push_back({name, fmt::format("bias stability ({} s)", smoothing[i]), fmt::format("/bias_stability/{}", i),
-                         expected, "deg/h", 4.0 * expected / std::sqrt(2.0 * (windows - 1.0)),
-                         fmt::format("expected sd of {} window means; 4 sigma = 4/sqrt(2(n-1)) relative", windows)});
+                         expected, "deg/h", 4.0 * window_sd_sigma_deg_s(lab.gyro, smoothing[i], windows) * kDegHourPerDegSecond,
+                         fmt::format("expected sd of {} window means; 4 sigma of the sample sd from the window means' "
+                                     "autocovariance", windows)});
     if (i > 0) smoothing_list += ", ";
     smoothing_list += exact(smoothing[i]);
   }

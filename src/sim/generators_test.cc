@@ -177,6 +177,18 @@ TEST(SimStatistics, MeanAndWindowNoiseOfPureAngleRandomWalk) {
   EXPECT_NEAR_RELATIVE(noise_of_record_mean_deg_s(walk, 30.0), std::sqrt(k * k * 30.0 / 3.0), 1e-9);
 }
 
+TEST(SimStatistics, WindowSdSigmaOfWhiteNoiseIsTheTextbookOne) {
+  GyroParameters gyro;
+  gyro.scale_factor = 1e12;
+  gyro.angle_random_walk_deg_rt_h = 0.06;  // 0.001 deg/√s
+  const double s = 0.001 / std::sqrt(4.0);
+  // Var(s²) = 2σ⁴/(n − 1) for white noise: sd(s) = s/√(2(n − 1)); the autocovariance form, centred
+  // on the grand mean (γ̄ = σ²/n), gives Var(s²) = (2/n)·σ⁴·(1 − 1/n), sd(s) = s·√(n − 1)/(√2·n): the
+  // two agree to O(1/n).
+  EXPECT_NEAR_RELATIVE(window_sd_sigma_deg_s(gyro, 4.0, 200.0), s / std::sqrt(2.0 * 199.0), 2.0 / 200.0);
+  EXPECT_NEAR_RELATIVE(window_sd_sigma_deg_s(gyro, 4.0, 200.0), s * std::sqrt(199.0) / (std::sqrt(2.0) * 200.0), 1e-9);
+}
+
 TEST(SimStatistics, SampleSdBoundIsTheChiQuantile) {
   // χ²_5 at 1 − 3.17e-5 (one-sided 4 sigma) is 29.3 (tables); Wilson-Hilferty gives 29.1.
   EXPECT_NEAR(sample_sd_bound(1.0, 6.0, 4.0), std::sqrt(29.3 / 5.0), 0.02);

@@ -145,6 +145,46 @@ std::vector<std::vector<double>> interval_mean_covariance(const GyroParameters& 
   return cov;
 }
 
+double window_sd_sigma_deg_s(const GyroParameters& gyro, double tau, double windows) {
+  const NoiseParameters n = gyro.noise();
+  const auto count = static_cast<std::size_t>(windows);
+  const double pulse = constants::kDegree / std::abs(gyro.scale_factor);  // rad
+  const double counter = pulse * pulse / 12.0 / (tau * tau);              // (rad/s)² per remainder
+  // γ(k), rad²/s²: white parts at k = 0, the counter at k = 0 (two remainders) and k = 1 (one shared).
+  std::vector<double> gamma(count, 0.0);
+  gamma[0] = n.angle_random_walk * n.angle_random_walk / tau + 2.0 * n.quantization * n.quantization / (tau * tau) +
+             2.0 * counter;
+  if (count > 1) gamma[1] -= counter;
+  if (n.bias_instability > 0.0) {
+    const double ratio = std::pow(10.0, 1.0 / 3.0);
+    const double s2 = n.bias_instability * n.bias_instability * std::log(ratio) / constants::kPi;
+    for (double t = std::max(n.flicker_shortest_s, 1.0 / gyro.sample_rate_hz); t <= n.flicker_longest_s * 1.0001;
+         t *= ratio) {
+      const double x = tau / t;
+      gamma[0] += 2.0 * s2 * (x - 1.0 + std::exp(-x)) / (x * x);
+      const double edge = s2 * (1.0 - std::exp(-x)) * (1.0 - std::exp(-x)) / (x * x);
+      for (std::size_t k = 1; k < count; ++k) {
+        const double term = edge * std::exp(-static_cast<double>(k - 1) * x);
+        gamma[k] += term;
+      }
+    }
+  }
+  // The sample variance is about the record's mean, which removes the covariance every pair of
+  // windows shares (the slow flicker that is constant over the record): centre γ on its mean over
+  // all pairs, γ̄ = (1/n)·[γ(0) + 2·Σ(1 − k/n)·γ(k)], the variance of the grand mean.
+  double mean = gamma[0];
+  for (std::size_t k = 1; k < count; ++k) mean += 2.0 * (1.0 - static_cast<double>(k) / windows) * gamma[k];
+  mean /= windows;
+  double sum = (gamma[0] - mean) * (gamma[0] - mean);
+  for (std::size_t k = 1; k < count; ++k) {
+    sum += 2.0 * (1.0 - static_cast<double>(k) / windows) * (gamma[k] - mean) * (gamma[k] - mean);
+  }
+  const double walk = windows * n.rate_random_walk * n.rate_random_walk * tau / 6.0;  // E[s²] of the random walk
+  const double variance_of_s2 = 2.0 / windows * sum + walk * walk;
+  const double s = expected_window_sd_deg_s(gyro, tau, windows) * constants::kDegree;
+  return std::sqrt(variance_of_s2) / (2.0 * s) / constants::kDegree;
+}
+
 double sample_sd_bound(double sigma, double count, double z) {
   // Wilson & Hilferty (1931): χ²_k quantile ≈ k·(1 − 2/(9k) + z·√(2/(9k)))³.
   const double k = count - 1.0;

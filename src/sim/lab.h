@@ -106,6 +106,14 @@ std::vector<std::vector<double>> interval_mean_covariance(const GyroParameters& 
                                                           const std::vector<std::array<double, 2>>& intervals,
                                                           double t0);
 
+// 1-sigma (deg/s) of the sample standard deviation s of n consecutive τ-window means (eq. 20): for
+// the stationary noise Var(s²) ≈ (2/n)·Σ_k (1 − |k|/n)·(γ(k) − γ̄)² with γ the autocovariance of the
+// window means (the flicker's Gauss-Markov processes and the pulse counter's shared remainder, −1/12
+// pulse² between neighbours, correlate them) and γ̄ its mean over all pairs (what the record's mean
+// removes), plus the random walk's part of s² taken as uncertain by its
+// whole size; sd(s) = sd(s²)/(2s). For white noise this is s/√(2n), the large-n s/√(2(n − 1)).
+double window_sd_sigma_deg_s(const GyroParameters& gyro, double tau_s, double windows);
+
 // Upper bound, exceeded with probability about that of a z-sigma normal deviate, of the sample
 // standard deviation of `count` independent normal errors of standard deviation sigma: the
 // chi-squared quantile by the Wilson-Hilferty approximation. A sample standard deviation of

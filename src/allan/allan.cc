@@ -86,6 +86,7 @@ void identify_noise(AllanResult& result) {
   compute_bounds(result);
   result.noise = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit);
   result.slopes = read_noise_slopes(result.tau_s, basis->values, basis->edf, result.input_unit);
+  result.warnings.insert(result.warnings.end(), result.slopes->warnings.begin(), result.slopes->warnings.end());
 }
 
 AllanResult assemble(std::size_t sample_count, double mean, const std::vector<AllanSums>& sums,
@@ -193,7 +194,8 @@ nlohmann::json AllanResult::to_json() const {
   for (const auto& [estimator, curve] : curves) {
     json[std::string(estimator_name(estimator))] = {{"unit", curve.unit},     {"values", curve.values},
                                                     {"lower", curve.lower},   {"upper", curve.upper},
-                                                    {"edf", curve.edf},       {"terms", curve.terms}};
+                                                    {"edf", curve.edf},       {"terms", curve.terms},
+                                                    {"edf_method", std::string(edf_method(estimator))}};
   }
   if (noise) {
     json["noise"] = noise->to_json(input_unit);
@@ -230,9 +232,12 @@ std::string AllanResult::report() const {
   }
   if (slopes) {
     text += "Slope read-off:\n";
-    text += line("angle random walk N", slopes->angle_random_walk);
-    text += line("bias instability B", slopes->bias_instability);
-    text += line("rate random walk K", slopes->rate_random_walk);
+    const auto reading = [&](const std::string& name, const SlopeReading& r) {
+      return r.figure ? line(name, *r.figure) : fmt::format("  {:<24} not identified (no region of its slope)\n", name);
+    };
+    text += reading("angle random walk N", slopes->angle_random_walk);
+    text += reading("bias instability B", slopes->bias_instability);
+    text += reading("rate random walk K", slopes->rate_random_walk);
   }
   for (const std::string& warning : warnings) text += "warning: " + warning + "\n";
   return text;

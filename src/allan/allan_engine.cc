@@ -99,18 +99,52 @@ constexpr std::size_t kLanes = 4;
 
 double lane_total(const double (&lanes)[kLanes]) { return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]); }
 
-// The MDEV window over a run: w_k = w_{k-1} + h_k for k in the run, returns sum w_k^2 and leaves
-// the last w in `window`. The window is a running sum: its rounding error grows like sqrt(N) ulp of
-// w, about 1e-12 relative for N = 1e9, far inside the 1e-9 the estimators are held to.
-double mdev_window_squares(const double* h, std::size_t length, double& window) {
-  double total = 0.0;
-  double w = window;
-  for (std::size_t i = 0; i < length; ++i) {
-    w += h[i];
-    total += w * w;
+// Sum of values[0..n) in kLanes independent lanes (vectorisable).
+double lane_sum(const double* __restrict values, std::size_t n) {
+  double lanes[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) lanes[l] += values[i + l];
   }
-  window = w;
-  return total;
+  for (; i < n; ++i) lanes[0] += values[i];
+  return lane_total(lanes);
+}
+
+// The MDEV window over a run: w_k = w_{k-1} + h_k for k in the run, returns sum w_k^2 and leaves
+// the last w in `window`. The recurrence is a chain of dependent additions (one FP-add latency per
+// term); the run is cut into kLanes chunks whose starting windows come from the chunk sums, so the
+// chains advance side by side. Each w is still a sum of the same h: the rounding differs from the
+// single chain by a few ulp of w, far inside the 1e-9 the estimators are held to.
+double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  constexpr std::size_t kMinimumChunk = 64;
+  const std::size_t chunk = length / kLanes;
+  if (chunk < kMinimumChunk) {
+    double total = 0.0;
+    double w = window;
+    for (std::size_t i = 0; i < length; ++i) {
+      w += h[i];
+      total += w * w;
+    }
+    window = w;
+    return total;
+  }
+  double w[kLanes];
+  w[0] = window;
+  for (std::size_t c = 1; c < kLanes; ++c) w[c] = w[c - 1] + lane_sum(h + (c - 1) * chunk, chunk);
+  double squares[kLanes] = {};
+  for (std::size_t i = 0; i < chunk; ++i) {
+    for (std::size_t c = 0; c < kLanes; ++c) {
+      w[c] += h[c * chunk + i];
+      squares[c] += w[c] * w[c];
+    }
+  }
+  double last = w[kLanes - 1];
+  for (std::size_t i = kLanes * chunk; i < length; ++i) {
+    last += h[i];
+    squares[kLanes - 1] += last * last;
+  }
+  window = last;
+  return lane_total(squares);
 }
 
 }  // namespace
@@ -325,11 +359,19 @@ struct AllanEngine::State {
       // Runs of at most the scratch length (the second pass has longer windows than a block).
       const std::size_t piece_end = std::min(k1, k + h_buffer.size());
       for_each_run<4>(store, {lagged(0), lagged(m), lagged(2 * m), lagged(3 * m)}, k, piece_end, 1,
-                      [&](const auto& p, std::size_t length) { third_run(f, p, length, h_buffer.data()); });
+                      [&](const auto& p, std::size_t length) {
+                        if (mdev) {
+                          third_run<true>(f, p, length, h_buffer.data());
+                        } else {
+                          third_run<false>(f, p, length, h_buffer.data());
+                        }
+                      });
       k = piece_end;
     }
   }
 
+  // Without MDEV the h_k are not stored: one stream less through the cache.
+  template <bool kWithMdev>
   void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t length, double* __restrict h) {
     double lanes_a[kLanes] = {};
     double lanes_h[kLanes] = {};
@@ -343,7 +385,7 @@ struct AllanEngine::State {
       for (std::size_t l = 0; l < kLanes; ++l) {
         const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
         const double hk = a - (p1[i + l] - 2.0 * p2[i + l] + p3[i + l]);
-        h[i + l] = hk;
+        if constexpr (kWithMdev) h[i + l] = hk;
         lanes_a[l] += a * a;
         lanes_h[l] += hk * hk;
       }
@@ -351,13 +393,13 @@ struct AllanEngine::State {
     for (; i < length; ++i) {
       const double a = p0[i] - 2.0 * p1[i] + p2[i];
       const double hk = a - (p1[i] - 2.0 * p2[i] + p3[i]);
-      h[i] = hk;
+      if constexpr (kWithMdev) h[i] = hk;
       lanes_a[0] += a * a;
       lanes_h[0] += hk * hk;
     }
     f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes_a));
     f.sums[index_of(Estimator::kOhdev)].add(lane_total(lanes_h));
-    if (mdev) f.sums[index_of(Estimator::kMdev)].add(mdev_window_squares(h, length, f.window));
+    if constexpr (kWithMdev) f.sums[index_of(Estimator::kMdev)].add(mdev_window_squares(h, length, f.window));
   }
 
   // ADEV (second differences) or HDEV (third differences) at k = first, first + m, ... (multiples of m).

@@ -22,6 +22,16 @@
 // first pass. Overlapping estimators need the phase at every offset, so decimated data would not
 // give the same sums; re-reading costs about 5 (N - m) samples per deferred factor, and at most a
 // few octave factors exceed any limit above N/2 phase values.
+//
+// Speed: each term is a few flops on 3 or 4 phase streams. For factors whose lags exceed what the
+// caches hold, every distinct lag is a stream from DRAM: on an octave grid OADEV reads lags m and
+// 2m, and 2m is the next factor's m (one new stream per factor), while third differences add 3m
+// (two per factor): MDEV/HDEV/OHDEV move about twice the data of OADEV per tau, and a second
+// thread gains little once DRAM bandwidth is the limit (the power-of-two lags put at most five
+// streams in one L1 set, within its eight ways, so set conflicts are not the cause). Two compute
+// costs came on top and are gone: the MDEV window w_k = w_{k-1} + h_k was one chain of dependent
+// additions (an FP-add latency per term; it now runs as four chains over quarters of each run), and
+// the h_k were stored even without MDEV.
 #pragma once
 
 #include <array>

@@ -1,7 +1,11 @@
 #include "inertest/allan/allan.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "inertest/allan/tau_grid.h"
@@ -86,6 +90,7 @@ void identify_noise(AllanResult& result) {
   compute_bounds(result);
   result.noise = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit);
   result.slopes = read_noise_slopes(result.tau_s, basis->values, basis->edf, result.input_unit);
+  result.warnings.insert(result.warnings.end(), result.slopes->warnings.begin(), result.slopes->warnings.end());
 }
 
 AllanResult assemble(std::size_t sample_count, double mean, const std::vector<AllanSums>& sums,
@@ -120,7 +125,52 @@ AllanEngineOptions engine_options(std::vector<std::size_t> factors, const AllanO
   engine.averaging_factors = std::move(factors);
   engine.estimators = options.estimators;
   engine.worker_count = options.worker_count;
+  engine.ring_capacity_limit = options.ring_capacity_limit;
   return engine;
+}
+
+// Bytes of the process besides the ring: the read buffers (4 MB of bytes, up to 8 MB of samples),
+// the engine's scratch, the code and libraries.
+constexpr std::size_t kMemoryReserveBytes = 32u << 20;
+// Below this the ring is never limited (the fixed costs of the process dominate anyway).
+constexpr std::size_t kSmallestRingLimitBytes = 64u << 20;
+
+// The ring limit that keeps the peak resident memory within 1.5 times the raw binary size of the
+// record (issue bound): 8 bytes per sample for text, the file size for f64 and f32. Text records
+// cannot be read at random, and their 8 (N+1)-byte ring is within the bound anyway: no limit.
+std::size_t automatic_ring_limit(const RateRecordSource& source) {
+  if (source.format == RateRecordFormat::kCsv) return 0;
+  const auto raw = static_cast<std::size_t>(std::filesystem::file_size(source.path));
+  const std::size_t budget = raw + raw / 2 > kMemoryReserveBytes ? raw + raw / 2 - kMemoryReserveBytes : 0;
+  return std::max(budget, kSmallestRingLimitBytes) / sizeof(double);
+}
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+
+// Random access to a raw little-endian f64/f32 record, for the engine's second pass.
+SampleReader binary_sample_reader(const RateRecordSource& source) {
+  const std::size_t size = source.format == RateRecordFormat::kFloat64 ? 8 : 4;
+  std::shared_ptr<std::FILE> file(std::fopen(source.path.c_str(), "rb"), FileCloser{});
+  if (!file) throw Error(SourceLocation{source.path, 0, 0}, std::string("cannot open: ") + std::strerror(errno));
+  auto bytes = std::make_shared<std::vector<char>>();
+  return [file, bytes, size, path = source.path](std::size_t first, std::span<double> out) {
+    bytes->resize(out.size() * size);
+    if (fseeko(file.get(), static_cast<off_t>(first * size), SEEK_SET) != 0 ||
+        std::fread(bytes->data(), 1, bytes->size(), file.get()) != bytes->size()) {
+      throw Error(SourceLocation{path, 0, 0}, "read error in the second pass (did the file change?)");
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      if (size == 8) {
+        std::memcpy(&out[i], bytes->data() + i * 8, 8);
+      } else {
+        float narrow = 0.0F;
+        std::memcpy(&narrow, bytes->data() + i * 4, 4);
+        out[i] = static_cast<double>(narrow);
+      }
+    }
+  };
 }
 
 }  // namespace
@@ -146,7 +196,10 @@ AllanResult allan_variance(std::span<const double> rate, const AllanOptions& opt
   const double mean = compensated_sum(rate) / static_cast<double>(rate.size());
   AllanEngine engine(rate.size(), mean, engine_options(std::move(factors), options));
   engine.push(rate);
-  return assemble(rate.size(), mean, engine.finish(), options);
+  const auto sums = engine.finish([rate](std::size_t first, std::span<double> out) {
+    std::copy_n(rate.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
+  });
+  return assemble(rate.size(), mean, sums, options);
 }
 
 AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
@@ -158,7 +211,9 @@ AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOp
   });
   const double mean = sum.value() / static_cast<double>(count);
   auto factors = averaging_factors_for(count, options);
-  AllanEngine engine(count, mean, engine_options(std::move(factors), options));
+  AllanEngineOptions engine_setup = engine_options(std::move(factors), options);
+  if (engine_setup.ring_capacity_limit == 0) engine_setup.ring_capacity_limit = automatic_ring_limit(source);
+  AllanEngine engine(count, mean, std::move(engine_setup));
   std::size_t pushed = 0;
   std::size_t reported = 0;
   const std::size_t again = read_rate_record(source, [&](std::span<const double> samples) {
@@ -170,7 +225,12 @@ AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOp
     }
   });
   if (again != count) throw Error(SourceLocation{source.path, 0, 0}, "the file changed while it was read");
-  const auto sums = engine.finish();
+  SampleReader reader;
+  if (engine.deferred_factor_count() > 0) {
+    if (progress) progress("Allan variance (largest taus, second pass)", 1.0);
+    reader = binary_sample_reader(source);
+  }
+  const auto sums = engine.finish(reader);
   if (progress) progress("Allan variance", 1.0);
   return assemble(count, mean, sums, options);
 }
@@ -193,7 +253,8 @@ nlohmann::json AllanResult::to_json() const {
   for (const auto& [estimator, curve] : curves) {
     json[std::string(estimator_name(estimator))] = {{"unit", curve.unit},     {"values", curve.values},
                                                     {"lower", curve.lower},   {"upper", curve.upper},
-                                                    {"edf", curve.edf},       {"terms", curve.terms}};
+                                                    {"edf", curve.edf},       {"terms", curve.terms},
+                                                    {"edf_method", std::string(edf_method(estimator))}};
   }
   if (noise) {
     json["noise"] = noise->to_json(input_unit);
@@ -230,9 +291,12 @@ std::string AllanResult::report() const {
   }
   if (slopes) {
     text += "Slope read-off:\n";
-    text += line("angle random walk N", slopes->angle_random_walk);
-    text += line("bias instability B", slopes->bias_instability);
-    text += line("rate random walk K", slopes->rate_random_walk);
+    const auto reading = [&](const std::string& name, const SlopeReading& r) {
+      return r.figure ? line(name, *r.figure) : fmt::format("  {:<24} not identified (no region of its slope)\n", name);
+    };
+    text += reading("angle random walk N", slopes->angle_random_walk);
+    text += reading("bias instability B", slopes->bias_instability);
+    text += reading("rate random walk K", slopes->rate_random_walk);
   }
   for (const std::string& warning : warnings) text += "warning: " + warning + "\n";
   return text;

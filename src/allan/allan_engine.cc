@@ -13,23 +13,79 @@ namespace {
 
 constexpr std::size_t index_of(Estimator e) { return static_cast<std::size_t>(e); }
 
-// A position in the ring buffer of the phase that moves by whole steps (step < capacity).
-class Cursor {
+// Where the phase values X_j live: the ring of the streaming pass (X_j at slot j mod capacity) or,
+// for the factors of the second pass, a few windows [start, start + values.size()) of the phase.
+class PhaseStore {
  public:
-  Cursor(const double* ring, std::size_t capacity, std::size_t phase_index)
-      : ring_(ring), capacity_(capacity), slot_(phase_index % capacity) {}
-  double operator*() const { return ring_[slot_]; }
-  void advance(std::size_t step) {
-    slot_ += step;
-    if (slot_ >= capacity_) slot_ -= capacity_;
+  struct Window {
+    std::size_t start = 0;
+    std::vector<double> values;
+  };
+
+  PhaseStore(const double* ring, std::size_t capacity) : ring_(ring), capacity_(capacity) {}
+  explicit PhaseStore(const std::vector<Window>& windows) : windows_(&windows) {}
+
+  // A pointer to X_index; `forward` values X_index, X_index+1, ... and `backward` values X_index,
+  // X_index-1, ... are contiguous from it.
+  const double* locate(std::size_t index, std::size_t& forward, std::size_t& backward) const {
+    if (windows_ == nullptr) {
+      const std::size_t slot = index % capacity_;
+      forward = capacity_ - slot;
+      backward = slot + 1;
+      return ring_ + slot;
+    }
+    for (const Window& w : *windows_) {
+      if (index >= w.start && index < w.start + w.values.size()) {
+        forward = w.start + w.values.size() - index;
+        backward = index - w.start + 1;
+        return w.values.data() + (index - w.start);
+      }
+    }
+    throw Error("internal: phase index " + std::to_string(index) + " is in no window");
   }
-  void retreat() { slot_ = slot_ == 0 ? capacity_ - 1 : slot_ - 1; }
+
+  double at(std::size_t index) const {
+    std::size_t forward = 0;
+    std::size_t backward = 0;
+    return *locate(index, forward, backward);
+  }
 
  private:
-  const double* ring_;
-  std::size_t capacity_;
-  std::size_t slot_;
+  const double* ring_ = nullptr;
+  std::size_t capacity_ = 0;
+  const std::vector<Window>* windows_ = nullptr;
 };
+
+// One stream of phase values along the anchors k: X_{k - lag}, or mirrored X_{base - k}.
+struct Stream {
+  std::size_t offset = 0;
+  bool mirrored = false;
+  std::size_t index(std::size_t k) const { return mirrored ? offset - k : k - offset; }
+};
+
+constexpr Stream lagged(std::size_t lag) { return {lag, false}; }
+constexpr Stream mirrored(std::size_t base) { return {base, true}; }
+
+// Calls kernel(p, count) over the anchors k = k0, k0 + step, ... < k1 in runs where every stream
+// is contiguous in the store: p[s][i * step] is stream s at the i-th anchor of the run, or
+// p[s][-i] for a mirrored stream (step 1).
+template <std::size_t S, typename Kernel>
+void for_each_run(const PhaseStore& store, const std::array<Stream, S>& streams, std::size_t k0, std::size_t k1,
+                  std::size_t step, Kernel&& kernel) {
+  std::size_t k = k0;
+  while (k < k1) {
+    std::size_t count = (k1 - k + step - 1) / step;
+    std::array<const double*, S> p{};
+    for (std::size_t s = 0; s < S; ++s) {
+      std::size_t forward = 0;
+      std::size_t backward = 0;
+      p[s] = store.locate(streams[s].index(k), forward, backward);
+      count = std::min(count, streams[s].mirrored ? backward : (forward + step - 1) / step);
+    }
+    kernel(p, count);
+    k += count * step;
+  }
+}
 
 // Per averaging factor: the running MDEV window and the compensated sums of squares.
 struct FactorState {
@@ -42,6 +98,54 @@ struct FactorState {
 constexpr std::size_t kLanes = 4;
 
 double lane_total(const double (&lanes)[kLanes]) { return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]); }
+
+// Sum of values[0..n) in kLanes independent lanes (vectorisable).
+double lane_sum(const double* __restrict values, std::size_t n) {
+  double lanes[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) lanes[l] += values[i + l];
+  }
+  for (; i < n; ++i) lanes[0] += values[i];
+  return lane_total(lanes);
+}
+
+// The MDEV window over a run: w_k = w_{k-1} + h_k for k in the run, returns sum w_k^2 and leaves
+// the last w in `window`. The recurrence is a chain of dependent additions (one FP-add latency per
+// term); the run is cut into kLanes chunks whose starting windows come from the chunk sums, so the
+// chains advance side by side. Each w is still a sum of the same h: the rounding differs from the
+// single chain by a few ulp of w, far inside the 1e-9 the estimators are held to.
+double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  constexpr std::size_t kMinimumChunk = 64;
+  const std::size_t chunk = length / kLanes;
+  if (chunk < kMinimumChunk) {
+    double total = 0.0;
+    double w = window;
+    for (std::size_t i = 0; i < length; ++i) {
+      w += h[i];
+      total += w * w;
+    }
+    window = w;
+    return total;
+  }
+  double w[kLanes];
+  w[0] = window;
+  for (std::size_t c = 1; c < kLanes; ++c) w[c] = w[c - 1] + lane_sum(h + (c - 1) * chunk, chunk);
+  double squares[kLanes] = {};
+  for (std::size_t i = 0; i < chunk; ++i) {
+    for (std::size_t c = 0; c < kLanes; ++c) {
+      w[c] += h[c * chunk + i];
+      squares[c] += w[c] * w[c];
+    }
+  }
+  double last = w[kLanes - 1];
+  for (std::size_t i = kLanes * chunk; i < length; ++i) {
+    last += h[i];
+    squares[kLanes - 1] += last * last;
+  }
+  window = last;
+  return lane_total(squares);
+}
 
 }  // namespace
 
@@ -119,6 +223,12 @@ struct AllanEngine::State {
     std::size_t begin = 0;  // phase indices [begin, end)
     std::size_t end = 0;
   };
+  // The phase X_j = sum + compensation at phase index j (the Neumaier state after it).
+  struct Checkpoint {
+    std::size_t index = 0;
+    double sum = 0.0;
+    double compensation = 0.0;
+  };
 
   std::size_t sample_count = 0;
   double offset = 0.0;
@@ -135,8 +245,10 @@ struct AllanEngine::State {
   std::size_t dispatched = 0;  // phase indices below this were handed to the workers
   double phase_sum = 0.0;      // Neumaier running sum of (y - offset): X = phase_sum + phase_compensation
   double phase_compensation = 0.0;
+  std::vector<Checkpoint> checkpoints;  // one per block, for the second pass
 
-  std::vector<FactorState> factors;
+  std::vector<FactorState> factors;   // done in the streaming pass, from the ring
+  std::vector<FactorState> deferred;  // their span exceeds the ring: done in the second pass
   std::vector<std::vector<double>> scratch;  // per worker, block_size values of h_k
 
   std::vector<std::thread> workers;
@@ -148,7 +260,7 @@ struct AllanEngine::State {
   bool stopping = false;
   Job job;
 
-  double x(std::size_t k) const { return ring[k % capacity]; }
+  std::size_t span_of(std::size_t m) const { return (third ? 3 : 2) * m; }
 
   void write_phase(double value) {
     ring[written % capacity] = value;
@@ -156,34 +268,35 @@ struct AllanEngine::State {
   }
 
   void run(const Job& work, std::size_t worker) {
+    const PhaseStore store(ring.data(), capacity);
     for (std::size_t i = worker; i < factors.size(); i += options.worker_count) {
       if (work.kind == JobKind::kBlock) {
-        process_block(factors[i], work.begin, work.end, scratch[worker]);
+        process_block(factors[i], work.begin, work.end, store, scratch[worker]);
       } else {
-        process_end(factors[i]);
+        process_end(factors[i], sample_count + 1 - factors[i].m, sample_count, store);
       }
     }
   }
 
   // Terms anchored at phase indices k in [k0, k1): every term whose largest phase index is k.
-  void process_block(FactorState& f, std::size_t k0, std::size_t k1, std::vector<double>& h_buffer) {
+  void process_block(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store,
+                     std::vector<double>& h_buffer) {
     const std::size_t m = f.m;
-    const double* base = ring.data();
     if (totdev) {
       // NIST SP 1065 eq. (25), centres c = k - m in [1, m-1]: X*_{c-m} = 2X_0 - X_{2m-k}, X_0 = 0.
       const std::size_t lo = std::max(k0, m + 1);
       const std::size_t hi = std::min(k1, 2 * m);
       if (lo < hi) {
-        Cursor newest(base, capacity, lo), centre(base, capacity, lo - m), mirrored(base, capacity, 2 * m - lo);
-        double lanes[kLanes] = {};
-        for (std::size_t k = lo; k < hi; ++k) {
-          const double term = -*mirrored - 2.0 * *centre + *newest;
-          lanes[k % kLanes] += term * term;
-          newest.advance(1);
-          centre.advance(1);
-          mirrored.retreat();
-        }
-        f.reflected.add(lane_total(lanes));
+        double total = 0.0;
+        for_each_run<3>(store, {lagged(0), lagged(m), mirrored(2 * m)}, lo, hi, 1, [&](const auto& p, std::size_t n) {
+          double lanes[kLanes] = {};
+          for (std::size_t i = 0; i < n; ++i) {
+            const double term = -p[2][-static_cast<std::ptrdiff_t>(i)] - 2.0 * p[1][i] + p[0][i];
+            lanes[i % kLanes] += term * term;
+          }
+          total += lane_total(lanes);
+        });
+        f.reflected.add(total);
       }
     }
     if (third) {
@@ -191,59 +304,45 @@ struct AllanEngine::State {
       const std::size_t lo = std::max(k0, 2 * m);
       const std::size_t hi = std::min(k1, 3 * m);
       if (lo < hi) {
-        Cursor c0(base, capacity, lo), c1(base, capacity, lo - m), c2(base, capacity, lo - 2 * m);
-        double lanes[kLanes] = {};
-        for (std::size_t k = lo; k < hi; ++k) {
-          const double a = *c0 - 2.0 * *c1 + *c2;
-          lanes[k % kLanes] += a * a;
-          f.window += a;
-          if (k == 3 * m - 1) f.sums[index_of(Estimator::kMdev)].add(f.window * f.window);
-          c0.advance(1);
-          c1.advance(1);
-          c2.advance(1);
-        }
-        f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes));
+        double total = 0.0;
+        for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, lo, hi, 1, [&](const auto& p, std::size_t n) {
+          double lanes[kLanes] = {};
+          for (std::size_t i = 0; i < n; ++i) {
+            const double a = p[0][i] - 2.0 * p[1][i] + p[2][i];
+            lanes[i % kLanes] += a * a;
+            f.window += a;
+          }
+          total += lane_total(lanes);
+        });
+        f.sums[index_of(Estimator::kOadev)].add(total);
+        if (hi == 3 * m) f.sums[index_of(Estimator::kMdev)].add(f.window * f.window);  // w_{3m-1}
       }
-      sweep_third(f, std::max(k0, 3 * m), k1, h_buffer);
+      sweep_third(f, std::max(k0, 3 * m), k1, store, h_buffer);
     } else {
-      sweep_second(f, std::max(k0, 2 * m), k1);
+      sweep_second(f, std::max(k0, 2 * m), k1, store);
     }
-    if (adev) strided(f, Estimator::kAdev, 2 * m, k0, k1);
-    if (hdev) strided(f, Estimator::kHdev, 3 * m, k0, k1);
-  }
-
-  // Calls kernel(pointers, length) over [k0, k1) in pieces where no stream wraps around the ring;
-  // stream s reads X_{k - s m}.
-  template <std::size_t Streams, typename Kernel>
-  void for_each_piece(std::size_t m, std::size_t k0, std::size_t k1, Kernel&& kernel) {
-    std::size_t k = k0;
-    while (k < k1) {
-      std::size_t length = k1 - k;
-      std::array<const double*, Streams> p{};
-      for (std::size_t s = 0; s < Streams; ++s) {
-        const std::size_t slot = (k - s * m) % capacity;
-        p[s] = ring.data() + slot;
-        length = std::min(length, capacity - slot);
-      }
-      kernel(p, length);
-      k += length;
-    }
+    if (adev) strided(f, Estimator::kAdev, 2 * m, k0, k1, store);
+    if (hdev) strided(f, Estimator::kHdev, 3 * m, k0, k1, store);
   }
 
   // OADEV (and TOTDEV interior) terms a_k for k >= 2m when no third differences are needed.
-  void sweep_second(FactorState& f, std::size_t k0, std::size_t k1) {
+  void sweep_second(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store) {
     if (k0 >= k1) return;
-    for_each_piece<3>(f.m, k0, k1, [&](const std::array<const double*, 3>& p, std::size_t length) {
+    const std::size_t m = f.m;
+    for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, k0, k1, 1, [&](const auto& p, std::size_t length) {
+      const double* __restrict p0 = p[0];
+      const double* __restrict p1 = p[1];
+      const double* __restrict p2 = p[2];
       double lanes[kLanes] = {};
       std::size_t i = 0;
       for (; i + kLanes <= length; i += kLanes) {
         for (std::size_t l = 0; l < kLanes; ++l) {
-          const double a = p[0][i + l] - 2.0 * p[1][i + l] + p[2][i + l];
+          const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
           lanes[l] += a * a;
         }
       }
       for (; i < length; ++i) {
-        const double a = p[0][i] - 2.0 * p[1][i] + p[2][i];
+        const double a = p0[i] - 2.0 * p1[i] + p2[i];
         lanes[0] += a * a;
       }
       f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes));
@@ -251,107 +350,181 @@ struct AllanEngine::State {
   }
 
   // k >= 3m: a_k (OADEV), h_k = a_k - a_{k-m} (OHDEV), w_k = w_{k-1} + h_k (MDEV).
-  void sweep_third(FactorState& f, std::size_t k0, std::size_t k1, std::vector<double>& h_buffer) {
+  void sweep_third(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store,
+                   std::vector<double>& h_buffer) {
     if (k0 >= k1) return;
-    for_each_piece<4>(f.m, k0, k1, [&](const std::array<const double*, 4>& p, std::size_t length) {
-      double lanes_a[kLanes] = {};
-      double lanes_h[kLanes] = {};
-      // Restrict-qualified copies let the compiler vectorise across the lanes.
-      const double* __restrict p0 = p[0];
-      const double* __restrict p1 = p[1];
-      const double* __restrict p2 = p[2];
-      const double* __restrict p3 = p[3];
-      double* __restrict h = h_buffer.data();
-      std::size_t i = 0;
-      for (; i + kLanes <= length; i += kLanes) {
-        for (std::size_t l = 0; l < kLanes; ++l) {
-          const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
-          const double hk = a - (p1[i + l] - 2.0 * p2[i + l] + p3[i + l]);
-          h[i + l] = hk;
-          lanes_a[l] += a * a;
-          lanes_h[l] += hk * hk;
-        }
+    const std::size_t m = f.m;
+    std::size_t k = k0;
+    while (k < k1) {
+      // Runs of at most the scratch length (the second pass has longer windows than a block).
+      const std::size_t piece_end = std::min(k1, k + h_buffer.size());
+      for_each_run<4>(store, {lagged(0), lagged(m), lagged(2 * m), lagged(3 * m)}, k, piece_end, 1,
+                      [&](const auto& p, std::size_t length) {
+                        if (mdev) {
+                          third_run<true>(f, p, length, h_buffer.data());
+                        } else {
+                          third_run<false>(f, p, length, h_buffer.data());
+                        }
+                      });
+      k = piece_end;
+    }
+  }
+
+  // Without MDEV the h_k are not stored: one stream less through the cache.
+  template <bool kWithMdev>
+  void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t length, double* __restrict h) {
+    double lanes_a[kLanes] = {};
+    double lanes_h[kLanes] = {};
+    // Restrict-qualified copies let the compiler vectorise across the lanes.
+    const double* __restrict p0 = p[0];
+    const double* __restrict p1 = p[1];
+    const double* __restrict p2 = p[2];
+    const double* __restrict p3 = p[3];
+    std::size_t i = 0;
+    for (; i + kLanes <= length; i += kLanes) {
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
+        const double hk = a - (p1[i + l] - 2.0 * p2[i + l] + p3[i + l]);
+        if constexpr (kWithMdev) h[i + l] = hk;
+        lanes_a[l] += a * a;
+        lanes_h[l] += hk * hk;
       }
-      for (; i < length; ++i) {
-        const double a = p0[i] - 2.0 * p1[i] + p2[i];
-        const double hk = a - (p1[i] - 2.0 * p2[i] + p3[i]);
-        h[i] = hk;
-        lanes_a[0] += a * a;
-        lanes_h[0] += hk * hk;
-      }
-      f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes_a));
-      f.sums[index_of(Estimator::kOhdev)].add(lane_total(lanes_h));
-      if (mdev) {
-        // The window is a running sum: its rounding error grows like sqrt(N) ulp of w, about
-        // 1e-12 relative for N = 1e9, far inside the 1e-9 the estimators are held to.
-        double window = f.window;
-        double lanes_w[kLanes] = {};
-        std::size_t j = 0;
-        for (; j + kLanes <= length; j += kLanes) {
-          for (std::size_t l = 0; l < kLanes; ++l) {
-            window += h[j + l];
-            lanes_w[l] += window * window;
-          }
-        }
-        for (; j < length; ++j) {
-          window += h[j];
-          lanes_w[0] += window * window;
-        }
-        f.window = window;
-        f.sums[index_of(Estimator::kMdev)].add(lane_total(lanes_w));
-      }
-    });
+    }
+    for (; i < length; ++i) {
+      const double a = p0[i] - 2.0 * p1[i] + p2[i];
+      const double hk = a - (p1[i] - 2.0 * p2[i] + p3[i]);
+      if constexpr (kWithMdev) h[i] = hk;
+      lanes_a[0] += a * a;
+      lanes_h[0] += hk * hk;
+    }
+    f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes_a));
+    f.sums[index_of(Estimator::kOhdev)].add(lane_total(lanes_h));
+    if constexpr (kWithMdev) f.sums[index_of(Estimator::kMdev)].add(mdev_window_squares(h, length, f.window));
   }
 
   // ADEV (second differences) or HDEV (third differences) at k = first, first + m, ... (multiples of m).
-  void strided(FactorState& f, Estimator estimator, std::size_t first_anchor, std::size_t k0, std::size_t k1) {
+  void strided(FactorState& f, Estimator estimator, std::size_t first_anchor, std::size_t k0, std::size_t k1,
+               const PhaseStore& store) {
     const std::size_t m = f.m;
     std::size_t k = std::max(k0, first_anchor);
     k = (k + m - 1) / m * m;
     if (k >= k1) return;
-    const double* base = ring.data();
-    Cursor c0(base, capacity, k), c1(base, capacity, k - m), c2(base, capacity, k - 2 * m);
     double total = 0.0;
     if (estimator == Estimator::kAdev) {
-      for (; k < k1; k += m) {
-        const double a = *c0 - 2.0 * *c1 + *c2;
-        total += a * a;
-        c0.advance(m);
-        c1.advance(m);
-        c2.advance(m);
-      }
+      for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, k, k1, m, [&](const auto& p, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) {
+          const double a = p[0][i * m] - 2.0 * p[1][i * m] + p[2][i * m];
+          total += a * a;
+        }
+      });
     } else {
-      Cursor c3(base, capacity, k - 3 * m);
-      for (; k < k1; k += m) {
-        const double h = *c0 - 3.0 * *c1 + 3.0 * *c2 - *c3;
-        total += h * h;
-        c0.advance(m);
-        c1.advance(m);
-        c2.advance(m);
-        c3.advance(m);
-      }
+      for_each_run<4>(store, {lagged(0), lagged(m), lagged(2 * m), lagged(3 * m)}, k, k1, m,
+                      [&](const auto& p, std::size_t n) {
+                        for (std::size_t i = 0; i < n; ++i) {
+                          const double hk = p[0][i * m] - 3.0 * p[1][i * m] + 3.0 * p[2][i * m] - p[3][i * m];
+                          total += hk * hk;
+                        }
+                      });
     }
     f.sums[index_of(estimator)].add(total);
   }
 
-  // TOTDEV centres c in [N-m+1, N-1]: X*_{c+m} = 2X_N - X_{2N-c-m} (NIST SP 1065 eq. 25).
-  void process_end(FactorState& f) {
+  // TOTDEV centres c in [c0, c1) within [N-m+1, N-1]: X*_{c+m} = 2X_N - X_{2N-c-m} (NIST SP 1065 eq. 25).
+  void process_end(FactorState& f, std::size_t c0, std::size_t c1, const PhaseStore& store) {
     if (!totdev) return;
     const std::size_t n = sample_count;
     const std::size_t m = f.m;
-    if (m < 2) return;
-    const double* base = ring.data();
-    const double twice_last = 2.0 * x(n);
-    Cursor before(base, capacity, n + 1 - 2 * m), centre(base, capacity, n + 1 - m), mirrored(base, capacity, n - 1);
-    double lanes[kLanes] = {};
-    for (std::size_t c = n + 1 - m; c < n; ++c) {
-      const double term = *before - 2.0 * *centre + twice_last - *mirrored;
-      lanes[c % kLanes] += term * term;
-      before.advance(1);
-      centre.advance(1);
-      mirrored.retreat();
+    if (m < 2 || c0 >= c1) return;
+    const double twice_last = 2.0 * store.at(n);
+    double total = 0.0;
+    for_each_run<3>(store, {lagged(m), lagged(0), mirrored(2 * n - m)}, c0, c1, 1, [&](const auto& p, std::size_t len) {
+      double lanes[kLanes] = {};
+      for (std::size_t i = 0; i < len; ++i) {
+        const double term = p[0][i] - 2.0 * p[1][i] + twice_last - p[2][-static_cast<std::ptrdiff_t>(i)];
+        lanes[i % kLanes] += term * term;
+      }
+      total += lane_total(lanes);
+    });
+    f.reflected.add(total);
+  }
+
+  // Fills each window with X_j, j in [start, start + size), integrating the samples again from the
+  // checkpoint at or before its start with the very operations of push(): the same values.
+  void fill_windows(std::vector<PhaseStore::Window>& windows, const SampleReader& reader,
+                    std::vector<double>& samples) const {
+    for (PhaseStore::Window& w : windows) {
+      auto checkpoint = std::upper_bound(checkpoints.begin(), checkpoints.end(), w.start,
+                                         [](std::size_t index, const Checkpoint& c) { return index < c.index; });
+      --checkpoint;
+      double sum = checkpoint->sum;
+      double compensation = checkpoint->compensation;
+      std::size_t index = checkpoint->index;  // X_index = sum + compensation
+      std::size_t filled = 0;
+      if (index == w.start) w.values[filled++] = sum + compensation;
+      const std::size_t last = w.start + w.values.size() - 1;
+      while (index < last) {
+        // Samples index .. give X_{index+1} ..
+        const std::size_t count = std::min(samples.size(), last - index);
+        reader(index, std::span<double>(samples.data(), count));
+        for (std::size_t j = 0; j < count; ++j) {
+          const double y = samples[j] - offset;
+          const double t = sum + y;
+          compensation += std::abs(sum) >= std::abs(y) ? (sum - t) + y : (y - t) + sum;
+          sum = t;
+          ++index;
+          if (index >= w.start) w.values[filled++] = sum + compensation;
+        }
+      }
     }
-    f.reflected.add(lane_total(lanes));
+  }
+
+  // The second pass: each deferred factor in segments of anchors, from windows of the phase
+  // re-read around k, k - m, k - 2m, k - 3m (and the mirrored indices of TOTDEV).
+  void run_deferred(const SampleReader& reader) {
+    if (deferred.empty()) return;
+    if (!reader) throw Error("internal: the Allan engine needs a second pass over the record and has no reader");
+    const std::size_t n = sample_count;
+    ring.clear();
+    ring.shrink_to_fit();  // the windows take its place
+    const std::size_t segment = std::max<std::size_t>(options.block_size, capacity / 6);
+    std::vector<double> samples(std::min<std::size_t>(segment, 1u << 16));
+    std::vector<double> h_buffer(options.block_size);
+    std::vector<PhaseStore::Window> windows;
+    const auto add_window = [&](std::size_t first, std::size_t end) {  // [first, end) clipped to [0, N]
+      end = std::min(end, n + 1);
+      if (first >= end) return;
+      PhaseStore::Window w;
+      w.start = first;
+      w.values.resize(end - first);
+      windows.push_back(std::move(w));
+    };
+    for (FactorState& f : deferred) {
+      const std::size_t m = f.m;
+      const std::size_t first = totdev ? m + 1 : 2 * m;
+      for (std::size_t ka = first; ka <= n; ka += segment) {
+        const std::size_t kb = std::min(n + 1, ka + segment);
+        windows.clear();
+        for (std::size_t s = 0; s <= (third ? 3u : 2u); ++s) {
+          const std::size_t lag = s * m;
+          if (kb > lag) add_window(ka > lag ? ka - lag : 0, kb - lag);
+        }
+        if (totdev && ka < 2 * m) add_window(2 * m - std::min(kb, 2 * m) + 1, 2 * m - ka + 1);
+        fill_windows(windows, reader, samples);
+        process_block(f, ka, kb, PhaseStore(windows), h_buffer);
+      }
+      if (totdev && m >= 2) {
+        for (std::size_t ca = n + 1 - m; ca < n; ca += segment) {
+          const std::size_t cb = std::min(n, ca + segment);
+          windows.clear();
+          add_window(ca - m, cb - m);
+          add_window(ca, cb);
+          add_window(2 * n - m - cb + 1, 2 * n - m - ca + 1);
+          add_window(n, n + 1);
+          fill_windows(windows, reader, samples);
+          process_end(f, ca, cb, PhaseStore(windows));
+        }
+      }
+    }
   }
 
   void worker_loop(std::size_t worker) {
@@ -411,7 +584,6 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
   if (!std::is_sorted(options.averaging_factors.begin(), options.averaging_factors.end())) {
     throw Error("averaging factors must be sorted");
   }
-  options.worker_count = std::max<std::size_t>(1, std::min(options.worker_count, options.averaging_factors.size()));
   s.sample_count = sample_count;
   s.offset = offset;
   s.third = options.estimators.needs_third_differences();
@@ -419,17 +591,29 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
   s.adev = options.estimators.contains(Estimator::kAdev);
   s.hdev = options.estimators.contains(Estimator::kHdev);
   s.totdev = options.estimators.contains(Estimator::kTotdev);
-  const std::size_t m_max = options.averaging_factors.empty() ? 1 : options.averaging_factors.back();
-  const std::size_t span = (s.third ? 3 : 2) * m_max;
   // While workers read X_{k0 - span} .. X_{k1 - 1}, the caller writes up to X_{k1 + block - 1}:
   // span + 2 blocks of capacity keep the two apart. A record shorter than that is held whole.
-  s.capacity = std::min(sample_count + 1, span + 2 * options.block_size);
+  // Factors whose span does not fit the ring limit go to the second pass.
+  const std::size_t limit = options.ring_capacity_limit == 0 ? sample_count + 1 : options.ring_capacity_limit;
+  std::size_t ring_span = 0;
+  for (std::size_t m : options.averaging_factors) {
+    FactorState f;
+    f.m = m;
+    const std::size_t needed = std::min(sample_count + 1, s.span_of(m) + 2 * options.block_size);
+    if (needed <= limit || m == options.averaging_factors.front()) {
+      ring_span = std::max(ring_span, s.span_of(m));
+      s.factors.push_back(f);
+    } else {
+      s.deferred.push_back(f);
+    }
+  }
+  s.capacity = std::min(sample_count + 1, ring_span + 2 * options.block_size);
   s.ring.assign(s.capacity, 0.0);
-  s.factors.resize(options.averaging_factors.size());
-  for (std::size_t i = 0; i < s.factors.size(); ++i) s.factors[i].m = options.averaging_factors[i];
+  options.worker_count = std::max<std::size_t>(1, std::min(options.worker_count, s.factors.size()));
   s.scratch.assign(options.worker_count, std::vector<double>(options.block_size));
   s.options = std::move(options);
   s.write_phase(0.0);  // X_0 = 0
+  s.checkpoints.push_back({0, 0.0, 0.0});
   if (s.options.worker_count > 1) {
     for (std::size_t w = 0; w < s.options.worker_count; ++w) {
       s.workers.emplace_back([&s, w] { s.worker_loop(w); });
@@ -471,13 +655,14 @@ void AllanEngine::push(std::span<const double> samples) {
     s.phase_compensation = compensation;
     i += piece;
     if (s.written - s.dispatched == block) {
+      if (!s.deferred.empty()) s.checkpoints.push_back({s.written - 1, sum, compensation});
       s.dispatch({State::JobKind::kBlock, s.dispatched, s.written});
       s.dispatched = s.written;
     }
   }
 }
 
-std::vector<AllanSums> AllanEngine::finish() {
+std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
   State& s = *state_;
   if (s.written != s.sample_count + 1) {
     throw Error("only " + std::to_string(s.written - 1) + " of " + std::to_string(s.sample_count) +
@@ -489,9 +674,13 @@ std::vector<AllanSums> AllanEngine::finish() {
   }
   s.dispatch({State::JobKind::kEnds, 0, 0});
   s.wait_idle();
+  s.run_deferred(reader);
+  std::vector<FactorState> all = std::move(s.factors);
+  all.insert(all.end(), s.deferred.begin(), s.deferred.end());
+  std::sort(all.begin(), all.end(), [](const FactorState& a, const FactorState& b) { return a.m < b.m; });
   const std::size_t n = s.sample_count;
   std::vector<AllanSums> result;
-  for (FactorState& f : s.factors) {
+  for (FactorState& f : all) {
     AllanSums sums;
     const std::size_t m = f.m;
     sums.averaging_factor = m;
@@ -518,6 +707,8 @@ std::vector<AllanSums> AllanEngine::finish() {
   return result;
 }
 
-std::size_t AllanEngine::ring_bytes() const { return state_->ring.size() * sizeof(double); }
+std::size_t AllanEngine::ring_bytes() const { return state_->capacity * sizeof(double); }
+
+std::size_t AllanEngine::deferred_factor_count() const { return state_->deferred.size(); }
 
 }  // namespace inertest

@@ -116,17 +116,22 @@ double mean_of(const std::vector<double>& y) {
 
 std::vector<AllanSums> run_engine(const std::vector<double>& y, std::vector<std::size_t> factors,
                                   std::size_t workers, std::size_t block, std::size_t chunk,
-                                  EstimatorSet estimators = EstimatorSet::all()) {
+                                  EstimatorSet estimators = EstimatorSet::all(), std::size_t ring_limit = 0,
+                                  std::size_t* deferred = nullptr) {
   AllanEngineOptions options;
   options.averaging_factors = std::move(factors);
   options.estimators = estimators;
   options.worker_count = workers;
   options.block_size = block;
+  options.ring_capacity_limit = ring_limit;
   AllanEngine engine(y.size(), mean_of(y), options);
   for (std::size_t i = 0; i < y.size(); i += chunk) {
     engine.push(std::span<const double>(y).subspan(i, std::min(chunk, y.size() - i)));
   }
-  return engine.finish();
+  if (deferred != nullptr) *deferred = engine.deferred_factor_count();
+  return engine.finish([&y](std::size_t first, std::span<double> out) {
+    std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
+  });
 }
 
 TEST(AllanEngine, HandComputedFourSamples) {
@@ -177,6 +182,78 @@ TEST(AllanEngine, AgreesWithDefinitionsToOnePartInTenToTheNine) {
         }
       }
     }
+  }
+}
+
+// A ring limit sends the large factors to the second pass, which re-reads the samples into windows
+// of the phase: the sums are those of the definitions, for every estimator and both end regions.
+TEST(AllanEngine, SecondPassForFactorsBeyondTheRingLimit) {
+  std::mt19937_64 random(13);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(2000);
+  double walk = 0.0;
+  for (double& v : y) {
+    walk += 0.05 * white(random);
+    v = -3.0 + white(random) + walk;
+  }
+  const Reference reference(y);
+  const std::vector<std::size_t> factors = {1, 3, 50, 200, 333, 500, 640, 666};
+  for (std::size_t workers : {1u, 2u}) {
+    for (std::size_t block : {16u, 100u}) {
+      std::size_t deferred = 0;
+      // 700 phase values: factors with 3m + 2 blocks > 700 are deferred.
+      const auto sums = run_engine(y, factors, workers, block, 33, EstimatorSet::all(), 700, &deferred);
+      EXPECT_GE(deferred, 4u);
+      ASSERT_EQ(sums.size(), factors.size());
+      for (std::size_t i = 0; i < sums.size(); ++i) {
+        EXPECT_EQ(sums[i].averaging_factor, factors[i]);
+        for (Estimator e : kAllEstimators) {
+          const double expected = static_cast<double>(reference.variance(e, sums[i].averaging_factor));
+          EXPECT_NEAR_RELATIVE(sums[i].variance(e), expected, 1e-9)
+              << estimator_name(e) << " m=" << sums[i].averaging_factor << " block=" << block;
+        }
+      }
+    }
+  }
+  // Second differences only: the span is 2m.
+  EstimatorSet second;
+  for (Estimator e : {Estimator::kAdev, Estimator::kOadev, Estimator::kTotdev}) second.insert(e);
+  std::size_t deferred = 0;
+  const auto sums = run_engine(y, {2, 999, 1000}, 2, 64, 500, second, 300, &deferred);
+  EXPECT_EQ(deferred, 2u);
+  for (const AllanSums& s : sums) {
+    for (Estimator e : second.members()) {
+      EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9);
+    }
+  }
+}
+
+TEST(AllanEngine, SecondPassNeedsAReader) {
+  const std::vector<double> y(100, 1.0);
+  AllanEngineOptions options;
+  options.averaging_factors = {1, 30};
+  options.block_size = 8;
+  options.ring_capacity_limit = 40;
+  AllanEngine engine(y.size(), 1.0, options);
+  engine.push(y);
+  EXPECT_EQ(engine.deferred_factor_count(), 1u);
+  EXPECT_THROW(engine.finish(), Error);
+}
+
+// The MDEV window is summed in parallel chains over long runs: the same sums as one chain.
+TEST(AllanEngine, ModifiedAllanOverLongRunsAgreesWithTheDefinition) {
+  std::mt19937_64 random(21);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(20000);
+  for (double& v : y) v = 1e3 + white(random);
+  const Reference reference(y);
+  EstimatorSet modified;
+  modified.insert(Estimator::kMdev);
+  const auto sums = run_engine(y, {1, 7, 64, 1000, 6000}, 2, 1u << 15, 20000, modified);
+  for (const AllanSums& s : sums) {
+    EXPECT_NEAR_RELATIVE(s.variance(Estimator::kMdev),
+                         static_cast<double>(reference.variance(Estimator::kMdev, s.averaging_factor)), 1e-9)
+        << s.averaging_factor;
   }
 }
 

@@ -30,7 +30,7 @@ TEST(AllanVariance, WhiteRateNoiseGivesAngleRandomWalkWithinThreePercent) {
   const double expected = 2.0 / std::sqrt(rate) / 60.0;
   EXPECT_EQ(result.noise->angle_random_walk.unit, "deg/sqrt(h)");
   EXPECT_NEAR_RELATIVE(result.noise->angle_random_walk.value, expected, 0.03);
-  EXPECT_NEAR_RELATIVE(result.slopes->angle_random_walk.value, expected, 0.03);
+  EXPECT_NEAR_RELATIVE(result.slopes->angle_random_walk.figure.value().value, expected, 0.03);
   EXPECT_NEAR_RELATIVE(result.noise->random_walk_coefficient().value, expected, 0.03);
   // Every point is white FM and the 1-sigma bounds hold the value.
   const DeviationCurve& oadev = result.curves.at(Estimator::kOadev);
@@ -39,6 +39,48 @@ TEST(AllanVariance, WhiteRateNoiseGivesAngleRandomWalkWithinThreePercent) {
     EXPECT_GT(oadev.upper[i], oadev.values[i]);
   }
   EXPECT_EQ(result.noise_types.front(), NoiseType::kWhiteFrequency);
+  // Pure white noise has no flat part and no +1/2 region: the slope method names no B and no K.
+  EXPECT_FALSE(result.slopes->bias_instability.figure.has_value());
+  EXPECT_FALSE(result.slopes->rate_random_walk.figure.has_value());
+  EXPECT_THAT(result.warnings, ::testing::Contains(::testing::HasSubstr("bias instability B not identified")));
+  EXPECT_THAT(result.warnings, ::testing::Contains(::testing::HasSubstr("rate random walk K not identified")));
+  const nlohmann::json json = result.to_json();
+  EXPECT_TRUE(json["noise"]["slope_method"]["bias_instability"].is_null());
+  EXPECT_FALSE(json["noise"]["slope_method"]["angle_random_walk"].is_null());
+}
+
+// sigma^2 = N^2/tau + (0.664 B)^2 + K^2 tau / 3 with N = 0.01, B = 1, K = 1e-4 (deg/h units): the
+// three regions are decades apart (crossings near 2e-4 s and 1e8 s), so each is read close to its truth.
+TEST(SlopeReadOff, ReadsEachRegionOfAKnownCurve) {
+  std::vector<double> tau, deviation, edf;
+  for (double t = 1e-10; t < 1e13; t *= 2.0) {
+    tau.push_back(t);
+    const double b = kBiasInstabilityFactor * 1.0;
+    deviation.push_back(std::sqrt(1e-4 / t + b * b + 1e-8 * t / 3.0));
+    edf.push_back(1e4);
+  }
+  const SlopeReadOff slopes = read_noise_slopes(tau, deviation, edf, "deg/h");
+  EXPECT_TRUE(slopes.warnings.empty()) << ::testing::PrintToString(slopes.warnings);
+  ASSERT_TRUE(slopes.angle_random_walk.figure && slopes.bias_instability.figure && slopes.rate_random_walk.figure);
+  EXPECT_NEAR_RELATIVE(slopes.angle_random_walk.figure->value, 0.01 / 60.0, 0.02);  // deg/h*sqrt(s) -> deg/sqrt(h)
+  EXPECT_NEAR_RELATIVE(slopes.bias_instability.figure->value, 1.0, 0.01);
+  EXPECT_NEAR_RELATIVE(slopes.rate_random_walk.figure->value, 1e-4 * 60.0, 0.02);
+  EXPECT_NEAR(slopes.bias_instability.slope, 0.0, kSlopeTolerance);
+}
+
+// A curve falling as tau^-1/2 throughout, read with few degrees of freedom at the end: no flat
+// part, no +1/2 line; and a slope near 0 between two points of low edf is not taken for one.
+TEST(SlopeReadOff, UnresolvedOrAbsentRegionsAreNotIdentified) {
+  const std::vector<double> tau = {1, 2, 4, 8, 16, 32};
+  const std::vector<double> deviation = {1.0, 1.0 / std::sqrt(2.0), 0.5, 0.5 / std::sqrt(2.0), 0.25, 0.25};
+  const std::vector<double> edf = {1e5, 1e5, 1e4, 1e3, 10, 3};
+  const SlopeReadOff slopes = read_noise_slopes(tau, deviation, edf, "deg/h");
+  ASSERT_TRUE(slopes.angle_random_walk.figure.has_value());
+  EXPECT_NEAR_RELATIVE(slopes.angle_random_walk.figure->value, 1.0 / 60.0, 1e-12);
+  EXPECT_FALSE(slopes.bias_instability.figure.has_value());
+  EXPECT_FALSE(slopes.rate_random_walk.figure.has_value());
+  EXPECT_EQ(slopes.warnings.size(), 2u);
+  EXPECT_TRUE(slopes.to_json()["rate_random_walk_tau_s"].is_null());
 }
 
 // A rate random walk with steps of s per sample at f Hz has K = s * sqrt(f) (sigma^2 = K^2 tau / 3).
@@ -57,7 +99,7 @@ TEST(AllanVariance, RateRandomWalkGivesKWithinFifteenPercent) {
   const double expected = 0.01 * std::sqrt(rate) * 60.0;  // deg/h/sqrt(s) -> deg/h/sqrt(h)
   EXPECT_EQ(result.noise->rate_random_walk.unit, "deg/h/sqrt(h)");
   EXPECT_NEAR_RELATIVE(result.noise->rate_random_walk.value, expected, 0.15);
-  EXPECT_NEAR_RELATIVE(result.slopes->rate_random_walk.value, expected, 0.15);
+  EXPECT_NEAR_RELATIVE(result.slopes->rate_random_walk.figure.value().value, expected, 0.15);
   EXPECT_EQ(result.noise_types.back(), NoiseType::kRandomWalkFrequency);
 }
 
@@ -113,6 +155,37 @@ TEST(AllanVariance, ConfidenceBoundsFollowChiSquared) {
   EXPECT_NEAR_RELATIVE(edf_overlapping_allan(1025, 1, NoiseType::kWhiteFrequency),
                        (1536.0 - 2.0 * 1023.0 / 1025.0) * 4.0 / 9.0, 1e-14);
   EXPECT_NEAR_RELATIVE(edf_total(1000, 10, NoiseType::kFlickerFrequency), 1.17 * 100 - 0.22, 1e-14);
+}
+
+// A raw f32 file whose largest factors exceed the ring limit: the second pass re-reads the file and
+// gives the deviations of the record in memory.
+TEST(AllanVariance, FileWithSecondPassAgreesWithMemory) {
+  std::mt19937_64 random(8);
+  std::normal_distribution<float> white(0.0F, 1.0F);
+  std::vector<float> narrow(30000);
+  for (float& v : narrow) v = 100.0F + white(random);
+  const std::vector<double> y(narrow.begin(), narrow.end());
+  testing::ScratchDirectory dir;
+  const std::string path = dir.path() + "/rate.f32";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(narrow.data()), static_cast<std::streamsize>(narrow.size() * sizeof(float)));
+  }
+  AllanOptions options = options_at(10.0);
+  options.taus = "decade";
+  const AllanResult memory = allan_variance(y, options);
+  options.ring_capacity_limit = 20000;  // 3m + 2 blocks > 20000 for m >= 4000 (block 32768: all but m = 1)
+  RateRecordSource source;
+  source.path = path;
+  source.format = RateRecordFormat::kFloat32;
+  const AllanResult file = allan_variance_of_file(source, options);
+  ASSERT_EQ(file.tau_s, memory.tau_s);
+  for (const auto& [estimator, curve] : memory.curves) {
+    for (std::size_t i = 0; i < curve.values.size(); ++i) {
+      EXPECT_NEAR_RELATIVE(file.curves.at(estimator).values[i], curve.values[i], 1e-12)
+          << estimator_name(estimator) << " " << i;
+    }
+  }
 }
 
 TEST(AllanVariance, BadInputIsAClearError) {

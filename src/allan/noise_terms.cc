@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
@@ -180,7 +181,8 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
   nlohmann::json coefficients_json = nlohmann::json::array();
   for (int p = -2; p <= 2; ++p) {
     const auto k = static_cast<std::size_t>(p + 2);
-    const std::string unit = "(" + input_unit + ")^2*s" + (p == 1 ? "" : "^" + std::to_string(p));
+    // fmt rather than string concatenation: GCC 12 gives a false -Wrestrict for "^" + to_string(p).
+    const std::string unit = fmt::format("({})^2*s{}", input_unit, p == 1 ? std::string() : fmt::format("^{}", p));
     coefficients_json.push_back({{"power", p},
                                  {"value", coefficients[k]},
                                  {"uncertainty", coefficient_uncertainties[k]},
@@ -201,45 +203,64 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
 SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const double> deviation,
                                std::span<const double> edf, const std::string& input_unit) {
   check_points(tau_s, deviation, edf);
-  // The point i whose slope to point i+1 is closest to the target (MATLAB: min(abs(dlogadev - slope))).
-  const auto closest = [&](double target) {
-    std::size_t best = 0;
+  SlopeReadOff result;
+  // Among the resolved pairs within tolerance, the one whose slope is closest to the target
+  // (MATLAB: min(abs(dlogadev - slope))).
+  const auto read = [&](double target, const std::string& name, SlopeReading& reading, double tau_power,
+                        double factor, const FigureUnits& units) {
+    std::optional<std::size_t> best;
     double best_distance = INFINITY;
+    std::optional<double> closest_slope;  // among the resolved pairs
     for (std::size_t i = 0; i + 1 < tau_s.size(); ++i) {
-      const double slope = std::log(deviation[i + 1] / deviation[i]) / std::log(tau_s[i + 1] / tau_s[i]);
-      if (std::abs(slope - target) < best_distance) {
-        best_distance = std::abs(slope - target);
+      const double spacing = std::log(tau_s[i + 1] / tau_s[i]);
+      const double slope = std::log(deviation[i + 1] / deviation[i]) / spacing;
+      const double uncertainty = std::sqrt(1.0 / (2.0 * edf[i]) + 1.0 / (2.0 * edf[i + 1])) / spacing;
+      const double distance = std::abs(slope - target);
+      if (uncertainty > kSlopeResolution) continue;
+      if (!closest_slope || distance < std::abs(*closest_slope - target)) closest_slope = slope;
+      if (distance <= kSlopeTolerance && distance < best_distance) {
+        best_distance = distance;
         best = i;
+        reading.slope = slope;
       }
     }
-    return best;
+    if (!best) {
+      result.warnings.push_back(fmt::format(
+          "slope read-off: no region of slope {:+g} (within {:g}, resolved to {:g}) on the curve{}: {} not identified",
+          target, kSlopeTolerance, kSlopeResolution,
+          closest_slope ? fmt::format(" (closest resolved slope {:+.2f})", *closest_slope) : "",
+          name));
+      return;
+    }
+    const std::size_t i = *best;
+    reading.tau_s = tau_s[i];
+    const double value = deviation[i] * factor * std::pow(tau_s[i], tau_power);
+    reading.figure = Figure{value, units.computed, value / std::sqrt(2.0 * edf[i])}.in(units.reported);
   };
-  const auto read = [&](std::size_t i, double value, const FigureUnits& units) {
-    Figure figure{value, units.computed, value / std::sqrt(2.0 * edf[i])};
-    return figure.in(units.reported);
-  };
-  SlopeReadOff result;
-  const std::size_t n = closest(-0.5);
-  result.angle_random_walk_tau_s = tau_s[n];
-  result.angle_random_walk = read(n, deviation[n] * std::sqrt(tau_s[n]), units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)"));
-  const std::size_t b = closest(0.0);
-  result.bias_instability_tau_s = tau_s[b];
-  result.bias_instability = read(b, deviation[b] / kBiasInstabilityFactor, units_for(input_unit, "", "deg/h"));
-  const std::size_t k = closest(0.5);
-  result.rate_random_walk_tau_s = tau_s[k];
-  result.rate_random_walk =
-      read(k, deviation[k] * std::sqrt(3.0 / tau_s[k]), units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)"));
+  // sigma = N / sqrt(tau): N = sigma(tau) sqrt(tau), the -1/2 line at tau = 1 s.
+  read(-0.5, "angle random walk N", result.angle_random_walk, 0.5, 1.0,
+       units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)"));
+  // The flat part: sigma = 0.664 B.
+  read(0.0, "bias instability B", result.bias_instability, 0.0, 1.0 / kBiasInstabilityFactor,
+       units_for(input_unit, "", "deg/h"));
+  // sigma = K sqrt(tau / 3): K = sigma(tau) sqrt(3 / tau), the +1/2 line at tau = 3 s.
+  read(0.5, "rate random walk K", result.rate_random_walk, -0.5, std::sqrt(3.0),
+       units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)"));
   return result;
 }
 
 nlohmann::json SlopeReadOff::to_json() const {
-  return {{"method", "log-log slope read-off on OADEV (MATLAB allanvar example)"},
-          {"angle_random_walk", angle_random_walk},
-          {"angle_random_walk_tau_s", angle_random_walk_tau_s},
-          {"bias_instability", bias_instability},
-          {"bias_instability_tau_s", bias_instability_tau_s},
-          {"rate_random_walk", rate_random_walk},
-          {"rate_random_walk_tau_s", rate_random_walk_tau_s}};
+  const auto figure = [](const SlopeReading& r) { return r.figure ? nlohmann::json(*r.figure) : nlohmann::json(nullptr); };
+  const auto tau = [](const SlopeReading& r) { return r.figure ? nlohmann::json(r.tau_s) : nlohmann::json(nullptr); };
+  return {{"method", "log-log slope read-off on OADEV (MATLAB allanvar example); null: no region of that slope"},
+          {"angle_random_walk", figure(angle_random_walk)},
+          {"angle_random_walk_tau_s", tau(angle_random_walk)},
+          {"bias_instability", figure(bias_instability)},
+          {"bias_instability_tau_s", tau(bias_instability)},
+          {"rate_random_walk", figure(rate_random_walk)},
+          {"rate_random_walk_tau_s", tau(rate_random_walk)},
+          {"slope_tolerance", kSlopeTolerance},
+          {"slope_resolution", kSlopeResolution}};
 }
 
 }  // namespace inertest

@@ -1,5 +1,6 @@
 // inertest allan FILE --rate HZ [--format csv|f64|f32] [--column N] [--taus SPEC] [--input-unit U]
-//                [--estimators LIST] [--threads N] [--json]
+//                [--scale-factor K] [--estimators LIST] [--threads N] [--json]
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "command.h"
@@ -13,6 +14,8 @@ struct Arguments {
   std::string format = "csv";
   std::string column;
   std::string estimators = "all";
+  double scale_factor = 0.0;
+  bool scaled = false;
   AllanOptions options;
   bool json = false;
 };
@@ -31,7 +34,17 @@ CommandAction setup(CLI::App& root) {
   command->add_option("--column", arguments->column, "text column: header name or 1-based index");
   command->add_option("--taus", arguments->options.taus, "octave, decade, all, N/decade or a list of tau in s")
       ->capture_default_str();
-  command->add_option("--input-unit", arguments->options.input_unit, "unit of the samples")->capture_default_str();
+  CLI::Option* unit =
+      command->add_option("--input-unit", arguments->options.input_unit, "unit of the samples")->capture_default_str();
+  command
+      ->add_option_function<double>(
+          "--scale-factor",
+          [arguments](double k) {
+            arguments->scale_factor = k;
+            arguments->scaled = true;
+          },
+          "K, output units per deg/s: the raw output is divided by K and reported in deg/h")
+      ->excludes(unit);
   command->add_option("--estimators", arguments->estimators, "comma list of adev,oadev,mdev,hdev,ohdev,totdev")
       ->capture_default_str();
   command->add_option("--threads", arguments->options.worker_count, "worker threads")->capture_default_str();
@@ -40,6 +53,13 @@ CommandAction setup(CLI::App& root) {
     arguments->source.format = parse_rate_record_format(arguments->format);
     if (!arguments->column.empty()) arguments->source.column = ColumnSelector::parse(arguments->column);
     arguments->options.estimators = EstimatorSet::parse(arguments->estimators);
+    if (arguments->scaled) {
+      const double k = arguments->scale_factor;
+      if (!(k != 0.0) || !std::isfinite(k)) throw Error("--scale-factor must be finite and nonzero");
+      // raw / (output per deg/s) = deg/s; times 3600 = deg/h (as the plan key scale_factor).
+      arguments->options.scale = 3600.0 / k;
+      arguments->options.input_unit = "deg/h";
+    }
     const AllanResult result = allan_variance_of_file(arguments->source, arguments->options, terminal_progress());
     print_result(result.to_json(), result.report(), arguments->json);
     return 0;

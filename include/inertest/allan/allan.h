@@ -38,6 +38,10 @@ struct AllanOptions {
   double scale = 1.0;
   double confidence = kOneSigmaConfidence;
   std::size_t worker_count = 2;
+  // Most phase values the engine's ring may hold; larger averaging factors are computed in a second
+  // pass that re-reads the record (AllanEngine). 0: for files, from the record so that the peak
+  // memory stays within 1.5 times its raw binary size; in memory, no limit.
+  std::size_t ring_capacity_limit = 0;
 
   // Throws Error saying what is wrong (rate, unit, tau grid, estimators, scale, confidence).
   void validate() const;
@@ -75,7 +79,8 @@ struct AllanResult {
 AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options);
 
 // Streams a file twice (mean, then the estimators); memory is the engine's ring buffer, at most
-// 8 (N + 1) bytes plus a few MB.
+// 8 (N + 1) bytes plus a few MB, and for raw f64/f32 records at most 1.5 times the file size: the
+// largest averaging factors are then computed in a third, partial pass that re-reads the file.
 AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
                                    const ProgressCallback& progress = {});
 

@@ -13,10 +13,30 @@
 // The IEEE Std 952-1997 Annex C / IEEE Std 1139 overlapping Allan variance of the reference
 // (section 3) is OADEV. The engine uses worker threads (std::thread) for the factors and runs the
 // caller's reading of the next chunk in parallel with the work on the last one.
+//
+// Memory: the ring holds (3 or 2) m + 2 blocks phase values for the largest factor m it serves.
+// With a ring_capacity_limit, the factors whose span exceeds it are left to a second pass in
+// finish(): it re-reads the record through the caller's SampleReader, in segments of anchors k, into
+// windows of the phase around k, k - m, k - 2m, k - 3m, each integrated again from a checkpoint of
+// the first pass (the Neumaier state every block), so the phase values are bit for bit those of the
+// first pass. Overlapping estimators need the phase at every offset, so decimated data would not
+// give the same sums; re-reading costs about 5 (N - m) samples per deferred factor, and at most a
+// few octave factors exceed any limit above N/2 phase values.
+//
+// Speed: each term is a few flops on 3 or 4 phase streams. For factors whose lags exceed what the
+// caches hold, every distinct lag is a stream from DRAM: on an octave grid OADEV reads lags m and
+// 2m, and 2m is the next factor's m (one new stream per factor), while third differences add 3m
+// (two per factor): MDEV/HDEV/OHDEV move about twice the data of OADEV per tau, and a second
+// thread gains little once DRAM bandwidth is the limit (the power-of-two lags put at most five
+// streams in one L1 set, within its eight ways, so set conflicts are not the cause). Two compute
+// costs came on top and are gone: the MDEV window w_k = w_{k-1} + h_k was one chain of dependent
+// additions (an FP-add latency per term; it now runs as four chains over quarters of each run), and
+// the h_k were stored even without MDEV.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -75,7 +95,13 @@ struct AllanEngineOptions {
   EstimatorSet estimators = EstimatorSet::all();
   std::size_t worker_count = 2;       // threads; 1 runs everything on the caller's thread
   std::size_t block_size = 1u << 15;  // samples per unit of work
+  // Most phase values the ring may hold (0: no limit); larger factors go to the second pass.
+  std::size_t ring_capacity_limit = 0;
 };
+
+// Random access to the rate record for the second pass: fills `out` with samples
+// [first, first + out.size()) (0-based), exactly the values pushed in the first pass.
+using SampleReader = std::function<void(std::size_t first, std::span<double> out)>;
 
 class AllanEngine {
  public:
@@ -89,11 +115,15 @@ class AllanEngine {
 
   // Feeds the next samples, in order, in chunks of any size. Throws Error past N samples.
   void push(std::span<const double> samples);
-  // Completes the sums after exactly N samples; throws Error when fewer were pushed.
-  std::vector<AllanSums> finish();
+  // Completes the sums after exactly N samples, running the second pass through `reader` when some
+  // factors were deferred; throws Error when fewer were pushed, or when a second pass is needed and
+  // there is no reader. Sums are ordered by averaging factor.
+  std::vector<AllanSums> finish(const SampleReader& reader = {});
 
   // Bytes held by the ring buffer of the phase (for memory accounting).
   std::size_t ring_bytes() const;
+  // Factors left to the second pass (those whose span exceeds ring_capacity_limit).
+  std::size_t deferred_factor_count() const;
 
  private:
   struct State;

@@ -23,16 +23,30 @@ double edf_overlapping_allan(double phase_count, double m, NoiseType type);
 // walk FM; phase noises fall back to Table 5.
 double edf_total(double sample_count, double m, NoiseType type);
 
+// Greenhall's combined edf algorithm for the variances of d-th differences of the phase, which
+// NIST SP 1065 (2008) 5.3 names for AVAR, MVAR and HVAR: C. A. Greenhall and W. J. Riley,
+// "Uncertainty of stability variances based on finite differences", Proc. 35th PTTI (2003),
+// eqs. (7)-(10), the four cases of its section 4 and its Tables 1-3.
+//   alpha        noise type (S_y ~ f^alpha), +2 .. -2; alpha + 2 d > 1 is required
+//   d            2: Allan (MVAR when modified), 3: Hadamard
+//   m            averaging factor; phase_count: N_x, the number of phase points (rate samples + 1)
+//   overlapping  stride tau0 (OAVAR, MVAR, OHVAR) instead of tau (AVAR, HVAR)
+//   modified     MVAR (phase averaged over m points) instead of the unmodified variances
+// Throws Error outside that domain or when the record holds no term.
+double edf_greenhall(NoiseType type, int d, double m, double phase_count, bool overlapping, bool modified);
+
 // The edf used for each estimator on N rate samples at averaging factor m:
 //   OADEV  Table 5 with N + 1 phase points;
 //   ADEV   Table 5 on the decimated record (floor(N/m) + 1 phase points, factor 1), which is exact
 //          because ADEV at m is the OADEV at 1 of the decimated phase;
-//   HDEV, OHDEV, MDEV  the Table 5 formula of ADEV and OADEV respectively: an approximation (NIST
-//          gives no simple formula for them; Greenhall's general algorithm is not implemented);
+//   MDEV, HDEV, OHDEV  Greenhall's algorithm (edf_greenhall) with N + 1 phase points;
 //   TOTDEV Table 7.
 // The result is at least 1 and at most the number of terms of the estimator.
 double equivalent_degrees_of_freedom(Estimator estimator, std::size_t sample_count, std::size_t m,
                                      std::size_t term_count, NoiseType type);
+
+// Where the edf of an estimator comes from, for the JSON: "NIST SP 1065 Table 5", ...
+std::string_view edf_method(Estimator estimator);
 
 struct DeviationInterval {
   double lower = 0.0;

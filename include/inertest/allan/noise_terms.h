@@ -54,16 +54,28 @@ struct NoiseTerms {
 NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double> variance,
                            std::span<const double> edf, const std::string& input_unit);
 
-// The slope read-off of MATLAB's allanvar example on the (overlapping) Allan deviation: the point
-// where the log-log slope between neighbours is closest to -1/2, 0 and +1/2 gives, on the line of
-// that slope through it, N at tau = 1 s, B = sigma / 0.664 and K at tau = 3 s.
+// The slope read-off of MATLAB's allanvar example on the (overlapping) Allan deviation: the pair of
+// neighbouring points whose log-log slope is closest to -1/2, 0 and +1/2 gives, on the line of that
+// slope through its first point, N at tau = 1 s, B = sigma / 0.664 and K at tau = 3 s.
+//
+// A figure is read only where the curve has a region of its slope: a pair qualifies when its slope
+// lies within kSlopeTolerance of the target and is resolved, i.e. its 1-sigma uncertainty
+// sqrt(1/(2 edf_i) + 1/(2 edf_i+1)) / ln(tau_i+1 / tau_i) (neighbours taken as independent, which
+// overstates it) is at most kSlopeResolution, so that a slope this close to the target is at least
+// 2 sigma from the neighbouring regimes (+-1/2 away). Otherwise the figure is not identified (empty)
+// and `warnings` says why: e.g. no flat part (B) in pure white noise, whose noisy last points would
+// otherwise give a number.
+struct SlopeReading {
+  std::optional<Figure> figure;  // empty: no region of the slope
+  double tau_s = 0.0;            // the first point of the pair read (when identified)
+  double slope = 0.0;            // its log-log slope (when identified)
+};
+
 struct SlopeReadOff {
-  Figure angle_random_walk;
-  double angle_random_walk_tau_s = 0.0;
-  Figure bias_instability;
-  double bias_instability_tau_s = 0.0;
-  Figure rate_random_walk;
-  double rate_random_walk_tau_s = 0.0;
+  SlopeReading angle_random_walk;
+  SlopeReading bias_instability;
+  SlopeReading rate_random_walk;
+  std::vector<std::string> warnings;
 
   nlohmann::json to_json() const;
 };
@@ -72,6 +84,9 @@ struct SlopeReadOff {
 // sigma / sqrt(2 edf).
 SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const double> deviation,
                                std::span<const double> edf, const std::string& input_unit);
+
+inline constexpr double kSlopeTolerance = 0.1;
+inline constexpr double kSlopeResolution = 0.2;
 
 // sqrt(2 ln 2 / pi) = 0.6643, printed 0.664 in IEEE Std 952-1997 C.1.
 inline constexpr double kBiasInstabilityFactor = 0.66428696;

@@ -1,0 +1,73 @@
+// The allan command's contract: `inertest allan FILE --rate HZ ... --json`.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::run_cli;
+
+std::string white_record(double scale) {
+  std::mt19937_64 random(3);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::string text;
+  for (int i = 0; i < 4000; ++i) text += std::to_string(scale * (5.0 + white(random))) + "\n";
+  return text;
+}
+
+// Raw output in units per deg/s, divided by K and reported in deg/h: the same as the record
+// already converted to deg/h (K = 250 output/(deg/s): deg/h = raw * 3600 / 250).
+TEST(AllanCommand, ScaleFactorTurnsRawOutputIntoDegreesPerHour) {
+  testing::ScratchDirectory dir;
+  const std::string raw = dir.write("raw.csv", white_record(250.0 / 3600.0));
+  const std::string converted = dir.write("deg_h.csv", white_record(1.0));
+  const auto scaled = run_cli({"allan", raw, "--rate", "100", "--scale-factor", "250", "--json"});
+  const auto plain = run_cli({"allan", converted, "--rate", "100", "--input-unit", "deg/h", "--json"});
+  ASSERT_EQ(scaled.exit_code, 0) << scaled.err;
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto a = nlohmann::json::parse(scaled.out);
+  const auto b = nlohmann::json::parse(plain.out);
+  EXPECT_EQ(a["input_unit"], "deg/h");
+  ASSERT_EQ(a["oadev"]["values"].size(), b["oadev"]["values"].size());
+  for (std::size_t i = 0; i < a["oadev"]["values"].size(); ++i) {
+    // The text holds 6 decimals of each sample, so the two records differ in the last digits.
+    EXPECT_NEAR_RELATIVE(a["oadev"]["values"][i].get<double>(), b["oadev"]["values"][i].get<double>(), 1e-4);
+  }
+  EXPECT_NEAR_RELATIVE(a["mean"]["value"].get<double>(), b["mean"]["value"].get<double>(), 1e-6);
+  EXPECT_EQ(a["noise"]["angle_random_walk"]["unit"], "deg/sqrt(h)");
+}
+
+TEST(AllanCommand, ScaleFactorAndInputUnitExcludeEachOther) {
+  testing::ScratchDirectory dir;
+  const std::string raw = dir.write("raw.csv", white_record(1.0));
+  const auto both = run_cli({"allan", raw, "--rate", "100", "--scale-factor", "250", "--input-unit", "deg/s"});
+  EXPECT_NE(both.exit_code, 0);
+  EXPECT_THAT(both.err, HasSubstr("excludes"));
+  const auto zero = run_cli({"allan", raw, "--rate", "100", "--scale-factor", "0", "--json"});
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_EQ(zero.out, "");
+  EXPECT_THAT(zero.err, HasSubstr("--scale-factor must be finite and nonzero"));
+}
+
+TEST(AllanCommand, JsonHoldsEveryEstimatorWithItsEdfMethod) {
+  testing::ScratchDirectory dir;
+  const auto run = run_cli({"allan", dir.write("rate.csv", white_record(1.0)), "--rate", "10", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  for (const char* name : {"adev", "oadev", "mdev", "hdev", "ohdev", "totdev"}) {
+    ASSERT_TRUE(json.contains(name)) << name;
+    EXPECT_EQ(json[name]["values"].size(), json["tau"].size()) << name;
+    EXPECT_FALSE(json[name]["edf_method"].get<std::string>().empty()) << name;
+  }
+  EXPECT_THAT(json["mdev"]["edf_method"].get<std::string>(), HasSubstr("Greenhall"));
+}
+
+}  // namespace
+}  // namespace inertest

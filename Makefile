@@ -63,7 +63,8 @@ test-fuzz-short:
 	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_SHORT_SECONDS)
 
 demo: build
-	@$(BUILD_DIR)/bin/inertest run examples/scale_factor/plan.toml --out demo
+	@$(BUILD_DIR)/bin/inertest demo --out demo > /dev/null; status=$$?; \
+	  echo "demo: report in demo/report.txt, results (with truth_check) in demo/results.json"; exit $$status
 
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null

@@ -11,20 +11,12 @@ namespace {
 StepAction prepare(PlanTable& step, const PlanContext& context) {
   const std::string file = step.file("file");
   AccelerometerMisalignmentOptions options;
-  const std::optional<double> scale_factor = step.optional_number("scale_factor");
-  if (scale_factor) {
-    options.scale_factor = *scale_factor;
-  } else if (context.instrument.nominal_scale_factor) {
-    options.scale_factor = *context.instrument.nominal_scale_factor;
-  } else {
-    step.fail("needs scale_factor (output units per g) or [instrument] nominal_scale_factor");
-  }
+  options.scale_factor = scale_factor_or_nominal(step, context, "g");
   options.output_unit = context.instrument.output_unit;
   options.source = file;
   try {
     options.validate();
   } catch (const Error& e) {
-    if (scale_factor) step.fail_at("scale_factor", e.message());
     step.fail(e.message());
   }
   return [file, options](const StepRunContext&) {

@@ -1,0 +1,82 @@
+// Allan variance analysis of a rate record (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C,
+// NIST SP 1065): the deviations ADEV, OADEV, MDEV, HDEV, OHDEV and TOTDEV on a tau grid, each with
+// chi-squared confidence bounds, and the noise terms Q, N, B, K, R by the fit of GJB eq. (30) and by
+// the slope read-off.
+//
+// The mean of the record is removed (computed with compensated sums in a first pass) before the
+// rate is integrated, so that a constant bias changes no deviation. Noise types for the edf: a first
+// fit with white FM edf names, at each tau, the dominant term of eq. (30) (A_-2: white PM, A_-1:
+// white FM, A_0: flicker FM, A_1 and A_2: random walk FM); the edf and the fit are then redone with
+// those types.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "inertest/allan/allan_engine.h"
+#include "inertest/allan/confidence.h"
+#include "inertest/allan/noise_terms.h"
+#include "inertest/allan/rate_record.h"
+#include "inertest/core/figure.h"
+#include "inertest/core/progress.h"
+
+namespace inertest {
+
+struct AllanOptions {
+  double sample_rate_hz = 0.0;
+  std::string input_unit = "deg/h";  // unit of the samples (after `scale`)
+  std::string taus = "octave";       // a TauGrid specification
+  EstimatorSet estimators = EstimatorSet::all();
+  // Each sample is multiplied by this before the analysis (e.g. 3600 / scale factor, to turn raw
+  // instrument output into deg/h). Applied to the results, which are linear in it.
+  double scale = 1.0;
+  double confidence = kOneSigmaConfidence;
+  std::size_t worker_count = 2;
+
+  // Throws Error saying what is wrong (rate, unit, tau grid, estimators, scale, confidence).
+  void validate() const;
+};
+
+struct DeviationCurve {
+  std::string unit;
+  std::vector<double> values;
+  std::vector<double> lower;  // confidence bounds (AllanOptions::confidence)
+  std::vector<double> upper;
+  std::vector<double> edf;
+  std::vector<std::size_t> terms;  // number of terms of the sum
+};
+
+struct AllanResult {
+  std::size_t sample_count = 0;
+  double sample_rate_hz = 0.0;
+  std::string input_unit;
+  std::string tau_grid;
+  double confidence = 0.0;
+  Figure mean;
+  std::vector<double> tau_s;
+  std::vector<std::size_t> averaging_factors;
+  std::vector<NoiseType> noise_types;  // per tau, used for the edf
+  std::map<Estimator, DeviationCurve> curves;
+  std::optional<NoiseTerms> noise;
+  std::optional<SlopeReadOff> slopes;
+  std::vector<std::string> warnings;
+
+  nlohmann::json to_json() const;
+  std::string report() const;
+};
+
+// On samples in memory. Throws Error for too few samples, a bad tau grid or bad options.
+AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options);
+
+// Streams a file twice (mean, then the estimators); memory is the engine's ring buffer, at most
+// 8 (N + 1) bytes plus a few MB.
+AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
+                                   const ProgressCallback& progress = {});
+
+}  // namespace inertest

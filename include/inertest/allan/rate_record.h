@@ -1,0 +1,38 @@
+// Streaming reader of a rate record for the Allan engine: one channel of text (CSV, TSV,
+// semicolon or whitespace separated, optional header, '#' comments) or raw little-endian f64/f32.
+// The file is read in chunks with read(2)-style I/O, never held whole: records of 10^9 samples
+// pass through a few MB of buffer.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "inertest/io/text_table.h"
+
+namespace inertest {
+
+enum class RateRecordFormat { kCsv, kFloat64, kFloat32 };
+
+// "csv", "f64", "f32"; throws Error.
+RateRecordFormat parse_rate_record_format(std::string_view text);
+
+struct RateRecordSource {
+  std::string path;
+  RateRecordFormat format = RateRecordFormat::kCsv;
+  // Text only: the column, by header name or 1-based index. Without it the record must have one column.
+  std::optional<ColumnSelector> column;
+};
+
+using SampleSink = std::function<void(std::span<const double> samples)>;
+
+// Reads the record from the start and hands consecutive chunks of samples to `sink`; returns the
+// number of samples. Throws Error with file:line:column for text that is not a number, a missing
+// column, a NaN or infinite sample, a binary size that is not a whole number of samples, or an
+// unreadable file.
+std::size_t read_rate_record(const RateRecordSource& source, const SampleSink& sink);
+
+}  // namespace inertest

@@ -1,0 +1,76 @@
+// Bias, bias stability and random walk coefficient (normalisation method) from one record of a
+// gyro at rest: GJB 2426A-2004 5.12.1 eq. (19), 5.12.2 eq. (20), 5.12.5.4.1 eqs. (23)-(24);
+// IEEE Std 952-1997 clause 13 (A.11).
+//
+//   B0 = F̄ / K                                                                            (19)
+//
+// Input: the instrument output, one sample per sampling interval (the accumulation over that
+// interval, 5.12.1.3 b), at sample_rate_hz. K is the scale factor in output units per deg/s, so
+// F̄/K is in deg/s and is reported in deg/h. With input_in_deg_h the record already holds rate in
+// deg/h and K is not used.
+//
+// Earth rate: the standard's bias is the mean indicated rate, which includes whatever Earth rate
+// the IRA sees (5.12.1.3 points the IRA east-west, where that is zero). It is not removed unless
+// remove_earth_rate gives the site latitude and the IRA orientation; then Ωe along the IRA
+// (earth_rate.h) is subtracted from the bias. Stability and random walk are unaffected.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "inertest/core/figure.h"
+#include "inertest/procedures/earth_rate.h"
+#include "inertest/procedures/random_walk_normalisation.h"
+
+namespace inertest {
+
+struct BiasOptions {
+  double sample_rate_hz = 0.0;  // must be positive
+  double scale_factor = 0.0;    // K, output units per deg/s; nonzero unless input_in_deg_h
+  bool input_in_deg_h = false;  // the record holds rate in deg/h already
+  std::string output_unit = "1";  // for the report only
+  std::vector<double> smoothing_s{1.0, 10.0, 100.0};  // bias stability smoothing times, s
+  bool random_walk = true;      // compute the random walk coefficient (needs at least 2 s at >= 1 Hz)
+  std::optional<AxisOrientation> remove_earth_rate;
+
+  // Throws Error for a non-positive rate, a zero or non-finite scale factor, an empty or
+  // non-positive smoothing time, or an invalid orientation.
+  void validate() const;
+  // deg/h per output unit: 3600 / K (or 1 with input_in_deg_h).
+  double deg_h_per_output() const;
+};
+
+struct BiasStabilityFigure {
+  double smoothing_s = 0.0;
+  std::size_t windows = 0;  // n of eq. (20)
+  Figure value;             // deg/h
+};
+
+struct BiasResult {
+  Figure bias;                                    // eq. (19), deg/h (Earth rate removed if asked)
+  std::vector<BiasStabilityFigure> bias_stability;  // eq. (20), one per smoothing time
+  std::optional<Figure> noise_equivalent_rate;    // NER = Bs(1 s), deg/h
+  std::optional<Figure> random_walk_coefficient;  // eq. (24), deg/sqrt(h)
+  std::vector<NormalisedStabilityPoint> normalised_stability_curve;  // Bs(τ) in deg/h, eq. (23)
+  std::optional<Figure> earth_rate_removed;       // deg/h, when removed
+  std::size_t samples = 0;
+  Figure duration;                                // s
+
+  nlohmann::json to_json() const;
+  std::string report() const;
+};
+
+// Throws Error for invalid options, fewer than two samples, a smoothing window longer than the
+// record or holding fewer than two whole windows, or (with random_walk) a record too short for NER.
+BiasResult bias(std::span<const double> output, const BiasOptions& options);
+
+// Eq. (19) alone, in deg/h (Earth rate removed if asked): the bias of one run, as bias
+// repeatability and temperature sensitivity use it. Mean by compensated sum. Needs no sample rate
+// or smoothing times; throws Error for an empty record or a zero scale factor.
+double bias_deg_h(std::span<const double> output, const BiasOptions& options);
+
+}  // namespace inertest

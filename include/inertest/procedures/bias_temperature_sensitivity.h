@@ -1,0 +1,48 @@
+// Bias temperature sensitivity: GJB 2426A-2004 5.12.4, eq. (22).
+//
+//   Bt = max_i | (B0i − B0m) / (Ti − Tm) |                                                 (22)
+//
+// B0m is the bias at room temperature Tm, B0i the bias at each test temperature Ti, each by
+// eq. (19) in deg/h. The room-temperature run is the one at room_temperature_degC when given
+// (exactly one run must be at that temperature), else the first run: 5.12.4.3 a) measures room
+// temperature first.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "inertest/core/figure.h"
+
+namespace inertest {
+
+struct TemperatureRunBias {
+  double temperature_degC = 0.0;
+  double bias_deg_h = 0.0;
+};
+
+struct BiasTemperatureOptions {
+  std::optional<double> room_temperature_degC;
+};
+
+struct BiasTemperatureSensitivityResult {
+  Figure bias_temperature_sensitivity;  // Bt, deg/h/degC
+  Figure room_temperature;              // Tm, degC
+  Figure room_temperature_bias;         // B0m, deg/h
+  Figure worst_temperature;             // the Ti that gives the maximum, degC
+  std::vector<TemperatureRunBias> runs;
+  std::vector<double> sensitivities;    // |B0i − B0m| / |Ti − Tm| per run (0 for the room run)
+
+  nlohmann::json to_json() const;
+  std::string report() const;
+};
+
+// Throws Error for fewer than 2 runs, no run (or more than one) at the room temperature, another
+// run at the room temperature (division by zero in eq. 22), or a non-finite value.
+BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const TemperatureRunBias> runs,
+                                                              const BiasTemperatureOptions& options = {});
+
+}  // namespace inertest

@@ -1,0 +1,42 @@
+// Polarity: GJB 2426A-2004 5.7; IEEE Std 952-1997 clause 13 (A.6).
+//
+// The table turns so that the input vector lies along the positive IRA, then the opposite way; the
+// output's sign is recorded each time. The polarity is the sign of the output change for a
+// positive input, sign(F(+) − F(−)): "positive" when the output grows with a positive input about
+// the IRA. The signs of F(+) and F(−) themselves are reported as the standard records them; when a
+// bias larger than the rate response gives both the same sign, `signs_opposite` is false and a
+// warning says so (the difference still gives the polarity).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "inertest/core/figure.h"
+
+namespace inertest {
+
+struct PolarityOptions {
+  std::string output_unit = "1";
+  std::optional<int> expected;  // +1 or −1 when the specification states the polarity
+  void validate() const;        // throws Error when expected is neither +1 nor −1
+};
+
+struct PolarityResult {
+  int polarity = 1;                 // +1 or −1
+  Figure output_positive_rate;      // mean output F(+)
+  Figure output_negative_rate;      // mean output F(−)
+  bool signs_opposite = true;
+  std::optional<bool> pass;         // against PolarityOptions::expected
+  std::vector<std::string> warnings;
+
+  nlohmann::json to_json() const;
+  std::string report() const;
+};
+
+// Throws Error when F(+) = F(−) (the output does not respond) or a value is not finite.
+PolarityResult polarity(double output_positive_rate, double output_negative_rate, const PolarityOptions& options = {});
+
+}  // namespace inertest

@@ -1,0 +1,49 @@
+// `inertest simulate`: runs a simulation plan (TOML) through the virtual lab and writes, into an
+// output directory, the records a real test station would export for every test the plan names,
+// the test plan that processes them (plan.toml, for `inertest run` / run_campaign), and truth.json
+// with the true parameters and, for every figure a plan step reports, the true value and the
+// statistical tolerance of its estimate.
+//
+// The simulator never calls a procedure: every true value comes from the instrument model itself.
+//
+// Simulation plan:
+//   seed = 20240601                        # same seed, byte-identical files
+//   [plan] title = "..."                   # optional
+//   [site] name, latitude_deg, gravity_m_s2 (default: WGS 84 normal gravity)
+//   [gyro] the GyroParameters keys (gyro_model.h), [gyro.drift] DI ... DOS
+//   [rate_table] tilt_arcsec = [east, north], wobble_arcsec, face_arcsec = [x, y], rate_error_ppm
+//   [centrifuge] radius_m, platform_rate_error_rad_s, perpendicularity_arcsec = [x2t, y2t],
+//                wobble_arcsec (platform axis), sleeve_arcsec = [x1t, y1t]
+//   [[test]] kind = "...", name = "..." (optional), then the kind's keys (simulation.cc lists them)
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/progress.h"
+
+namespace inertest::sim {
+
+struct SimulationOptions {
+  ProgressCallback progress;
+};
+
+struct SimulationSummary {
+  nlohmann::json truth;                    // what truth.json holds
+  std::string plan_path;                   // the processing plan written (DIR/plan.toml)
+  std::vector<std::string> written_files;  // every file written, in order
+};
+
+// Throws Error naming the plan file, line and column for any problem in the plan; writes nothing
+// then. Files appear whole or not at all.
+SimulationSummary simulate(const std::string& plan_path, const std::string& out_dir,
+                           const SimulationOptions& options = {});
+
+// The same on plan text already in memory; `source` names it in messages.
+SimulationSummary simulate_text(std::string_view plan_text, const std::string& source, const std::string& out_dir,
+                                const SimulationOptions& options = {});
+
+}  // namespace inertest::sim

@@ -1,0 +1,221 @@
+// The engine against a straightforward implementation of the NIST SP 1065 definitions, written
+// here term by term in long double, and against small cases computed by hand.
+#include "inertest/allan/allan_engine.h"
+
+#include <random>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using Real = long double;
+
+// NIST SP 1065 definitions on rate data y (frequency form where it is the plainer one).
+struct Reference {
+  explicit Reference(const std::vector<double>& y) : rate(y.begin(), y.end()), phase(y.size() + 1, 0.0L) {
+    for (std::size_t i = 0; i < y.size(); ++i) phase[i + 1] = phase[i] + rate[i];
+  }
+  std::size_t n() const { return rate.size(); }
+  std::vector<Real> averages(std::size_t m) const {  // non-overlapping means of m samples
+    std::vector<Real> means;
+    for (std::size_t j = 0; (j + 1) * m <= n(); ++j) {
+      Real s = 0;
+      for (std::size_t i = j * m; i < (j + 1) * m; ++i) s += rate[i];
+      means.push_back(s / static_cast<Real>(m));
+    }
+    return means;
+  }
+  // eq. (6): 1/(2(M-1)) sum (ybar_{i+1} - ybar_i)^2
+  Real adev(std::size_t m) const {
+    const auto y = averages(m);
+    Real s = 0;
+    for (std::size_t i = 0; i + 1 < y.size(); ++i) s += (y[i + 1] - y[i]) * (y[i + 1] - y[i]);
+    return s / (2 * static_cast<Real>(y.size() - 1));
+  }
+  // eq. (11) on phase x (tau0 = 1)
+  Real oadev(std::size_t m) const {
+    const std::size_t nx = phase.size();
+    Real s = 0;
+    for (std::size_t i = 0; i + 2 * m < nx; ++i) {
+      const Real d = phase[i + 2 * m] - 2 * phase[i + m] + phase[i];
+      s += d * d;
+    }
+    return s / (2 * static_cast<Real>(m * m) * static_cast<Real>(nx - 2 * m));
+  }
+  // eq. (14)
+  Real mdev(std::size_t m) const {
+    const std::size_t nx = phase.size();
+    Real s = 0;
+    for (std::size_t j = 0; j + 3 * m <= nx; ++j) {
+      Real inner = 0;
+      for (std::size_t i = j; i < j + m; ++i) inner += phase[i + 2 * m] - 2 * phase[i + m] + phase[i];
+      s += inner * inner;
+    }
+    const Real mm = static_cast<Real>(m);
+    return s / (2 * mm * mm * mm * mm * static_cast<Real>(nx - 3 * m + 1));
+  }
+  // eq. (16), frequency form
+  Real hdev(std::size_t m) const {
+    const auto y = averages(m);
+    Real s = 0;
+    for (std::size_t i = 0; i + 2 < y.size(); ++i) {
+      const Real d = y[i + 2] - 2 * y[i + 1] + y[i];
+      s += d * d;
+    }
+    return s / (6 * static_cast<Real>(y.size() - 2));
+  }
+  // eq. (17), phase form
+  Real ohdev(std::size_t m) const {
+    const std::size_t nx = phase.size();
+    Real s = 0;
+    for (std::size_t i = 0; i + 3 * m < nx; ++i) {
+      const Real d = phase[i + 3 * m] - 3 * phase[i + 2 * m] + 3 * phase[i + m] - phase[i];
+      s += d * d;
+    }
+    return s / (6 * static_cast<Real>(m * m) * static_cast<Real>(nx - 3 * m));
+  }
+  // eq. (25): the phase extended by reflection to 3N_x - 4 points, centres i = 2..N_x-1 (1-based).
+  Real totdev(std::size_t m) const {
+    const std::size_t nx = phase.size();
+    std::vector<Real> extended;
+    for (std::size_t j = nx - 2; j >= 1; --j) extended.push_back(2 * phase[0] - phase[j]);  // x*_{1-j}
+    const std::size_t first = extended.size();
+    extended.insert(extended.end(), phase.begin(), phase.end());
+    for (std::size_t j = 1; j <= nx - 2; ++j) extended.push_back(2 * phase[nx - 1] - phase[nx - 1 - j]);
+    Real s = 0;
+    for (std::size_t i = 1; i + 1 < nx; ++i) {
+      const std::size_t c = first + i;
+      const Real d = extended[c - m] - 2 * extended[c] + extended[c + m];
+      s += d * d;
+    }
+    return s / (2 * static_cast<Real>(m * m) * static_cast<Real>(nx - 2));
+  }
+  Real variance(Estimator e, std::size_t m) const {
+    switch (e) {
+      case Estimator::kAdev: return adev(m);
+      case Estimator::kOadev: return oadev(m);
+      case Estimator::kMdev: return mdev(m);
+      case Estimator::kHdev: return hdev(m);
+      case Estimator::kOhdev: return ohdev(m);
+      case Estimator::kTotdev: return totdev(m);
+    }
+    return 0;
+  }
+
+  std::vector<Real> rate;
+  std::vector<Real> phase;
+};
+
+double mean_of(const std::vector<double>& y) {
+  Real s = 0;
+  for (double v : y) s += v;
+  return static_cast<double>(s / static_cast<Real>(y.size()));
+}
+
+std::vector<AllanSums> run_engine(const std::vector<double>& y, std::vector<std::size_t> factors,
+                                  std::size_t workers, std::size_t block, std::size_t chunk,
+                                  EstimatorSet estimators = EstimatorSet::all()) {
+  AllanEngineOptions options;
+  options.averaging_factors = std::move(factors);
+  options.estimators = estimators;
+  options.worker_count = workers;
+  options.block_size = block;
+  AllanEngine engine(y.size(), mean_of(y), options);
+  for (std::size_t i = 0; i < y.size(); i += chunk) {
+    engine.push(std::span<const double>(y).subspan(i, std::min(chunk, y.size() - i)));
+  }
+  return engine.finish();
+}
+
+TEST(AllanEngine, HandComputedFourSamples) {
+  // y = 1, 3, 2, 6: phase X = 0, 1, 4, 6, 12 (without the mean, which no estimator sees).
+  const std::vector<double> y = {1, 3, 2, 6};
+  const auto m1 = run_engine(y, {1}, 1, 4, 4);
+  // Second differences of X: 2, -1, 4.
+  EXPECT_NEAR_RELATIVE(m1[0].variance(Estimator::kOadev), 21.0 / 6.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(m1[0].variance(Estimator::kAdev), 21.0 / 6.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(m1[0].variance(Estimator::kMdev), 21.0 / 6.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(m1[0].variance(Estimator::kTotdev), 21.0 / 6.0, 1e-14);
+  // Second differences of y: -3, 5: (9 + 25) / (6 * 2).
+  EXPECT_NEAR_RELATIVE(m1[0].variance(Estimator::kHdev), 34.0 / 12.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(m1[0].variance(Estimator::kOhdev), 34.0 / 12.0, 1e-14);
+
+  // m = 2 without the third-difference estimators (which need N >= 3m).
+  EstimatorSet second;
+  for (Estimator e : {Estimator::kAdev, Estimator::kOadev, Estimator::kTotdev}) second.insert(e);
+  const auto m2 = run_engine(y, {2}, 1, 4, 4, second);
+  // Averages 2 and 4: (4 - 2)^2 / 2.
+  EXPECT_NEAR_RELATIVE(m2[0].variance(Estimator::kAdev), 2.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(m2[0].variance(Estimator::kOadev), 2.0, 1e-14);
+  // Centres 1, 2, 3 of the reflected phase: 3 (X*_-1 = -1), 4, 7 (X*_5 = 2*12 - 6): 74 / (2*4*3).
+  EXPECT_NEAR_RELATIVE(m2[0].variance(Estimator::kTotdev), 74.0 / 24.0, 1e-14);
+}
+
+TEST(AllanEngine, AgreesWithDefinitionsToOnePartInTenToTheNine) {
+  std::mt19937_64 random(7);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(3001);
+  double walk = 0.0;
+  for (double& v : y) {
+    walk += 0.05 * white(random);
+    v = 5.0 + white(random) + walk;
+  }
+  const Reference reference(y);
+  const std::vector<std::size_t> factors = {1, 2, 3, 5, 16, 100, 333, 640, 1000};
+  // Small blocks and odd chunks make the ring wrap and the pieces split; 1 and 2 workers.
+  for (std::size_t workers : {1u, 2u}) {
+    for (std::size_t block : {7u, 64u, 1u << 15}) {
+      const auto sums = run_engine(y, factors, workers, block, 97);
+      ASSERT_EQ(sums.size(), factors.size());
+      for (const AllanSums& s : sums) {
+        for (Estimator e : kAllEstimators) {
+          const double expected = static_cast<double>(reference.variance(e, s.averaging_factor));
+          EXPECT_NEAR_RELATIVE(s.variance(e), expected, 1e-9)
+              << estimator_name(e) << " m=" << s.averaging_factor << " block=" << block;
+        }
+      }
+    }
+  }
+}
+
+TEST(AllanEngine, LargestFactorsOfEachEstimator) {
+  std::mt19937_64 random(3);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(301);
+  for (double& v : y) v = white(random);
+  const Reference reference(y);
+  EstimatorSet second;
+  for (Estimator e : {Estimator::kAdev, Estimator::kOadev, Estimator::kTotdev}) second.insert(e);
+  EXPECT_EQ(largest_averaging_factor(301, second), 150u);
+  EXPECT_EQ(largest_averaging_factor(301, EstimatorSet::all()), 100u);
+  const auto sums = run_engine(y, {149, 150}, 2, 16, 50, second);
+  for (const AllanSums& s : sums) {
+    for (Estimator e : second.members()) {
+      EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9);
+    }
+  }
+  const auto third = run_engine(y, {99, 100}, 2, 16, 50);
+  for (const AllanSums& s : third) {
+    for (Estimator e : kAllEstimators) {
+      EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9);
+    }
+  }
+}
+
+TEST(AllanEngine, RejectsUnsupportedFactorsAndMissingSamples) {
+  AllanEngineOptions options;
+  options.averaging_factors = {4};
+  EXPECT_THROW(AllanEngine(10, 0.0, options), Error);
+  options.averaging_factors = {1};
+  AllanEngine engine(10, 0.0, options);
+  const std::vector<double> five(5, 1.0);
+  engine.push(five);
+  EXPECT_THROW(engine.finish(), Error);
+  const std::vector<double> six(6, 1.0);
+  EXPECT_THROW(engine.push(six), Error);
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,143 @@
+#include "inertest/allan/allan.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+AllanOptions options_at(double rate_hz) {
+  AllanOptions options;
+  options.sample_rate_hz = rate_hz;
+  return options;
+}
+
+// White rate noise of sigma (deg/h) at f Hz has N = sigma / sqrt(f) deg/h*sqrt(s) (IEEE 952 C.1):
+// in deg/sqrt(h), divided by 60.
+TEST(AllanVariance, WhiteRateNoiseGivesAngleRandomWalkWithinThreePercent) {
+  std::mt19937_64 random(11);
+  std::normal_distribution<double> white(0.0, 2.0);
+  std::vector<double> y(1 << 21);
+  for (double& v : y) v = 3.0 + white(random);
+  const double rate = 200.0;
+  const AllanResult result = allan_variance(y, options_at(rate));
+  ASSERT_TRUE(result.noise.has_value());
+  const double expected = 2.0 / std::sqrt(rate) / 60.0;
+  EXPECT_EQ(result.noise->angle_random_walk.unit, "deg/sqrt(h)");
+  EXPECT_NEAR_RELATIVE(result.noise->angle_random_walk.value, expected, 0.03);
+  EXPECT_NEAR_RELATIVE(result.slopes->angle_random_walk.value, expected, 0.03);
+  EXPECT_NEAR_RELATIVE(result.noise->random_walk_coefficient().value, expected, 0.03);
+  // Every point is white FM and the 1-sigma bounds hold the value.
+  const DeviationCurve& oadev = result.curves.at(Estimator::kOadev);
+  for (std::size_t i = 0; i < oadev.values.size(); ++i) {
+    EXPECT_LT(oadev.lower[i], oadev.values[i]);
+    EXPECT_GT(oadev.upper[i], oadev.values[i]);
+  }
+  EXPECT_EQ(result.noise_types.front(), NoiseType::kWhiteFrequency);
+}
+
+// A rate random walk with steps of s per sample at f Hz has K = s * sqrt(f) (sigma^2 = K^2 tau / 3).
+TEST(AllanVariance, RateRandomWalkGivesKWithinFifteenPercent) {
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> step(0.0, 0.01);
+  std::vector<double> y(1 << 21);
+  double walk = 0.0;
+  for (double& v : y) {
+    walk += step(random);
+    v = walk;
+  }
+  const double rate = 10.0;
+  const AllanResult result = allan_variance(y, options_at(rate));
+  ASSERT_TRUE(result.noise.has_value());
+  const double expected = 0.01 * std::sqrt(rate) * 60.0;  // deg/h/sqrt(s) -> deg/h/sqrt(h)
+  EXPECT_EQ(result.noise->rate_random_walk.unit, "deg/h/sqrt(h)");
+  EXPECT_NEAR_RELATIVE(result.noise->rate_random_walk.value, expected, 0.15);
+  EXPECT_NEAR_RELATIVE(result.slopes->rate_random_walk.value, expected, 0.15);
+  EXPECT_EQ(result.noise_types.back(), NoiseType::kRandomWalkFrequency);
+}
+
+TEST(AllanVariance, ConstantBiasOfAMillionTimesTheNoiseChangesNothing) {
+  std::mt19937_64 random(17);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(1000000);
+  double walk = 0.0;
+  for (double& v : y) {
+    walk += 1e-3 * white(random);
+    v = white(random) + walk;
+  }
+  std::vector<double> biased(y);
+  for (double& v : biased) v += 1e6;
+  AllanOptions options = options_at(100.0);
+  const AllanResult plain = allan_variance(y, options);
+  const AllanResult shifted = allan_variance(biased, options);
+  for (const auto& [estimator, curve] : plain.curves) {
+    const DeviationCurve& other = shifted.curves.at(estimator);
+    for (std::size_t i = 0; i < curve.values.size(); ++i) {
+      EXPECT_NEAR_RELATIVE(other.values[i], curve.values[i], 1e-9) << estimator_name(estimator) << " " << i;
+    }
+  }
+}
+
+TEST(AllanVariance, EstimatorSelectionAndScale) {
+  std::mt19937_64 random(2);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(10000);
+  for (double& v : y) v = white(random);
+  AllanOptions options = options_at(1.0);
+  options.estimators = EstimatorSet::parse("oadev,totdev");
+  const AllanResult result = allan_variance(y, options);
+  EXPECT_EQ(result.curves.size(), 2u);
+  // Without third differences the grid reaches N/2.
+  EXPECT_EQ(result.averaging_factors.back(), 4096u);
+  options.scale = -3.0;
+  const AllanResult scaled = allan_variance(y, options);
+  EXPECT_NEAR_RELATIVE(scaled.curves.at(Estimator::kOadev).values[0], 3.0 * result.curves.at(Estimator::kOadev).values[0], 1e-12);
+  const nlohmann::json json = result.to_json();
+  EXPECT_TRUE(json.contains("oadev"));
+  EXPECT_FALSE(json.contains("mdev"));
+  EXPECT_EQ(json["tau"].size(), json["oadev"]["values"].size());
+}
+
+TEST(AllanVariance, ConfidenceBoundsFollowChiSquared) {
+  // edf = 2: chi^2 quantiles at 0.1587 and 0.8413 are -2 ln(1-p).
+  const DeviationInterval interval = chi_squared_interval(1.0, 2.0, kOneSigmaConfidence);
+  const double tail = (1.0 - kOneSigmaConfidence) / 2.0;
+  EXPECT_NEAR_RELATIVE(interval.lower, std::sqrt(2.0 / (-2.0 * std::log(tail))), 1e-10);
+  EXPECT_NEAR_RELATIVE(interval.upper, std::sqrt(2.0 / (-2.0 * std::log(1.0 - tail))), 1e-10);
+  // NIST SP 1065 Table 5, white FM, N = 1025 phase points, m = 1: (3*1024/2 - 2*1023/1025) * 4/9.
+  EXPECT_NEAR_RELATIVE(edf_overlapping_allan(1025, 1, NoiseType::kWhiteFrequency),
+                       (1536.0 - 2.0 * 1023.0 / 1025.0) * 4.0 / 9.0, 1e-14);
+  EXPECT_NEAR_RELATIVE(edf_total(1000, 10, NoiseType::kFlickerFrequency), 1.17 * 100 - 0.22, 1e-14);
+}
+
+TEST(AllanVariance, BadInputIsAClearError) {
+  const std::vector<double> two = {1.0, 2.0};
+  EXPECT_THROW(allan_variance(two, options_at(1.0)), Error);  // MDEV and friends need 3 samples
+  const std::vector<double> one = {1.0};
+  AllanOptions second = options_at(1.0);
+  second.estimators = EstimatorSet::parse("oadev");
+  EXPECT_THROW(allan_variance(one, second), Error);
+  const std::vector<double> many(100, 1.0);
+  EXPECT_THROW(allan_variance(many, options_at(0.0)), Error);
+  EXPECT_THROW(allan_variance(many, options_at(-5.0)), Error);
+  AllanOptions bad_taus = options_at(1.0);
+  bad_taus.taus = "octaves";
+  EXPECT_THROW(allan_variance(many, bad_taus), Error);
+  bad_taus.taus = "1000";  // longer than the record supports
+  EXPECT_THROW(allan_variance(many, bad_taus), Error);
+  AllanOptions bad_unit = options_at(1.0);
+  bad_unit.input_unit = "furlong/fortnight";
+  EXPECT_THROW(allan_variance(many, bad_unit), Error);
+  EXPECT_THROW(EstimatorSet::parse("adev,avar"), Error);
+  std::vector<double> with_nan(many);
+  with_nan[5] = NAN;
+  EXPECT_THROW(allan_variance(with_nan, options_at(1.0)), Error);
+}
+
+}  // namespace
+}  // namespace inertest

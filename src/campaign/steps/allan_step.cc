@@ -1,0 +1,73 @@
+// Plan kind "allan": Allan variance and noise terms of a rate record (GJB 2426A-2004 5.12.5.4.2).
+//   file = "static.f64"          # the record
+//   format = "f64"               # csv (default), f64 or f32 (raw little-endian)
+//   column = "rate"              # optional (text): header name or 1-based index
+//   sample_rate_hz = 100         # optional: default the instrument's sample_rate_hz
+//   input_unit = "deg/h"         # optional: unit of the samples
+//   taus = "octave"              # optional: octave, decade, all, N/decade or "0.1,1,10"
+//   scale_factor = 1.2e5         # optional: output units per deg/s; the raw output is divided by it
+//                                # and converted to deg/h (input_unit must then be left out)
+// The result is the JSON of `inertest allan --json`.
+#include <cmath>
+
+#include "campaign/step_registry.h"
+#include "inertest/allan/allan.h"
+
+namespace inertest::campaign {
+namespace {
+
+ColumnSelector column_of(PlanTable& step) {
+  const toml::node* node = step.raw().get("column");
+  if (node != nullptr && node->is_integer()) {
+    const double index = step.number("column");
+    if (!(index >= 1.0) || index != std::floor(index)) step.fail_at("column", "a column index is 1-based");
+    ColumnSelector selector;
+    selector.index = static_cast<std::size_t>(index);
+    return selector;
+  }
+  return ColumnSelector::parse(step.string("column"));
+}
+
+StepAction prepare(PlanTable& step, const PlanContext& context) {
+  RateRecordSource source;
+  source.path = step.file("file");
+  try {
+    source.format = parse_rate_record_format(step.string_or("format", "csv"));
+  } catch (const Error& e) {
+    step.fail_at("format", e.message());
+  }
+  if (step.contains("column")) source.column = column_of(step);
+  AllanOptions options;
+  const std::optional<double> rate = step.optional_number("sample_rate_hz");
+  if (rate) {
+    options.sample_rate_hz = *rate;
+  } else if (context.instrument.sample_rate_hz) {
+    options.sample_rate_hz = *context.instrument.sample_rate_hz;
+  } else {
+    step.fail("no sample rate: set sample_rate_hz here or in the instrument table");
+  }
+  const std::optional<std::string> unit = step.optional_string("input_unit");
+  options.taus = step.string_or("taus", options.taus);
+  if (const std::optional<double> scale_factor = step.optional_number("scale_factor")) {
+    if (unit) step.fail_at("input_unit", "input_unit and scale_factor exclude each other: scaled output is in deg/h");
+    if (!(*scale_factor != 0.0) || !std::isfinite(*scale_factor)) step.fail_at("scale_factor", "must be nonzero");
+    // raw / (output per deg/s) = deg/s; times 3600 = deg/h.
+    options.scale = 3600.0 / *scale_factor;
+    options.input_unit = "deg/h";
+  } else if (unit) {
+    options.input_unit = *unit;
+  }
+  try {
+    options.validate();
+  } catch (const Error& e) {
+    step.fail(e.message());
+  }
+  return [source, options](const StepRunContext& run) {
+    return allan_variance_of_file(source, options, run.progress).to_json();
+  };
+}
+
+const bool registered = register_step("allan", prepare);
+
+}  // namespace
+}  // namespace inertest::campaign

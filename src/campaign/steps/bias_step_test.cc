@@ -1,0 +1,147 @@
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "inertest/campaign/campaign.h"
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using testing::ScratchDirectory;
+
+std::string constant_record(double value, std::size_t count) {
+  std::string text;
+  for (std::size_t i = 0; i < count; ++i) text += nlohmann::json(value).dump() + "\n";
+  return text;
+}
+
+const char* kHeader = R"([instrument]
+id = "FOG-7"
+output_unit = "pulse/s"
+nominal_scale_factor = 3600.0
+sample_rate_hz = 4
+
+[site]
+latitude_deg = 30.0
+heading_deg = 0.0
+)";
+
+TEST(BiasStepTest, BiasRepeatabilityAndTemperatureFromAPlan) {
+  ScratchDirectory scratch;
+  // 4 Hz, 100 s alternating 1 s blocks of 1 ± 0.5: bias 1 deg/h, Bs(1 s) = 0.5·sqrt(100/99).
+  std::string rest;
+  for (int i = 0; i < 400; ++i) rest += (i / 4) % 2 == 0 ? "1.5\n" : "0.5\n";
+  scratch.write("rest.txt", rest);
+  for (int i = 1; i <= 6; ++i) scratch.write("run" + std::to_string(i) + ".txt", constant_record(0.1 * i, 8));
+  scratch.write("t20.txt", constant_record(1.0, 8));
+  scratch.write("t60.txt", constant_record(2.0, 8));
+  const std::string plan = scratch.write("plan.toml", std::string(kHeader) + R"(
+[[procedure]]
+kind = "bias"
+file = "rest.txt"
+smoothing_s = [1, 2]
+
+[procedure.limits]
+bias = { max = 2.0 }
+"/bias_stability/0" = { max = 0.1, unit = "deg/h" }
+
+[[procedure]]
+kind = "bias"
+name = "bias, Earth rate removed"
+file = "rest.txt"
+smoothing_s = [1]
+remove_earth_rate = true
+
+[[procedure]]
+kind = "bias_repeatability"
+files = ["run1.txt", "run2.txt", "run3.txt", "run4.txt", "run5.txt", "run6.txt"]
+
+[[procedure]]
+kind = "bias_temperature"
+[[procedure.run]]
+temperature_degC = 20
+file = "t20.txt"
+[[procedure.run]]
+temperature_degC = 60
+file = "t60.txt"
+)");
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& procedures = summary.results.at("procedures");
+  const auto& bias = procedures.at(0).at("result");
+  EXPECT_NEAR(bias.at("bias").at("value").get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(bias.at("bias_stability").at(0).at("value").get<double>(), 0.5 * std::sqrt(100.0 / 99.0), 1e-12);
+  EXPECT_NEAR(bias.at("bias_stability").at(1).at("value").get<double>(), 0.0, 1e-12);
+  EXPECT_TRUE(bias.contains("random_walk_coefficient"));
+  // IRA north at 30 deg N: Ωe cos 30° removed.
+  const double earth = 7.2921150e-5 / (3.14159265358979323846 / 180.0) * 3600.0 * std::sqrt(3.0) / 2.0;
+  EXPECT_NEAR(procedures.at(1).at("result").at("bias").at("value").get<double>(), 1.0 - earth, 1e-9);
+  EXPECT_NEAR(procedures.at(2).at("result").at("bias_repeatability").at("value").get<double>(), 0.1 * std::sqrt(3.5),
+              1e-12);
+  EXPECT_NEAR(procedures.at(3).at("result").at("bias_temperature_sensitivity").at("value").get<double>(), 1.0 / 40.0,
+              1e-12);
+  // bias passes (1 <= 2), the 1 s stability fails (0.5 > 0.1).
+  for (const auto& verdict : summary.results.at("verdicts")) {
+    EXPECT_EQ(verdict.at("pass").get<bool>(), verdict.at("figure") == "bias") << verdict.dump();
+  }
+  EXPECT_EQ(summary.results.at("verdict"), "FAIL");
+}
+
+void expect_plan_error(const std::string& body, const std::string& message) {
+  ScratchDirectory scratch;
+  scratch.write("rest.txt", constant_record(1.0, 8));
+  const std::string plan = scratch.write("plan.toml", body);
+  try {
+    run_campaign(plan, scratch.path() + "/out");
+    FAIL() << "expected a plan error: " << message;
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("plan.toml:"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr(message));
+  }
+}
+
+TEST(BiasStepTest, PlanErrorsNameTheLine) {
+  const std::string no_rate = R"([instrument]
+id = "x"
+nominal_scale_factor = 1.0
+[[procedure]]
+kind = "bias"
+file = "rest.txt"
+)";
+  expect_plan_error(no_rate, "sample_rate_hz");
+  const std::string no_k = R"([instrument]
+id = "x"
+[[procedure]]
+kind = "bias"
+file = "rest.txt"
+sample_rate_hz = 1
+)";
+  expect_plan_error(no_k, "scale_factor");
+  expect_plan_error(std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"missing.txt\"\n", "not found");
+  expect_plan_error(std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"rest.txt\"\nsmoothing_s = [-1]\n",
+                    "smoothing time must be positive");
+  expect_plan_error(std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"rest.txt\"\ninput = \"V\"\n",
+                    "input");
+  expect_plan_error(std::string(kHeader) + "[[procedure]]\nkind = \"bias_repeatability\"\nfiles = [\"rest.txt\"]\n",
+                    "at least 2 runs");
+  expect_plan_error(std::string(kHeader) +
+                        "[[procedure]]\nkind = \"bias_temperature\"\n[[procedure.run]]\ntemperature_degC = 20\n"
+                        "file = \"rest.txt\"\ncolour = 1\n",
+                    "unknown key 'colour'");
+}
+
+TEST(BiasStepTest, WindowLongerThanTheRecordFailsWhenRun) {
+  ScratchDirectory scratch;
+  scratch.write("rest.txt", constant_record(1.0, 8));
+  const std::string plan =
+      scratch.write("plan.toml", std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"rest.txt\"\n");
+  try {
+    run_campaign(plan, scratch.path() + "/out");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("longer than the record"));
+  }
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,45 @@
+// Plan kind "hand_checks": GJB 2426A-2004 5.2-5.4, values measured by hand.
+//   [[procedure.check]]
+//   name = "Insulation resistance"   # the result key is its snake_case: insulation_resistance
+//   value = 120.0                    # a number, or for appearance (5.2) "pass" / "fail"
+//   unit = "MOhm"                    # optional, default "1"
+//   min = 20.0                       # optional limits; [procedure.limits] can also apply
+//   max = 1000.0
+#include "campaign/step_registry.h"
+#include "inertest/procedures/hand_checks.h"
+
+namespace inertest::campaign {
+namespace {
+
+StepAction prepare(PlanTable& step, const PlanContext&) {
+  std::vector<HandCheck> checks;
+  for (auto& table : step.tables("check")) {
+    HandCheck check;
+    check.name = table.string("name");
+    const toml::node* value = table.raw().get("value");
+    if (value != nullptr && value->is_string()) {
+      const std::string verdict = *table.optional_string("value");
+      if (verdict != "pass" && verdict != "fail") table.fail_at("value", "must be a number, \"pass\" or \"fail\"");
+      check.verdict = verdict == "pass";
+    } else {
+      check.value = table.number("value");
+    }
+    check.unit = table.string_or("unit", "1");
+    check.min = table.optional_number("min");
+    check.max = table.optional_number("max");
+    table.require_all_used();
+    checks.push_back(check);
+  }
+  if (checks.empty()) step.fail("needs at least one [[procedure.check]] table (name, value, unit, min, max)");
+  try {
+    hand_checks(checks);
+  } catch (const Error& e) {
+    step.fail(e.message());
+  }
+  return [checks](const StepRunContext&) { return hand_checks(checks).to_json(); };
+}
+
+const bool registered = register_step("hand_checks", prepare);
+
+}  // namespace
+}  // namespace inertest::campaign

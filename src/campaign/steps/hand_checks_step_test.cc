@@ -1,0 +1,144 @@
+#include <nlohmann/json.hpp>
+
+#include "inertest/campaign/campaign.h"
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using testing::ScratchDirectory;
+
+const char* kHeader = R"([instrument]
+id = "FOG-7"
+nominal_scale_factor = 3600.0
+
+[site]
+latitude_deg = 60.0
+)";
+
+TEST(HandChecksStepTest, RunThatNeverSettlesFailsWhenRun) {
+  ScratchDirectory scratch;
+  scratch.write("drift.txt", "2.0\n1.5\n1.01\n1.0\n");
+  const std::string plan = scratch.write("plan.toml", std::string(kHeader) + R"(
+[[procedure]]
+kind = "warm_up_time"
+rest_band_deg_h = 0.1
+sample_rate_hz = 2
+[[procedure.run]]
+file = "drift.txt"
+)");
+  try {
+    run_campaign(plan, scratch.path() + "/out");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("never settles"));
+  }
+}
+
+TEST(HandChecksStepTest, AllKindsRun) {
+  ScratchDirectory scratch;
+  scratch.write("th.csv", "rate,output\n0,10\n10,20\n2,11.5\n1,10.6\n-10,0\n-4,7\n-2,9.5\n");
+  scratch.write("res.csv", "base_rate,base_output,rate,output\n100,0,110,10\n100,0,102,1.2\n100,0,101,0.4\n"
+                           "-100,0,-110,-10\n-100,0,-104,-2.5\n-100,0,-103,-1\n");
+  scratch.write("plus.txt", "5\n5\n");
+  scratch.write("minus.txt", "-5\n-5\n");
+  // Time column + output in deg/h (K = 3600): settles within 0.1 from t = 4 s.
+  scratch.write("on.csv", "t,out\n1,1\n2,0.5\n3,0.2\n4,0.05\n5,0.01\n");
+  // At 1 deg/h input (output 1 when settled): within 2 % from the sample at t = 3 s on.
+  scratch.write("on_rate.csv", "t,out\n1,2.0\n2,1.5\n3,1.01\n4,1.0\n");
+  const std::string plan = scratch.write("plan.toml", std::string(kHeader) + R"(
+[[procedure]]
+kind = "hand_checks"
+[[procedure.check]]
+name = "Appearance"
+value = "pass"
+[[procedure.check]]
+name = "Insulation resistance"
+value = 150.0
+unit = "MOhm"
+min = 20.0
+[[procedure.check]]
+name = "Power consumption"
+value = 4.2
+unit = "W"
+max = 4.0
+
+[[procedure]]
+kind = "polarity"
+positive_file = "plus.txt"
+negative_file = "minus.txt"
+expected = "positive"
+
+[[procedure]]
+kind = "threshold"
+method = 1
+file = "th.csv"
+rate_unit = "deg/h"
+
+[procedure.limits]
+threshold = { max = 5.0, unit = "deg/h" }
+
+[[procedure]]
+kind = "resolution"
+file = "res.csv"
+rate_unit = "deg/h"
+
+[[procedure]]
+kind = "turn_on_time"
+rest_band_deg_h = 0.1
+rate_band = 0.02
+[[procedure.run]]
+file = "on.csv"
+[[procedure.run]]
+file = "on_rate.csv"
+input_rate_deg_s = 0.0002777777777777778
+
+[[procedure]]
+kind = "warm_up_time"
+rest_band_deg_h = 0.1
+[[procedure.run]]
+file = "on.csv"
+)");
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& p = summary.results.at("procedures");
+  const auto& checks = p.at(0).at("result");
+  EXPECT_EQ(checks.at("appearance").at("value"), 1.0);
+  EXPECT_EQ(checks.at("insulation_resistance").at("unit"), "MOhm");
+  EXPECT_TRUE(checks.at("check_pass").at("insulation_resistance").get<bool>());
+  EXPECT_FALSE(checks.at("check_pass").at("power_consumption").get<bool>());
+  EXPECT_FALSE(checks.at("all_pass").get<bool>());
+  EXPECT_EQ(p.at(1).at("result").at("polarity"), "positive");
+  EXPECT_TRUE(p.at(1).at("result").at("pass").get<bool>());
+  EXPECT_DOUBLE_EQ(p.at(2).at("result").at("threshold").at("value").get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(p.at(3).at("result").at("resolution").at("value").get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(p.at(4).at("result").at("turn_on_time").at("value").get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(p.at(4).at("result").at("runs").at(1).at("time").at("value").get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(p.at(5).at("result").at("warm_up_time").at("value").get<double>(), 4.0);
+  EXPECT_TRUE(summary.results.at("verdicts").at(0).at("pass").get<bool>());
+}
+
+TEST(HandChecksStepTest, PlanErrors) {
+  ScratchDirectory scratch;
+  auto expect_error = [&](const std::string& body, const std::string& message) {
+    const std::string plan = scratch.write("plan.toml", std::string(kHeader) + body);
+    try {
+      validate_plan(plan);
+      FAIL() << "expected: " << message;
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("plan.toml:"));
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(message));
+    }
+  };
+  expect_error("[[procedure]]\nkind = \"hand_checks\"\n", "at least one [[procedure.check]]");
+  expect_error("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"Appearance\"\nvalue = \"ok\"\n",
+               "\"pass\" or \"fail\"");
+  expect_error("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"A\"\nvalue = 1\nmin = 2\nmax = 1\n",
+               "min 2 above max 1");
+  expect_error("[[procedure]]\nkind = \"polarity\"\npositive_output = 1.0\n", "negative_file");
+  expect_error("[[procedure]]\nkind = \"threshold\"\nmethod = 4\nfile = \"x\"\n", "must be 1, 2 or 3");
+  expect_error("[[procedure]]\nkind = \"turn_on_time\"\n", "at least one [[procedure.run]]");
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,156 @@
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using testing::run_cli;
+using testing::ScratchDirectory;
+
+// 10 Hz, 200 s: bias + square wave of 1 s half-period + nothing else. With K = 5 output per deg/s,
+// output b gives b/5·3600 deg/h.
+std::vector<double> square_wave_record() {
+  std::vector<double> output(2000);
+  for (std::size_t i = 0; i < output.size(); ++i) output[i] = 2.0 + ((i / 10) % 2 == 0 ? 0.01 : -0.01);
+  return output;
+}
+
+std::string as_text(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += nlohmann::json(v).dump() + "\n";
+  return text;
+}
+
+TEST(BiasCommandTest, ExactContract) {
+  ScratchDirectory scratch;
+  const std::string file = scratch.write("rest.txt", as_text(square_wave_record()));
+  const auto run = run_cli({"bias", file, "--rate", "10", "--scale-factor", "5", "--smoothing", "1,10,100", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json.at("bias").at("unit"), "deg/h");
+  EXPECT_NEAR(json.at("bias").at("value").get<double>(), 2.0 / 5.0 * 3600.0, 1e-9);
+  const auto& stability = json.at("bias_stability");
+  ASSERT_EQ(stability.size(), 3u);
+  // 1 s windows alternate 2 ± 0.01 (200 windows): 0.01·sqrt(200/199) output = ·720 deg/h.
+  EXPECT_EQ(stability[0].at("smoothing_s"), 1.0);
+  EXPECT_EQ(stability[0].at("unit"), "deg/h");
+  EXPECT_EQ(stability[0].size(), 3u);
+  EXPECT_NEAR(stability[0].at("value").get<double>(), 0.01 * std::sqrt(200.0 / 199.0) * 720.0, 1e-9);
+  EXPECT_NEAR(stability[1].at("value").get<double>(), 0.0, 1e-9);  // 10 s windows: equal means
+  EXPECT_EQ(stability[2].at("smoothing_s"), 100.0);
+  EXPECT_EQ(json.at("random_walk_coefficient").at("unit"), "deg/sqrt(h)");
+  EXPECT_NEAR(json.at("random_walk_coefficient").at("value").get<double>(),
+              stability[0].at("value").get<double>() / 60.0, 1e-12);
+}
+
+TEST(BiasCommandTest, NamedColumnAndBinaryFormat) {
+  ScratchDirectory scratch;
+  const std::vector<double> output = square_wave_record();
+  std::string text = "time,gyro\n";
+  for (std::size_t i = 0; i < output.size(); ++i) text += std::to_string(i) + "," + nlohmann::json(output[i]).dump() + "\n";
+  const std::string csv = scratch.write("rest.csv", text);
+  std::string bytes(output.size() * sizeof(float), '\0');
+  for (std::size_t i = 0; i < output.size(); ++i) {
+    const float f = static_cast<float>(output[i]);
+    std::memcpy(bytes.data() + i * sizeof(float), &f, sizeof(float));
+  }
+  const std::string binary = scratch.write("rest.f32", bytes);
+  const auto by_name = run_cli({"bias", csv, "--rate", "10", "--scale-factor", "5", "--column", "gyro", "--json"});
+  ASSERT_EQ(by_name.exit_code, 0) << by_name.err;
+  const auto by_index = run_cli({"bias", csv, "--rate", "10", "--scale-factor", "5", "--column", "2", "--json"});
+  ASSERT_EQ(by_index.exit_code, 0) << by_index.err;
+  EXPECT_EQ(nlohmann::json::parse(by_name.out), nlohmann::json::parse(by_index.out));
+  const auto f32 = run_cli({"bias", binary, "--rate", "10", "--scale-factor", "5", "--format", "f32", "--json"});
+  ASSERT_EQ(f32.exit_code, 0) << f32.err;
+  EXPECT_NEAR(nlohmann::json::parse(f32.out).at("bias").at("value").get<double>(), 1440.0, 1e-3);
+}
+
+TEST(BiasCommandTest, ClearErrors) {
+  ScratchDirectory scratch;
+  const std::string file = scratch.write("short.txt", as_text(std::vector<double>(50, 1.0)));
+  const auto too_long = run_cli({"bias", file, "--rate", "10", "--scale-factor", "5", "--smoothing", "10"});
+  EXPECT_EQ(too_long.exit_code, 2);
+  EXPECT_THAT(too_long.err, ::testing::HasSubstr("longer than the record"));
+  const auto bad_rate = run_cli({"bias", file, "--rate", "0", "--scale-factor", "5", "--smoothing", "1"});
+  EXPECT_EQ(bad_rate.exit_code, 2);
+  EXPECT_THAT(bad_rate.err, ::testing::HasSubstr("sample rate must be positive"));
+  const auto no_k = run_cli({"bias", file, "--rate", "10", "--smoothing", "1"});
+  EXPECT_EQ(no_k.exit_code, 2);
+  EXPECT_THAT(no_k.err, ::testing::HasSubstr("scale factor"));
+  const auto missing = run_cli({"bias", scratch.path() + "/none.txt", "--rate", "10", "--scale-factor", "5"});
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_THAT(missing.err, ::testing::HasSubstr("none.txt"));
+  EXPECT_TRUE(missing.out.empty());
+}
+
+TEST(BiasCommandTest, RepeatabilityAndTemperature) {
+  ScratchDirectory scratch;
+  std::vector<std::string> files;
+  for (int i = 1; i <= 6; ++i) {
+    files.push_back(scratch.write("run" + std::to_string(i) + ".txt", as_text(std::vector<double>(4, 0.1 * i))));
+  }
+  std::vector<std::string> arguments = {"bias-repeatability"};
+  arguments.insert(arguments.end(), files.begin(), files.end());
+  for (const char* a : {"--scale-factor", "3600", "--json"}) arguments.push_back(a);
+  const auto repeat = run_cli(arguments);
+  ASSERT_EQ(repeat.exit_code, 0) << repeat.err;
+  // Biases 0.1 ... 0.6 deg/h: standard deviation 0.1·sqrt(3.5).
+  EXPECT_NEAR(nlohmann::json::parse(repeat.out).at("bias_repeatability").at("value").get<double>(),
+              0.1 * std::sqrt(3.5), 1e-12);
+  const auto temperature = run_cli({"bias-temperature", "--run", "20:" + files[0], "--run", "60:" + files[4],
+                                    "--run", "-40:" + files[2], "--scale-factor", "3600", "--json"});
+  ASSERT_EQ(temperature.exit_code, 0) << temperature.err;
+  // |0.5 - 0.1| / 40 = 0.01, |0.3 - 0.1| / 60.
+  EXPECT_NEAR(nlohmann::json::parse(temperature.out).at("bias_temperature_sensitivity").at("value").get<double>(),
+              0.01, 1e-12);
+  const auto bad = run_cli({"bias-temperature", "--run", "hot:" + files[0], "--scale-factor", "1"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("NUMBER:FILE"));
+  const auto one = run_cli({"bias-repeatability", files[0], "--scale-factor", "1"});
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_THAT(one.err, ::testing::HasSubstr("at least 2"));
+}
+
+TEST(ProcedureCommandsTest, TurnOnTimePolarityThresholdResolution) {
+  ScratchDirectory scratch;
+  // Time column + output: error 1, 0.5, 0.2, 0.05, 0.01 deg/h (K = 3600) at t = 1..5 s; band 0.1.
+  const std::string power_on = scratch.write("on.csv", "t,out\n1,1\n2,0.5\n3,0.2\n4,0.05\n5,0.01\n");
+  const auto on = run_cli({"turn-on-time", "--run", "0:" + power_on, "--scale-factor", "3600", "--rest-band", "0.1",
+                           "--json"});
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(on.out).at("turn_on_time").at("value").get<double>(), 4.0);
+  const auto warm = run_cli({"warm-up-time", "--run", "0:" + power_on, "--scale-factor", "3600", "--rest-band",
+                             "0.1", "--json"});
+  ASSERT_EQ(warm.exit_code, 0) << warm.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(warm.out).at("warm_up_time").at("value").get<double>(), 4.0);
+  // With --rate 2 the same column alone: sample i at (i + 1)/2 s -> the 4th sample at 2 s.
+  const std::string column = scratch.write("on.txt", "1\n0.5\n0.2\n0.05\n0.01\n");
+  const auto by_rate = run_cli({"turn-on-time", "--run", "0:" + column, "--rate", "2", "--scale-factor", "3600",
+                                "--rest-band", "0.1", "--json"});
+  ASSERT_EQ(by_rate.exit_code, 0) << by_rate.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(by_rate.out).at("turn_on_time").at("value").get<double>(), 2.0);
+
+  const auto pol = run_cli({"polarity", "--positive-output", "-3", "--negative-output", "3", "--json"});
+  ASSERT_EQ(pol.exit_code, 0) << pol.err;
+  EXPECT_EQ(nlohmann::json::parse(pol.out).at("polarity"), "negative");
+
+  const std::string points = scratch.write("th.csv", "rate,output\n0,10\n10,20\n2,11.5\n1,10.6\n-10,0\n-4,7\n-2,9.5\n");
+  const auto th = run_cli({"threshold", points, "--method", "1", "--scale-factor", "3600", "--rate-unit", "deg/h",
+                           "--json"});
+  ASSERT_EQ(th.exit_code, 0) << th.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(th.out).at("threshold").at("value").get<double>(), 4.0);
+
+  const std::string steps = scratch.write("res.csv",
+                                          "base_rate,base_output,rate,output\n100,0,110,10\n100,0,102,1.2\n"
+                                          "100,0,101,0.4\n-100,0,-110,-10\n-100,0,-104,-2.5\n-100,0,-103,-1\n");
+  const auto res = run_cli({"resolution", steps, "--scale-factor", "3600", "--rate-unit", "deg/h", "--json"});
+  ASSERT_EQ(res.exit_code, 0) << res.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(res.out).at("resolution").at("value").get<double>(), 4.0);
+}
+
+}  // namespace
+}  // namespace inertest

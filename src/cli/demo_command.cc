@@ -1,0 +1,45 @@
+// inertest demo --out DIR
+#include <cstdio>
+#include <fmt/format.h>
+
+#include "command.h"
+#include "inertest/demo/demo.h"
+
+namespace inertest::cli {
+namespace {
+
+struct Arguments {
+  std::string out;
+  std::string plan;
+  bool json = false;
+};
+
+CommandAction setup(CLI::App& root) {
+  auto arguments = std::make_shared<Arguments>();
+  CLI::App* command = root.add_subcommand(
+      "demo",
+      "Simulate a complete test campaign of a navigation-grade FOG in the virtual lab, process it\n"
+      "(inertest run), and check every measured figure against the simulated truth. Writes\n"
+      "DIR/lab/ (records, plan, truth.json), DIR/results.json (with truth_check) and DIR/report.txt.\n"
+      "Exit status 1 when a measured figure falls outside its tolerance.");
+  command->add_option("--out", arguments->out, "output directory")->required();
+  command->add_option("--plan", arguments->plan, "simulation plan instead of the built-in one");
+  command->add_flag("--json", arguments->json, "print results.json on stdout");
+  return [arguments] {
+    DemoOptions options;
+    options.simulation_plan = arguments->plan;
+    options.progress = [](std::string_view stage, double fraction) {
+      fmt::print(stderr, "[demo] {:<40} {:5.1f} %\n", stage, 100.0 * fraction);
+      std::fflush(stderr);
+    };
+    const DemoSummary summary = run_demo(arguments->out, options);
+    print_result(summary.results, summary.report, arguments->json);
+    fmt::print(stderr, "report: {}\nresults: {}\n", summary.report_path, summary.results_path);
+    return summary.all_within ? 0 : 1;
+  };
+}
+
+const bool registered = register_command("demo", setup);
+
+}  // namespace
+}  // namespace inertest::cli

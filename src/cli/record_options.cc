@@ -1,0 +1,38 @@
+#include "record_options.h"
+
+#include <charconv>
+#include <fmt/format.h>
+
+#include "inertest/core/error.h"
+
+namespace inertest::cli {
+
+void add_record_options(CLI::App& command, OutputRecordSource& source) {
+  command.add_option("--column", source.column,
+                     "text record: the output column by header name or 1-based index (default: the only or first "
+                     "column)");
+  command.add_option("--format", source.format,
+                     "binary record instead of text: f64, f32, i32 or i16, optionally with le/be (e.g. f32be)");
+}
+
+void add_axis_options(CLI::App& command, AxisOrientation& axis) {
+  command.add_option("--latitude", axis.latitude_deg, "site latitude, deg (north positive)")->capture_default_str();
+  command.add_option("--heading", axis.heading_deg, "azimuth of the IRA from north, deg (east positive)")
+      ->capture_default_str();
+  command.add_option("--elevation", axis.elevation_deg, "elevation of the IRA above the horizontal, deg")
+      ->capture_default_str();
+}
+
+std::pair<double, std::string> parse_number_and_file(const std::string& text, const std::string& option,
+                                                     const std::string& example) {
+  const auto colon = text.find(':');
+  double number = 0.0;
+  const char* end = text.data() + (colon == std::string::npos ? 0 : colon);
+  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size() ||
+      std::from_chars(text.data(), end, number).ptr != end) {
+    throw Error(fmt::format("{} '{}': expected NUMBER:FILE, e.g. {}", option, text, example));
+  }
+  return {number, text.substr(colon + 1)};
+}
+
+}  // namespace inertest::cli

@@ -1,0 +1,36 @@
+// inertest simulate PLAN.toml --out DIR
+#include <fmt/format.h>
+
+#include "command.h"
+#include "inertest/sim/simulation.h"
+
+namespace inertest::cli {
+namespace {
+
+struct Arguments {
+  std::string plan;
+  std::string out;
+};
+
+CommandAction setup(CLI::App& root) {
+  auto arguments = std::make_shared<Arguments>();
+  CLI::App* command = root.add_subcommand(
+      "simulate",
+      "Virtual lab: simulate the gyro and the rigs a simulation plan (TOML) names, and write into DIR\n"
+      "the records of every test, plan.toml (the test plan that processes them: inertest run) and\n"
+      "truth.json (the true parameters and the tolerance of each measured figure). Same seed, same files.");
+  command->add_option("PLAN", arguments->plan, "simulation plan, TOML")->required();
+  command->add_option("--out", arguments->out, "output directory")->required();
+  return [arguments] {
+    sim::SimulationOptions options;
+    options.progress = terminal_progress();
+    const sim::SimulationSummary summary = sim::simulate(arguments->plan, arguments->out, options);
+    fmt::print(stderr, "{} files written; processing plan: {}\n", summary.written_files.size(), summary.plan_path);
+    return 0;
+  };
+}
+
+const bool registered = register_command("simulate", setup);
+
+}  // namespace
+}  // namespace inertest::cli

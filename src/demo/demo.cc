@@ -1,0 +1,112 @@
+#include "inertest/demo/demo.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "inertest/campaign/campaign.h"
+#include "inertest/core/error.h"
+#include "inertest/core/figure.h"
+#include "inertest/core/units.h"
+#include "inertest/io/atomic_write.h"
+#include "inertest/sim/simulation.h"
+
+namespace inertest {
+namespace {
+
+const nlohmann::json* find_result(const nlohmann::json& results, const std::string& procedure) {
+  for (const auto& p : results.at("procedures")) {
+    if (p.at("name") == procedure) return &p.at("result");
+  }
+  return nullptr;
+}
+
+const nlohmann::json* find_figure(const nlohmann::json& result, const std::string& figure) {
+  if (!figure.empty() && figure.front() == '/') {
+    const nlohmann::json::json_pointer pointer(figure);
+    return result.contains(pointer) ? &result.at(pointer) : nullptr;
+  }
+  return result.contains(figure) ? &result.at(figure) : nullptr;
+}
+
+std::string report_text(const nlohmann::json& results, const std::string& campaign_report) {
+  std::string text = "inertest demo: a simulated navigation-grade FOG through the virtual lab\n"
+                     "==========================================================================\n\n";
+  text += campaign_report;
+  text += "\nTruth check (simulated truth against the measured figure; tolerance from the noise)\n";
+  for (const auto& c : results.at("truth_check")) {
+    text += fmt::format("  {:<7} {:<22} {:<28} true {:>13.7g}  measured {:>13.7g}  ±{:<10.3g} {}\n",
+                        c.at("within").get<bool>() ? "within" : "OUTSIDE", c.at("procedure").get<std::string>(),
+                        c.at("quantity").get<std::string>(), c.at("true").get<double>(),
+                        c.at("measured").get<double>(), c.at("tolerance").get<double>(), c.at("unit").get<std::string>());
+  }
+  if (!results.at("not_checked").empty()) {
+    text += "\nSimulated but not yet measured (no plan step in this build reports them):\n";
+    for (const auto& c : results.at("not_checked")) {
+      text += fmt::format("  {:<22} {:<28} true {:.7g} {}\n", c.at("procedure").get<std::string>(),
+                          c.at("quantity").get<std::string>(), c.at("true").get<double>(),
+                          c.at("unit").get<std::string>());
+    }
+  }
+  return text;
+}
+
+}  // namespace
+
+DemoSummary run_demo(const std::string& out_dir, const DemoOptions& options) {
+  const std::filesystem::path out(out_dir);
+  const std::string lab_dir = (out / "lab").string();
+  sim::SimulationOptions simulation;
+  simulation.progress = options.progress;
+  const sim::SimulationSummary lab =
+      options.simulation_plan.empty()
+          ? sim::simulate_text(demo_simulation_plan(), "built-in demo plan", lab_dir, simulation)
+          : sim::simulate(options.simulation_plan, lab_dir, simulation);
+  if (options.simulation_plan.empty()) {
+    write_file_atomically((out / "lab" / "simulation.toml").string(), demo_simulation_plan());
+  }
+
+  CampaignOptions campaign;
+  campaign.progress = options.progress;
+  const CampaignSummary processed = run_campaign(lab.plan_path, out_dir, campaign);
+
+  DemoSummary summary;
+  summary.results = processed.results;
+  nlohmann::json checks = nlohmann::json::array();
+  nlohmann::json unchecked = nlohmann::json::array();
+  bool all_within = true;
+  for (const auto& truth : lab.truth.at("truth")) {
+    const std::string procedure = truth.at("procedure");
+    const nlohmann::json* result = find_result(summary.results, procedure);
+    if (truth.at("figure").is_null() || result == nullptr) {
+      unchecked.push_back({{"procedure", procedure}, {"quantity", truth.at("quantity")}, {"true", truth.at("true")},
+                           {"unit", truth.at("unit")}});
+      continue;
+    }
+    const std::string figure_key = truth.at("figure");
+    const nlohmann::json* node = find_figure(*result, figure_key);
+    if (node == nullptr) throw Error("demo: procedure '" + procedure + "' reports no figure '" + figure_key + "'");
+    const Figure figure = node->get<Figure>();
+    const std::string unit = truth.at("unit");
+    const double measured = convert(figure.value, figure.unit, unit);
+    const double true_value = truth.at("true");
+    const double tolerance = truth.at("tolerance");
+    const bool within = std::abs(measured - true_value) <= tolerance;
+    all_within = all_within && within;
+    checks.push_back({{"procedure", procedure}, {"quantity", truth.at("quantity")}, {"true", true_value},
+                      {"measured", measured}, {"unit", unit}, {"tolerance", tolerance}, {"within", within},
+                      {"basis", truth.at("basis")}});
+  }
+  summary.results["truth_check"] = checks;
+  summary.results["not_checked"] = unchecked;
+  summary.results["truth_check_all_within"] = all_within;
+  summary.all_within = all_within;
+  summary.results_path = (out / "results.json").string();
+  summary.report_path = (out / "report.txt").string();
+  summary.report = report_text(summary.results, processed.report());
+  write_file_atomically(summary.results_path, summary.results.dump(2) + "\n");
+  write_file_atomically(summary.report_path, summary.report);
+  return summary;
+}
+
+}  // namespace inertest

@@ -1,0 +1,275 @@
+#include "inertest/procedures/bandwidth_and_delay.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/numerics/compensated_sum.h"
+#include "inertest/numerics/least_squares.h"
+
+namespace inertest {
+namespace {
+
+using constants::kPi;
+constexpr double kTwoPi = 2.0 * kPi;
+constexpr std::size_t kFewestFrequencies = 3;  // two parameters of eq. (37) plus one degree of freedom
+
+double wrap_to_pi(double angle) {
+  double wrapped = std::remainder(angle, kTwoPi);  // in [-π, π]
+  if (wrapped <= -kPi) wrapped += kTwoPi;
+  return wrapped;
+}
+
+void check_points(std::span<const FrequencyResponsePoint> points, const BandwidthOptions& options) {
+  if (points.size() < options.minimum_frequencies) {
+    throw Error(fmt::format("bandwidth: {} frequencies; GJB 2426A 5.13.3 a) asks for at least {}", points.size(),
+                            options.minimum_frequencies));
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    if (!std::isfinite(p.frequency_hz) || p.frequency_hz <= 0.0) {
+      throw Error(fmt::format("bandwidth: point {}: frequency {} Hz is not positive", i + 1, p.frequency_hz));
+    }
+    if (i > 0 && !(p.frequency_hz > points[i - 1].frequency_hz)) {
+      throw Error(fmt::format("bandwidth: point {}: frequency {} Hz is not above the one before ({} Hz); the "
+                              "frequencies must increase",
+                              i + 1, p.frequency_hz, points[i - 1].frequency_hz));
+    }
+    if (!std::isfinite(p.gain) || p.gain <= 0.0) {
+      throw Error(fmt::format("bandwidth: point {}: gain {} is not positive", i + 1, p.gain));
+    }
+    if (!std::isfinite(p.phase_rad)) throw Error(fmt::format("bandwidth: point {}: phase is not finite", i + 1));
+  }
+}
+
+// Phases taken one frequency after the other with no jump larger than π, so a lag that grows past
+// 180° at high frequency stays a lag (a sine fit only knows the phase modulo 2π).
+std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> points) {
+  std::vector<double> phases;
+  for (const auto& p : points) {
+    phases.push_back(phases.empty() ? p.phase_rad : phases.back() + wrap_to_pi(p.phase_rad - phases.back()));
+  }
+  return phases;
+}
+
+}  // namespace
+
+void BandwidthOptions::validate() const {
+  if (minimum_frequencies < kFewestFrequencies) {
+    throw Error(fmt::format("bandwidth: the minimum number of frequencies cannot be below {}", kFewestFrequencies));
+  }
+  if (Unit::parse(angle_unit).dimension() != Unit::parse("rad").dimension()) {
+    throw Error("bandwidth: angle unit '" + angle_unit + "' is not an angle");
+  }
+  Unit::parse(output_unit);
+}
+
+BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> points, const BandwidthOptions& options) {
+  options.validate();
+  check_points(points, options);
+  const std::size_t n = points.size();
+  std::vector<double> omega(n);
+  for (std::size_t i = 0; i < n; ++i) omega[i] = kTwoPi * points[i].frequency_hz;  // ωi in rad/s
+
+  // Eqs. (37)-(40): Y = X·B with Y = Gi², X = [1, −Gi²ωi²], B = [K², T²].
+  Matrix design(n, 2);
+  std::vector<double> gain_squared(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    gain_squared[i] = points[i].gain * points[i].gain;
+    design(i, 0) = 1.0;
+    design(i, 1) = -gain_squared[i] * omega[i] * omega[i];
+  }
+  LeastSquaresOptions fit_options;
+  fit_options.parameter_names = {"K^2", "T^2"};
+  const LeastSquaresResult fit = solve_least_squares(design, gain_squared, fit_options);
+  const double k_squared = fit.parameters[0];
+  const double t_squared = fit.parameters[1];
+  if (!(t_squared > 0.0)) {
+    throw Error(fmt::format("bandwidth: the fit of eq. (37) gives T^2 = {:.6g} s^2 <= 0: the gains do not fall with "
+                            "frequency like a first-order lag, so no bandwidth can be determined (test up to twice "
+                            "the bandwidth, GJB 2426A 5.13.3 a)",
+                            t_squared));
+  }
+  if (!(k_squared > 0.0)) {
+    throw Error(fmt::format("bandwidth: the fit of eq. (37) gives K^2 = {:.6g} <= 0; no bandwidth can be determined",
+                            k_squared));
+  }
+  const double t = std::sqrt(t_squared);                  // eq. (38)
+  const double bandwidth = 1.0 / (kTwoPi * t);            // eq. (41)
+  const double k = std::sqrt(k_squared);
+  const double variance_k2 = fit.covariance(0, 0);
+  const double variance_t2 = fit.covariance(1, 1);
+  const double sigma_t = std::sqrt(std::max(0.0, variance_t2)) / (2.0 * t);
+  // dBw/d(T²) = −Bw/(2T²).
+  const double sigma_bandwidth = bandwidth * std::sqrt(std::max(0.0, variance_t2)) / (2.0 * t_squared);
+  const double sigma_k = std::sqrt(std::max(0.0, variance_k2)) / (2.0 * k);
+
+  // Eqs. (44)-(46): Td = Σ ωi·yi / Σ ωi², yi = −Pi − atan(ωi·T).
+  const std::vector<double> phase = unwrapped_phases(points);
+  CompensatedSum omega_y;
+  CompensatedSum omega_omega;
+  CompensatedSum d_omega_y_dt;  // Σ ωi · dyi/dT, for the share of T's uncertainty in Td
+  std::vector<double> y(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    y[i] = -phase[i] - std::atan(omega[i] * t);
+    omega_y.add(omega[i] * y[i]);
+    omega_omega.add(omega[i] * omega[i]);
+    d_omega_y_dt.add(-omega[i] * omega[i] / (1.0 + omega[i] * omega[i] * t * t));
+  }
+  const double delay = omega_y.value() / omega_omega.value();
+  CompensatedSum phase_rss;
+  for (std::size_t i = 0; i < n; ++i) phase_rss.add((y[i] - omega[i] * delay) * (y[i] - omega[i] * delay));
+  // Residual variance of the one-parameter fit (n − 1 degrees of freedom), plus T's uncertainty
+  // carried through atan(ωi·T) (the two taken as independent).
+  const double sigma_delay_fit = std::sqrt(phase_rss.value() / static_cast<double>(n - 1) / omega_omega.value());
+  const double sigma_delay_t = std::abs(d_omega_y_dt.value() / omega_omega.value()) * sigma_t;
+
+  BandwidthResult result;
+  result.bandwidth = {bandwidth, "Hz", sigma_bandwidth};
+  result.delay = {delay, "s", std::hypot(sigma_delay_fit, sigma_delay_t)};
+  result.dc_gain = {k, "1", sigma_k};
+  result.time_constant = {t, "s", sigma_t};
+  result.gain_fit_residual_rms = {fit.residual_rms, "1", std::nullopt};
+  result.phase_fit_residual_rms = {std::sqrt(phase_rss.value() / static_cast<double>(n)) / constants::kDegree, "deg",
+                                   std::nullopt};
+  result.angle_unit = options.angle_unit;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double fitted_gain = k / std::sqrt(1.0 + omega[i] * omega[i] * t_squared);
+    const double fitted_phase = -std::atan(omega[i] * t) - omega[i] * delay;
+    result.bode.push_back({points[i].frequency_hz, points[i].gain, fitted_gain, phase[i] / constants::kDegree,
+                           fitted_phase / constants::kDegree});
+  }
+  if (n < 10) {
+    result.warnings.push_back(fmt::format("{} frequencies; GJB 2426A 5.13.3 a) asks for at least 10", n));
+  }
+  if (points.back().frequency_hz < 2.0 * bandwidth) {
+    result.warnings.push_back(fmt::format("the highest frequency ({} Hz) is below twice the bandwidth ({:.6g} Hz); "
+                                          "GJB 2426A 5.13.3 a) tests up to twice the bandwidth",
+                                          points.back().frequency_hz, 2.0 * bandwidth));
+  }
+  if (std::abs(phase.front()) > kPi / 2.0) {
+    result.warnings.push_back(fmt::format("the phase at the lowest frequency is {:.1f} deg: is the output's polarity "
+                                          "reversed against the input rate?",
+                                          phase.front() / constants::kDegree));
+  }
+  return result;
+}
+
+std::vector<VibrationFit> fit_vibration_records(std::span<const AngularVibrationRecord> records,
+                                                const BandwidthOptions& options) {
+  options.validate();
+  const double angle_to_rad = convert(1.0, options.angle_unit, "rad");
+  std::vector<VibrationFit> fits;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const auto& record = records[i];
+    const std::string name = record.source.empty() ? fmt::format("record {}", i + 1) : record.source;
+    if (!std::isfinite(record.frequency_hz) || record.frequency_hz <= 0.0) {
+      throw Error(fmt::format("bandwidth: {}: frequency {} Hz is not positive", name, record.frequency_hz));
+    }
+    if (record.output.size() != record.time_s.size() || record.angle.size() != record.time_s.size()) {
+      throw Error(fmt::format("bandwidth: {}: time, output and angle differ in length", name));
+    }
+    const double omega = kTwoPi * record.frequency_hz;
+    VibrationFit fit;
+    fit.frequency_hz = record.frequency_hz;
+    try {
+      fit.output = fit_sine(record.time_s, record.output, omega);  // eq. (34)
+      fit.angle = fit_sine(record.time_s, record.angle, omega);    // eq. (32)
+    } catch (const Error& e) {
+      throw Error(fmt::format("bandwidth: {}: {}", name, e.message()));
+    }
+    if (!(fit.angle.amplitude * angle_to_rad > 0.0) || !(fit.output.amplitude > 0.0)) {
+      throw Error(fmt::format("bandwidth: {}: no vibration at {} Hz in the {}", name, record.frequency_hz,
+                              fit.angle.amplitude > 0.0 ? "output" : "angle"));
+    }
+    fit.rate_amplitude = fit.angle.amplitude * omega;  // eq. (33)
+    fits.push_back(fit);
+  }
+  return fits;
+}
+
+BandwidthResult bandwidth_and_delay(std::span<const AngularVibrationRecord> records, const BandwidthOptions& options) {
+  const std::vector<VibrationFit> fits = fit_vibration_records(records, options);
+  if (fits.empty()) throw Error("bandwidth: no records");
+  std::vector<FrequencyResponsePoint> points;
+  const double reference = fits.front().output.amplitude / fits.front().rate_amplitude;  // FL / RL
+  for (const auto& fit : fits) {
+    // Eq. (35) with the rate amplitude divided out; eq. (43): the rate leads the angle by π/2
+    // (θ = A·sin(ωt + Φθ) gives θ' = Aω·sin(ωt + Φθ + π/2)), so the output's phase against the
+    // rate is Φ_F − Φθ − π/2, zero for an ideal gyro and negative for a lag.
+    const double gain = (fit.output.amplitude / fit.rate_amplitude) / reference;
+    points.push_back({fit.frequency_hz, gain, wrap_to_pi(fit.output.phase - fit.angle.phase - kPi / 2.0)});
+  }
+  BandwidthResult result = bandwidth_and_delay(points, options);
+  result.vibration_fits = fits;
+  result.output_unit = options.output_unit;
+  return result;
+}
+
+nlohmann::json BandwidthResult::to_json() const {
+  nlohmann::json bode_json = nlohmann::json::array();
+  for (const auto& p : bode) {
+    bode_json.push_back({{"frequency_hz", p.frequency_hz},
+                         {"gain", p.gain},
+                         {"fitted_gain", p.fitted_gain},
+                         {"phase_deg", p.phase_deg},
+                         {"fitted_phase_deg", p.fitted_phase_deg}});
+  }
+  nlohmann::json json = {
+      {"procedure", "bandwidth"},
+      {"clause", "GJB 2426A-2004 5.13-5.14, eqs. (32)-(46)"},
+      {"bandwidth", bandwidth},
+      {"delay", delay},
+      {"dc_gain", dc_gain},
+      {"time_constant", time_constant},
+      {"gain_fit_residual_rms", gain_fit_residual_rms},
+      {"phase_fit_residual_rms", phase_fit_residual_rms},
+      {"bode", bode_json},
+      {"warnings", warnings},
+  };
+  if (!vibration_fits.empty()) {
+    nlohmann::json fits = nlohmann::json::array();
+    const std::string rate_unit = angle_unit + "/s";
+    for (const auto& f : vibration_fits) {
+      fits.push_back({
+          {"frequency_hz", f.frequency_hz},
+          {"output_amplitude", Figure{f.output.amplitude, output_unit, f.output.amplitude_standard_error}},
+          {"output_phase", Figure{f.output.phase / constants::kDegree, "deg",
+                                  f.output.phase_standard_error / constants::kDegree}},
+          {"angle_amplitude", Figure{f.angle.amplitude, angle_unit, f.angle.amplitude_standard_error}},
+          {"angle_phase",
+           Figure{f.angle.phase / constants::kDegree, "deg", f.angle.phase_standard_error / constants::kDegree}},
+          {"rate_amplitude", Figure{f.rate_amplitude, rate_unit, std::nullopt}},
+      });
+    }
+    json["vibration_fits"] = fits;
+    const auto& lowest = vibration_fits.front();
+    json["gain_at_lowest_frequency"] =
+        Figure{lowest.output.amplitude / lowest.rate_amplitude, output_unit + "/(" + rate_unit + ")", std::nullopt};
+  }
+  return json;
+}
+
+std::string BandwidthResult::report() const {
+  auto line = [](const char* name, const Figure& f) {
+    return f.uncertainty ? fmt::format("  {:<28} {:.9g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
+                         : fmt::format("  {:<28} {:.9g} {}\n", name, f.value, f.unit);
+  };
+  std::string text = "Bandwidth and output delay (GJB 2426A-2004 5.13-5.14)\n";
+  text += line("bandwidth Bw", bandwidth);
+  text += line("output delay Td", delay);
+  text += line("dc gain K", dc_gain);
+  text += line("time constant T", time_constant);
+  text += line("phase fit residual rms", phase_fit_residual_rms);
+  text += "  frequency/Hz      gain    fitted   phase/deg  fitted/deg\n";
+  for (const auto& p : bode) {
+    text += fmt::format("  {:>12.6g} {:>9.5f} {:>9.5f} {:>11.3f} {:>11.3f}\n", p.frequency_hz, p.gain, p.fitted_gain,
+                        p.phase_deg, p.fitted_phase_deg);
+  }
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
+  return text;
+}
+
+}  // namespace inertest

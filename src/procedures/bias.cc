@@ -1,0 +1,129 @@
+#include "inertest/procedures/bias.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/numerics/statistics.h"
+#include "inertest/procedures/bias_stability.h"
+
+namespace inertest {
+namespace {
+
+constexpr double kSecondsPerHour = 3600.0;
+
+double to_deg_h(double rad_s) { return rad_s / constants::kDegree * kSecondsPerHour; }
+
+// What eq. (19) alone needs: a usable scale factor and orientation (no sample rate).
+void validate_conversion(const BiasOptions& options) {
+  if (!options.input_in_deg_h && (options.scale_factor == 0.0 || !std::isfinite(options.scale_factor))) {
+    throw Error(fmt::format("bias: the scale factor K must be a nonzero number (output units per deg/s), got {}",
+                            options.scale_factor));
+  }
+  if (options.remove_earth_rate) options.remove_earth_rate->validate();
+}
+
+}  // namespace
+
+void BiasOptions::validate() const {
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw Error(fmt::format("bias: the sample rate must be positive, got {} Hz", sample_rate_hz));
+  }
+  validate_conversion(*this);
+  if (smoothing_s.empty()) throw Error("bias: no smoothing time given for the bias stability");
+  for (double s : smoothing_s) {
+    if (!(s > 0.0) || !std::isfinite(s)) throw Error(fmt::format("bias: a smoothing time must be positive, got {} s", s));
+  }
+}
+
+double BiasOptions::deg_h_per_output() const { return input_in_deg_h ? 1.0 : kSecondsPerHour / scale_factor; }
+
+double bias_deg_h(std::span<const double> output, const BiasOptions& options) {
+  validate_conversion(options);
+  if (output.empty()) throw Error("bias: the record is empty");
+  double value = mean(output) * options.deg_h_per_output();  // eq. (19): F̄/K, deg/s -> deg/h
+  if (options.remove_earth_rate) value -= to_deg_h(earth_rate_on_axis(*options.remove_earth_rate));
+  return value;
+}
+
+BiasResult bias(std::span<const double> output, const BiasOptions& options) {
+  options.validate();
+  if (output.size() < 2) {
+    throw Error(fmt::format("bias: the record holds {} sample(s); at least 2 are needed", output.size()));
+  }
+  const double scale = options.deg_h_per_output();
+  // A standard deviation scales by |1/K|: the sign of K only flips the sign of the bias.
+  const double magnitude = std::abs(scale);
+  BiasResult result;
+  result.samples = output.size();
+  result.duration = {static_cast<double>(output.size()) / options.sample_rate_hz, "s", std::nullopt};
+  result.bias = {bias_deg_h(output, options), "deg/h", std::nullopt};
+  if (options.remove_earth_rate) {
+    result.earth_rate_removed = Figure{to_deg_h(earth_rate_on_axis(*options.remove_earth_rate)), "deg/h", std::nullopt};
+  }
+  for (double s : options.smoothing_s) {
+    const StabilityAtSmoothing stability = output_stability(output, options.sample_rate_hz, s);  // eq. (20)
+    result.bias_stability.push_back({s, stability.windows, Figure{stability.stability * magnitude, "deg/h", std::nullopt}});
+  }
+  if (options.random_walk) {
+    const double ner = noise_equivalent_rate(output, options.sample_rate_hz) * magnitude;  // deg/h
+    result.noise_equivalent_rate = Figure{ner, "deg/h", std::nullopt};
+    // Eq. (24) with τ = 1 s: NER·√τ in deg/h·√s, converted to deg/√h.
+    const double tau_s = 1.0;
+    result.random_walk_coefficient =
+        Figure{convert(ner * std::sqrt(tau_s), "deg/h*sqrt(s)", "deg/sqrt(h)"), "deg/sqrt(h)", std::nullopt};
+    result.normalised_stability_curve = normalised_stability_curve(output, options.sample_rate_hz);
+    for (auto& point : result.normalised_stability_curve) point.stability *= magnitude;
+  }
+  return result;
+}
+
+nlohmann::json BiasResult::to_json() const {
+  nlohmann::json stability = nlohmann::json::array();
+  for (const auto& s : bias_stability) {
+    stability.push_back({{"smoothing_s", s.smoothing_s}, {"value", s.value.value}, {"unit", s.value.unit}});
+  }
+  nlohmann::json json = {
+      {"procedure", "bias"},
+      {"clause", "GJB 2426A-2004 5.12.1-5.12.2, 5.12.5.4.1, eqs. (19), (20), (23), (24)"},
+      {"bias", bias},
+      {"bias_stability", stability},
+      {"samples", samples},
+      {"duration", duration},
+  };
+  if (random_walk_coefficient) {
+    json["random_walk_coefficient"] = *random_walk_coefficient;
+    json["noise_equivalent_rate"] = *noise_equivalent_rate;
+    nlohmann::json curve = nlohmann::json::array();
+    for (const auto& p : normalised_stability_curve) {
+      curve.push_back({{"tau_s", p.tau_s}, {"value", p.stability}, {"unit", "deg/h"}});
+    }
+    json["normalised_stability_curve"] = curve;
+  }
+  if (earth_rate_removed) json["earth_rate_removed"] = *earth_rate_removed;
+  return json;
+}
+
+std::string BiasResult::report() const {
+  std::string text = "Bias (GJB 2426A-2004 5.12.1, 5.12.2, 5.12.5.4.1)\n";
+  text += fmt::format("  {:<32} {} samples, {:.6g} s\n", "record", samples, duration.value);
+  text += fmt::format("  {:<32} {:.9g} {}\n", "bias B0", bias.value, bias.unit);
+  if (earth_rate_removed) {
+    text += fmt::format("  {:<32} {:.9g} {}\n", "Earth rate removed", earth_rate_removed->value, earth_rate_removed->unit);
+  }
+  for (const auto& s : bias_stability) {
+    text += fmt::format("  {:<32} {:.6g} {} ({} windows)\n", fmt::format("bias stability at {:g} s", s.smoothing_s),
+                        s.value.value, s.value.unit, s.windows);
+  }
+  if (random_walk_coefficient) {
+    text += fmt::format("  {:<32} {:.6g} {}\n", "noise equivalent rate Bs(1 s)", noise_equivalent_rate->value,
+                        noise_equivalent_rate->unit);
+    text += fmt::format("  {:<32} {:.6g} {}\n", "random walk coefficient", random_walk_coefficient->value,
+                        random_walk_coefficient->unit);
+  }
+  return text;
+}
+
+}  // namespace inertest

@@ -1,0 +1,43 @@
+#include "inertest/procedures/bias_stability.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <vector>
+
+#include "inertest/core/error.h"
+#include "inertest/numerics/statistics.h"
+
+namespace inertest {
+
+std::size_t samples_in_window(double seconds, double sample_rate_hz) {
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw Error(fmt::format("the sample rate must be positive, got {} Hz", sample_rate_hz));
+  }
+  if (!(seconds > 0.0) || !std::isfinite(seconds)) {
+    throw Error(fmt::format("a smoothing time must be positive, got {} s", seconds));
+  }
+  const double exact = seconds * sample_rate_hz;
+  const double whole = std::round(exact);
+  if (whole < 1.0 || std::abs(exact - whole) > 1e-6 * std::max(1.0, whole)) {
+    throw Error(fmt::format("a smoothing time of {} s is not a whole number of samples at {} Hz ({} samples)",
+                            seconds, sample_rate_hz, exact));
+  }
+  return static_cast<std::size_t>(whole);
+}
+
+StabilityAtSmoothing output_stability(std::span<const double> output, double sample_rate_hz, double smoothing_s) {
+  const std::size_t window = samples_in_window(smoothing_s, sample_rate_hz);
+  if (window > output.size()) {
+    throw Error(fmt::format("bias stability: a smoothing time of {} s ({} samples) is longer than the record "
+                            "({} samples, {} s)",
+                            smoothing_s, window, output.size(), static_cast<double>(output.size()) / sample_rate_hz));
+  }
+  const std::vector<double> means = window_means(output, window);
+  if (means.size() < 2) {
+    throw Error(fmt::format("bias stability: the record holds {} whole window(s) of {} s; eq. (20) needs at least 2",
+                            means.size(), smoothing_s));
+  }
+  return {smoothing_s, means.size(), sample_standard_deviation(means)};
+}
+
+}  // namespace inertest

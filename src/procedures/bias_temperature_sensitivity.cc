@@ -1,0 +1,97 @@
+#include "inertest/procedures/bias_temperature_sensitivity.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+
+namespace inertest {
+
+BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const TemperatureRunBias> runs,
+                                                              const BiasTemperatureOptions& options) {
+  if (runs.size() < 2) {
+    throw Error(fmt::format("bias temperature sensitivity: {} run(s); eq. (22) needs the room-temperature run and "
+                            "at least one other temperature",
+                            runs.size()));
+  }
+  for (const auto& run : runs) {
+    if (!std::isfinite(run.temperature_degC) || !std::isfinite(run.bias_deg_h)) {
+      throw Error("bias temperature sensitivity: a run's temperature or bias is not a finite number");
+    }
+  }
+  std::size_t room = 0;
+  if (options.room_temperature_degC) {
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      if (runs[i].temperature_degC == *options.room_temperature_degC) {
+        room = i;
+        ++found;
+      }
+    }
+    if (found != 1) {
+      throw Error(fmt::format("bias temperature sensitivity: {} runs at the room temperature {} degC; exactly one "
+                              "is needed",
+                              found, *options.room_temperature_degC));
+    }
+  }
+  BiasTemperatureSensitivityResult result;
+  result.runs.assign(runs.begin(), runs.end());
+  const TemperatureRunBias& reference = runs[room];
+  double worst = -1.0;
+  std::size_t worst_index = room;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (i == room) {
+      result.sensitivities.push_back(0.0);
+      continue;
+    }
+    const double dt = runs[i].temperature_degC - reference.temperature_degC;
+    if (dt == 0.0) {
+      throw Error(fmt::format("bias temperature sensitivity: run {} is at the room temperature {} degC too; eq. (22) "
+                              "divides by Ti − Tm",
+                              i + 1, reference.temperature_degC));
+    }
+    const double s = std::abs((runs[i].bias_deg_h - reference.bias_deg_h) / dt);  // eq. (22)
+    result.sensitivities.push_back(s);
+    if (s > worst) {
+      worst = s;
+      worst_index = i;
+    }
+  }
+  result.bias_temperature_sensitivity = {worst, "deg/h/degC", std::nullopt};
+  result.room_temperature = {reference.temperature_degC, "degC", std::nullopt};
+  result.room_temperature_bias = {reference.bias_deg_h, "deg/h", std::nullopt};
+  result.worst_temperature = {runs[worst_index].temperature_degC, "degC", std::nullopt};
+  return result;
+}
+
+nlohmann::json BiasTemperatureSensitivityResult::to_json() const {
+  nlohmann::json table = nlohmann::json::array();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    table.push_back({{"temperature", Figure{runs[i].temperature_degC, "degC", std::nullopt}},
+                     {"bias", Figure{runs[i].bias_deg_h, "deg/h", std::nullopt}},
+                     {"sensitivity", Figure{sensitivities[i], "deg/h/degC", std::nullopt}}});
+  }
+  return {
+      {"procedure", "bias_temperature_sensitivity"},
+      {"clause", "GJB 2426A-2004 5.12.4, eq. (22)"},
+      {"bias_temperature_sensitivity", bias_temperature_sensitivity},
+      {"room_temperature", room_temperature},
+      {"room_temperature_bias", room_temperature_bias},
+      {"worst_temperature", worst_temperature},
+      {"runs", table},
+  };
+}
+
+std::string BiasTemperatureSensitivityResult::report() const {
+  std::string text = "Bias temperature sensitivity (GJB 2426A-2004 5.12.4)\n";
+  for (const auto& run : runs) {
+    text += fmt::format("  {:<32} {:.9g} deg/h\n", fmt::format("bias at {:g} degC", run.temperature_degC), run.bias_deg_h);
+  }
+  text += fmt::format("  {:<32} {:.6g} deg/h/degC (worst at {:g} degC, room {:g} degC)\n",
+                      "temperature sensitivity Bt", bias_temperature_sensitivity.value, worst_temperature.value,
+                      room_temperature.value);
+  return text;
+}
+
+}  // namespace inertest

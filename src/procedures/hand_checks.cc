@@ -1,0 +1,116 @@
+#include "inertest/procedures/hand_checks.h"
+
+#include <cctype>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+
+namespace inertest {
+namespace {
+
+// Keys that the result itself uses; a check may not take them.
+const std::set<std::string> kReservedKeys = {"procedure", "clause", "checks", "check_pass", "all_pass"};
+
+}  // namespace
+
+std::string snake_case_key(const std::string& name) {
+  std::string key;
+  bool separator = false;
+  for (unsigned char c : name) {
+    if (std::isalnum(c) != 0) {
+      if (separator && !key.empty()) key += '_';
+      key += static_cast<char>(std::tolower(c));
+      separator = false;
+    } else {
+      separator = true;
+    }
+  }
+  return key;
+}
+
+HandChecksResult hand_checks(std::span<const HandCheck> checks) {
+  if (checks.empty()) throw Error("hand checks: no checks given");
+  HandChecksResult result;
+  std::set<std::string> keys;
+  for (const auto& check : checks) {
+    const std::string key = snake_case_key(check.name);
+    if (key.empty()) throw Error(fmt::format("hand checks: the check '{}' has no usable name", check.name));
+    if (kReservedKeys.contains(key)) throw Error(fmt::format("hand checks: the name '{}' is reserved", check.name));
+    if (!keys.insert(key).second) {
+      throw Error(fmt::format("hand checks: two checks share the key '{}' ('{}')", key, check.name));
+    }
+    if (check.value.has_value() == check.verdict.has_value()) {
+      throw Error(fmt::format("hand checks: '{}' needs either a measured value or a pass/fail verdict", check.name));
+    }
+    if (check.verdict && (check.min || check.max)) {
+      throw Error(fmt::format("hand checks: '{}' is a pass/fail verdict and takes no min or max", check.name));
+    }
+    if (check.value && !std::isfinite(*check.value)) {
+      throw Error(fmt::format("hand checks: the value of '{}' is not a finite number", check.name));
+    }
+    if (check.min && check.max && *check.min > *check.max) {
+      throw Error(fmt::format("hand checks: '{}' has min {} above max {}", check.name, *check.min, *check.max));
+    }
+    try {
+      Unit::parse(check.unit);
+    } catch (const Error& e) {
+      throw Error(fmt::format("hand checks: '{}': {}", check.name, e.message()));
+    }
+    HandCheckResult entry;
+    entry.key = key;
+    entry.check = check;
+    if (check.verdict) {
+      entry.figure = {*check.verdict ? 1.0 : 0.0, "1", std::nullopt};
+      entry.pass = *check.verdict;
+    } else {
+      entry.figure = {*check.value, check.unit, std::nullopt};
+      entry.pass = (!check.min || *check.value >= *check.min) && (!check.max || *check.value <= *check.max);
+    }
+    result.all_pass = result.all_pass && entry.pass;
+    result.checks.push_back(std::move(entry));
+  }
+  return result;
+}
+
+nlohmann::json HandChecksResult::to_json() const {
+  nlohmann::json json = {{"procedure", "hand_checks"}, {"clause", "GJB 2426A-2004 5.2-5.4"}};
+  nlohmann::json flags = nlohmann::json::object();
+  nlohmann::json table = nlohmann::json::array();
+  for (const auto& c : checks) {
+    json[c.key] = c.figure;
+    flags[c.key] = c.pass;
+    nlohmann::json row = {{"key", c.key}, {"name", c.check.name}, {"pass", c.pass}};
+    if (c.check.verdict) {
+      row["value"] = *c.check.verdict ? "pass" : "fail";
+    } else {
+      row["value"] = *c.check.value;
+      row["unit"] = c.check.unit;
+    }
+    if (c.check.min) row["min"] = *c.check.min;
+    if (c.check.max) row["max"] = *c.check.max;
+    table.push_back(std::move(row));
+  }
+  json["check_pass"] = flags;
+  json["checks"] = table;
+  json["all_pass"] = all_pass;
+  return json;
+}
+
+std::string HandChecksResult::report() const {
+  std::string text = "Checks measured by hand (GJB 2426A-2004 5.2-5.4)\n";
+  for (const auto& c : checks) {
+    const std::string value = c.check.verdict ? std::string(*c.check.verdict ? "pass" : "fail")
+                                              : fmt::format("{:.6g} {}", *c.check.value, c.check.unit);
+    std::string limits;
+    if (c.check.min) limits += fmt::format(" min {:g}", *c.check.min);
+    if (c.check.max) limits += fmt::format(" max {:g}", *c.check.max);
+    text += fmt::format("  {:<5} {:<40} {}{}\n", c.pass ? "PASS" : "FAIL", c.check.name, value, limits);
+  }
+  return text;
+}
+
+}  // namespace inertest

@@ -1,0 +1,111 @@
+#include "inertest/procedures/input_axis_misalignment.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+
+namespace inertest {
+namespace {
+
+using constants::kArcsecond;
+using constants::kDegree;
+
+Figure arcsec(double angle_rad) { return {angle_rad / kArcsecond, "arcsec", std::nullopt}; }
+
+double angle_from_components(double sum_of_squares) {
+  const double sine = std::sqrt(sum_of_squares);
+  if (sine > 1.0) {
+    throw Error(fmt::format("input-axis misalignment: sqrt(sum of delta^2) = {:.6g} > 1; check the scale factor, the "
+                            "rate and the outputs (K must be output per input rate)",
+                            sine));
+  }
+  return std::asin(sine);  // eqs. (49)-(50)
+}
+
+}  // namespace
+
+void InputAxisMisalignmentOptions::validate() const {
+  if (!std::isfinite(scale_factor) || scale_factor == 0.0) {
+    throw Error("input-axis misalignment: the scale factor K must be nonzero (output unit per rate unit)");
+  }
+  if (!std::isfinite(rate) || rate <= 0.0) throw Error("input-axis misalignment: the table rate must be positive");
+  if (Unit::parse(rate_unit).dimension() != Unit::parse("rad/s").dimension()) {
+    throw Error("input-axis misalignment: rate unit '" + rate_unit + "' is not an angular rate");
+  }
+  Unit::parse(output_unit);
+}
+
+InputAxisMisalignmentResult input_axis_misalignment(std::span<const MisalignmentPosition> positions,
+                                                    const InputAxisMisalignmentOptions& options) {
+  options.validate();
+  if (positions.size() != 2 && positions.size() != 4) {
+    throw Error(fmt::format("input-axis misalignment: {} position(s); GJB 2426A 5.15.3 uses 2 positions, or 4 to "
+                            "remove the mounting error",
+                            positions.size()));
+  }
+  std::vector<double> delta;
+  for (std::size_t j = 0; j < positions.size(); ++j) {
+    const auto& p = positions[j];
+    if (!std::isfinite(p.output_positive) || !std::isfinite(p.output_negative)) {
+      throw Error(fmt::format("input-axis misalignment: position {}: output is not finite", j + 1));
+    }
+    // Eqs. (47)-(48) with K in output per input: δ = (F+ − F−)/(2·K·Ω), dimensionless (rad).
+    delta.push_back((p.output_positive - p.output_negative) / (2.0 * options.scale_factor * options.rate));
+  }
+
+  InputAxisMisalignmentResult result;
+  for (double d : delta) result.deltas.push_back(arcsec(d));
+  double alpha = 0.0;
+  if (delta.size() == 2) {
+    alpha = angle_from_components(delta[0] * delta[0] + delta[1] * delta[1]);  // eq. (49)
+  } else {
+    const double about_ox = 0.5 * (delta[0] - delta[2]);
+    const double about_oy = 0.5 * (delta[1] - delta[3]);
+    alpha = angle_from_components(about_ox * about_ox + about_oy * about_oy);
+    result.misalignment_about_ox = arcsec(about_ox);
+    result.misalignment_about_oy = arcsec(about_oy);
+    result.mounting_error = arcsec(0.25 * (delta[0] + delta[1] + delta[2] + delta[3]));
+    double printed = 0.0;
+    for (double d : delta) printed += d * d;
+    result.misalignment_eq50_as_printed = arcsec(angle_from_components(printed));  // eq. (50) verbatim
+  }
+  result.misalignment = arcsec(alpha);
+  result.misalignment_deg = {alpha / kDegree, "deg", std::nullopt};
+  return result;
+}
+
+nlohmann::json InputAxisMisalignmentResult::to_json() const {
+  nlohmann::json json = {
+      {"procedure", "input_axis_misalignment"},
+      {"clause", "GJB 2426A-2004 5.15, eqs. (47)-(50)"},
+      {"misalignment", misalignment},
+      {"misalignment_deg", misalignment_deg},
+      {"deltas", deltas},
+      {"warnings", warnings},
+  };
+  if (misalignment_about_ox) json["misalignment_about_ox"] = *misalignment_about_ox;
+  if (misalignment_about_oy) json["misalignment_about_oy"] = *misalignment_about_oy;
+  if (mounting_error) json["mounting_error"] = *mounting_error;
+  if (misalignment_eq50_as_printed) json["misalignment_eq50_as_printed"] = *misalignment_eq50_as_printed;
+  return json;
+}
+
+std::string InputAxisMisalignmentResult::report() const {
+  std::string text = "Input-axis misalignment (GJB 2426A-2004 5.15)\n";
+  text += fmt::format("  {:<28} {:.4f} arcsec = {:.6g} deg\n", "misalignment alpha", misalignment.value,
+                      misalignment_deg.value);
+  for (std::size_t j = 0; j < deltas.size(); ++j) {
+    text += fmt::format("  delta{:<23} {:.4f} arcsec\n", j + 1, deltas[j].value);
+  }
+  if (mounting_error) text += fmt::format("  {:<28} {:.4f} arcsec\n", "mounting error", mounting_error->value);
+  if (misalignment_eq50_as_printed) {
+    text += fmt::format("  {:<28} {:.4f} arcsec\n", "eq. (50) as printed", misalignment_eq50_as_printed->value);
+  }
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
+  return text;
+}
+
+}  // namespace inertest

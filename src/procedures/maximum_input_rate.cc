@@ -1,0 +1,131 @@
+#include "inertest/procedures/maximum_input_rate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+
+namespace inertest {
+namespace {
+
+// The points of a range: the static runs at the start and the end and every rate with |Ω| <= R.
+std::vector<ScaleFactorPoint> points_within(std::span<const ScaleFactorPoint> points, double range) {
+  std::vector<ScaleFactorPoint> kept;
+  for (const auto& p : points) {
+    if (std::abs(p.rate) <= range) kept.push_back(p);
+  }
+  return kept;
+}
+
+// Smallest R with at least two distinct rates on each side of zero (what scale_factor() needs).
+double smallest_range(std::span<const ScaleFactorPoint> points) {
+  std::vector<double> positive;
+  std::vector<double> negative;
+  for (const auto& p : points) {
+    if (p.rate > 0.0) positive.push_back(p.rate);
+    if (p.rate < 0.0) negative.push_back(-p.rate);
+  }
+  auto second_distinct = [](std::vector<double> values, const char* side) {
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+    if (values.size() < 2) {
+      throw Error(fmt::format("maximum input rate: {} distinct {} rate(s); needs at least 2 on each side of zero",
+                              values.size(), side));
+    }
+    return values[1];
+  };
+  return std::max(second_distinct(positive, "positive"), second_distinct(negative, "negative"));
+}
+
+}  // namespace
+
+void MaximumInputRateOptions::validate() const {
+  scale_factor.validate();
+  if (!std::isfinite(nonlinearity_limit_ppm) || nonlinearity_limit_ppm <= 0.0) {
+    throw Error("maximum input rate: the nonlinearity requirement must be a positive number of ppm");
+  }
+}
+
+MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> points,
+                                          const MaximumInputRateOptions& options) {
+  options.validate();
+  // Check the whole set first, so missing static runs etc. get scale_factor()'s own message.
+  scale_factor(points, options.scale_factor);
+  const double first = smallest_range(points);
+  std::vector<double> candidates;
+  for (const auto& p : points) {
+    if (std::abs(p.rate) >= first) candidates.push_back(std::abs(p.rate));
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+
+  MaximumInputRateResult result;
+  result.rate_unit = options.scale_factor.rate_unit;
+  std::optional<std::size_t> last_pass;  // the last range before the first failure
+  ScaleFactorResult last_pass_fit;
+  bool failed = false;
+  for (double range : candidates) {
+    const std::vector<ScaleFactorPoint> kept = points_within(points, range);
+    const ScaleFactorResult fit = scale_factor(kept, options.scale_factor);  // eqs. (1)-(9)
+    const bool meets = fit.nonlinearity.value <= options.nonlinearity_limit_ppm;
+    result.ranges.push_back({range, fit.nonlinearity.value, meets});
+    failed = failed || !meets;
+    if (!failed) {
+      last_pass = result.ranges.size() - 1;
+      last_pass_fit = fit;
+    }
+  }
+  if (!last_pass) {
+    throw Error(fmt::format("maximum input rate: the nonlinearity over the smallest range (|rate| <= {} {}) is {:.6g} "
+                            "ppm, above the requirement of {} ppm; the requirement holds at no tested rate",
+                            candidates.front(), result.rate_unit, result.ranges.front().nonlinearity,
+                            options.nonlinearity_limit_ppm));
+  }
+  const auto& chosen = result.ranges[*last_pass];
+  result.maximum_input_rate = {chosen.rate, result.rate_unit, std::nullopt};
+  result.nonlinearity = {chosen.nonlinearity, "ppm", std::nullopt};
+  result.nonlinearity_limit = {options.nonlinearity_limit_ppm, "ppm", std::nullopt};
+  result.scale_factor = last_pass_fit.scale_factor;
+  if (*last_pass + 1 == result.ranges.size()) {
+    result.warnings.push_back(fmt::format("the requirement holds up to the largest tested rate ({} {}); the maximum "
+                                          "input rate may be higher",
+                                          chosen.rate, result.rate_unit));
+  }
+  return result;
+}
+
+nlohmann::json MaximumInputRateResult::to_json() const {
+  nlohmann::json ranges_json = nlohmann::json::array();
+  for (const auto& r : ranges) {
+    ranges_json.push_back({{"rate", Figure{r.rate, rate_unit, std::nullopt}},
+                           {"nonlinearity", Figure{r.nonlinearity, "ppm", std::nullopt}},
+                           {"meets_requirement", r.meets_requirement}});
+  }
+  return {
+      {"procedure", "maximum_input_rate"},
+      {"clause", "GJB 2426A-2004 5.9 (with 5.8.1-5.8.2, eqs. 1-9)"},
+      {"maximum_input_rate", maximum_input_rate},
+      {"nonlinearity", nonlinearity},
+      {"nonlinearity_limit", nonlinearity_limit},
+      {"scale_factor", scale_factor},
+      {"ranges", ranges_json},
+      {"warnings", warnings},
+  };
+}
+
+std::string MaximumInputRateResult::report() const {
+  std::string text = "Maximum input rate (GJB 2426A-2004 5.9)\n";
+  text += fmt::format("  {:<28} {:.9g} {}\n", "maximum input rate", maximum_input_rate.value, maximum_input_rate.unit);
+  text += fmt::format("  {:<28} {:.6g} ppm (requirement {:.6g} ppm)\n", "nonlinearity there", nonlinearity.value,
+                      nonlinearity_limit.value);
+  for (const auto& r : ranges) {
+    text += fmt::format("  |rate| <= {:>10.6g} {}  Kn = {:>10.4f} ppm  {}\n", r.rate, rate_unit, r.nonlinearity,
+                        r.meets_requirement ? "meets" : "fails");
+  }
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
+  return text;
+}
+
+}  // namespace inertest

@@ -1,0 +1,63 @@
+#include "inertest/procedures/polarity.h"
+
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/procedures/hand_checks.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+TEST(PolarityTest, SignOfTheOutputChange) {
+  const PolarityResult positive = polarity(500.0, -480.0);
+  EXPECT_EQ(positive.polarity, 1);
+  EXPECT_TRUE(positive.signs_opposite);
+  EXPECT_EQ(positive.to_json().at("polarity"), "positive");
+  const PolarityResult negative = polarity(-500.0, 520.0, {"pulse/s", 1});
+  EXPECT_EQ(negative.polarity, -1);
+  EXPECT_FALSE(*negative.pass);
+}
+
+TEST(PolarityTest, BiasLargerThanTheResponseWarns) {
+  const PolarityResult result = polarity(12.0, 8.0, {"V", 1});
+  EXPECT_EQ(result.polarity, 1);
+  EXPECT_FALSE(result.signs_opposite);
+  EXPECT_EQ(result.warnings.size(), 1u);
+  EXPECT_TRUE(*result.pass);
+  EXPECT_EQ(result.to_json().at("output_sign_negative_rate"), "positive");
+}
+
+TEST(PolarityTest, BadInputIsAnError) {
+  EXPECT_THROW(polarity(1.0, 1.0), Error);
+  EXPECT_THROW(polarity(1.0, -1.0, {"1", 2}), Error);
+}
+
+TEST(HandChecksTest, FiguresAndPassFlags) {
+  std::vector<HandCheck> checks(3);
+  checks[0] = {"Appearance", std::nullopt, true, "1", std::nullopt, std::nullopt};
+  checks[1] = {"Insulation resistance (case to power)", 150.0, std::nullopt, "MOhm", 20.0, std::nullopt};
+  checks[2] = {"Power, +15 V supply", 4.2, std::nullopt, "W", std::nullopt, 4.0};
+  const HandChecksResult result = hand_checks(checks);
+  EXPECT_FALSE(result.all_pass);
+  const nlohmann::json json = result.to_json();
+  EXPECT_EQ(json.at("appearance").at("value"), 1.0);
+  EXPECT_EQ(json.at("insulation_resistance_case_to_power").at("unit"), "MOhm");
+  EXPECT_EQ(json.at("power_15_v_supply").at("value"), 4.2);
+  EXPECT_TRUE(json.at("check_pass").at("insulation_resistance_case_to_power").get<bool>());
+  EXPECT_FALSE(json.at("check_pass").at("power_15_v_supply").get<bool>());
+  EXPECT_EQ(json.at("checks").at(0).at("value"), "pass");
+}
+
+TEST(HandChecksTest, BadInputIsAnError) {
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"a b", 1.0, {}, "1", {}, {}}, {"A-B", 2.0, {}, "1", {}, {}}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", std::nullopt, std::nullopt, "1", {}, {}}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", std::nullopt, true, "1", 1.0, {}}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", 2.0, 1.0}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"checks", 1.0, std::nullopt, "1", {}, {}}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"--", 1.0, std::nullopt, "1", {}, {}}}), Error);
+}
+
+}  // namespace
+}  // namespace inertest

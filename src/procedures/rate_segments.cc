@@ -1,0 +1,104 @@
+#include "inertest/procedures/rate_segments.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "inertest/core/error.h"
+#include "inertest/numerics/compensated_sum.h"
+
+namespace inertest {
+namespace {
+
+double mean_of(std::span<const double> values) {
+  CompensatedSum sum;
+  for (double v : values) sum.add(v);
+  return sum.value() / static_cast<double>(values.size());
+}
+
+void require_finite(std::span<const double> values, const char* what) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) throw Error(fmt::format("{}: sample {} is not finite", what, i + 1));
+  }
+}
+
+}  // namespace
+
+void RecordTiming::validate() const {
+  if (!std::isfinite(sample_rate_hz) || sample_rate_hz <= 0.0) {
+    throw Error("record: the sample rate must be positive (Hz)");
+  }
+  if (!std::isfinite(settling_time_s) || settling_time_s < 0.0) {
+    throw Error("record: the settling time must be zero or positive (s)");
+  }
+}
+
+std::size_t RecordTiming::settling_samples() const {
+  return static_cast<std::size_t>(std::ceil(settling_time_s * sample_rate_hz - 1e-9));
+}
+
+double record_mean(std::span<const double> output, const RecordTiming& timing) {
+  timing.validate();
+  require_finite(output, "record");
+  const std::size_t skip = timing.settling_samples();
+  if (skip >= output.size()) {
+    throw Error(fmt::format("record: the settling time of {} s ({} samples) is not shorter than the record "
+                            "({} samples at {} Hz)",
+                            timing.settling_time_s, skip, output.size(), timing.sample_rate_hz));
+  }
+  return mean_of(output.subspan(skip));  // eq. (1)
+}
+
+void RateSegmentOptions::validate() const {
+  timing.validate();
+  if (!std::isfinite(rate_tolerance) || rate_tolerance < 0.0) throw Error("rate segments: the rate tolerance must be >= 0");
+  if (!(minimum_segment_s > timing.settling_time_s)) {
+    throw Error(fmt::format("rate segments: the minimum segment duration ({} s) must exceed the settling time ({} s)",
+                            minimum_segment_s, timing.settling_time_s));
+  }
+}
+
+std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std::span<const double> output,
+                                         const RateSegmentOptions& options) {
+  options.validate();
+  if (table_rate.size() != output.size()) {
+    throw Error(fmt::format("rate segments: {} table rates but {} outputs", table_rate.size(), output.size()));
+  }
+  require_finite(table_rate, "rate segments: table rate");
+  require_finite(output, "rate segments: output");
+  const std::size_t skip = options.timing.settling_samples();
+  const auto minimum_samples =
+      static_cast<std::size_t>(std::ceil(options.minimum_segment_s * options.timing.sample_rate_hz - 1e-9));
+
+  std::vector<RateSegment> segments;
+  std::size_t begin = 0;
+  while (begin < table_rate.size()) {
+    std::size_t end = begin + 1;
+    while (end < table_rate.size() && std::abs(table_rate[end] - table_rate[begin]) <= options.rate_tolerance) ++end;
+    if (end - begin >= minimum_samples) {
+      RateSegment segment;
+      segment.first_sample = begin;
+      segment.first_used = begin + skip;
+      segment.end_sample = end;
+      const double rate = mean_of(table_rate.subspan(segment.first_used, end - segment.first_used));
+      segment.rate = std::abs(rate) <= options.rate_tolerance ? 0.0 : rate;
+      segment.mean_output = mean_of(output.subspan(segment.first_used, end - segment.first_used));  // eq. (1)
+      segments.push_back(segment);
+    }
+    begin = end;
+  }
+  if (segments.empty()) {
+    throw Error(fmt::format("rate segments: no constant-rate segment of at least {} s ({} samples) in a record of {} "
+                            "samples (is the rate tolerance below the table-rate column's noise?)",
+                            options.minimum_segment_s, minimum_samples, table_rate.size()));
+  }
+  return segments;
+}
+
+std::vector<ScaleFactorPoint> scale_factor_points(std::span<const RateSegment> segments) {
+  std::vector<ScaleFactorPoint> points;
+  points.reserve(segments.size());
+  for (const auto& segment : segments) points.push_back({segment.rate, segment.mean_output});
+  return points;
+}
+
+}  // namespace inertest

@@ -1,0 +1,149 @@
+#include "inertest/procedures/rate_segments.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kSampleRate = 10.0;  // Hz
+constexpr double kScale = 3.0;        // output per deg/s
+constexpr double kBias = 0.5;
+
+struct Record {
+  std::vector<double> rate;
+  std::vector<double> output;
+};
+
+// A segment of `seconds` at `rate`: the first second carries a start-up transient of +100 that the
+// settling time must remove; the rest is exactly kScale·rate + kBias.
+void add_segment(Record& record, double rate, double seconds) {
+  const auto count = static_cast<std::size_t>(seconds * kSampleRate);
+  for (std::size_t i = 0; i < count; ++i) {
+    record.rate.push_back(rate);
+    record.output.push_back(kScale * rate + kBias + (i < kSampleRate ? 100.0 : 0.0));
+  }
+}
+
+// A ramp between two rates, one sample per step: no sample stays within the tolerance long enough.
+void add_ramp(Record& record, double from, double to) {
+  for (int i = 1; i < 10; ++i) {
+    const double rate = from + (to - from) * i / 10.0;
+    record.rate.push_back(rate);
+    record.output.push_back(kScale * rate + kBias);
+  }
+}
+
+RateSegmentOptions options() {
+  RateSegmentOptions o;
+  o.timing = {kSampleRate, 1.0};
+  o.minimum_segment_s = 2.0;
+  o.rate_tolerance = 1e-3;
+  return o;
+}
+
+TEST(RecordMean, DropsTheSettlingTime) {
+  // Eq. (1) after dropping 0.3 s at 10 Hz = 3 samples: mean of 4, 5, 6 = 5.
+  const std::vector<double> output = {100, 100, 100, 4, 5, 6};
+  EXPECT_DOUBLE_EQ(record_mean(output, {10.0, 0.3}), 5.0);
+  EXPECT_DOUBLE_EQ(record_mean(output, {10.0, 0.0}), 315.0 / 6.0);
+}
+
+TEST(RecordMean, SettlingTimeLongerThanTheRecordIsAnError) {
+  const std::vector<double> output = {1, 2, 3};
+  try {
+    record_mean(output, {10.0, 0.3});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("not shorter than the record"));
+  }
+  EXPECT_THROW(record_mean(output, {0.0, 0.0}), Error);
+  EXPECT_THROW(record_mean(output, {10.0, -1.0}), Error);
+}
+
+TEST(RateSegments, CutsARecordIntoConstantRatePointsInTestOrder) {
+  Record record;
+  add_segment(record, 0.0, 5.0);
+  add_ramp(record, 0.0, 10.0);
+  add_segment(record, 10.0, 4.0);
+  add_ramp(record, 10.0, -10.0);
+  add_segment(record, -10.0, 3.0);
+  add_segment(record, 20.0, 3.0);
+  add_segment(record, -20.0, 3.0);
+  add_segment(record, 0.0, 5.0);
+  // Rest-rate jitter of the table within the tolerance is still rest.
+  record.rate[3] = 4e-4;
+
+  const std::vector<RateSegment> segments = segment_by_rate(record.rate, record.output, options());
+  ASSERT_EQ(segments.size(), 6u);
+  const std::vector<double> rates = {0.0, 10.0, -10.0, 20.0, -20.0, 0.0};
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    EXPECT_NEAR(segments[i].rate, rates[i], 1e-4) << i;
+    EXPECT_NEAR(segments[i].mean_output, kScale * segments[i].rate + kBias, 1e-12) << i;
+  }
+  EXPECT_EQ(segments[0].rate, 0.0);  // a static run is exactly zero
+  EXPECT_EQ(segments[1].first_sample, 59u);   // 50 samples at rest, 9 ramp samples
+  EXPECT_EQ(segments[1].first_used, 69u);     // + 1 s settling
+  EXPECT_EQ(segments[1].end_sample, 99u);
+
+  const std::vector<ScaleFactorPoint> points = scale_factor_points(segments);
+  ASSERT_EQ(points.size(), 6u);
+  const ScaleFactorResult result = scale_factor(points);
+  EXPECT_NEAR_RELATIVE(result.scale_factor.value, kScale, 1e-9);
+}
+
+TEST(RateSegments, ShortSegmentsAreSkipped) {
+  Record record;
+  add_segment(record, 0.0, 3.0);
+  add_segment(record, 5.0, 1.5);  // shorter than the 2 s minimum
+  add_segment(record, 10.0, 3.0);
+  const auto segments = segment_by_rate(record.rate, record.output, options());
+  ASSERT_EQ(segments.size(), 2u);
+  EXPECT_EQ(segments[1].rate, 10.0);
+}
+
+TEST(RateSegments, RecordWithoutStaticRunsGivesTheScaleFactorError) {
+  Record record;
+  add_segment(record, 10.0, 3.0);
+  add_segment(record, -10.0, 3.0);
+  add_segment(record, 20.0, 3.0);
+  add_segment(record, -20.0, 3.0);
+  add_segment(record, 0.0, 3.0);
+  const auto points = scale_factor_points(segment_by_rate(record.rate, record.output, options()));
+  try {
+    scale_factor(points);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("missing the static run at the start"));
+  }
+}
+
+TEST(RateSegments, BadInputIsAnError) {
+  Record record;
+  add_segment(record, 0.0, 1.5);
+  auto o = options();
+  EXPECT_THROW(segment_by_rate(record.rate, record.output, o), Error);  // no segment of 2 s
+  std::vector<double> shorter(record.output.begin(), record.output.end() - 1);
+  EXPECT_THROW(segment_by_rate(record.rate, shorter, o), Error);
+  o.minimum_segment_s = 1.0;  // not above the settling time
+  try {
+    segment_by_rate(record.rate, record.output, o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("must exceed the settling time"));
+  }
+  o = options();
+  o.rate_tolerance = -1.0;
+  EXPECT_THROW(segment_by_rate(record.rate, record.output, o), Error);
+  record.rate[2] = std::nan("");
+  EXPECT_THROW(segment_by_rate(record.rate, record.output, options()), Error);
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,84 @@
+#include "inertest/procedures/scale_factor_repeatability.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/numerics/statistics.h"
+
+namespace inertest {
+
+void ScaleFactorRepeatabilityOptions::validate() const {
+  scale_factor.validate();
+  if (minimum_runs < 2) throw Error("scale factor repeatability: eq. (12) needs at least 2 runs");
+}
+
+ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const double> scale_factors,
+                                                          const std::string& unit,
+                                                          const ScaleFactorRepeatabilityOptions& options) {
+  options.validate();
+  const std::size_t q = scale_factors.size();
+  if (q < options.minimum_runs) {
+    throw Error(fmt::format("scale factor repeatability: {} run(s); GJB 2426A 5.8.4.3 asks for Q >= {} runs", q,
+                            options.minimum_runs));
+  }
+  const double k_mean = mean(scale_factors);
+  if (k_mean == 0.0) throw Error("scale factor repeatability: the mean scale factor is zero");
+  const double kr = sample_standard_deviation(scale_factors) / std::abs(k_mean);  // eq. (12)
+
+  ScaleFactorRepeatabilityResult result;
+  result.scale_factor_repeatability = {kr * 1e6, "ppm", std::nullopt};
+  result.mean_scale_factor = {k_mean, unit, std::nullopt};
+  for (double k : scale_factors) result.run_scale_factors.push_back({k, unit, std::nullopt});
+  if (q < 6) {
+    result.warnings.push_back(fmt::format("{} runs; GJB 2426A 5.8.4.3 asks for at least 6", q));
+  }
+  return result;
+}
+
+ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const std::vector<ScaleFactorPoint>> runs,
+                                                          const ScaleFactorRepeatabilityOptions& options) {
+  options.validate();
+  std::vector<double> values;
+  std::vector<Figure> figures;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    try {
+      const ScaleFactorResult run = scale_factor(runs[i], options.scale_factor);
+      values.push_back(run.scale_factor.value);
+      figures.push_back(run.scale_factor);
+    } catch (const Error& e) {
+      throw Error(fmt::format("scale factor repeatability: run {}: {}", i + 1, e.message()));
+    }
+  }
+  const std::string unit = options.scale_factor.output_unit + "/(" + options.scale_factor.rate_unit + ")";
+  ScaleFactorRepeatabilityResult result = scale_factor_repeatability(values, unit, options);
+  result.run_scale_factors = figures;
+  return result;
+}
+
+nlohmann::json ScaleFactorRepeatabilityResult::to_json() const {
+  return {
+      {"procedure", "scale_factor_repeatability"},
+      {"clause", "GJB 2426A-2004 5.8.4, eq. (12)"},
+      {"scale_factor_repeatability", scale_factor_repeatability},
+      {"mean_scale_factor", mean_scale_factor},
+      {"run_scale_factors", run_scale_factors},
+      {"runs", run_scale_factors.size()},
+      {"warnings", warnings},
+  };
+}
+
+std::string ScaleFactorRepeatabilityResult::report() const {
+  std::string text = "Scale factor repeatability (GJB 2426A-2004 5.8.4)\n";
+  text += fmt::format("  {:<28} {:.6g} {}\n", "repeatability Kr", scale_factor_repeatability.value,
+                      scale_factor_repeatability.unit);
+  text += fmt::format("  {:<28} {:.9g} {}\n", "mean scale factor", mean_scale_factor.value, mean_scale_factor.unit);
+  for (std::size_t i = 0; i < run_scale_factors.size(); ++i) {
+    text += fmt::format("  run {:<24} {:.9g} {}\n", i + 1, run_scale_factors[i].value, run_scale_factors[i].unit);
+  }
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
+  return text;
+}
+
+}  // namespace inertest

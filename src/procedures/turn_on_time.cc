@@ -1,0 +1,138 @@
+#include "inertest/procedures/turn_on_time.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/numerics/compensated_sum.h"
+
+namespace inertest {
+namespace {
+
+constexpr double kSecondsPerHour = 3600.0;
+
+struct Series {
+  std::vector<double> time_s;
+  std::vector<double> output;
+};
+
+// Means over windows [k·s, (k+1)·s) of time since power-on, each stamped at (k+1)·s. A window holding
+// no sample is skipped.
+Series smooth(const PowerOnRun& run, double smoothing_s) {
+  Series series;
+  std::size_t i = 0;
+  while (i < run.time_s.size()) {
+    const double window = std::floor(run.time_s[i] / smoothing_s);
+    CompensatedSum sum;
+    std::size_t count = 0;
+    while (i < run.time_s.size() && std::floor(run.time_s[i] / smoothing_s) == window) {
+      sum.add(run.output[i]);
+      ++count;
+      ++i;
+    }
+    series.time_s.push_back((window + 1.0) * smoothing_s);
+    series.output.push_back(sum.value() / static_cast<double>(count));
+  }
+  return series;
+}
+
+}  // namespace
+
+void TurnOnTimeOptions::validate() const {
+  if (scale_factor == 0.0 || !std::isfinite(scale_factor)) {
+    throw Error(fmt::format("turn-on time: the scale factor K must be a nonzero number (output units per deg/s), got {}",
+                            scale_factor));
+  }
+  if (!(rate_band >= 0.0) || !(rest_band_deg_h >= 0.0)) throw Error("turn-on time: a band must not be negative");
+  if (!(smoothing_s >= 0.0) || !std::isfinite(smoothing_s)) {
+    throw Error(fmt::format("turn-on time: the smoothing time must be zero or positive, got {} s", smoothing_s));
+  }
+  if (!std::isfinite(zero_output)) throw Error("turn-on time: the zero output is not a finite number");
+  if (earth_rate) earth_rate->validate();
+}
+
+TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTimeOptions& options) {
+  options.validate();
+  const char* what = options.warm_up ? "warm-up time" : "turn-on time";
+  if (runs.empty()) throw Error(fmt::format("{}: no power-on runs", what));
+  const double earth_deg_s = options.earth_rate ? earth_rate_on_axis(*options.earth_rate) / constants::kDegree : 0.0;
+  TurnOnTimeResult result;
+  result.warm_up = options.warm_up;
+  double longest = -1.0;
+  for (const auto& run : runs) {
+    if (run.time_s.size() != run.output.size()) {
+      throw Error(fmt::format("{}: run '{}' has {} times and {} outputs", what, run.name, run.time_s.size(),
+                              run.output.size()));
+    }
+    if (run.output.size() < 2) {
+      throw Error(fmt::format("{}: run '{}' holds {} sample(s); at least 2 are needed", what, run.name,
+                              run.output.size()));
+    }
+    for (std::size_t i = 1; i < run.time_s.size(); ++i) {
+      if (!(run.time_s[i] > run.time_s[i - 1])) {
+        throw Error(fmt::format("{}: run '{}': the time of sample {} does not increase", what, run.name, i + 1));
+      }
+    }
+    const bool at_rest = run.input_rate_deg_s == 0.0;
+    if (at_rest && options.rest_band_deg_h == 0.0) {
+      throw Error(fmt::format("{}: run '{}' is at rest but no rest band (required bias, deg/h) was given", what, run.name));
+    }
+    if (!at_rest && options.rate_band == 0.0) {
+      throw Error(fmt::format("{}: run '{}' is at rate but no rate band (relative rate error) was given", what, run.name));
+    }
+    const Series series = options.smoothing_s > 0.0 ? smooth(run, options.smoothing_s) : Series{run.time_s, run.output};
+    auto within = [&](double output) {
+      const double indicated = (output - options.zero_output) / options.scale_factor - earth_deg_s;  // deg/s
+      if (at_rest) return std::abs(indicated) * kSecondsPerHour <= options.rest_band_deg_h;
+      return std::abs(indicated - run.input_rate_deg_s) <= options.rate_band * std::abs(run.input_rate_deg_s);
+    };
+    // The time after which the output stays within the band: walk back from the end.
+    std::size_t first = series.output.size();
+    while (first > 0 && within(series.output[first - 1])) --first;
+    if (first == series.output.size()) {
+      throw Error(fmt::format("{}: run '{}' is outside the band at its last sample (t = {} s): it never settles within "
+                              "the record",
+                              what, run.name, series.time_s.back()));
+    }
+    const double time = series.time_s[first];
+    result.runs.push_back({run.name, run.input_rate_deg_s, Figure{time, "s", std::nullopt}});
+    if (time > longest) {
+      longest = time;
+      result.longest_run = run.name;
+    }
+  }
+  result.time = {longest, "s", std::nullopt};
+  return result;
+}
+
+nlohmann::json TurnOnTimeResult::to_json() const {
+  nlohmann::json runs_json = nlohmann::json::array();
+  for (const auto& r : runs) {
+    runs_json.push_back({{"name", r.name},
+                         {"input_rate", Figure{r.input_rate_deg_s, "deg/s", std::nullopt}},
+                         {"time", r.time}});
+  }
+  const char* key = warm_up ? "warm_up_time" : "turn_on_time";
+  return {
+      {"procedure", key},
+      {"clause", warm_up ? "GJB 2426A-2004 5.6.4 (as 5.5.4)" : "GJB 2426A-2004 5.5.4"},
+      {key, time},
+      {"longest_run", longest_run},
+      {"runs", runs_json},
+  };
+}
+
+std::string TurnOnTimeResult::report() const {
+  std::string text = warm_up ? "Warm-up time (GJB 2426A-2004 5.6)\n" : "Turn-on time (GJB 2426A-2004 5.5)\n";
+  for (const auto& r : runs) {
+    text += fmt::format("  {:<32} {:.6g} s\n",
+                        fmt::format("{} ({})", r.name, r.input_rate_deg_s == 0.0 ? "at rest" : fmt::format("{:g} deg/s", r.input_rate_deg_s)),
+                        r.time.value);
+  }
+  text += fmt::format("  {:<32} {:.6g} s (run {})\n", warm_up ? "warm-up time" : "turn-on time", time.value, longest_run);
+  return text;
+}
+
+}  // namespace inertest

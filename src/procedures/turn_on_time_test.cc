@@ -1,0 +1,104 @@
+#include "inertest/procedures/turn_on_time.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const double kEarthDegS = 7.2921150e-5 / (kPi / 180.0);
+
+// A run whose indicated error decays as a·exp(-t/τ) (deg/s), sampled at rate from power-on, with
+// sample i at (i + 1)/rate.
+PowerOnRun decaying_run(double input_deg_s, double a, double tau, double k, double zero, double earth_deg_s,
+                        double rate, double duration) {
+  PowerOnRun run;
+  run.name = "run";
+  run.input_rate_deg_s = input_deg_s;
+  for (int i = 0; (i + 1) / rate <= duration; ++i) {
+    const double t = (i + 1) / rate;
+    run.time_s.push_back(t);
+    run.output.push_back(zero + k * (input_deg_s + earth_deg_s + a * std::exp(-t / tau)));
+  }
+  return run;
+}
+
+// The first sample time at or after τ·ln(a / band), where the error enters the band for good.
+double first_sample_within(double a, double tau, double band, double rate) {
+  const double settle = tau * std::log(a / band);
+  return std::ceil(settle * rate) / rate;
+}
+
+TEST(TurnOnTimeTest, AtRestAndAtRateLargestOverRuns) {
+  TurnOnTimeOptions options;
+  options.scale_factor = 100.0;
+  options.zero_output = 3.0;
+  options.rest_band_deg_h = 0.5;   // 0.5 deg/h
+  options.rate_band = 1e-3;
+  const double rate = 10.0;
+  // At rest: error 0.01 deg/s decaying with τ = 20 s into 0.5 deg/h.
+  const PowerOnRun rest = decaying_run(0.0, 0.01, 20.0, 100.0, 3.0, 0.0, rate, 300.0);
+  // At 10 deg/s: error 0.5 deg/s decaying with τ = 5 s into 1e-3 x 10 deg/s.
+  PowerOnRun at_rate = decaying_run(10.0, 0.5, 5.0, 100.0, 3.0, 0.0, rate, 300.0);
+  at_rate.name = "at rate";
+  const std::vector<PowerOnRun> runs = {rest, at_rate};
+  const TurnOnTimeResult result = turn_on_time(runs, options);
+  const double rest_time = first_sample_within(0.01, 20.0, 0.5 / 3600.0, rate);
+  const double rate_time = first_sample_within(0.5, 5.0, 1e-2, rate);
+  EXPECT_NEAR(result.runs[0].time.value, rest_time, 1e-9);
+  EXPECT_NEAR(result.runs[1].time.value, rate_time, 1e-9);
+  EXPECT_NEAR(result.time.value, std::max(rest_time, rate_time), 1e-9);
+  EXPECT_EQ(result.to_json().at("turn_on_time").at("unit"), "s");
+}
+
+TEST(TurnOnTimeTest, EarthRateRemovedFromTheIndicatedRate) {
+  // IRA north at 45 deg N: Ωe cos 45° rides on the output; unremoved it exceeds a 1 deg/h band.
+  TurnOnTimeOptions options;
+  options.scale_factor = 1.0;
+  options.rest_band_deg_h = 1.0;
+  const double earth = kEarthDegS * std::cos(45.0 * kPi / 180.0);
+  const PowerOnRun run = decaying_run(0.0, 0.01, 10.0, 1.0, 0.0, earth, 1.0, 200.0);
+  const std::vector<PowerOnRun> runs = {run};
+  EXPECT_THROW(turn_on_time(runs, options), Error);  // never settles with Earth rate left in
+  options.earth_rate = AxisOrientation{45.0, 0.0, 0.0};
+  options.warm_up = true;
+  const TurnOnTimeResult result = turn_on_time(runs, options);
+  EXPECT_NEAR(result.time.value, first_sample_within(0.01, 10.0, 1.0 / 3600.0, 1.0), 1e-9);
+  EXPECT_TRUE(result.to_json().contains("warm_up_time"));
+}
+
+TEST(TurnOnTimeTest, SmoothingAveragesWindowsFromPowerOn) {
+  // Samples at 0.5 s steps: 9, 9, 1, -1, 0.5, 0.5, 0, 0; band 0.6 deg/h (K = 3600 per deg/s makes
+  // one output unit one deg/h). Unsmoothed, the last failing sample is -1 at 2.0 s: turn-on 2.5 s.
+  PowerOnRun run{"r", 0.0, {0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0}, {9, 9, 1, -1, 0.5, 0.5, 0, 0}};
+  TurnOnTimeOptions options;
+  options.scale_factor = 3600.0;
+  options.rest_band_deg_h = 0.6;
+  const std::vector<PowerOnRun> runs = {run};
+  EXPECT_DOUBLE_EQ(turn_on_time(runs, options).time.value, 2.5);
+  options.smoothing_s = 1.0;
+  // Windows [0,1) holds t = 0.5 only; [1,2) holds 1.0 and 1.5 -> mean 5, fails; [2,3) 2.0, 2.5 -> -0.25;
+  // [3,4) 3.0, 3.5 -> 0.25; [4,5) 4.0 -> 0. Turn-on at the end of [2,3): 3 s.
+  EXPECT_DOUBLE_EQ(turn_on_time(runs, options).time.value, 3.0);
+}
+
+TEST(TurnOnTimeTest, BadInputIsAnError) {
+  TurnOnTimeOptions options;
+  options.scale_factor = 1.0;
+  options.rest_band_deg_h = 1.0;
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{}, options), Error);  // no runs
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {1.0}, {0.0}}}, options), Error);  // one sample
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {2.0, 1.0}, {0.0, 0.0}}}, options), Error);
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 5.0, {1.0, 2.0}, {5.0, 5.0}}}, options), Error);  // no rate band
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {1.0, 2.0}, {0.0, 1.0}}}, options), Error);  // never settles
+  TurnOnTimeOptions zero_k = options;
+  zero_k.scale_factor = 0.0;
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {1.0, 2.0}, {0.0, 0.0}}}, zero_k), Error);
+}
+
+}  // namespace
+}  // namespace inertest

@@ -1,0 +1,225 @@
+#include "inertest/sim/simulation.h"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+#include <toml++/toml.h>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/version.h"
+#include "sim/generators.h"
+
+namespace inertest::sim {
+namespace {
+
+using campaign::PlanTable;
+
+const std::map<std::string, TestGenerator, std::less<>>& generators() {
+  static const std::map<std::string, TestGenerator, std::less<>> table = {
+      {"scale_factor", generate_scale_factor},
+      {"bias", generate_static},
+      {"allan", generate_allan},
+      {"centrifuge", generate_centrifuge},
+  };
+  return table;
+}
+
+std::array<double, 2> pair_or(PlanTable& table, std::string_view key, std::array<double, 2> fallback) {
+  const auto values = table.optional_numbers(key);
+  if (!values) return fallback;
+  if (values->size() != 2) table.fail_at(key, "must hold two numbers");
+  return {(*values)[0], (*values)[1]};
+}
+
+void read_gyro(PlanTable& table, GyroParameters& g) {
+  g.id = table.string_or("id", g.id);
+  g.output_unit = table.string_or("output_unit", g.output_unit);
+  g.sample_rate_hz = table.number_or("sample_rate_hz", g.sample_rate_hz);
+  g.scale_factor = table.number_or("scale_factor", g.scale_factor);
+  g.maximum_rate_deg_s = table.number_or("maximum_rate_deg_s", g.maximum_rate_deg_s);
+  g.nonlinearity_ppm = table.optional_numbers("nonlinearity_ppm").value_or(g.nonlinearity_ppm);
+  g.asymmetry_ppm = table.number_or("asymmetry_ppm", g.asymmetry_ppm);
+  g.scale_factor_temperature_ppm_per_c =
+      table.number_or("scale_factor_temperature_ppm_per_c", g.scale_factor_temperature_ppm_per_c);
+  g.bias_deg_h = table.number_or("bias_deg_h", g.bias_deg_h);
+  g.bias_temperature_deg_h_per_c = table.number_or("bias_temperature_deg_h_per_c", g.bias_temperature_deg_h_per_c);
+  g.reference_temperature_c = table.number_or("reference_temperature_c", g.reference_temperature_c);
+  g.turn_on_bias_deg_h = table.number_or("turn_on_bias_deg_h", g.turn_on_bias_deg_h);
+  g.turn_on_time_constant_s = table.number_or("turn_on_time_constant_s", g.turn_on_time_constant_s);
+  g.quantization_arcsec = table.number_or("quantization_arcsec", g.quantization_arcsec);
+  g.angle_random_walk_deg_rt_h = table.number_or("angle_random_walk_deg_rt_h", g.angle_random_walk_deg_rt_h);
+  g.bias_instability_deg_h = table.number_or("bias_instability_deg_h", g.bias_instability_deg_h);
+  g.rate_random_walk_deg_h_rt_h = table.number_or("rate_random_walk_deg_h_rt_h", g.rate_random_walk_deg_h_rt_h);
+  g.rate_ramp_deg_h_h = table.number_or("rate_ramp_deg_h_h", g.rate_ramp_deg_h_h);
+  g.flicker_correlation_s = pair_or(table, "flicker_correlation_s", g.flicker_correlation_s);
+  g.bandwidth_hz = table.number_or("bandwidth_hz", g.bandwidth_hz);
+  g.delay_ms = table.number_or("delay_ms", g.delay_ms);
+  g.input_axis_misalignment_arcsec = pair_or(table, "input_axis_misalignment_arcsec", g.input_axis_misalignment_arcsec);
+  if (auto drift = table.optional_table("drift")) {
+    auto& d = g.drift;
+    for (auto [key, field] : {std::pair{"DI", &d.DI}, {"DO", &d.DO}, {"DS", &d.DS}, {"DII", &d.DII}, {"DOO", &d.DOO},
+                              {"DSS", &d.DSS}, {"DIO", &d.DIO}, {"DIS", &d.DIS}, {"DOS", &d.DOS}}) {
+      *field = drift->number_or(key, *field);
+    }
+    if (drift->contains("DF")) drift->fail_at("DF", "is the gyro's bias_deg_h; set that instead");
+    drift->require_all_used();
+  }
+  table.require_all_used();
+  try {
+    g.validate();
+  } catch (const Error& e) {
+    table.fail(e.message());
+  }
+}
+
+SimulationSummary run(const toml::table& root, const std::string& source, const std::string& out_dir,
+                      const SimulationOptions& options) {
+  const std::string directory = std::filesystem::path(source).parent_path().string();
+  PlanTable top(root, source, directory.empty() ? "." : directory, "simulation plan");
+  Lab lab;
+  lab.out_dir = out_dir;
+  lab.progress = options.progress;
+  const double seed = top.number("seed");
+  if (seed < 0 || seed != std::floor(seed) || seed > 9.007199254740992e15) top.fail_at("seed", "must be a whole number >= 0");
+  lab.seed = static_cast<std::uint64_t>(seed);
+  std::string title = "simulated test campaign";
+  if (auto header = top.optional_table("plan")) {
+    title = header->string_or("title", title);
+    header->require_all_used();
+  }
+  if (auto site = top.optional_table("site")) {
+    lab.site_name = site->string_or("name", "");
+    lab.site.latitude_deg = site->number_or("latitude_deg", 0.0);
+    if (lab.site.latitude_deg < -90 || lab.site.latitude_deg > 90) site->fail_at("latitude_deg", "must lie in [-90, 90]");
+    lab.site.gravity_m_s2 = site->number_or("gravity_m_s2", normal_gravity(lab.site.latitude_deg));
+    if (!(lab.site.gravity_m_s2 > 0)) site->fail_at("gravity_m_s2", "must be positive");
+    site->require_all_used();
+  } else {
+    lab.site.gravity_m_s2 = normal_gravity(0.0);
+  }
+  auto gyro = top.optional_table("gyro");
+  if (!gyro) top.fail("missing [gyro] table");
+  read_gyro(*gyro, lab.gyro);
+  if (auto table = top.optional_table("rate_table")) {
+    const auto tilt = pair_or(*table, "tilt_arcsec", {0, 0});
+    const auto face = pair_or(*table, "face_arcsec", {0, 0});
+    lab.rate_table.tilt_east_rad = tilt[0] * constants::kArcsecond;
+    lab.rate_table.tilt_north_rad = tilt[1] * constants::kArcsecond;
+    lab.rate_table.face_x_rad = face[0] * constants::kArcsecond;
+    lab.rate_table.face_y_rad = face[1] * constants::kArcsecond;
+    lab.rate_table.wobble_rad = table->number_or("wobble_arcsec", 0.0) * constants::kArcsecond;
+    lab.rate_table.rate_error = table->number_or("rate_error_ppm", 0.0) * 1e-6;
+    table->require_all_used();
+  }
+  if (auto table = top.optional_table("centrifuge")) {
+    auto& c = lab.centrifuge;
+    c.radius_m = table->number_or("radius_m", 1.0);
+    if (!(c.radius_m > 0)) table->fail_at("radius_m", "must be positive");
+    const auto sleeve = pair_or(*table, "sleeve_arcsec", {0, 0});
+    const auto perpendicularity = pair_or(*table, "perpendicularity_arcsec", {0, 0});
+    c.errors.x1t = sleeve[0] * constants::kArcsecond;
+    c.errors.y1t = sleeve[1] * constants::kArcsecond;
+    c.errors.x2t = perpendicularity[0] * constants::kArcsecond;
+    c.errors.y2t = perpendicularity[1] * constants::kArcsecond;
+    c.errors.wobble2 = table->number_or("wobble_arcsec", 0.0) * constants::kArcsecond;
+    c.errors.platform_rate_error = table->number_or("platform_rate_error_rad_s", 0.0);
+    table->require_all_used();
+  }
+  auto tests = top.tables("test");
+  if (tests.empty()) top.fail("no [[test]] tables: nothing to simulate");
+  std::vector<std::pair<TestGenerator, std::string>> prepared;
+  std::map<std::string, int> names;
+  for (auto& test : tests) {
+    const std::string kind = test.string("kind");
+    const auto found = generators().find(kind);
+    if (found == generators().end()) {
+      std::string known;
+      for (const auto& [k, g] : generators()) known += (known.empty() ? "" : ", ") + k;
+      test.fail_at("kind", "'" + kind + "' cannot be simulated (known: " + known + ")");
+    }
+    const std::string name = test.string_or("name", kind);
+    if (name.empty() || name.find_first_of("/\\\"") != std::string::npos || name.front() == '.') {
+      test.fail_at("name", "must be a plain file name");
+    }
+    if (names[name]++ > 0) test.fail_at("name", "'" + name + "' names two tests");
+    lab.dry_run = true;
+    found->second(test, name, lab);
+    test.require_all_used();
+    prepared.emplace_back(found->second, name);
+  }
+  top.require_all_used();
+
+  lab.dry_run = false;
+  for (std::size_t i = 0; i < prepared.size(); ++i) {
+    if (options.progress) options.progress("simulate " + prepared[i].second, static_cast<double>(i) / prepared.size());
+    prepared[i].first(tests[i], prepared[i].second, lab);
+  }
+  if (options.progress) options.progress("simulated", 1.0);
+
+  const GyroParameters& g = lab.gyro;
+  std::string plan = fmt::format(
+      "# Processing plan written by inertest simulate (seed {}): run it with\n"
+      "#   inertest run plan.toml --out results\n"
+      "[plan]\ntitle = \"{}\"\n\n[instrument]\nid = \"{}\"\ntype = \"gyro\"\noutput_unit = \"{}\"\n"
+      "nominal_scale_factor = {}\nsample_rate_hz = {}\n\n[site]\nname = \"{}\"\nlatitude_deg = {}\n"
+      "gravity_m_s2 = {}\n\n",
+      lab.seed, title, g.id, g.output_unit, exact(g.scale_factor), exact(g.sample_rate_hz), lab.site_name,
+      exact(lab.site.latitude_deg), exact(lab.site.gravity_m_s2));
+  plan += lab.plan_steps;
+  SimulationSummary summary;
+  summary.plan_path = (std::filesystem::path(out_dir) / "plan.toml").string();
+  lab.write("plan.toml", plan);
+
+  nlohmann::json truth = nlohmann::json::array();
+  for (const auto& t : lab.truth) {
+    nlohmann::json entry = {{"procedure", t.procedure}, {"quantity", t.quantity}, {"true", t.value},
+                            {"unit", t.unit},           {"tolerance", t.tolerance}, {"basis", t.basis}};
+    entry["figure"] = t.figure.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.figure);
+    truth.push_back(entry);
+  }
+  summary.truth = {
+      {"inertest_version", version()},
+      {"seed", lab.seed},
+      {"site", {{"name", lab.site_name}, {"latitude_deg", lab.site.latitude_deg}, {"gravity_m_s2", lab.site.gravity_m_s2}}},
+      {"gyro", g.to_json()},
+      {"tests", lab.tests},
+      {"truth", truth},
+  };
+  lab.write("truth.json", summary.truth.dump(2) + "\n");
+  summary.written_files = lab.written_files;
+  return summary;
+}
+
+toml::table parse(std::string_view text, const std::string& source) {
+  try {
+    return toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    const auto& begin = e.source().begin;
+    throw Error(SourceLocation{source, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)},
+                std::string(e.description()));
+  }
+}
+
+}  // namespace
+
+SimulationSummary simulate(const std::string& plan_path, const std::string& out_dir, const SimulationOptions& options) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(plan_path, error)) throw Error(SourceLocation{plan_path, 0, 0}, "simulation plan not found");
+  try {
+    const toml::table root = toml::parse_file(plan_path);
+    return run(root, plan_path, out_dir, options);
+  } catch (const toml::parse_error& e) {
+    const auto& begin = e.source().begin;
+    throw Error(SourceLocation{plan_path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)},
+                std::string(e.description()));
+  }
+}
+
+SimulationSummary simulate_text(std::string_view plan_text, const std::string& source, const std::string& out_dir,
+                                const SimulationOptions& options) {
+  const toml::table root = parse(plan_text, source);
+  return run(root, source, out_dir, options);
+}
+
+}  // namespace inertest::sim

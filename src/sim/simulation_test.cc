@@ -1,0 +1,143 @@
+#include "inertest/sim/simulation.h"
+
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <sstream>
+
+#include "inertest/core/error.h"
+#include "inertest/demo/demo.h"
+#include "test_util/test_util.h"
+
+namespace inertest::sim {
+namespace {
+
+using inertest::testing::ScratchDirectory;
+
+const char* kSmallPlan = R"(seed = 7
+[site]
+latitude_deg = 45.75
+[gyro]
+sample_rate_hz = 100
+angle_random_walk_deg_rt_h = 0.002
+bias_instability_deg_h = 0.003
+rate_random_walk_deg_h_rt_h = 0.004
+bias_deg_h = 0.02
+nonlinearity_ppm = [0, 8]
+asymmetry_ppm = 6
+bandwidth_hz = 300
+delay_ms = 0.8
+[gyro.drift]
+DI = 0.01
+[rate_table]
+rate_error_ppm = 0.5
+[[test]]
+kind = "scale_factor"
+rates_deg_s = [1, 10, 100]
+seconds_per_rate = 5
+static_seconds = 5
+[[test]]
+kind = "bias"
+seconds = 60
+[[test]]
+kind = "centrifuge"
+revolutions = 2
+)";
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(SimSimulate, SameSeedGivesByteIdenticalFiles) {
+  ScratchDirectory a;
+  ScratchDirectory b;
+  const SimulationSummary first = simulate_text(kSmallPlan, "small", a.path() + "/out");
+  const SimulationSummary second = simulate_text(kSmallPlan, "small", b.path() + "/out");
+  ASSERT_EQ(first.written_files.size(), second.written_files.size());
+  ASSERT_GT(first.written_files.size(), 10u);
+  for (std::size_t i = 0; i < first.written_files.size(); ++i) {
+    const auto relative = std::filesystem::relative(first.written_files[i], a.path());
+    EXPECT_EQ(relative, std::filesystem::relative(second.written_files[i], b.path()));
+    EXPECT_EQ(read(first.written_files[i]), read(second.written_files[i])) << relative;
+  }
+  std::string other = kSmallPlan;
+  other.replace(other.find("seed = 7"), 8, "seed = 8");
+  ScratchDirectory c;
+  simulate_text(other, "small", c.path() + "/out");
+  EXPECT_NE(read(a.path() + "/out/bias.csv"), read(c.path() + "/out/bias.csv"));
+}
+
+TEST(SimSimulate, WritesRecordsPlanAndTruth) {
+  ScratchDirectory dir;
+  const SimulationSummary summary = simulate_text(kSmallPlan, "small", dir.path());
+  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/scale_factor/points.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/centrifuge/samples.csv"));
+  const std::string plan = read(summary.plan_path);
+  EXPECT_NE(plan.find("kind = \"scale_factor\""), std::string::npos);
+  EXPECT_NE(plan.find("nominal_scale_factor = 36000"), std::string::npos);
+  EXPECT_EQ(summary.truth.at("seed"), 7);
+  EXPECT_EQ(summary.truth.at("gyro").at("drift").at("DI"), 0.01);
+  bool has_scale_factor = false;
+  for (const auto& t : summary.truth.at("truth")) {
+    if (t.at("quantity") == "scale factor") {
+      has_scale_factor = true;
+      EXPECT_EQ(t.at("figure"), "scale_factor");
+      EXPECT_GT(t.at("tolerance").get<double>(), 0.0);
+    }
+  }
+  EXPECT_TRUE(has_scale_factor);
+  // The points table: 2 static runs and each rate both ways.
+  const std::string points = read(dir.path() + "/scale_factor/points.csv");
+  EXPECT_EQ(std::count(points.begin(), points.end(), '\n'), 2 + 2 + 6);
+}
+
+void expect_plan_error(const std::string& text, const std::string& fragment, std::size_t line) {
+  ScratchDirectory dir;
+  try {
+    simulate_text(text, "bad.toml", dir.path() + "/out");
+    ADD_FAILURE() << "no error for: " << fragment;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    ASSERT_TRUE(e.location().has_value()) << e.what();
+    EXPECT_EQ(e.location()->line, line) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out")) << "files written despite the error";
+}
+
+TEST(SimSimulate, BadPlansNameTheLineAndWriteNothing) {
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\nsecnds = 5\n", "secnds", 5);
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"wobble\"\n", "cannot be simulated", 4);
+  expect_plan_error("seed = 1\n[gyro]\nbandwidth_hz = -3\n[[test]]\nkind = \"bias\"\n", "bandwidth_hz", 2);
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\nseconds = \"long\"\n", "must be a number", 5);
+  expect_plan_error("seed = 1.5\n[gyro]\n[[test]]\nkind = \"bias\"\n", "whole number", 1);
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"scale_factor\"\nrates_deg_s = [1, -2]\n", "positive", 5);
+  expect_plan_error("seed = 1\n[gyro]\n[gyro.drift]\nDF = 1\n[[test]]\nkind = \"bias\"\n", "bias_deg_h", 4);
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\n[[test]]\nkind = \"bias\"\n", "names two tests", 5);
+  expect_plan_error("seed = 1\n[[test]]\nkind = \"bias\"\n", "missing [gyro]", 1);
+  expect_plan_error("seed = 1\n[gyro\n", "", 2);
+}
+
+TEST(DemoPlan, BuiltInPlanMatchesTheExample) {
+  EXPECT_EQ(demo_simulation_plan(), read(inertest::testing::source_path("examples/demo/simulation.toml")));
+}
+
+TEST(Demo, EveryTruthCheckIsWithin) {
+  ScratchDirectory dir;
+  const auto run = inertest::testing::run_cli({"demo", "--out", dir.path() + "/demo", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto results = nlohmann::json::parse(read(dir.path() + "/demo/results.json"));
+  EXPECT_EQ(results, nlohmann::json::parse(run.out));
+  ASSERT_GE(results.at("truth_check").size(), 3u);
+  for (const auto& c : results.at("truth_check")) {
+    EXPECT_TRUE(c.at("within").get<bool>()) << c.dump();
+    EXPECT_GT(c.at("tolerance").get<double>(), 0.0) << c.dump();
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/demo/report.txt"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/demo/lab/truth.json"));
+}
+
+}  // namespace
+}  // namespace inertest::sim

@@ -23,7 +23,8 @@ deps:
 	@bash scripts/install-deps.sh
 
 configure: deps
-	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_TESTS=ON $(CMAKE_FLAGS) > /dev/null
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_TESTS=ON \
+		-DINERTEST_BUILD_PYTHON=ON -DPYTHON_EXECUTABLE=$(PYTHON) $(CMAKE_FLAGS) > /dev/null
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)

@@ -9,6 +9,7 @@ packages=(
   libboost-dev
   libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-pandas python3-scipy python3-pytest python3-dev pybind11-dev
+  chromium
 )
 
 missing=()

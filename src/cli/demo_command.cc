@@ -11,6 +11,7 @@ namespace {
 struct Arguments {
   std::string out;
   std::string plan;
+  std::string lang = "en";
   bool json = false;
 };
 
@@ -20,21 +21,26 @@ CommandAction setup(CLI::App& root) {
       "demo",
       "Simulate a complete test campaign of a navigation-grade FOG in the virtual lab, process it\n"
       "(inertest run), and check every measured figure against the simulated truth. Writes\n"
-      "DIR/lab/ (records, plan, truth.json), DIR/results.json (with truth_check) and DIR/report.txt.\n"
+      "DIR/lab/ (records, plan, truth.json), DIR/results.json (with truth_check), DIR/report.txt and\n"
+      "the test report DIR/report.html.\n"
       "Exit status 1 when a measured figure falls outside its tolerance.");
   command->add_option("--out", arguments->out, "output directory")->required();
   command->add_option("--plan", arguments->plan, "simulation plan instead of the built-in one");
+  command->add_option("--lang", arguments->lang, "language of report.html: en or zh (GJB terms)")
+      ->check(CLI::IsMember({"en", "zh"}));
   command->add_flag("--json", arguments->json, "print results.json on stdout");
   return [arguments] {
     DemoOptions options;
     options.simulation_plan = arguments->plan;
+    options.report = {report::parse_language(arguments->lang), report::current_date()};
     options.progress = [](std::string_view stage, double fraction) {
       fmt::print(stderr, "[demo] {:<40} {:5.1f} %\n", stage, 100.0 * fraction);
       std::fflush(stderr);
     };
     const DemoSummary summary = run_demo(arguments->out, options);
     print_result(summary.results, summary.report, arguments->json);
-    fmt::print(stderr, "report: {}\nresults: {}\n", summary.report_path, summary.results_path);
+    fmt::print(stderr, "report: {}\nhtml report: {}\nresults: {}\n", summary.report_path, summary.html_report_path,
+               summary.results_path);
     return summary.all_within ? 0 : 1;
   };
 }

@@ -3,6 +3,7 @@
 
 #include "command.h"
 #include "inertest/campaign/campaign.h"
+#include "inertest/report/report.h"
 
 namespace inertest::cli {
 namespace {
@@ -10,6 +11,7 @@ namespace {
 struct Arguments {
   std::string plan;
   std::string out;
+  std::string lang = "en";
   bool json = false;
 };
 
@@ -18,16 +20,21 @@ CommandAction setup(CLI::App& root) {
   CLI::App* command = root.add_subcommand(
       "run",
       "Run a test plan (TOML): validate it whole (errors name the plan's file and line; nothing runs),\n"
-      "then run every procedure it names, check its specification limits, and write DIR/results.json.");
+      "then run every procedure it names, check its specification limits, and write DIR/results.json\n"
+      "and the test report DIR/report.html.");
   command->add_option("PLAN", arguments->plan, "test plan, TOML")->required();
   command->add_option("--out", arguments->out, "output directory")->required();
+  command->add_option("--lang", arguments->lang, "language of the report: en or zh (GJB terms)")
+      ->check(CLI::IsMember({"en", "zh"}));
   command->add_flag("--json", arguments->json, "print results.json on stdout as well");
   return [arguments] {
     CampaignOptions options;
     options.progress = terminal_progress();
     const CampaignSummary summary = run_campaign(arguments->plan, arguments->out, options);
+    const std::string report_path = report::write_report(
+        summary.results, arguments->out, {report::parse_language(arguments->lang), report::current_date()});
     print_result(summary.results, summary.report(), arguments->json);
-    if (!arguments->json) fmt::print(stderr, "results written to {}\n", summary.written_files.front());
+    if (!arguments->json) fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(), report_path);
     return 0;
   };
 }

@@ -106,6 +106,7 @@ DemoSummary run_demo(const std::string& out_dir, const DemoOptions& options) {
   summary.report = report_text(summary.results, processed.report());
   write_file_atomically(summary.results_path, summary.results.dump(2) + "\n");
   write_file_atomically(summary.report_path, summary.report);
+  summary.html_report_path = report::write_report(summary.results, out_dir, options.report);
   return summary;
 }
 

@@ -65,7 +65,12 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
   }
   for (double s : options.smoothing_s) {
     const StabilityAtSmoothing stability = output_stability(output, options.sample_rate_hz, s);  // eq. (20)
-    result.bias_stability.push_back({s, stability.windows, Figure{stability.stability * magnitude, "deg/h", std::nullopt}});
+    std::vector<double> smoothed;
+    smoothed.reserve(stability.means.size());
+    const double earth = result.earth_rate_removed ? result.earth_rate_removed->value : 0.0;
+    for (double mean_output : stability.means) smoothed.push_back(mean_output * scale - earth);
+    result.bias_stability.push_back(
+        {s, stability.windows, Figure{stability.stability * magnitude, "deg/h", std::nullopt}, std::move(smoothed)});
   }
   if (options.random_walk) {
     const double ner = noise_equivalent_rate(output, options.sample_rate_hz) * magnitude;  // deg/h
@@ -102,6 +107,15 @@ nlohmann::json BiasResult::to_json() const {
     }
     json["normalised_stability_curve"] = curve;
   }
+  // The smoothed records behind eq. (20), for the report's plot; left out beyond kMaxSmoothedPoints
+  // means (a 1 s smoothing of a day-long record) to keep results.json small.
+  constexpr std::size_t kMaxSmoothedPoints = 20000;
+  nlohmann::json smoothed = nlohmann::json::array();
+  for (const auto& s : bias_stability) {
+    if (s.smoothed.size() > kMaxSmoothedPoints) continue;
+    smoothed.push_back({{"smoothing_s", s.smoothing_s}, {"unit", "deg/h"}, {"values", s.smoothed}});
+  }
+  json["smoothed_record"] = smoothed;
   if (earth_rate_removed) json["earth_rate_removed"] = *earth_rate_removed;
   return json;
 }

@@ -32,12 +32,13 @@ StabilityAtSmoothing output_stability(std::span<const double> output, double sam
                             "({} samples, {} s)",
                             smoothing_s, window, output.size(), static_cast<double>(output.size()) / sample_rate_hz));
   }
-  const std::vector<double> means = window_means(output, window);
+  std::vector<double> means = window_means(output, window);
   if (means.size() < 2) {
     throw Error(fmt::format("bias stability: the record holds {} whole window(s) of {} s; eq. (20) needs at least 2",
                             means.size(), smoothing_s));
   }
-  return {smoothing_s, means.size(), sample_standard_deviation(means)};
+  const double stability = sample_standard_deviation(means);
+  return {smoothing_s, means.size(), stability, std::move(means)};
 }
 
 }  // namespace inertest

@@ -5,7 +5,7 @@
 // Writes DIR/lab/ (records, plan.toml, truth.json, simulation.toml), DIR/results.json (the
 // campaign's results plus "truth_check": [{"procedure", "quantity", "true", "measured", "unit",
 // "tolerance", "within", "basis"}] and "not_checked": the true parameters no plan step reports
-// yet) and DIR/report.txt.
+// yet), DIR/report.txt and the HTML test report DIR/report.html (report/report.h).
 #pragma once
 
 #include <string>
@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/progress.h"
+#include "inertest/report/report.h"
 
 namespace inertest {
 
@@ -20,6 +21,8 @@ struct DemoOptions {
   ProgressCallback progress;
   // The simulation plan; empty: the built-in demo plan (examples/demo/simulation.toml).
   std::string simulation_plan;
+  // Language and run date of DIR/report.html.
+  report::ReportOptions report;
 };
 
 struct DemoSummary {
@@ -27,6 +30,7 @@ struct DemoSummary {
   std::string report;
   std::string results_path;
   std::string report_path;
+  std::string html_report_path;  // DIR/report.html
   bool all_within = false;
 };
 

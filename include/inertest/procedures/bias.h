@@ -48,6 +48,7 @@ struct BiasStabilityFigure {
   double smoothing_s = 0.0;
   std::size_t windows = 0;  // n of eq. (20)
   Figure value;             // deg/h
+  std::vector<double> smoothed;  // F_i/K in deg/h (Earth rate removed if asked): the smoothed record
 };
 
 struct BiasResult {

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 namespace inertest {
 
@@ -21,6 +22,7 @@ struct StabilityAtSmoothing {
   double smoothing_s = 0.0;
   std::size_t windows = 0;   // n of eq. (20): the whole windows in the record
   double stability = 0.0;    // standard deviation (n − 1) of the window means, output unit
+  std::vector<double> means;  // F_i: the window means themselves, output unit, in record order
 };
 
 // Eq. (20) without the 1/K factor. Throws Error for a non-positive rate or smoothing time, a

@@ -1,0 +1,112 @@
+// Shared helpers of the Python module `inertest` (pybind11): numpy arrays in and out without copies,
+// results as objects whose attributes are their JSON names, and the wrap function of every part.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+
+namespace inertest::python {
+
+namespace py = pybind11;
+
+// A numpy array of float64 as the Python side hands it in: converted (forcecast) and made
+// C-contiguous by pybind11 only when it is not already, so a float64 array is never copied.
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// A view of a one-dimensional array's buffer; `name` is the argument's name for the error.
+std::span<const double> as_span(const DoubleArray& array, const char* name);
+
+// Throws Error unless every array has the length of the first; `names` name them in the message.
+void require_equal_lengths(std::initializer_list<std::pair<const char*, std::size_t>> lengths);
+
+// A numpy array that owns the moved vector (released through a capsule), so nothing is copied.
+template <typename T>
+py::array_t<T> to_numpy(std::vector<T>&& values) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule release(owned, [](void* pointer) { delete static_cast<std::vector<T>*>(pointer); });
+  return py::array_t<T>(static_cast<py::ssize_t>(owned->size()), owned->data(), release);
+}
+
+// JSON as plain Python objects (dict, list, float, int, str, bool, None): what json.loads gives for
+// the JSON the CLI prints. Non-finite numbers become None, as the JSON text has null.
+py::object to_plain_python(const nlohmann::json& json);
+
+// A JSON object seen through attributes: `record.name` is the member "name", a member of the form
+// {"value", "unit"[, "uncertainty"]} is a Figure, another object a Record, an array of numbers a
+// numpy array, any other array a list. to_dict() gives the JSON as plain Python objects.
+class Record {
+ public:
+  explicit Record(nlohmann::json json) : json_(std::move(json)) {}
+  virtual ~Record() = default;
+  Record(const Record&) = default;
+  Record& operator=(const Record&) = default;
+
+  const nlohmann::json& json() const { return json_; }
+
+ private:
+  nlohmann::json json_;
+};
+
+// A procedure's result: its JSON (Record) and its readable report.
+class Result : public Record {
+ public:
+  Result(nlohmann::json json, std::string report) : Record(std::move(json)), report_(std::move(report)) {}
+  const std::string& report() const { return report_; }
+
+ private:
+  std::string report_;
+};
+
+// One Python class per result type, so that results have their own names and docstrings.
+template <typename Tag>
+class ResultOf : public Result {
+ public:
+  using Result::Result;
+};
+
+// Binds ResultOf<Tag> as `name`, a subclass of Result.
+template <typename Tag>
+void bind_result(py::module_& module, const char* name, const char* doc) {
+  py::class_<ResultOf<Tag>, Result>(module, name, doc);
+}
+
+// Wraps a procedure's result (anything with to_json() and report()) as the Python class of Tag.
+template <typename Tag, typename CppResult>
+ResultOf<Tag> make_result(const CppResult& result) {
+  return ResultOf<Tag>(result.to_json(), result.report());
+}
+
+// Runs work; an Error without a location gets `source` (when given) as its location, as the CLI
+// does for a procedure on one input file.
+template <typename Work>
+auto with_source(const std::optional<std::string>& source, Work&& work) {
+  try {
+    return work();
+  } catch (const Error& e) {
+    if (e.location() || !source || source->empty()) throw;
+    throw Error(SourceLocation{*source, 0, 0}, e.message());
+  }
+}
+
+void wrap_core(py::module_& module);
+void wrap_io(py::module_& module);
+void wrap_procedures(py::module_& module);
+void wrap_misalignment(py::module_& module);
+void wrap_centrifuge(py::module_& module);
+void wrap_allan(py::module_& module);
+void wrap_sim(py::module_& module);
+void wrap_campaign(py::module_& module);
+
+}  // namespace inertest::python

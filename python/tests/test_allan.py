@@ -1,0 +1,52 @@
+"""Allan analysis on simulated noise whose terms are known, and the CLI's JSON on the same file."""
+
+import numpy as np
+import pytest
+
+import inertest
+from conftest import cli_json
+
+SAMPLE_RATE_HZ = 100.0
+# N = 0.02 deg/sqrt(h) in rad/sqrt(s): the simulator's SI unit (IEEE Std 952-1997 C.1).
+ANGLE_RANDOM_WALK = 0.02 * (np.pi / 180) / 60
+
+
+def white_noise_deg_h(seed=7, samples=200_000):
+    rate = inertest.gyro_noise(samples, SAMPLE_RATE_HZ, angle_random_walk=ANGLE_RANDOM_WALK, seed=seed)
+    return inertest.convert(rate, "rad/s", "deg/h")
+
+
+def test_angle_random_walk_of_white_noise_is_found():
+    result = inertest.allan_variance(white_noise_deg_h(), sample_rate_hz=SAMPLE_RATE_HZ)
+    arw = result.noise.angle_random_walk
+    assert arw.unit == "deg/sqrt(h)"
+    # Within 4 of its own 1-sigma uncertainties of the truth the simulator was made with.
+    assert abs(arw.value - 0.02) < 4 * arw.uncertainty
+    oadev = result.oadev
+    assert isinstance(result.tau, np.ndarray) and isinstance(oadev.values, np.ndarray)
+    # White rate noise: sigma(tau) = N / sqrt(tau), N in deg/sqrt(h) -> deg/h at tau in s: N * 60 / sqrt(tau).
+    expected = 0.02 * 60 / np.sqrt(result.tau[:8])
+    np.testing.assert_array_less(np.abs(oadev.values[:8] / expected - 1), 4 / np.sqrt(2 * oadev.edf[:8]))  # 4 sigma: sd(sigma)/sigma = 1/sqrt(2 edf)
+
+
+def test_allan_equals_the_cli_on_the_same_file(tmp_path):
+    path = tmp_path / "rate.csv"
+    samples = white_noise_deg_h(seed=3, samples=20_000)
+    np.savetxt(path, samples, fmt="%.17g", header="rate", comments="")
+    from_file = inertest.allan_variance_of_file(str(path), sample_rate_hz=SAMPLE_RATE_HZ, taus="decade")
+    assert from_file.to_dict() == cli_json("allan", path, "--rate", SAMPLE_RATE_HZ, "--taus", "decade")
+    in_memory = inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, taus="decade")
+    np.testing.assert_allclose(in_memory.adev.values, from_file.adev.values, rtol=1e-12)
+    np.testing.assert_array_equal(inertest.read_rate_record(str(path)), samples)
+
+
+def test_bad_allan_options_are_errors():
+    with pytest.raises(inertest.Error, match="estimator"):
+        inertest.allan_variance(np.ones(100), sample_rate_hz=1.0, estimators="bogus")
+
+
+def test_gyro_noise_is_reproducible_by_seed():
+    first = inertest.gyro_noise(1000, 10.0, angle_random_walk=1e-4, seed=5)
+    np.testing.assert_array_equal(first, inertest.gyro_noise(1000, 10.0, angle_random_walk=1e-4, seed=5))
+    assert not np.array_equal(first, inertest.gyro_noise(1000, 10.0, angle_random_walk=1e-4, seed=6))
+    assert not first.flags.owndata  # owns the simulator's vector through a capsule

@@ -1,0 +1,55 @@
+"""Misalignment separation (paper 001, HIT): the CLI's JSON on the paper's tables, and errors."""
+
+import numpy as np
+import pytest
+
+import inertest
+from conftest import cli_error, cli_json
+
+
+def test_gyro_misalignment_equals_the_cli_on_table_1(source_dir):
+    path = source_dir / "data" / "misalignment" / "gyro_table1.csv"
+    rows = inertest.read_gyro_misalignment_positions(str(path))
+    result = inertest.gyro_misalignment(**rows, scale_factor=-2.9222, output_unit="V")
+    expected = cli_json("misalignment", "gyro", path, "--scale-factor", "-2.9222", "--output-unit", "V")
+    assert result.to_dict() == expected
+    assert result.misalignment.unit == "arcsec"
+
+
+def test_accelerometer_misalignment_equals_the_cli_on_table_2(source_dir):
+    path = source_dir / "data" / "misalignment" / "accelerometer_table2.csv"
+    rows = inertest.read_accelerometer_misalignment_positions(str(path))
+    result = inertest.accelerometer_misalignment(**rows, scale_factor=1.299)
+    assert result.to_dict() == cli_json("misalignment", "accelerometer", path, "--scale-factor", "1.299")
+
+
+def test_accelerometer_misalignment_of_known_angles():
+    # V = V0 + kI (dz2 sin b - dy2 cos b) with dy2 = 20", dz2 = -10": the closed forms and the fit agree.
+    arcsec = np.pi / 180 / 3600
+    beta = np.array([0.0, 90.0, 180.0, 270.0])
+    k_i = 1.3
+    output = 0.2 + k_i * (-10 * arcsec * np.sin(np.radians(beta)) - 20 * arcsec * np.cos(np.radians(beta)))
+    result = inertest.accelerometer_misalignment(beta, output, scale_factor=k_i)
+    assert result.delta_theta_y2.value == pytest.approx(20.0, rel=1e-9)
+    assert result.delta_theta_z2.value == pytest.approx(-10.0, rel=1e-9)
+    dy2, dz2 = inertest.four_position_misalignment(*output, k_i)
+    assert (dy2 / arcsec, dz2 / arcsec) == pytest.approx((20.0, -10.0), rel=1e-9)
+
+
+def test_gyro_misalignment_error_is_the_cli_message(tmp_path):
+    path = tmp_path / "positions.csv"
+    path.write_text("alpha_deg,beta_deg,rate_dps,output\n0,0,10,1\n0,0,-10,2\n0,0,0,3\n")
+    rows = inertest.read_gyro_misalignment_positions(str(path))
+    with pytest.raises(ValueError) as raised:
+        inertest.gyro_misalignment(**rows, scale_factor=1.0)
+    assert str(raised.value) == cli_error("misalignment", "gyro", path, "--scale-factor", "1")
+    assert raised.value.line == 4
+
+
+def test_whole_revolution_mean_reads_the_arrays_in_place():
+    angle = np.arange(0.0, 725.0, 5.0)  # two whole turns and a bit
+    output = 1.0 + np.sin(np.radians(angle))
+    mean = inertest.whole_revolution_mean_by_angle(angle, output)
+    assert mean.revolutions == 2
+    assert mean.samples_used == 144
+    assert mean.mean == pytest.approx(1.0, abs=1e-12)

@@ -1,0 +1,113 @@
+"""The GJB 2426A procedures on numpy arrays: known answers, and the CLI's JSON on the same file."""
+
+import numpy as np
+import pytest
+
+import inertest
+from conftest import cli_error, cli_json
+
+
+def test_scale_factor_of_an_exact_line():
+    # Static runs at 1.0 either side; F = 5 * rate + 1 exactly: F_r = 1 (eq. 2), so after eq. (3)
+    # K = 5 (eq. 5), F0 = 0 (eq. 6) and no nonlinearity or asymmetry (eqs. 8-11).
+    rates = np.array([0, 0, 1, 2, 5, 10, -1, -2, -5, -10, 0, 0], dtype=float)
+    outputs = np.where(rates == 0, 1.0, 5.0 * rates + 1.0)
+    result = inertest.scale_factor(rates, outputs, output_unit="pulse/s")
+    assert result.scale_factor.value == pytest.approx(5.0, rel=1e-14)
+    assert result.scale_factor.unit == "pulse/s/(deg/s)"
+    assert result.zero_offset.value == pytest.approx(0.0, abs=1e-12)
+    assert result.nonlinearity.value == pytest.approx(0.0, abs=1e-9)
+    assert result.asymmetry.value == pytest.approx(0.0, abs=1e-9)
+    assert result.nonlinearity.unit == "ppm"
+    assert len(result.nonlinearity_curve) == 8
+    assert result.warnings  # 4 rates each way, fewer than the 11 of 5.8.1.3
+
+
+def test_scale_factor_equals_the_cli_on_the_example(source_dir):
+    path = source_dir / "examples" / "scale_factor" / "points.csv"
+    table = inertest.read_text_table(str(path), columns=["rate", "output"], header=True)
+    result = inertest.scale_factor(table["rate"], table["output"], output_unit="pulse/s", source=table.source)
+    assert result.to_dict() == cli_json("scale-factor", path, "--output-unit", "pulse/s")
+    assert result.report().startswith("Scale factor (GJB 2426A-2004 5.8.1-5.8.3)")
+
+
+def test_scale_factor_error_is_the_cli_message(tmp_path):
+    path = tmp_path / "points.csv"
+    path.write_text("rate,output\n0,1\n1,2\n2,3\n-1,0\n-2,-1\n")
+    table = inertest.read_text_table(str(path), columns=["rate", "output"], header=True)
+    with pytest.raises(ValueError) as raised:
+        inertest.scale_factor(table["rate"], table["output"], source=table.source)
+    assert str(raised.value) == cli_error("scale-factor", path)
+
+
+def test_arrays_of_unequal_length_are_an_error():
+    with pytest.raises(inertest.Error, match="equal lengths"):
+        inertest.scale_factor([0.0, 1.0], [0.0])
+    with pytest.raises(inertest.Error, match="one-dimensional"):
+        inertest.scale_factor(np.zeros((2, 2)), np.zeros((2, 2)))
+
+
+def test_bias_of_a_constant_record():
+    # B0 = F / K (eq. 19): a constant output of 0.01 per sample with K = 1 output per deg/s is 36 deg/h,
+    # and a constant record has no bias stability (eq. 20).
+    output = np.full(4000, 0.01)
+    result = inertest.bias(output, sample_rate_hz=10.0, scale_factor=1.0, smoothing_s=[1.0, 10.0])
+    assert result.bias.value == pytest.approx(36.0, rel=1e-12)
+    assert result.bias.unit == "deg/h"
+    assert [entry.value for entry in result.bias_stability] == pytest.approx([0.0, 0.0], abs=1e-9)
+
+
+def test_bandwidth_of_a_first_order_lag_with_delay_equals_the_cli(source_dir):
+    # G = 1/sqrt(1 + (w T)^2), P = -atan(w T) - w Td: the fit returns T and Td exactly (eqs. 37-46).
+    bandwidth_hz, delay_s = 300.0, 2e-4
+    t = 1.0 / (2 * np.pi * bandwidth_hz)
+    f = np.logspace(0, np.log10(500.0), 12)
+    w = 2 * np.pi * f
+    gain = 1.0 / np.sqrt(1.0 + (w * t) ** 2)
+    phase = np.degrees(-np.arctan(w * t) - w * delay_s)
+    result = inertest.bandwidth_and_delay(f, gain, phase)
+    assert result.bandwidth.value == pytest.approx(bandwidth_hz, rel=1e-9)
+    assert result.delay.value == pytest.approx(delay_s, rel=1e-7)
+    assert result.bandwidth.unit == "Hz" and result.delay.unit == "s"
+    path = source_dir / "examples" / "bandwidth" / "gains.csv"
+    table = inertest.read_text_table(str(path), columns=["freq_hz", "gain", "phase_deg"], header=True)
+    from_arrays = inertest.bandwidth_and_delay(table["freq_hz"], table["gain"], table["phase_deg"])
+    assert from_arrays.to_dict() == cli_json("bandwidth", path)
+
+
+def test_repeatabilities_by_hand():
+    # Eq. (21): biases 1, 2, 3 deg/h have sample standard deviation 1.
+    assert inertest.bias_repeatability(np.array([1.0, 2.0, 3.0])).bias_repeatability.value == pytest.approx(1.0)
+    # Eq. (12): scale factors 99, 100, 101 x2 have standard deviation sqrt(0.8) around 100 -> ppm.
+    factors = np.array([99.0, 100.0, 101.0, 99.0, 100.0, 101.0])
+    kr = inertest.scale_factor_repeatability(factors).scale_factor_repeatability
+    assert kr.value == pytest.approx(np.std(factors, ddof=1) / 100.0 * 1e6, rel=1e-12)
+    assert kr.unit == "ppm"
+    with pytest.raises(ValueError):
+        inertest.scale_factor_repeatability(factors[:3])  # fewer than the 6 runs of 5.8.4.3
+
+
+def test_bias_temperature_sensitivity_by_hand():
+    # Eq. (22): room run 20 degC at 1.0 deg/h; 1.5 deg/h at 70 degC -> 0.01, 0.8 deg/h at -20 degC -> 0.005.
+    result = inertest.bias_temperature_sensitivity(np.array([20.0, 70.0, -20.0]), np.array([1.0, 1.5, 0.8]))
+    assert result.bias_temperature_sensitivity.value == pytest.approx(0.01, rel=1e-12)
+
+
+def test_input_axis_misalignment_two_positions_by_hand():
+    # delta = (F+ - F-) / (2 K rate): 2e-4 and -1e-4 rad -> alpha = asin(sqrt(5e-8)) in arcsec.
+    k, rate = 1000.0, 10.0
+    positive = np.array([2e-4 * 2 * k * rate / 2, -1e-4 * 2 * k * rate / 2])
+    result = inertest.input_axis_misalignment(positive, -positive, scale_factor=k, rate=rate)
+    expected = np.degrees(np.arcsin(np.sqrt(5e-8))) * 3600
+    assert result.misalignment.value == pytest.approx(expected, rel=1e-9)
+    assert result.misalignment.unit == "arcsec"
+
+
+def test_maximum_input_rate_of_a_saturating_gyro():
+    # Linear up to 100 deg/s, then 2 % compressed at 200 deg/s: a 100 ppm requirement holds to 100.
+    magnitudes = np.array([1, 2, 5, 10, 20, 50, 100, 200], dtype=float)
+    outputs = np.where(magnitudes > 150, 0.98 * magnitudes, magnitudes)
+    rate = np.concatenate([[0.0], magnitudes, -magnitudes, [0.0]])
+    output = np.concatenate([[0.0], outputs, -outputs, [0.0]])
+    result = inertest.maximum_input_rate(rate, output, nonlinearity_limit_ppm=100.0)
+    assert result.maximum_input_rate.value == pytest.approx(100.0)

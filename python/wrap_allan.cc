@@ -1,0 +1,133 @@
+// allan: the Allan-family deviations with confidence bounds and the noise-term fit (GJB 2426A-2004
+// 5.12.5.4.2 eqs. (30)-(31), IEEE Std 952-1997 Annex C, NIST SP 1065).
+#include <nlohmann/json.hpp>
+
+#include "bindings.h"
+#include "inertest/allan/allan.h"
+#include "inertest/io/text_table.h"
+
+namespace inertest::python {
+namespace {
+
+struct AllanTag {};
+
+AllanOptions allan_options(double sample_rate_hz, const std::string& input_unit, const std::string& taus,
+                           const std::string& estimators, double scale, double confidence, std::size_t worker_count) {
+  AllanOptions options;
+  options.sample_rate_hz = sample_rate_hz;
+  options.input_unit = input_unit;
+  options.taus = taus;
+  options.estimators = EstimatorSet::parse(estimators);
+  options.scale = scale;
+  options.confidence = confidence;
+  options.worker_count = worker_count;
+  return options;
+}
+
+RateRecordSource rate_source(const std::string& path, const std::string& format, const std::optional<std::string>& column) {
+  RateRecordSource source;
+  source.path = path;
+  source.format = parse_rate_record_format(format);
+  if (column) source.column = ColumnSelector::parse(*column);
+  return source;
+}
+
+ResultOf<AllanTag> allan_of_samples(const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit,
+                                    const std::string& taus, const std::string& estimators, double scale,
+                                    double confidence, std::size_t worker_count) {
+  const auto samples = as_span(rate, "rate");
+  const AllanOptions options =
+      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count);
+  AllanResult result;
+  {
+    py::gil_scoped_release release;
+    result = allan_variance(samples, options);
+  }
+  return make_result<AllanTag>(result);
+}
+
+ResultOf<AllanTag> allan_of_file(const std::string& path, double sample_rate_hz, const std::string& format,
+                                 const std::optional<std::string>& column, const std::string& input_unit,
+                                 const std::string& taus, const std::string& estimators, double scale,
+                                 double confidence, std::size_t worker_count) {
+  const RateRecordSource source = rate_source(path, format, column);
+  const AllanOptions options =
+      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count);
+  AllanResult result;
+  {
+    py::gil_scoped_release release;
+    result = allan_variance_of_file(source, options);
+  }
+  return make_result<AllanTag>(result);
+}
+
+}  // namespace
+
+void wrap_allan(py::module_& module) {
+  using namespace pybind11::literals;
+  bind_result<AllanTag>(
+      module, "AllanResult",
+      "Allan analysis (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C, NIST SP 1065). Members as in\n"
+      "the JSON: tau (s) and averaging_factor (numpy arrays), one Record per estimator (adev, oadev, mdev,\n"
+      "hdev, ohdev, totdev: unit and the numpy arrays values, lower, upper, edf, terms), noise (quantization,\n"
+      "angle_random_walk, bias_instability, rate_random_walk, rate_ramp as Figures; GJB eq. (30) fit;\n"
+      "slope_method), mean, sample_count, warnings, ...");
+  const char* options_doc =
+      "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
+      "taus: 'octave', 'decade', 'all', 'N/decade' or a comma list of tau in s; estimators: 'all' or a comma\n"
+      "list of adev, oadev, mdev, hdev, ohdev, totdev; confidence: of the chi-squared bounds (1 sigma).\n"
+      "Noise terms by the weighted fit of sigma^2 = sum A_p tau^p (GJB eq. 30; RWC = N, eq. 31) and by\n"
+      "slope read-off. Raises inertest.Error (a ValueError) with the CLI's message.";
+  module.def("allan_variance", &allan_of_samples, "rate"_a, py::kw_only(), "sample_rate_hz"_a,
+             "input_unit"_a = "deg/h", "taus"_a = "octave", "estimators"_a = "all", "scale"_a = 1.0,
+             "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
+             (std::string("Allan deviations ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV of rate samples in memory (read in\n"
+                          "place, no copy) with chi-squared bounds, and the noise terms Q, N, B, K, R.\n") +
+              options_doc)
+                 .c_str());
+  module.def("allan_variance_of_file", &allan_of_file, "path"_a, py::kw_only(), "sample_rate_hz"_a,
+             "format"_a = "csv", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
+             "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
+             (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
+                          "allan command: format 'csv', 'f64' or 'f32' (raw little-endian); column: header name or\n"
+                          "1-based index (text only).\n") +
+              options_doc)
+                 .c_str());
+  module.def(
+      "read_rate_record",
+      [](const std::string& path, const std::string& format, const std::optional<std::string>& column) {
+        const RateRecordSource source = rate_source(path, format, column);
+        std::vector<double> samples;
+        {
+          py::gil_scoped_release release;
+          read_rate_record(source, [&](std::span<const double> chunk) { samples.insert(samples.end(), chunk.begin(), chunk.end()); });
+        }
+        return to_numpy(std::move(samples));
+      },
+      "path"_a, "format"_a = "csv", "column"_a = py::none(),
+      "Reads one channel of a rate record (text, or raw little-endian f64/f32) into a float64 array that\n"
+      "owns the buffer. Raises inertest.Error with file:line:column for a bad sample.");
+  module.def(
+      "fit_noise_terms",
+      [](const DoubleArray& tau_s, const DoubleArray& variance, const DoubleArray& edf, const std::string& input_unit) {
+        return Record(fit_noise_terms(as_span(tau_s, "tau_s"), as_span(variance, "variance"), as_span(edf, "edf"),
+                                      input_unit)
+                          .to_json(input_unit));
+      },
+      "tau_s"_a, "variance"_a, "edf"_a, "input_unit"_a = "deg/h",
+      "Noise terms from an Allan variance: weighted non-negative least squares of\n"
+      "sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB 2426A-2004 eq. (30)), then Q, N (= RWC, eq. 31), B, K, R\n"
+      "by IEEE Std 952-1997 C.1 Table C.1. Returns a Record (Figures with 1-sigma uncertainties).");
+  module.def(
+      "read_noise_slopes",
+      [](const DoubleArray& tau_s, const DoubleArray& deviation, const DoubleArray& edf, const std::string& input_unit) {
+        return Record(read_noise_slopes(as_span(tau_s, "tau_s"), as_span(deviation, "deviation"), as_span(edf, "edf"),
+                                        input_unit)
+                          .to_json());
+      },
+      "tau_s"_a, "deviation"_a, "edf"_a, "input_unit"_a = "deg/h",
+      "Slope read-off on an Allan deviation (IEEE Std 952-1997 C.1): N at tau = 1 s on the -1/2 line, B =\n"
+      "sigma / 0.664 on the flat part, K at tau = 3 s on the +1/2 line. Returns a Record.");
+}
+
+}  // namespace inertest::python

@@ -1,0 +1,40 @@
+// campaign: TOML test plans that run every procedure on its data files and check the limits
+// (IEEE Std 952-1997 specification format), as `inertest run`.
+#include "bindings.h"
+#include "inertest/campaign/campaign.h"
+
+namespace inertest::python {
+namespace {
+
+struct CampaignTag {};
+
+}  // namespace
+
+void wrap_campaign(py::module_& module) {
+  using namespace pybind11::literals;
+  module.def(
+      "validate_plan", [](const std::string& plan_path) { return to_plain_python(validate_plan(plan_path)); },
+      "plan_path"_a,
+      "Loads and validates a test plan without running it; returns the validated plan as a dict. Raises\n"
+      "inertest.Error naming the plan file and line.");
+  py::class_<ResultOf<CampaignTag>, Result>(
+      module, "CampaignResult",
+      "A test campaign's results: members as in results.json (every procedure's figures and every limit's\n"
+      "verdict); report() is the readable summary.");
+  module.def(
+      "run_campaign",
+      [](const std::string& plan_path, const std::string& out_dir) {
+        CampaignSummary summary;
+        {
+          py::gil_scoped_release release;
+          summary = run_campaign(plan_path, out_dir);
+        }
+        return ResultOf<CampaignTag>(summary.results, summary.report());
+      },
+      "plan_path"_a, "out_dir"_a,
+      "Runs a test plan as `inertest run`: validates the whole plan first (nothing runs on an error), runs\n"
+      "every procedure, checks the limits and writes out_dir/results.json. Every procedure of the library\n"
+      "is reachable this way, including those without a function of their own here.");
+}
+
+}  // namespace inertest::python

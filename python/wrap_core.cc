@@ -1,0 +1,264 @@
+// core: inertest.Error (a ValueError), Figure, Record and Result, unit conversion, the version.
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "bindings.h"
+#include "inertest/core/figure.h"
+#include "inertest/core/units.h"
+#include "inertest/version.h"
+
+namespace inertest::python {
+
+std::span<const double> as_span(const DoubleArray& array, const char* name) {
+  if (array.ndim() != 1) {
+    throw Error(fmt::format("{} must be a one-dimensional array, not {}-dimensional", name, array.ndim()));
+  }
+  return {array.data(), static_cast<std::size_t>(array.shape(0))};
+}
+
+void require_equal_lengths(std::initializer_list<std::pair<const char*, std::size_t>> lengths) {
+  const auto& first = *lengths.begin();
+  for (const auto& [name, length] : lengths) {
+    if (length != first.second) {
+      throw Error(fmt::format("{} has {} values but {} has {}: the arrays must have equal lengths", name, length,
+                              first.first, first.second));
+    }
+  }
+}
+
+py::object to_plain_python(const nlohmann::json& json) {
+  switch (json.type()) {
+    case nlohmann::json::value_t::object: {
+      py::dict dict;
+      for (const auto& [key, value] : json.items()) dict[py::str(key)] = to_plain_python(value);
+      return dict;
+    }
+    case nlohmann::json::value_t::array: {
+      py::list list;
+      for (const auto& value : json) list.append(to_plain_python(value));
+      return list;
+    }
+    case nlohmann::json::value_t::string:
+      return py::str(json.get_ref<const std::string&>());
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(json.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(json.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(json.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float: {
+      const double value = json.get<double>();
+      if (!std::isfinite(value)) return py::none();  // the JSON text has null
+      return py::float_(value);
+    }
+    default:
+      return py::none();
+  }
+}
+
+namespace {
+
+// {"value": number-or-null, "unit": string} plus optionally "uncertainty": the JSON of a Figure.
+bool is_figure(const nlohmann::json& json) {
+  if (!json.is_object() || !json.contains("value") || !json.contains("unit")) return false;
+  if (!json["unit"].is_string() || !(json["value"].is_number() || json["value"].is_null())) return false;
+  const std::size_t expected = json.contains("uncertainty") ? 3 : 2;
+  return json.size() == expected;
+}
+
+double number_or_nan(const nlohmann::json& json) {
+  return json.is_number() ? json.get<double>() : std::nan("");
+}
+
+py::object attribute_value(const nlohmann::json& json);
+
+// An array of numbers becomes a numpy array (int64 when every element is an integer, else float64
+// with null as NaN); any other array a list.
+py::object array_value(const nlohmann::json& json) {
+  bool numbers = !json.empty();
+  bool integers = numbers;
+  for (const auto& element : json) {
+    numbers = numbers && (element.is_number() || element.is_null());
+    integers = integers && element.is_number_integer();
+  }
+  if (integers) {
+    std::vector<std::int64_t> values;
+    values.reserve(json.size());
+    for (const auto& element : json) values.push_back(element.get<std::int64_t>());
+    return to_numpy(std::move(values));
+  }
+  if (numbers) {
+    std::vector<double> values;
+    values.reserve(json.size());
+    for (const auto& element : json) values.push_back(number_or_nan(element));
+    return to_numpy(std::move(values));
+  }
+  py::list list;
+  for (const auto& element : json) list.append(attribute_value(element));
+  return list;
+}
+
+py::object attribute_value(const nlohmann::json& json) {
+  if (is_figure(json)) {
+    Figure figure;
+    figure.value = number_or_nan(json["value"]);
+    figure.unit = json["unit"].get<std::string>();
+    if (json.contains("uncertainty")) figure.uncertainty = number_or_nan(json["uncertainty"]);
+    return py::cast(std::move(figure));
+  }
+  if (json.is_object()) return py::cast(Record(json));
+  if (json.is_array()) return array_value(json);
+  if (json.is_number_float()) return py::float_(json.get<double>());
+  return to_plain_python(json);
+}
+
+py::list member_names(const Record& record) {
+  py::list names;
+  if (record.json().is_object()) {
+    for (const auto& [key, value] : record.json().items()) names.append(py::str(key));
+  }
+  return names;
+}
+
+std::string short_repr(const Record& record, const std::string& class_name) {
+  std::string members;
+  if (record.json().is_object()) {
+    for (const auto& [key, value] : record.json().items()) members += (members.empty() ? "" : ", ") + key;
+  }
+  return fmt::format("<{} with {}>", class_name, members.empty() ? "no members" : members);
+}
+
+std::string figure_repr(const Figure& figure) {
+  if (figure.uncertainty) {
+    return fmt::format("Figure(value={}, unit='{}', uncertainty={})", figure.value, figure.unit, *figure.uncertainty);
+  }
+  return fmt::format("Figure(value={}, unit='{}')", figure.value, figure.unit);
+}
+
+// inertest.Error: a ValueError whose message is what the CLI prints after "inertest: error: ",
+// with the location as attributes. Kept for the life of the process (never released).
+PyObject* error_type = nullptr;
+
+void wrap_error(py::module_& module) {
+  error_type = PyErr_NewExceptionWithDoc(
+      "inertest.Error",
+      "Bad input or options: a ValueError with the message the CLI prints after 'inertest: error: '.\n"
+      "Attributes: message (without the location), file, line, column (None where not known).",
+      PyExc_ValueError, nullptr);
+  module.add_object("Error", py::handle(error_type));
+  py::register_exception_translator([](std::exception_ptr pointer) {
+    try {
+      if (pointer) std::rethrow_exception(pointer);
+    } catch (const Error& e) {
+      py::object exception = py::reinterpret_borrow<py::object>(error_type)(e.what());
+      exception.attr("message") = e.message();
+      const auto& location = e.location();
+      exception.attr("file") = location ? py::cast(location->file) : py::none();
+      exception.attr("line") = location && location->line ? py::cast(location->line) : py::none();
+      exception.attr("column") = location && location->column ? py::cast(location->column) : py::none();
+      PyErr_SetObject(error_type, exception.ptr());
+    }
+  });
+}
+
+void wrap_figure(py::module_& module) {
+  using namespace pybind11::literals;
+  py::class_<Figure>(module, "Figure",
+                     "A reported figure: value, unit and, where known, its 1-sigma uncertainty in the same unit.")
+      .def(py::init([](double value, std::string unit, std::optional<double> uncertainty) {
+             Unit::parse(unit);
+             return Figure{value, std::move(unit), uncertainty};
+           }),
+           "value"_a, "unit"_a = "1", "uncertainty"_a = py::none())
+      .def_readwrite("value", &Figure::value, "The value, in `unit`.")
+      .def_readwrite("unit", &Figure::unit, "The unit, a string that inertest.convert understands.")
+      .def_readwrite("uncertainty", &Figure::uncertainty, "1-sigma uncertainty in `unit`, or None.")
+      .def("to", &Figure::in, "unit"_a, "The same figure (uncertainty too) in another unit of the same dimension.")
+      .def(
+          "to_dict", [](const Figure& figure) { return to_plain_python(nlohmann::json(figure)); },
+          "The figure's JSON: {'value': v, 'unit': u} plus 'uncertainty' when known.")
+      .def("__float__", [](const Figure& figure) { return figure.value; })
+      .def("__eq__",
+           [](const Figure& a, const Figure& b) {
+             return a.value == b.value && a.unit == b.unit && a.uncertainty == b.uncertainty;
+           })
+      .def("__repr__", &figure_repr);
+}
+
+void wrap_record(py::module_& module) {
+  using namespace pybind11::literals;
+  py::class_<Record>(module, "Record",
+                     "A JSON object seen through attributes: record.name is its member 'name'. A member\n"
+                     "{'value', 'unit'[, 'uncertainty']} is a Figure, another object a Record, an array of\n"
+                     "numbers a numpy array, any other array a list. record['name'] works too.")
+      .def("__getattr__",
+           [](const Record& record, const std::string& name) {
+             if (!record.json().is_object() || !record.json().contains(name)) {
+               throw py::attribute_error(fmt::format("no member '{}'; members: {}", name,
+                                                     py::str(", ").attr("join")(member_names(record)).cast<std::string>()));
+             }
+             return attribute_value(record.json()[name]);
+           })
+      .def("__getitem__",
+           [](const Record& record, const std::string& name) {
+             if (!record.json().is_object() || !record.json().contains(name)) throw py::key_error(name);
+             return attribute_value(record.json()[name]);
+           })
+      .def("__contains__",
+           [](const Record& record, const std::string& name) {
+             return record.json().is_object() && record.json().contains(name);
+           })
+      .def("__dir__",
+           [](py::object self) {
+             py::list names = member_names(self.cast<const Record&>());
+             for (const auto& name : py::module_::import("builtins").attr("dir")(py::type::of(self))) names.append(name);
+             return names;
+           })
+      .def("keys", &member_names, "The names of the members, as in the JSON.")
+      .def(
+          "to_dict", [](const Record& record) { return to_plain_python(record.json()); },
+          "The JSON as plain Python objects: equal to json.loads() of what the CLI prints with --json.")
+      .def(
+          "json", [](const Record& record, int indent) { return record.json().dump(indent); }, "indent"_a = -1,
+          "The JSON text (the CLI's --json output; indent >= 0 pretty-prints).")
+      .def("__repr__", [](py::object self) {
+        return short_repr(self.cast<const Record&>(), py::type::of(self).attr("__name__").cast<std::string>());
+      });
+  py::class_<Result, Record>(module, "Result", "A procedure's result: a Record with a readable report().")
+      .def("report", &Result::report, "The readable multi-line summary the CLI prints without --json.");
+}
+
+void wrap_units(py::module_& module) {
+  using namespace pybind11::literals;
+  module.def(
+      "convert",
+      [](py::object value, const std::string& from_unit, const std::string& to_unit) -> py::object {
+        const Unit from = Unit::parse(from_unit);
+        const Unit to = Unit::parse(to_unit);
+        if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
+          return py::float_(convert(value.cast<double>(), from, to));
+        }
+        const auto values = as_span(value.cast<DoubleArray>(), "value");
+        std::vector<double> converted(values.size());
+        for (std::size_t i = 0; i < values.size(); ++i) converted[i] = convert(values[i], from, to);
+        return to_numpy(std::move(converted));
+      },
+      "value"_a, "from_unit"_a, "to_unit"_a,
+      "Converts a number or an array from one unit to another of the same dimension, e.g.\n"
+      "convert(1.0, 'deg/h', 'rad/s'). Units: products of named units with integer or half-integer\n"
+      "powers ('deg/h', 'deg/sqrt(h)', 'deg/h/g^2', 'pulse/s', 'ppm'); 'g' is 9.80665 m/s^2.\n"
+      "Raises inertest.Error (a ValueError) for an unknown unit or different dimensions.");
+}
+
+}  // namespace
+
+void wrap_core(py::module_& module) {
+  wrap_error(module);
+  wrap_figure(module);
+  wrap_record(module);
+  wrap_units(module);
+  module.attr("__version__") = version();
+}
+
+}  // namespace inertest::python

@@ -1,0 +1,229 @@
+// procedures: the GJB 2426A-2004 / IEEE Std 952-1997 procedures on numpy arrays.
+#include "bindings.h"
+#include "inertest/core/units.h"
+#include "inertest/procedures/bandwidth_and_delay.h"
+#include "inertest/procedures/bias.h"
+#include "inertest/procedures/bias_repeatability.h"
+#include "inertest/procedures/bias_temperature_sensitivity.h"
+#include "inertest/procedures/earth_rate.h"
+#include "inertest/procedures/input_axis_misalignment.h"
+#include "inertest/procedures/maximum_input_rate.h"
+#include "inertest/procedures/scale_factor.h"
+#include "inertest/procedures/scale_factor_repeatability.h"
+
+namespace inertest::python {
+namespace {
+
+std::vector<ScaleFactorPoint> points_of(const DoubleArray& rate, const DoubleArray& output) {
+  const auto rates = as_span(rate, "rate");
+  const auto outputs = as_span(output, "output");
+  require_equal_lengths({{"rate", rates.size()}, {"output", outputs.size()}});
+  std::vector<ScaleFactorPoint> points(rates.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {rates[i], outputs[i]};
+  return points;
+}
+
+struct ScaleFactorTag {};
+
+ResultOf<ScaleFactorTag> scale_factor_of(const DoubleArray& rate, const DoubleArray& output,
+                                         const std::string& rate_unit, const std::string& output_unit,
+                                         std::size_t recommended_rates_per_direction,
+                                         const std::optional<std::string>& source) {
+  const std::vector<ScaleFactorPoint> points = points_of(rate, output);
+  ScaleFactorOptions options;
+  options.rate_unit = rate_unit;
+  options.output_unit = output_unit;
+  options.recommended_rates_per_direction = recommended_rates_per_direction;
+  return make_result<ScaleFactorTag>(with_source(source, [&] { return scale_factor(points, options); }));
+}
+
+struct BiasTag {};
+
+ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std::optional<double> scale_factor,
+                          bool input_in_deg_h, const std::string& output_unit, const std::vector<double>& smoothing_s,
+                          bool random_walk, std::optional<double> latitude_deg, double heading_deg,
+                          double elevation_deg, const std::optional<std::string>& source) {
+  const auto samples = as_span(output, "output");
+  BiasOptions options;
+  options.sample_rate_hz = sample_rate_hz;
+  options.scale_factor = scale_factor.value_or(0.0);
+  options.input_in_deg_h = input_in_deg_h;
+  options.output_unit = output_unit;
+  options.smoothing_s = smoothing_s;
+  options.random_walk = random_walk;
+  if (latitude_deg) options.remove_earth_rate = AxisOrientation{*latitude_deg, heading_deg, elevation_deg};
+  BiasResult result;
+  {
+    py::gil_scoped_release release;
+    result = with_source(source, [&] { return bias(samples, options); });
+  }
+  return make_result<BiasTag>(result);
+}
+
+struct MaximumInputRateTag {};
+
+ResultOf<MaximumInputRateTag> maximum_input_rate_of(const DoubleArray& rate, const DoubleArray& output,
+                                                    double nonlinearity_limit_ppm, const std::string& rate_unit,
+                                                    const std::string& output_unit) {
+  MaximumInputRateOptions options;
+  options.nonlinearity_limit_ppm = nonlinearity_limit_ppm;
+  options.scale_factor.rate_unit = rate_unit;
+  options.scale_factor.output_unit = output_unit;
+  return make_result<MaximumInputRateTag>(maximum_input_rate(points_of(rate, output), options));
+}
+
+struct ScaleFactorRepeatabilityTag {};
+
+ResultOf<ScaleFactorRepeatabilityTag> scale_factor_repeatability_of(const DoubleArray& scale_factors,
+                                                                    const std::string& unit,
+                                                                    std::size_t minimum_runs) {
+  ScaleFactorRepeatabilityOptions options;
+  options.minimum_runs = minimum_runs;
+  return make_result<ScaleFactorRepeatabilityTag>(
+      scale_factor_repeatability(as_span(scale_factors, "scale_factors"), unit, options));
+}
+
+struct BiasRepeatabilityTag {};
+
+ResultOf<BiasRepeatabilityTag> bias_repeatability_of(const DoubleArray& biases_deg_h) {
+  return make_result<BiasRepeatabilityTag>(bias_repeatability(as_span(biases_deg_h, "biases_deg_h")));
+}
+
+struct BiasTemperatureTag {};
+
+ResultOf<BiasTemperatureTag> bias_temperature_sensitivity_of(const DoubleArray& temperature_degC,
+                                                             const DoubleArray& bias_deg_h,
+                                                             std::optional<double> room_temperature_degC) {
+  const auto temperatures = as_span(temperature_degC, "temperature_degC");
+  const auto biases = as_span(bias_deg_h, "bias_deg_h");
+  require_equal_lengths({{"temperature_degC", temperatures.size()}, {"bias_deg_h", biases.size()}});
+  std::vector<TemperatureRunBias> runs(temperatures.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = {temperatures[i], biases[i]};
+  return make_result<BiasTemperatureTag>(bias_temperature_sensitivity(runs, BiasTemperatureOptions{room_temperature_degC}));
+}
+
+struct BandwidthTag {};
+
+ResultOf<BandwidthTag> bandwidth_of(const DoubleArray& frequency_hz, const DoubleArray& gain,
+                                    const DoubleArray& phase_deg, std::size_t minimum_frequencies) {
+  const auto frequencies = as_span(frequency_hz, "frequency_hz");
+  const auto gains = as_span(gain, "gain");
+  const auto phases = as_span(phase_deg, "phase_deg");
+  require_equal_lengths({{"frequency_hz", frequencies.size()}, {"gain", gains.size()}, {"phase_deg", phases.size()}});
+  std::vector<FrequencyResponsePoint> points(frequencies.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    points[i] = {frequencies[i], gains[i], phases[i] * constants::kDegree};
+  }
+  BandwidthOptions options;
+  options.minimum_frequencies = minimum_frequencies;
+  return make_result<BandwidthTag>(bandwidth_and_delay(points, options));
+}
+
+struct InputAxisMisalignmentTag {};
+
+ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray& output_positive,
+                                                              const DoubleArray& output_negative, double scale_factor,
+                                                              double rate, const std::string& rate_unit,
+                                                              const std::string& output_unit) {
+  const auto positive = as_span(output_positive, "output_positive");
+  const auto negative = as_span(output_negative, "output_negative");
+  require_equal_lengths({{"output_positive", positive.size()}, {"output_negative", negative.size()}});
+  std::vector<MisalignmentPosition> positions(positive.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    positions[i].output_positive = positive[i];
+    positions[i].output_negative = negative[i];
+  }
+  InputAxisMisalignmentOptions options;
+  options.scale_factor = scale_factor;
+  options.rate = rate;
+  options.rate_unit = rate_unit;
+  options.output_unit = output_unit;
+  return make_result<InputAxisMisalignmentTag>(input_axis_misalignment(positions, options));
+}
+
+}  // namespace
+
+void wrap_procedures(py::module_& module) {
+  using namespace pybind11::literals;
+  bind_result<ScaleFactorTag>(
+      module, "ScaleFactorResult",
+      "Scale factor result (GJB 2426A-2004 5.8.1-5.8.3, eqs. (1)-(11)). Members as in the JSON:\n"
+      "scale_factor (K, eq. 5), zero_offset (F0, eq. 6), nonlinearity (Kn, eq. 9, ppm), asymmetry (Ka,\n"
+      "eqs. 10-11, ppm), scale_factor_positive, scale_factor_negative, static_output_start,\n"
+      "static_output_end, fit_residual_rms (Figures); nonlinearity_curve (list of Records with rate and\n"
+      "deviation, eq. 8); warnings; procedure; clause.");
+  module.def("scale_factor", &scale_factor_of, "rate"_a, "output"_a, py::kw_only(), "rate_unit"_a = "deg/s",
+             "output_unit"_a = "1", "recommended_rates_per_direction"_a = 11, "source"_a = py::none(),
+             "Scale factor K, zero offset F0, nonlinearity Kn and asymmetry Ka: GJB 2426A-2004 5.8.1-5.8.3,\n"
+             "eqs. (1)-(11); IEEE Std 952-1997 clause 13 (A.12).\n"
+             "rate: table rate of every test point in test order (signed, rate_unit); output: the mean\n"
+             "instrument output at that rate (eq. 1, output_unit). Zero-rate points before the first and\n"
+             "after the last nonzero rate are the static runs (eqs. 2-3); the nonzero rates are fitted by\n"
+             "least squares F = K*Omega + F0 (eqs. 4-6). source names the input in error messages.\n"
+             "Returns a ScaleFactorResult; raises inertest.Error (a ValueError) with the CLI's message.");
+
+  bind_result<BiasTag>(
+      module, "BiasResult",
+      "Bias, bias stability and random walk coefficient (GJB 2426A-2004 5.12.1 eq. (19), 5.12.2 eq. (20),\n"
+      "5.12.5.4.1 eqs. (23)-(24)). Members as in the JSON: bias (deg/h), bias_stability (one Record per\n"
+      "smoothing time), noise_equivalent_rate, random_walk_coefficient (deg/sqrt(h)), ...");
+  module.def("bias", &bias_of, "output"_a, py::kw_only(), "sample_rate_hz"_a, "scale_factor"_a = py::none(),
+             "input_in_deg_h"_a = false, "output_unit"_a = "1",
+             "smoothing_s"_a = std::vector<double>{1.0, 10.0, 100.0}, "random_walk"_a = true,
+             "latitude_deg"_a = py::none(), "heading_deg"_a = 0.0, "elevation_deg"_a = 0.0, "source"_a = py::none(),
+             "Bias B0 = F/K (GJB 2426A-2004 5.12.1 eq. (19)), bias stability over each smoothing time (5.12.2\n"
+             "eq. (20)) and the random walk coefficient by normalisation (5.12.5.4.1 eqs. (23)-(24)); IEEE Std\n"
+             "952-1997 clause 13 (A.11). output: one sample per interval at sample_rate_hz (read in place, no\n"
+             "copy); scale_factor K in output units per deg/s, or input_in_deg_h=True for a record in deg/h.\n"
+             "latitude_deg (with the IRA's heading_deg, elevation_deg) removes the Earth rate along the IRA.");
+
+  bind_result<MaximumInputRateTag>(module, "MaximumInputRateResult",
+                                   "Maximum input rate (GJB 2426A-2004 5.9). Members as in the JSON: maximum_input_rate,\n"
+                                   "nonlinearity, nonlinearity_limit, scale_factor, ranges, warnings.");
+  module.def("maximum_input_rate", &maximum_input_rate_of, "rate"_a, "output"_a, py::kw_only(),
+             "nonlinearity_limit_ppm"_a, "rate_unit"_a = "deg/s", "output_unit"_a = "1",
+             "Maximum input rate (GJB 2426A-2004 5.9): the largest tested rate R such that the scale-factor\n"
+             "nonlinearity (eqs. 1-9) over the points with |rate| <= R meets nonlinearity_limit_ppm. rate and\n"
+             "output as for scale_factor().");
+
+  bind_result<ScaleFactorRepeatabilityTag>(module, "ScaleFactorRepeatabilityResult",
+                                           "Scale factor repeatability (GJB 2426A-2004 5.8.4, eq. (12)). Members as in the JSON.");
+  module.def("scale_factor_repeatability", &scale_factor_repeatability_of, "scale_factors"_a, py::kw_only(),
+             "unit"_a = "1", "minimum_runs"_a = 6,
+             "Scale factor repeatability Kr (GJB 2426A-2004 5.8.4, eq. (12)): the sample standard deviation of\n"
+             "the runs' scale factors over their mean, in ppm. Q >= 6 runs (5.8.4.3); minimum_runs lowers that\n"
+             "with a warning.");
+
+  bind_result<BiasRepeatabilityTag>(module, "BiasRepeatabilityResult",
+                                    "Bias repeatability (GJB 2426A-2004 5.12.3, eq. (21)). Members as in the JSON.");
+  module.def("bias_repeatability", &bias_repeatability_of, "biases_deg_h"_a,
+             "Bias repeatability Br (GJB 2426A-2004 5.12.3, eq. (21)): the sample standard deviation of the runs'\n"
+             "biases B0i (deg/h), each from bias().");
+
+  bind_result<BiasTemperatureTag>(module, "BiasTemperatureSensitivityResult",
+                                  "Bias temperature sensitivity (GJB 2426A-2004 5.12.4, eq. (22)). Members as in the JSON.");
+  module.def("bias_temperature_sensitivity", &bias_temperature_sensitivity_of, "temperature_degC"_a, "bias_deg_h"_a,
+             py::kw_only(), "room_temperature_degC"_a = py::none(),
+             "Bias temperature sensitivity Bt (GJB 2426A-2004 5.12.4, eq. (22)): max |B0i - B0m| / |Ti - Tm| over\n"
+             "the runs, in deg/h/degC; the room-temperature run is the first, or the one at room_temperature_degC.");
+
+  bind_result<BandwidthTag>(module, "BandwidthResult",
+                            "Bandwidth and output delay (GJB 2426A-2004 5.13-5.14, eqs. (32)-(46)). Members as in the\n"
+                            "JSON: bandwidth (Hz), delay (s), dc_gain, time_constant, bode, warnings.");
+  module.def("bandwidth_and_delay", &bandwidth_of, "frequency_hz"_a, "gain"_a, "phase_deg"_a, py::kw_only(),
+             "minimum_frequencies"_a = 10,
+             "Bandwidth (GJB 2426A-2004 5.13, eqs. (32)-(41)) and output delay (5.14, eqs. (42)-(46)) from the\n"
+             "gain Gi and the phase Pi of the output against the input rate (deg, negative for a lag) at >= 10\n"
+             "increasing frequencies: linearised least squares Gi^2 = K^2 - Gi^2 wi^2 T^2, Bw = 1/(2 pi T),\n"
+             "Td from -Pi - atan(wi T) with wi = 2 pi fi.");
+
+  bind_result<InputAxisMisalignmentTag>(module, "InputAxisMisalignmentResult",
+                                        "Input-axis misalignment (GJB 2426A-2004 5.15, eqs. (47)-(50)). Members as in the JSON.");
+  module.def("input_axis_misalignment", &input_axis_misalignment_of, "output_positive"_a, "output_negative"_a,
+             py::kw_only(), "scale_factor"_a, "rate"_a, "rate_unit"_a = "deg/s", "output_unit"_a = "1",
+             "Input-axis misalignment (GJB 2426A-2004 5.15, eqs. (47)-(50)) from the mean outputs at +rate and\n"
+             "-rate in 2 or 4 positions: delta = (F+ - F-)/(2 K rate) with K output per rate (the dimension fix\n"
+             "of eqs. 47-48); with four positions the mounting error is separated (see the C++ header).");
+}
+
+}  // namespace inertest::python

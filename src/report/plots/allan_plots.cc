@@ -1,0 +1,138 @@
+// Plots of plan kind "allan": the Allan deviation on log-log axes with its confidence interval, the
+// fitted noise model σ²(τ) = Σ A_p τ^p (GJB 2426A-2004 eq. 30; IEEE Std 952-1997 Annex C) and each
+// of its terms as a line of slope p/2: quantization −1, angle random walk −1/2, bias instability 0,
+// rate random walk +1/2, rate ramp +1.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "report/procedure_plots.h"
+#include "report/result_access.h"
+
+namespace inertest::report {
+namespace {
+
+// The estimators the allan procedure may report, the preferred one first.
+constexpr const char* kEstimators[] = {"oadev", "adev", "mdev", "hdev", "ohdev", "totdev"};
+
+struct NoiseTerm {
+  int power;
+  const char* label_key;
+  const char* slope;
+};
+constexpr NoiseTerm kTerms[] = {{-2, "quantization_noise", "−1"},
+                                {-1, "angle_random_walk", "−1/2"},
+                                {0, "bias_instability", "0"},
+                                {1, "rate_random_walk", "+1/2"},
+                                {2, "rate_ramp", "+1"}};
+
+std::vector<ReportPlot> allan_plots(const PlotContext& context) {
+  const nlohmann::json& result = context.result;
+  const Column tau = number_array(result.value("tau", nlohmann::json::array()));
+  const nlohmann::json* curve = nullptr;
+  std::string estimator;
+  for (const char* name : kEstimators) {
+    const auto* candidate = member(result, name);
+    if (candidate != nullptr && candidate->is_object() && candidate->contains("values")) {
+      curve = candidate;
+      estimator = name;
+      break;
+    }
+  }
+  if (curve == nullptr || tau.empty()) return {};
+  const Column deviation = number_array(curve->at("values"));
+  const std::string unit = curve->value("unit", result.value("input_unit", ""));
+
+  Panel panel;
+  panel.height = 420.0;
+  panel.x = make_axis(context.labels("axis.averaging_time"), "s", AxisScale::log);
+  panel.y = make_axis(context.labels("axis.allan_deviation"), pretty_unit(unit), AxisScale::log);
+  Series measured = make_series(estimator.empty() ? "" : estimator + " " + context.labels("ui.data"), tau.values,
+                                deviation.values, LineStyle::none, Marker::circle);
+  measured.color = "#1f77b4";
+  const Column lower = number_array(curve->value("lower", nlohmann::json::array()));
+  const Column upper = number_array(curve->value("upper", nlohmann::json::array()));
+  if (lower.values.size() == tau.values.size() && upper.values.size() == tau.values.size()) {
+    measured.y_low = lower.values;
+    measured.y_high = upper.values;
+    const auto* level = member(result, "confidence_level");
+    if (level != nullptr && level->is_number()) {
+      measured.name += " (" + format_number(100.0 * level->get<double>(), 3) + " %)";
+    }
+  }
+  // The y range of the measurement (bars included), so steep model terms do not stretch it.
+  double y_lo = std::numeric_limits<double>::infinity();
+  double y_hi = 0.0;
+  for (const auto* values : {&measured.y, &measured.y_low, &measured.y_high}) {
+    for (double v : *values) {
+      if (v > 0.0 && std::isfinite(v)) {
+        y_lo = std::min(y_lo, v);
+        y_hi = std::max(y_hi, v);
+      }
+    }
+  }
+  if (y_hi > 0.0) {
+    const std::vector<double> ends{y_lo, y_hi};
+    const Range range = auto_range(ends, AxisScale::log);
+    panel.y.min = range.lo;
+    panel.y.max = range.hi;
+  }
+  panel.series.push_back(std::move(measured));
+
+  // The fitted model over the measured τ range: coefficients in (input unit)²·s^p, rescaled to
+  // the curve's unit when the two differ.
+  const auto* coefficients = member(result, "noise") ? member(*member(result, "noise"), "fit") : nullptr;
+  coefficients = coefficients ? member(*coefficients, "coefficients") : nullptr;
+  if (coefficients != nullptr && coefficients->is_array()) {
+    const double scale = converted(1.0, result.value("input_unit", unit), unit).value_or(1.0);
+    double tau_lo = std::numeric_limits<double>::infinity();
+    double tau_hi = 0.0;
+    for (double t : tau.values) {
+      if (t > 0.0) {
+        tau_lo = std::min(tau_lo, t);
+        tau_hi = std::max(tau_hi, t);
+      }
+    }
+    const std::vector<double> grid = log_spaced(tau_lo, tau_hi, 80);
+    std::vector<double> total(grid.size(), 0.0);
+    const char* colours[] = {"#9467bd", "#2ca02c", "#ff7f0e", "#8c564b", "#e377c2"};
+    for (const auto& term : kTerms) {
+      double a = 0.0;
+      for (const auto& c : *coefficients) {
+        if (c.value("power", 99) == term.power && number_of(c)) a = *number_of(c);
+      }
+      if (!(a > 0.0)) continue;
+      std::vector<double> values;
+      for (std::size_t i = 0; i < grid.size(); ++i) {
+        const double variance = a * std::pow(grid[i], term.power);
+        total[i] += variance;
+        values.push_back(std::sqrt(variance) * scale);
+      }
+      Series line =
+          make_series(context.labels(term.label_key) + " (" + context.labels("ui.slope") + " " + term.slope + ")", grid,
+                      values, LineStyle::dashed);
+      line.color = colours[term.power + 2];
+      line.line_width = 1.3;
+      panel.series.push_back(std::move(line));
+    }
+    std::vector<double> model;
+    for (double v : total) model.push_back(v > 0.0 ? std::sqrt(v) * scale : std::numeric_limits<double>::quiet_NaN());
+    Series fit = make_series(context.labels("ui.noise_model"), grid, model);
+    fit.color = "#222222";
+    fit.line_width = 1.8;
+    panel.series.push_back(std::move(fit));
+  }
+  panel.legend = LegendPosition::automatic;
+
+  ReportPlot plot;
+  plot.caption = context.labels("axis.allan_deviation") +
+                 " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std "
+                 "952-1997 Annex C";
+  plot.plot.panels.push_back(std::move(panel));
+  return {std::move(plot)};
+}
+
+const bool registered = register_plots("allan", allan_plots);
+
+}  // namespace
+}  // namespace inertest::report

@@ -1,0 +1,574 @@
+#include "inertest/report/report.h"
+
+#include <fmt/format.h>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/io/atomic_write.h"
+#include "report/labels.h"
+#include "report/procedure_plots.h"
+#include "report/report_style.h"
+#include "report/result_access.h"
+
+namespace inertest::report {
+namespace {
+
+using nlohmann::json;
+
+std::string html(const std::string& text) { return escape_xml(text); }
+
+// Members of a result that describe it rather than measure it, and members that hold curves and
+// records (plotted, not listed): a key naming a curve, or an array longer than kMaxListed.
+bool is_listed_member(const std::string& key, const json& value) {
+  static const char* kMeta[] = {"procedure", "clause", "warnings", "method"};
+  for (const char* meta : kMeta) {
+    if (key == meta) return false;
+  }
+  static const char* kDataSuffixes[] = {"curve", "record", "points", "samples", "series", "sweep"};
+  for (const std::string suffix : kDataSuffixes) {
+    if (key.size() >= suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      return false;
+    }
+  }
+  constexpr std::size_t kMaxListed = 12;
+  return !(value.is_array() && value.size() > kMaxListed);
+}
+
+std::string escape_pointer_token(const std::string& token) {
+  std::string out;
+  for (char c : token) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// One figure of a procedure's result: its JSON pointer inside the result and a readable name.
+struct FigureRow {
+  std::string pointer;
+  std::string name;
+  json figure;
+  int depth = 0;         // tokens in the pointer
+  bool headline = true;  // shown in the summary (not a detail of a fit, an influence study...)
+};
+
+// Members whose figures are details of the analysis: listed in the procedure's section only.
+bool is_detail_member(const std::string& key) {
+  static const char* kDetails[] = {"influence", "fit", "site", "slope_method", "harmonic_fit", "by_rate", "by_run"};
+  for (const char* detail : kDetails) {
+    if (key == detail) return true;
+  }
+  return false;
+}
+
+// " (10 s)" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value": ...}.
+std::string qualifier_of(const json& element) {
+  static const std::pair<const char*, const char*> kSuffixes[] = {{"_s", "s"},     {"_hz", "Hz"}, {"_deg", "°"},
+                                                                  {"_dps", "°/s"}, {"_g", "g"},   {"_degC", "°C"}};
+  std::string text;
+  for (const auto& [key, value] : element.items()) {
+    if (key == "value" || key == "uncertainty" || !value.is_number()) continue;
+    std::string unit;
+    for (const auto& [suffix, readable] : kSuffixes) {
+      const std::string s(suffix);
+      if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0) unit = readable;
+    }
+    if (!text.empty()) text += ", ";
+    text += format_number(value.get<double>());
+    if (!unit.empty()) text += " " + unit;
+  }
+  if (text.empty()) return text;
+  return " (" + text + ")";
+}
+
+void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
+                     int depth, bool headline, std::vector<FigureRow>& rows) {
+  if (is_figure(node)) {
+    rows.push_back({pointer, name, node, depth, headline && depth <= 2});
+    return;
+  }
+  if (depth >= 3) return;
+  if (node.is_object()) {
+    // In the order of the label table (scale factor before its nonlinearity...), then by name.
+    std::vector<std::pair<std::size_t, std::string>> keys;
+    for (const auto& [key, value] : node.items()) keys.emplace_back(Labels::rank(key), key);
+    std::sort(keys.begin(), keys.end());
+    for (const auto& [rank, key] : keys) {
+      const json& value = node.at(key);
+      if (!is_listed_member(key, value)) continue;
+      const std::string label = labels(key);
+      collect_figures(value, pointer + "/" + escape_pointer_token(key), name.empty() ? label : name + " · " + label,
+                      labels, depth + 1, headline && !is_detail_member(key), rows);
+    }
+  } else if (node.is_array()) {
+    // Arrays of figures are listed, each under its qualifier (" (10 s)") or number.
+    const bool of_figures = std::all_of(node.begin(), node.end(), [](const json& e) { return is_figure(e); });
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      if (of_figures) {
+        const std::string qualifier = qualifier_of(node[i]);
+        rows.push_back({fmt::format("{}/{}", pointer, i),
+                        name + (qualifier.empty() ? fmt::format(" #{}", i + 1) : qualifier), node[i], depth + 1,
+                        headline && depth + 1 <= 2});
+        continue;
+      }
+      // Elements that name themselves ("name", "label", "position") are listed under their names;
+      // other arrays of objects are tables of data, plotted rather than listed.
+      std::string element;
+      for (const char* naming : {"name", "label", "position"}) {
+        if (const auto* n = member(node[i], naming); n != nullptr && n->is_string()) element = n->get<std::string>();
+      }
+      if (element.empty()) continue;
+      collect_figures(node[i], fmt::format("{}/{}", pointer, i), name + " " + element, labels, depth + 1, headline,
+                      rows);
+    }
+  }
+}
+
+std::string normalised_pointer(const std::string& figure) {
+  if (!figure.empty() && figure.front() == '/') return figure;
+  std::string pointer(1, '/');
+  pointer += escape_pointer_token(figure);
+  return pointer;
+}
+
+std::string verdict_key(const std::string& procedure, const std::string& pointer) {
+  return procedure + '\x1f' + pointer;
+}
+
+// Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits.
+std::pair<std::string, std::string> format_figure(const json& figure) {
+  const double value = figure.at("value").get<double>();
+  const auto* u = member(figure, "uncertainty");
+  if (u == nullptr || !u->is_number() || !(u->get<double>() > 0.0) || !std::isfinite(value)) {
+    return {format_number(value), ""};
+  }
+  const double uncertainty = u->get<double>();
+  const int decimals = 1 - static_cast<int>(std::floor(std::log10(uncertainty)));
+  if (decimals < 0 || decimals > 9 || std::abs(value) >= 1e9) {
+    return {format_number(value), format_number(uncertainty, 2)};
+  }
+  return {fmt::format("{:.{}f}", value, decimals), fmt::format("{:.{}f}", uncertainty, decimals)};
+}
+
+// "≤ 100 ppm", "≥ 4999", "4999 … 5001 pulse/s/(°/s)".
+std::string limit_text(const json& verdict) {
+  const std::string unit = pretty_unit(verdict.value("unit", ""));
+  const std::string suffix = unit.empty() ? "" : " " + unit;
+  const auto* min = member(verdict, "min");
+  const auto* max = member(verdict, "max");
+  if (min && max) return format_number(min->get<double>()) + " … " + format_number(max->get<double>()) + suffix;
+  if (max) return "≤ " + format_number(max->get<double>()) + suffix;
+  if (min) return "≥ " + format_number(min->get<double>()) + suffix;
+  return "";
+}
+
+std::string verdict_cell(bool pass, const Labels& labels) {
+  return pass ? fmt::format("<td class=\"verdict-cell pass\">{}</td>", html(labels("ui.pass")))
+              : fmt::format("<td class=\"verdict-cell fail\">{}</td>", html(labels("ui.fail")));
+}
+
+class ReportWriter {
+ public:
+  ReportWriter(const json& results, const ReportOptions& options)
+      : results_(results), options_(options), labels_(options.language) {}
+
+  std::string render() {
+    check_shape();
+    index_verdicts();
+    const json& plan = results_.at("plan");
+    const std::string title = plan.contains("title") && plan.at("title").is_string()
+                                  ? plan.at("title").get<std::string>()
+                                  : labels_("ui.test_report") + " — " + instrument_id();
+    out_ += fmt::format(
+        "<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+        "<title>{}</title>\n<style>\n{}</style>\n</head>\n<body>\n",
+        options_.language == Language::chinese ? "zh-CN" : "en", html(title), report_css());
+    write_cover(title);
+    write_contents();
+    write_summary();
+    write_compliance();
+    const json& procedures = results_.at("procedures");
+    for (std::size_t i = 0; i < procedures.size(); ++i) write_procedure(procedures[i], i);
+    write_truth_check();
+    out_ += fmt::format("<footer>{} {}{}</footer>\n</body>\n</html>\n", html(labels_("ui.generated")),
+                        html(results_.value("inertest_version", "")),
+                        options_.run_date.empty() ? "" : " · " + html(options_.run_date));
+    return std::move(out_);
+  }
+
+ private:
+  void check_shape() const {
+    if (!results_.is_object()) throw Error("report: the results are not a JSON object");
+    for (const char* key : {"instrument", "procedures"}) {
+      if (!results_.contains(key)) throw Error(fmt::format("report: the results lack '{}'", key));
+    }
+    if (!results_.at("procedures").is_array()) throw Error("report: 'procedures' is not an array");
+    if (!results_.at("instrument").is_object()) throw Error("report: 'instrument' is not an object");
+  }
+
+  std::string instrument_id() const {
+    const auto* id = member(results_.at("instrument"), "id");
+    return id != nullptr && id->is_string() ? id->get<std::string>() : "";
+  }
+
+  const json& verdicts() const {
+    static const json kNone = json::array();
+    const auto* v = member(results_, "verdicts");
+    return v != nullptr && v->is_array() ? *v : kNone;
+  }
+
+  void index_verdicts() {
+    for (const auto& v : verdicts()) {
+      verdict_by_figure_[verdict_key(v.value("procedure", ""), normalised_pointer(v.value("figure", "")))] = &v;
+    }
+  }
+
+  std::string overall_verdict() const {
+    const auto* v = member(results_, "verdict");
+    return v != nullptr && v->is_string() ? v->get<std::string>() : "NONE";
+  }
+
+  void fact_row(const std::string& key, const json* value, const std::string& unit = "") {
+    if (value == nullptr || value->is_null()) return;
+    std::string text;
+    if (value->is_string()) {
+      text = value->get<std::string>();
+    } else if (value->is_number()) {
+      text = format_number(value->get<double>());
+    } else {
+      return;
+    }
+    if (text.empty()) return;
+    if (!unit.empty()) text += " " + unit;
+    out_ += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", html(labels_(key)), html(text));
+  }
+
+  void write_cover(const std::string& title) {
+    const std::string verdict = overall_verdict();
+    const std::string verdict_class = verdict == "PASS" ? "pass" : verdict == "FAIL" ? "fail" : "none";
+    const std::string verdict_label = verdict == "PASS"   ? labels_("ui.pass")
+                                      : verdict == "FAIL" ? labels_("ui.fail")
+                                                          : labels_("ui.no_limits");
+    out_ += "<header class=\"cover\">\n";
+    out_ += fmt::format("<p class=\"kicker\">{}</p>\n<h1>{}</h1>\n", html(labels_("ui.test_report")), html(title));
+    out_ +=
+        fmt::format("<div class=\"overall verdict-{}\" data-verdict=\"{}\"><span>{}</span> <strong>{}</strong></div>\n",
+                    verdict_class, html(verdict), html(labels_("ui.overall_verdict")), html(verdict_label));
+
+    const json& instrument = results_.at("instrument");
+    const json& plan = results_.contains("plan") ? results_.at("plan") : json::object();
+    const json& site = results_.contains("site") ? results_.at("site") : json::object();
+    out_ += "<div class=\"facts\">\n";
+    out_ += fmt::format("<table><caption>{}</caption>\n", html(labels_("ui.instrument")));
+    fact_row("ui.id", member(instrument, "id"));
+    if (const auto* type = member(instrument, "type"); type != nullptr && type->is_string()) {
+      const json readable = labels_("ui." + type->get<std::string>());
+      fact_row("ui.type", &readable);
+    }
+    const std::string output_unit = pretty_unit(instrument.value("output_unit", ""));
+    fact_row("ui.output_unit", member(instrument, "output_unit"));
+    const bool gyro = instrument.value("type", "gyro") == "gyro";
+    fact_row("ui.nominal_scale_factor", member(instrument, "nominal_scale_factor"),
+             (output_unit.empty() ? "1" : output_unit) + (gyro ? "/(°/s)" : "/g"));
+    fact_row("ui.sample_rate_hz", member(instrument, "sample_rate_hz"), "Hz");
+    out_ += "</table>\n";
+
+    out_ += fmt::format("<table><caption>{}</caption>\n", html(labels_("ui.site")));
+    fact_row("ui.name", member(site, "name"));
+    fact_row("ui.latitude_deg", member(site, "latitude_deg"), "°");
+    fact_row("ui.gravity_m_s2", member(site, "gravity_m_s2"), "m/s²");
+    fact_row("ui.heading_deg", member(site, "heading_deg"), "°");
+    out_ += "</table>\n";
+
+    out_ += fmt::format("<table><caption>{}</caption>\n", html(labels_("ui.plan")));
+    fact_row("ui.title", member(plan, "title"));
+    const auto* plan_date = member(plan, "date");
+    const json run_date = options_.run_date;
+    fact_row("ui.date", plan_date != nullptr && plan_date->is_string() ? plan_date : &run_date);
+    fact_row("ui.operator", member(plan, "operator"));
+    fact_row("ui.laboratory", member(plan, "laboratory"));
+    fact_row("ui.standard", member(plan, "standard"));
+    fact_row("ui.version", member(results_, "inertest_version"));
+    out_ += "</table>\n</div>\n</header>\n";
+  }
+
+  std::string procedure_title(const json& procedure) const {
+    const std::string name = procedure.value("name", "");
+    const std::string kind_label = labels_("kind." + procedure.value("kind", ""));
+    return name == procedure.value("kind", "") || name.empty() ? kind_label : name;
+  }
+
+  void write_contents() {
+    out_ += fmt::format("<nav class=\"contents\"><h2>{}</h2><ol>\n", html(labels_("ui.contents")));
+    out_ += fmt::format("<li><a href=\"#summary\">{}</a></li>\n", html(labels_("ui.summary")));
+    if (!verdicts().empty()) {
+      out_ += fmt::format("<li><a href=\"#compliance\">{}</a></li>\n", html(labels_("ui.compliance")));
+    }
+    const json& procedures = results_.at("procedures");
+    for (std::size_t i = 0; i < procedures.size(); ++i) {
+      out_ += fmt::format("<li><a href=\"#procedure-{}\">{}</a></li>\n", i + 1, html(procedure_title(procedures[i])));
+    }
+    if (const auto* checks = member(results_, "truth_check");
+        checks != nullptr && checks->is_array() && !checks->empty()) {
+      out_ += fmt::format("<li><a href=\"#truth-check\">{}</a></li>\n", html(labels_("ui.truth_check")));
+    }
+    out_ += "</ol></nav>\n";
+  }
+
+  std::vector<FigureRow> figures_of(const json& procedure) const {
+    std::vector<FigureRow> rows;
+    if (const auto* result = member(procedure, "result")) collect_figures(*result, "", "", labels_, 0, true, rows);
+    return rows;
+  }
+
+  // The figure table: one procedure's rows, or every procedure's under group headings.
+  void write_figure_rows(const json& procedure, bool with_limits, std::size_t columns, bool group_heading) {
+    const std::string name = procedure.value("name", "");
+    const auto rows = figures_of(procedure);
+    if (group_heading) {
+      out_ += fmt::format("<tr class=\"group\"><th colspan=\"{}\">{}</th></tr>\n", columns,
+                          html(procedure_title(procedure)));
+    }
+    for (const auto& row : rows) {
+      const auto [value, uncertainty] = format_figure(row.figure);
+      const auto found = verdict_by_figure_.find(verdict_key(name, row.pointer));
+      const json* verdict = found == verdict_by_figure_.end() ? nullptr : found->second;
+      if (group_heading && !row.headline && verdict == nullptr) continue;
+      out_ += fmt::format(
+          "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
+          verdict ? fmt::format(" data-verdict=\"{}\"", verdict->value("pass", false) ? "pass" : "fail") : "");
+      out_ += fmt::format("<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", html(row.name),
+                          html(value), uncertainty.empty() ? "—" : "± " + html(uncertainty),
+                          html(pretty_unit(row.figure.at("unit").get<std::string>())));
+      if (with_limits) {
+        if (verdict) {
+          out_ += fmt::format("<td>{}</td>{}", html(limit_text(*verdict)),
+                              verdict_cell(verdict->value("pass", false), labels_));
+        } else {
+          out_ += "<td></td><td></td>";
+        }
+      }
+      out_ += "</tr>\n";
+    }
+  }
+
+  void figure_table_head(bool with_limits) {
+    out_ += fmt::format("<thead><tr><th>{}</th><th class=\"num\">{}</th><th class=\"num\">{}</th><th>{}</th>",
+                        html(labels_("ui.figure")), html(labels_("ui.value")), html(labels_("ui.uncertainty")),
+                        html(labels_("ui.unit")));
+    if (with_limits) {
+      out_ += fmt::format("<th>{}</th><th>{}</th>", html(labels_("ui.specification")), html(labels_("ui.verdict")));
+    }
+    out_ += "</tr></thead>\n";
+  }
+
+  void write_summary() {
+    const bool with_limits = !verdicts().empty();
+    out_ += fmt::format("<section class=\"summary\" id=\"summary\">\n<h2>{} {}</h2>\n", ++section_,
+                        html(labels_("ui.summary")));
+    out_ += "<table class=\"figures\">\n";
+    figure_table_head(with_limits);
+    out_ += "<tbody>\n";
+    for (const auto& procedure : results_.at("procedures")) {
+      write_figure_rows(procedure, with_limits, with_limits ? 6 : 4, true);
+    }
+    out_ += "</tbody></table>\n</section>\n";
+  }
+
+  void write_compliance() {
+    if (verdicts().empty()) return;
+    out_ += fmt::format("<section class=\"compliance\" id=\"compliance\">\n<h2>{} {}</h2>\n", ++section_,
+                        html(labels_("ui.compliance")));
+    out_ += fmt::format(
+        "<table class=\"limits\">\n<thead><tr><th>{}</th><th>{}</th><th>{}</th>"
+        "<th class=\"num\">{}</th><th>{}</th></tr></thead>\n<tbody>\n",
+        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.specification")),
+        html(labels_("ui.measured")), html(labels_("ui.verdict")));
+    for (const auto& v : verdicts()) {
+      const std::string figure = v.value("figure", "");
+      const std::string pointer = normalised_pointer(figure);
+      std::string name = figure;
+      for (const auto& procedure : results_.at("procedures")) {
+        if (procedure.value("name", "") != v.value("procedure", "")) continue;
+        for (const auto& row : figures_of(procedure)) {
+          if (row.pointer == pointer) name = row.name;
+        }
+      }
+      const bool pass = v.value("pass", false);
+      const std::string unit = pretty_unit(v.value("unit", ""));
+      out_ += fmt::format(
+          "<tr data-procedure=\"{}\" data-figure=\"{}\" data-verdict=\"{}\"><td>{}</td><td>{}</td>"
+          "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
+          html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
+          html(name), html(limit_text(v)),
+          html(format_number(v.value("value", 0.0)) + (unit.empty() ? "" : " " + unit)), verdict_cell(pass, labels_));
+    }
+    const std::string overall = overall_verdict();
+    out_ += fmt::format("</tbody>\n<tfoot><tr><th colspan=\"4\">{}</th>{}</tr></tfoot>\n</table>\n</section>\n",
+                        html(labels_("ui.overall_verdict")), verdict_cell(overall == "PASS", labels_));
+  }
+
+  // Arrays of named pass/fail items (e.g. the examination and electrical checks) as a table.
+  void write_checklists(const json& result) {
+    if (!result.is_object()) return;
+    for (const auto& [key, items] : result.items()) {
+      if (!items.is_array() || items.empty()) continue;
+      const bool checklist = std::all_of(items.begin(), items.end(), [](const json& item) {
+        return item.is_object() && item.contains("name") && item.contains("pass") && item.at("pass").is_boolean();
+      });
+      if (!checklist) continue;
+      out_ += fmt::format(
+          "<h3>{}</h3>\n<table class=\"checks\">\n<thead><tr><th>{}</th><th class=\"num\">{}</th>"
+          "<th>{}</th><th>{}</th></tr></thead>\n<tbody>\n",
+          html(labels_(key)), html(labels_("ui.name")), html(labels_("ui.measured")), html(labels_("ui.specification")),
+          html(labels_("ui.verdict")));
+      for (const auto& item : items) {
+        std::string measured;
+        if (const auto* v = member(item, "value"); v != nullptr) {
+          measured = v->is_string()   ? labels_("ui." + v->get<std::string>())
+                     : v->is_number() ? format_number(v->get<double>())
+                                      : "";
+        }
+        const std::string unit = pretty_unit(item.value("unit", ""));
+        if (!unit.empty() && !measured.empty()) measured += " " + unit;
+        json limit = {{"unit", item.value("unit", "")}};
+        if (item.contains("min")) limit["min"] = item.at("min");
+        if (item.contains("max")) limit["max"] = item.at("max");
+        out_ +=
+            fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td>{}</tr>\n", html(item.value("name", "")),
+                        html(measured), html(limit_text(limit)), verdict_cell(item.at("pass").get<bool>(), labels_));
+      }
+      out_ += "</tbody></table>\n";
+    }
+  }
+
+  // The demo's comparison of each measured figure with the simulated truth (results "truth_check").
+  void write_truth_check() {
+    const auto* checks = member(results_, "truth_check");
+    if (checks == nullptr || !checks->is_array() || checks->empty()) return;
+    out_ += fmt::format("<section class=\"truth\" id=\"truth-check\">\n<h2>{} {}</h2>\n", ++section_,
+                        html(labels_("ui.truth_check")));
+    out_ += fmt::format(
+        "<table class=\"truth\">\n<thead><tr><th>{}</th><th>{}</th><th class=\"num\">{}</th>"
+        "<th class=\"num\">{}</th><th class=\"num\">{}</th><th>{}</th><th>{}</th></tr></thead>\n"
+        "<tbody>\n",
+        html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.true_value")),
+        html(labels_("ui.measured")), html(labels_("ui.tolerance")), html(labels_("ui.unit")),
+        html(labels_("ui.verdict")));
+    for (const auto& c : *checks) {
+      auto number = [&](const char* key) {
+        const auto* v = member(c, key);
+        return v != nullptr && v->is_number() ? format_number(v->get<double>()) : "";
+      };
+      const bool within = c.value("within", false);
+      out_ += fmt::format(
+          "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+          "<td class=\"num\">± {}</td><td>{}</td>{}</tr>\n",
+          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")), html(number("measured")),
+          html(number("tolerance")), html(pretty_unit(c.value("unit", ""))), verdict_cell(within, labels_));
+    }
+    out_ += "</tbody></table>\n</section>\n";
+  }
+
+  void write_procedure(const json& procedure, std::size_t index) {
+    const int number = ++section_;
+    const std::string kind = procedure.value("kind", "");
+    const json& result = procedure.contains("result") ? procedure.at("result") : json::object();
+    out_ += fmt::format("<section class=\"procedure\" id=\"procedure-{}\" data-kind=\"{}\">\n", index + 1, html(kind));
+    out_ += fmt::format("<h2>{} {}</h2>\n<p class=\"kind\">{} · <code>{}</code></p>\n", number,
+                        html(procedure_title(procedure)), html(labels_("kind." + kind)), html(kind));
+
+    out_ += fmt::format("<div class=\"method\"><h3>{}</h3>\n", html(labels_("ui.method")));
+    // Procedures cite their source as "clause" (standards), "standard" or "source" (papers).
+    for (const char* citation : {"clause", "standard", "source"}) {
+      if (const auto* text = member(result, citation); text != nullptr && text->is_string()) {
+        out_ += fmt::format("<p class=\"clause\">{}</p>\n", html(text->get<std::string>()));
+        break;
+      }
+    }
+    if (Labels::known("method." + kind)) out_ += fmt::format("<p>{}</p>\n", html(labels_("method." + kind)));
+    out_ += "</div>\n";
+
+    out_ += fmt::format("<h3>{}</h3>\n<table class=\"figures\">\n", html(labels_("ui.results")));
+    bool with_limits = false;
+    for (const auto& v : verdicts())
+      with_limits = with_limits || v.value("procedure", "") == procedure.value("name", "");
+    figure_table_head(with_limits);
+    out_ += "<tbody>\n";
+    write_figure_rows(procedure, with_limits, with_limits ? 6 : 4, false);
+    out_ += "</tbody></table>\n";
+
+    if (const auto* warnings = member(result, "warnings");
+        warnings != nullptr && warnings->is_array() && !warnings->empty()) {
+      out_ += fmt::format("<div class=\"warnings\"><h3>{}</h3><ul>\n", html(labels_("ui.warnings")));
+      for (const auto& w : *warnings) {
+        if (w.is_string()) out_ += fmt::format("<li>{}</li>\n", html(w.get<std::string>()));
+      }
+      out_ += "</ul></div>\n";
+    }
+
+    write_checklists(result);
+
+    json procedure_verdicts = json::array();
+    for (const auto& v : verdicts()) {
+      if (v.value("procedure", "") == procedure.value("name", "")) procedure_verdicts.push_back(v);
+    }
+    const PlotContext context{result, labels_, procedure_verdicts};
+    for (const auto& plot : procedure_plots(kind, context)) {
+      if (plot.plot.panels.empty()) continue;
+      ++figure_number_;
+      out_ += fmt::format("<figure>\n{}<figcaption>{} {}. {}</figcaption>\n</figure>\n", render_svg(plot.plot),
+                          html(labels_("ui.plot")), figure_number_, html(plot.caption));
+    }
+    out_ += "</section>\n";
+  }
+
+  const json& results_;
+  const ReportOptions& options_;
+  Labels labels_;
+  std::map<std::string, const json*> verdict_by_figure_;
+  std::string out_;
+  int figure_number_ = 0;
+  int section_ = 0;
+};
+
+}  // namespace
+
+Language parse_language(const std::string& code) {
+  if (code == "en") return Language::english;
+  if (code == "zh") return Language::chinese;
+  throw Error("report language '" + code + "' is not known (use \"en\" or \"zh\")");
+}
+
+std::string render_report(const json& results, const ReportOptions& options) {
+  return ReportWriter(results, options).render();
+}
+
+std::string write_report(const json& results, const std::string& out_dir, const ReportOptions& options) {
+  const std::string page = render_report(results, options);
+  std::filesystem::create_directories(out_dir);
+  const std::string path = (std::filesystem::path(out_dir) / "report.html").string();
+  write_file_atomically(path, page);
+  return path;
+}
+
+std::string current_date() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm local{};
+  localtime_r(&now, &local);
+  return fmt::format("{:04}-{:02}-{:02}", local.tm_year + 1900, local.tm_mon + 1, local.tm_mday);
+}
+
+}  // namespace inertest::report

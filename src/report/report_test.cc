@@ -1,0 +1,371 @@
+#include "inertest/report/report.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "inertest/campaign/campaign.h"
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest::report {
+namespace {
+
+using inertest::testing::ScratchDirectory;
+using inertest::testing::source_path;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// The scale-factor example's points give Kn = 16.99 ppm, Ka = 35.03 ppm, K = 5000.088 pulse/s/(deg/s).
+std::string plan_with_limits(const std::string& limits, const std::string& header = "") {
+  return header + R"(
+[instrument]
+id = "FOG-T"
+output_unit = "pulse/s"
+
+[site]
+name = "Hall 2"
+
+[[procedure]]
+kind = "scale_factor"
+name = "SF 20 degC"
+file = ")" +
+         source_path("examples/scale_factor/points.csv") + "\"\n\n[procedure.limits]\n" + limits;
+}
+
+nlohmann::json run_plan(const ScratchDirectory& scratch, const std::string& plan) {
+  const std::string path = scratch.write("plan.toml", plan);
+  return run_campaign(path, scratch.path() + "/out").results;
+}
+
+// Every table row of the report about this figure of the procedure, as its HTML text.
+std::vector<std::string> rows_about(const std::string& page, const std::string& figure) {
+  std::vector<std::string> rows;
+  const std::regex row("<tr data-procedure=\"SF 20 degC\" data-figure=\"" + figure + "\"[^>]*>.*?</tr>");
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), row); it != std::sregex_iterator(); ++it) {
+    rows.push_back(it->str());
+  }
+  return rows;
+}
+
+void expect_rows(const std::string& page, const std::string& figure, const std::string& verdict, std::size_t count) {
+  const auto rows = rows_about(page, figure);
+  EXPECT_EQ(rows.size(), count) << figure;
+  const std::string other = verdict == "pass" ? "fail" : "pass";
+  for (const auto& row : rows) {
+    EXPECT_THAT(row, HasSubstr("data-verdict=\"" + verdict + "\"")) << figure;
+    EXPECT_THAT(row, HasSubstr("verdict-cell " + verdict + "\">" + (verdict == "pass" ? "PASS" : "FAIL"))) << figure;
+    EXPECT_THAT(row, Not(HasSubstr("verdict-cell " + other))) << figure;
+  }
+}
+
+TEST(Report, PlantedFailuresShowFailAndTheRestPassInBothDirections) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits(R"(nonlinearity = { max = 100, unit = "ppm" }
+asymmetry = { max = 10, unit = "ppm" }
+scale_factor = { min = 5001 }
+scale_factor_positive = { min = 4999, max = 5001 }
+)"));
+  ASSERT_EQ(results.at("verdict"), "FAIL");
+  const std::string page = render_report(results, {Language::english, "2024-01-02"});
+
+  // Each limited figure appears in the summary, the procedure's table and the compliance table.
+  expect_rows(page, "/nonlinearity", "pass", 3);           // 16.99 ppm <= 100 ppm
+  expect_rows(page, "/asymmetry", "fail", 3);              // 35.03 ppm > 10 ppm: fails its maximum
+  expect_rows(page, "/scale_factor", "fail", 3);           // 5000.09 < 5001: fails its minimum
+  expect_rows(page, "/scale_factor_positive", "pass", 3);  // inside [4999, 5001]
+  EXPECT_THAT(page, HasSubstr("≤ 10 ppm"));
+  EXPECT_THAT(page, HasSubstr("≥ 5001 pulse/s/(°/s)"));
+  EXPECT_THAT(page, HasSubstr("4999 … 5001"));
+  EXPECT_THAT(page, HasSubstr("class=\"overall verdict-fail\" data-verdict=\"FAIL\""));
+  // Figures without a limit get no verdict.
+  for (const auto& row : rows_about(page, "/zero_offset")) EXPECT_THAT(row, Not(HasSubstr("data-verdict")));
+}
+
+TEST(Report, AllLimitsMetShowsAnOverallPass) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits(R"(nonlinearity = { max = 100, unit = "ppm" }
+scale_factor = { min = 4990, max = 5010 }
+)"));
+  const std::string page = render_report(results, {Language::english, "2024-01-02"});
+  expect_rows(page, "/nonlinearity", "pass", 3);
+  expect_rows(page, "/scale_factor", "pass", 3);
+  EXPECT_THAT(page, HasSubstr("class=\"overall verdict-pass\" data-verdict=\"PASS\""));
+  EXPECT_THAT(page, Not(HasSubstr("verdict-cell fail")));
+  EXPECT_THAT(page, HasSubstr(">Specification Kn ≤ 100 ppm<"));  // the limit drawn on the nonlinearity curve
+}
+
+TEST(Report, WithoutLimitsThereIsNoVerdictColumn) {
+  ScratchDirectory scratch;
+  auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n"));
+  results["verdicts"] = nlohmann::json::array();
+  results["verdict"] = "NONE";
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("data-verdict=\"NONE\""));
+  EXPECT_THAT(page, Not(HasSubstr("class=\"verdict-cell")));
+  EXPECT_THAT(page, Not(HasSubstr("id=\"compliance\"")));
+}
+
+TEST(Report, IsSelfContained) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n"));
+  const std::string page = render_report(results, {Language::english, "2024-01-02"});
+  EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+  for (const char* outside :
+       {"<script", "<link", "http://", "https://", "url(", "@import", " src=", "<iframe", "<object", "@font-face"}) {
+    EXPECT_THAT(page, Not(HasSubstr(outside))) << outside;
+  }
+  EXPECT_THAT(page, HasSubstr("<style>"));
+  EXPECT_THAT(page, HasSubstr("@media print"));
+  EXPECT_THAT(page, HasSubstr("break-before: page"));
+  EXPECT_THAT(page, HasSubstr("<svg class=\"plot\""));
+}
+
+TEST(Report, ShowsInstrumentSitePlanVersionMethodAndFigures) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n",
+                                                          "[plan]\ntitle = \"Acceptance of FOG-T\"\n"
+                                                          "date = \"2024-03-05\"\noperator = \"Li Wei\"\n"));
+  const std::string page = render_report(results, {Language::english, "2030-12-31"});
+  EXPECT_THAT(page, HasSubstr("<title>Acceptance of FOG-T</title>"));
+  EXPECT_THAT(page, HasSubstr("FOG-T"));
+  EXPECT_THAT(page, HasSubstr("Hall 2"));
+  EXPECT_THAT(page, HasSubstr("Li Wei"));
+  EXPECT_THAT(page, HasSubstr("<td>2024-03-05</td>"));  // the plan's date wins over the run date
+  EXPECT_THAT(page, Not(HasSubstr("<td>2030-12-31</td>")));
+  EXPECT_THAT(page, HasSubstr(results.at("inertest_version").get<std::string>()));
+  EXPECT_THAT(page, HasSubstr("GJB 2426A-2004 5.8.1-5.8.3, eqs. (1)-(11)"));
+  // Value and uncertainty to the uncertainty's second significant digit.
+  EXPECT_THAT(page, HasSubstr(">5000.088<"));
+  EXPECT_THAT(page, HasSubstr(">± 0.016<"));
+  EXPECT_THAT(page, HasSubstr("Nonlinearity curve"));
+}
+
+TEST(Report, RunDateStandsInWhenThePlanHasNone) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n"));
+  EXPECT_FALSE(results.at("plan").contains("date"));
+  EXPECT_THAT(render_report(results, {Language::english, "2030-12-31"}), HasSubstr("<td>2030-12-31</td>"));
+}
+
+TEST(Report, ChineseUsesGjbTerms) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits(R"(nonlinearity = { max = 100, unit = "ppm" }
+asymmetry = { max = 10, unit = "ppm" }
+)"));
+  const std::string page = render_report(results, {Language::chinese, "2024-01-02"});
+  EXPECT_THAT(page, HasSubstr("<html lang=\"zh-CN\">"));
+  for (const char* term :
+       {"标度因数", "标度因数非线性度", "标度因数不对称性", "测试报告", "合格", "不合格", "总结论"}) {
+    EXPECT_THAT(page, HasSubstr(term)) << term;
+  }
+  EXPECT_THAT(page, Not(HasSubstr(">Overall verdict<")));
+}
+
+// A white-noise rate record (deg/h) at 10 Hz from a fixed-seed generator, one sample a line.
+std::string white_noise_record(std::size_t samples) {
+  std::string text = "rate\n";
+  std::uint64_t state = 12345;
+  for (std::size_t i = 0; i < samples; ++i) {
+    double sum = 0.0;  // Irwin-Hall: the sum of 12 uniforms minus 6 is near-Gaussian, unit variance
+    for (int k = 0; k < 12; ++k) {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      sum += static_cast<double>(state >> 11) / 9007199254740992.0;
+    }
+    text += std::to_string(0.5 + 0.05 * (sum - 6.0)) + "\n";
+  }
+  return text;
+}
+
+// The sections of the page, by kind, each with the number of plots in it.
+std::map<std::string, int> plots_by_kind(const std::string& page) {
+  std::map<std::string, int> plots;
+  const std::regex section("<section class=\"procedure\" id=\"procedure-[0-9]+\" data-kind=\"([a-z_]+)\">");
+  auto it = std::sregex_iterator(page.begin(), page.end(), section);
+  std::vector<std::pair<std::string, std::size_t>> starts;
+  for (; it != std::sregex_iterator(); ++it)
+    starts.emplace_back((*it)[1].str(), static_cast<std::size_t>(it->position()));
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    const std::size_t end = i + 1 < starts.size() ? starts[i + 1].second : page.size();
+    const std::string body = page.substr(starts[i].second, end - starts[i].second);
+    int count = 0;
+    for (auto at = body.find("<svg class=\"plot\""); at != std::string::npos;
+         at = body.find("<svg class=\"plot\"", at + 1)) {
+      ++count;
+    }
+    plots[starts[i].first] += count;
+  }
+  return plots;
+}
+
+TEST(Report, EveryProcedureOfAMixedCampaignGetsItsPlots) {
+  ScratchDirectory scratch;
+  scratch.write("rate.csv", white_noise_record(20000));
+  const std::string plan = R"([instrument]
+id = "FOG-MIX"
+output_unit = "pulse/s"
+sample_rate_hz = 10
+
+[[procedure]]
+kind = "scale_factor"
+file = ")" + source_path("examples/scale_factor/points.csv") +
+                           R"("
+
+[[procedure]]
+kind = "bias"
+file = "rate.csv"
+input = "deg/h"
+
+[[procedure]]
+kind = "allan"
+file = "rate.csv"
+input_unit = "deg/h"
+
+[[procedure]]
+kind = "bandwidth"
+file = ")" + source_path("examples/bandwidth/gains.csv") +
+                           R"("
+
+[[procedure]]
+kind = "gyro_misalignment"
+file = ")" + source_path("data/misalignment/gyro_table1.csv") +
+                           R"("
+scale_factor = -2.9222
+
+[[procedure]]
+kind = "accelerometer_misalignment"
+file = ")" + source_path("data/misalignment/accelerometer_table2.csv") +
+                           R"("
+scale_factor = 1.299
+
+[[procedure]]
+kind = "centrifuge"
+file = ")" + source_path("data/centrifuge/table3_harmonics.csv") +
+                           R"("
+radius_m = 1.0
+)";
+  const auto results = run_plan(scratch, plan);
+  const std::string page = render_report(results, {Language::english, "2024-01-02"});
+  const auto plots = plots_by_kind(page);
+  EXPECT_EQ(plots.at("scale_factor"), 1);
+  EXPECT_EQ(plots.at("bias"), 2);  // the smoothed records, and Bs(τ) of the normalisation method
+  EXPECT_EQ(plots.at("allan"), 1);
+  EXPECT_EQ(plots.at("bandwidth"), 1);  // magnitude over phase in one figure
+  EXPECT_EQ(plots.at("gyro_misalignment"), 2);
+  EXPECT_EQ(plots.at("accelerometer_misalignment"), 1);  // the angles of each run (no per-position data)
+  EXPECT_EQ(plots.at("centrifuge"), 2);                  // harmonics, residuals
+  EXPECT_THAT(page, HasSubstr("−3 dB"));
+  EXPECT_THAT(page, HasSubstr("Bw = 300"));
+  EXPECT_THAT(page, HasSubstr("(slope −1/2)"));  // an Allan noise term with its slope
+  EXPECT_THAT(page, HasSubstr("10 s smoothing"));
+  EXPECT_THAT(page, HasSubstr("k1s, 10 g"));
+  EXPECT_THAT(page, HasSubstr("α = 180°"));
+  EXPECT_THAT(page, HasSubstr("Bias stability (10 s)"));
+  EXPECT_NE(page.find("Drift coefficients · DI<"), std::string::npos);
+}
+
+TEST(Report, ChecklistsAndTheDemoTruthCheckAreTabulated) {
+  const nlohmann::json results = {
+      {"inertest_version", "1.0.0"},
+      {"plan", nlohmann::json::object()},
+      {"instrument", {{"id", "X"}}},
+      {"procedures",
+       {{{"name", "checks"},
+         {"kind", "hand_checks"},
+         {"result",
+          {{"clause", "GJB 2426A-2004 5.2-5.4"},
+           {"checks",
+            {{{"key", "appearance"}, {"name", "Appearance"}, {"pass", true}, {"value", "pass"}},
+             {{"key", "insulation"},
+              {"name", "Insulation resistance"},
+              {"pass", false},
+              {"value", 5.0},
+              {"unit", "MOhm"},
+              {"min", 20.0}}}}}}}}},
+      {"verdicts", nlohmann::json::array()},
+      {"verdict", "NONE"},
+      {"truth_check",
+       {{{"procedure", "scale_factor"},
+         {"quantity", "scale factor"},
+         {"true", 36000.0},
+         {"measured", 36000.2},
+         {"unit", "pulse/s/(deg/s)"},
+         {"tolerance", 0.1},
+         {"within", false}}}}};
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page,
+              HasSubstr("<td>Appearance</td><td class=\"num\">PASS</td><td></td><td class=\"verdict-cell pass\">"));
+  EXPECT_THAT(page, HasSubstr("<td>Insulation resistance</td><td class=\"num\">5 MOhm</td><td>≥ 20 MOhm</td>"
+                              "<td class=\"verdict-cell fail\">"));
+  EXPECT_THAT(page, HasSubstr("id=\"truth-check\""));
+  EXPECT_THAT(page, HasSubstr("<td class=\"num\">36000.2</td><td class=\"num\">± 0.1</td>"));
+}
+
+TEST(Report, LanguageCodes) {
+  EXPECT_EQ(parse_language("en"), Language::english);
+  EXPECT_EQ(parse_language("zh"), Language::chinese);
+  EXPECT_THROW(parse_language("fr"), Error);
+}
+
+TEST(Report, RejectsResultsThatAreNotACampaign) {
+  EXPECT_THROW(render_report(nlohmann::json::array(), {}), Error);
+  EXPECT_THROW(render_report(nlohmann::json{{"instrument", nlohmann::json::object()}}, {}), Error);
+  EXPECT_THROW(render_report(nlohmann::json{{"instrument", nlohmann::json::object()}, {"procedures", 3}}, {}), Error);
+}
+
+TEST(Report, UnknownProceduresAreListedAndTheirCurvesPlotted) {
+  const nlohmann::json results = {
+      {"inertest_version", "9.9.9"},
+      {"plan", nlohmann::json::object()},
+      {"instrument", {{"id", "X"}}},
+      {"procedures",
+       {{{"name", "future"},
+         {"kind", "future_kind"},
+         {"result",
+          {{"clause", "IEEE Std 952-1997 clause 99"},
+           {"gain", {{"value", 1.5}, {"unit", "1"}, {"uncertainty", 0.25}}},
+           {"nested", {{"inner", {{"value", 2.0}, {"unit", "s"}}}}},
+           {"sweep_curve",
+            {{{"frequency", {{"value", 1.0}, {"unit", "Hz"}}}, {"gain", {{"value", 1.0}, {"unit", "1"}}}},
+             {{"frequency", {{"value", 10.0}, {"unit", "Hz"}}}, {"gain", {{"value", 0.9}, {"unit", "1"}}}},
+             {{"frequency", {{"value", 1000.0}, {"unit", "Hz"}}}, {"gain", {{"value", 0.1}, {"unit", "1"}}}}}}}}}}},
+      {"verdicts", nlohmann::json::array()},
+      {"verdict", "NONE"}};
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("data-figure=\"/gain\""));
+  EXPECT_THAT(page, HasSubstr("data-figure=\"/nested/inner\""));
+  EXPECT_THAT(page, HasSubstr(">1.50<"));
+  EXPECT_THAT(page, HasSubstr(">± 0.25<"));
+  EXPECT_THAT(page, Not(HasSubstr("data-figure=\"/sweep_curve")));  // a curve is plotted, not listed
+  EXPECT_THAT(page, HasSubstr("<svg class=\"plot\""));
+  EXPECT_THAT(page, HasSubstr("IEEE Std 952-1997 clause 99"));
+}
+
+TEST(Report, WriteReportWritesReportHtmlInTheDirectory) {
+  ScratchDirectory scratch;
+  const auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n"));
+  const std::string path = write_report(results, scratch.path() + "/new/dir", {Language::english, "2024-01-02"});
+  EXPECT_EQ(path, scratch.path() + "/new/dir/report.html");
+  std::ifstream file(path);
+  const std::string content((std::istreambuf_iterator<char>(file)), {});
+  EXPECT_EQ(content, render_report(results, {Language::english, "2024-01-02"}));
+}
+
+TEST(Report, RunCommandWritesTheReportInTheChosenLanguage) {
+  ScratchDirectory scratch;
+  const std::string plan = scratch.write("plan.toml", plan_with_limits("nonlinearity = { max = 100 }\n"));
+  const auto run = inertest::testing::run_cli({"run", plan, "--out", scratch.path() + "/out", "--lang", "zh"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream file(scratch.path() + "/out/report.html");
+  const std::string content((std::istreambuf_iterator<char>(file)), {});
+  EXPECT_THAT(content, HasSubstr("标度因数非线性度"));
+  EXPECT_THAT(run.err, HasSubstr("report.html"));
+  const auto bad = inertest::testing::run_cli({"run", plan, "--out", scratch.path() + "/out", "--lang", "fr"});
+  EXPECT_NE(bad.exit_code, 0);
+}
+
+}  // namespace
+}  // namespace inertest::report

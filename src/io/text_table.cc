@@ -382,7 +382,9 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
   // The data rows: from the first data line (the header line excluded) to the end, cut into one
   // chunk per core at line boundaries and parsed in parallel. Line numbers stay exact: each chunk
   // starts at the line count of the chunks before it.
-  const std::size_t data_begin = has_header ? cursor.position() : static_cast<std::size_t>(line.text.data() - text.data());
+  // A header on the last line without a line end leaves the cursor one past the end.
+  const std::size_t data_begin =
+      has_header ? std::min(cursor.position(), text.size()) : static_cast<std::size_t>(line.text.data() - text.data());
   const std::size_t data_line = has_header ? line.number + 1 : line.number;
   const std::string_view data = text.substr(data_begin);
   const RowLayout layout{source, delimiter, width, has_header, positions, header_names, options};

@@ -5,8 +5,17 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?=
+# The sanitizer suite and the fuzz targets share one clang build with ASan + UBSan (+ libFuzzer).
+SANITIZE_DIR ?= build-sanitize
+FUZZ_SECONDS ?= 600
+FUZZ_SHORT_SECONDS ?= 20
+FUZZ_MAX_LEN ?= 4096
+FUZZ_TIMEOUT ?= 10
+FUZZ_TARGETS := text_table binary_record plan
+export ASAN_OPTIONS ?= detect_leaks=1:strict_string_checks=1
+export UBSAN_OPTIONS ?= halt_on_error=1:print_stacktrace=1
 
-.PHONY: all deps configure build test demo bench clean
+.PHONY: all deps configure build test demo bench clean sanitize-build test-sanitize fuzz test-fuzz-short
 
 all: build
 
@@ -20,8 +29,40 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
+# The normal suite first (fast failures), then the same suite under ASan + UBSan, then a short
+# fuzz pass of every target.
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory test-sanitize
+	@$(MAKE) --no-print-directory test-fuzz-short
+
+sanitize-build: deps
+	@cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ \
+	  -DINERTEST_SANITIZE=ON -DINERTEST_BUILD_FUZZERS=ON -DINERTEST_BUILD_TESTS=ON > /dev/null
+	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
+
+# Left out: find_package_downstream (it links an uninstrumented program against the library) and
+# report_in_chromium (it tests the browser's rendering, not our memory safety).
+test-sanitize: sanitize-build
+	@cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS) -E '^(find_package_downstream|report_in_chromium)$$'
+
+# Each target runs FUZZ_SECONDS on its seed corpus (fuzz/corpus/<target>/, read only); new inputs
+# go to $(SANITIZE_DIR)/fuzz/<target>/, and a crash, hang (FUZZ_TIMEOUT s) or leak fails the run
+# and leaves its input as $(SANITIZE_DIR)/fuzz/<target>-crash-* (or -timeout-*, -leak-*).
+fuzz: sanitize-build
+	@for target in $(FUZZ_TARGETS); do \
+	  mkdir -p $(SANITIZE_DIR)/fuzz/$$target && \
+	  echo "fuzz: $$target for $(FUZZ_SECONDS) s" && \
+	  $(SANITIZE_DIR)/bin/$${target}_fuzzer -max_total_time=$(FUZZ_SECONDS) -max_len=$(FUZZ_MAX_LEN) \
+	    -timeout=$(FUZZ_TIMEOUT) -rss_limit_mb=2048 -detect_leaks=1 -print_final_stats=1 \
+	    -artifact_prefix=$(SANITIZE_DIR)/fuzz/$$target- \
+	    $(SANITIZE_DIR)/fuzz/$$target fuzz/corpus/$$target 2> $(SANITIZE_DIR)/fuzz/$$target.log || \
+	  { tail -n 60 $(SANITIZE_DIR)/fuzz/$$target.log; echo "fuzz: $$target FAILED"; exit 1; }; \
+	  grep -E '^stat::number_of_executed_units' $(SANITIZE_DIR)/fuzz/$$target.log || true; \
+	done
+
+test-fuzz-short:
+	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_SHORT_SECONDS)
 
 demo: build
 	@$(BUILD_DIR)/bin/inertest demo --out demo > /dev/null; status=$$?; \
@@ -33,4 +74,4 @@ bench: deps
 	@for script in bench/*_compare.py; do $(PYTHON) $$script --build-dir $(BUILD_DIR) || exit 1; done
 
 clean:
-	@rm -rf $(BUILD_DIR) demo
+	@rm -rf $(BUILD_DIR) $(SANITIZE_DIR) demo

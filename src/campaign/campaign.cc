@@ -35,6 +35,7 @@ struct PreparedStep {
   std::string kind;
   std::vector<Limit> limits;
   campaign::StepAction action;
+  SourceLocation where;  // the [[procedure]] table, for errors from data that carry no location
 };
 
 struct Plan {
@@ -144,6 +145,8 @@ Plan load_plan(const std::string& path) {
       for (const auto& k : campaign::registered_step_kinds()) known += (known.empty() ? "" : ", ") + k;
       step.fail_at("kind", "'" + prepared.kind + "' is not a known procedure (known: " + known + ")");
     }
+    const auto& begin = step.raw().source().begin;
+    prepared.where = {path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     prepared.limits = read_limits(step);
     prepared.action = (*preparer)(step, plan.context);
     step.require_all_used();
@@ -203,7 +206,8 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
     try {
       result = step.action(context);
     } catch (const Error& e) {
-      throw Error("procedure '" + step.name + "': " + std::string(e.what()));
+      if (e.location()) throw Error("procedure '" + step.name + "': " + std::string(e.what()));
+      throw Error(step.where, "procedure '" + step.name + "': " + e.message());
     }
     for (const auto& limit : step.limits) verdicts.push_back(check_limit(limit, step.name, result));
     procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});

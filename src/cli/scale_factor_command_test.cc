@@ -58,10 +58,10 @@ INSTANTIATE_TEST_SUITE_P(
     Cli, ScaleFactorCommandErrors,
     ::testing::Values(
         BadFile{"malformed_number", "rate,output\n0,1\n-1,abc\n", ":3:4: expected a number in column 'output'"},
-        BadFile{"wrong_column_count", "rate,output\n0,1\n-1\n", ":3: expected 2 columns, found 1"},
+        BadFile{"wrong_column_count", "rate,output\n0,1\n-1\n", ":3:3: expected 2 columns, found 1"},
         BadFile{"nan", "rate,output\n0,1\nNaN,2\n", ":3:1: 'NaN' is not a finite number"},
         BadFile{"empty", "", ": no data"},
-        BadFile{"unknown_column", "speed,output\n0,1\n", ":1: no column 'rate' in the header"},
+        BadFile{"unknown_column", "speed,output\n0,1\n", ":1:1: no column 'rate' in the header"},
         BadFile{"missing_static_run", "rate,output\n-1,-1\n-2,-2\n1,1\n2,2\n0,0\n", ": scale factor: missing the static run at the start"},
         BadFile{"too_few_points", "rate,output\n0,1\n-1,-1\n1,1\n0,1\n", ": scale factor: 1 positive rate(s)"}),
     testing::NameOfParam());

@@ -6,7 +6,9 @@
 #include <cctype>
 #include <cstring>
 #include <fast_float/fast_float.h>
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <optional>
 #include <thread>
 
@@ -53,8 +55,10 @@ bool is_skipped(std::string_view line, char comment) {
   return i == line.size() || (comment != '\0' && line[i] == comment);
 }
 
+// A line holding both ',' and ';' is taken as ';'-separated with decimal commas, the common
+// European lab export, so that the cells are reported as decimal commas rather than misread.
 char detect_delimiter(std::string_view line) {
-  for (char candidate : {'\t', ',', ';'}) {
+  for (char candidate : {'\t', ';', ','}) {
     if (line.find(candidate) != std::string_view::npos) return candidate;
   }
   return ' ';
@@ -113,18 +117,25 @@ std::optional<double> parse_number(std::string_view text) {
   return value;
 }
 
+// Decimal commas ("1,25" in a ';' or whitespace separated file) are a common lab export.
+bool is_decimal_comma(std::string_view text) {
+  return text.find(',') != std::string_view::npos &&
+         std::any_of(text.begin(), text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }) &&
+         std::all_of(text.begin(), text.end(), [](char c) {
+           return std::isdigit(static_cast<unsigned char>(c)) || c == ',' || c == '-' || c == '+';
+         });
+}
+
+[[noreturn]] void fail_decimal_comma(const SourceLocation& location, std::string_view text, const std::string& where) {
+  throw Error(location, "'" + printable(text) + "'" + where + " looks like a decimal comma; inertest expects a decimal point");
+}
+
 [[noreturn]] void fail_cell(const std::string& source, const Line& line, const Field& field,
                             const std::string& column_name) {
   const std::string where = column_name.empty() ? "" : " in column '" + column_name + "'";
   const SourceLocation location{source, line.number, field.column};
   if (field.text.empty()) throw Error(location, "empty cell" + where + ", expected a number");
-  // Decimal commas ("1,25" in a ';' or whitespace separated file) are a common lab export.
-  if (field.text.find(',') != std::string_view::npos &&
-      std::all_of(field.text.begin(), field.text.end(),
-                  [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == ',' || c == '-' || c == '+'; })) {
-    throw Error(location, "'" + printable(field.text) + "'" + where +
-                              " looks like a decimal comma; inertest expects a decimal point");
-  }
+  if (is_decimal_comma(field.text)) fail_decimal_comma(location, field.text, where);
   throw Error(location, "expected a number" + where + ", found '" + printable(field.text) + "'");
 }
 
@@ -138,6 +149,41 @@ struct RowLayout {
   const std::vector<std::string>& header_names;
   const TextTableOptions& options;
 };
+
+bool is_header_again(const RowLayout& layout, const std::vector<Field>& fields) {
+  if (!layout.has_header || fields.size() != layout.header_names.size()) return false;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if (fields[i].text != layout.header_names[i]) return false;
+  }
+  return true;
+}
+
+// A row with the wrong number of fields. The column is where the first missing field would start
+// (the line's end) or where the first extra field starts.
+[[noreturn]] void fail_width(const RowLayout& layout, const Line& row, const std::vector<Field>& fields,
+                             std::string_view chunk) {
+  const bool too_few = fields.size() < layout.width;
+  std::size_t column = too_few ? row.text.size() + 1 : fields[layout.width].column;
+  std::string hint;
+  const bool unterminated = row.text.data() + row.text.size() == chunk.data() + chunk.size();
+  if (too_few && unterminated) {
+    hint = " (the last line has no line end: a truncated record?)";
+  } else if (fields.size() == 1 && layout.width > 1) {
+    for (char other : {',', ';', '\t'}) {
+      if (other != layout.delimiter && row.text.find(other) != std::string_view::npos) {
+        column = row.text.find(other) + 1;
+        hint = std::string(" (this line is separated by '") + (other == '\t' ? "\\t" : std::string(1, other)) +
+               "', the record by '" + (layout.delimiter == '\t' ? "\\t" : std::string(1, layout.delimiter)) +
+               "': mixed delimiters)";
+        break;
+      }
+    }
+  } else if (layout.has_header) {
+    hint = " (a stray header or a truncated line?)";
+  }
+  throw Error(SourceLocation{layout.source, row.number, column},
+              "expected " + std::to_string(layout.width) + " columns, found " + std::to_string(fields.size()) + hint);
+}
 
 struct ChunkResult {
   std::vector<std::vector<double>> columns;
@@ -159,15 +205,17 @@ void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout&
     while (cursor.next(row)) {
       if (is_skipped(row.text, layout.options.comment)) continue;
       split(row.text, layout.delimiter, fields);
-      if (fields.size() != layout.width) {
-        throw Error(SourceLocation{layout.source, row.number, 0},
-                    "expected " + std::to_string(layout.width) + " columns, found " + std::to_string(fields.size()) +
-                        (layout.has_header ? " (a stray header or a truncated line?)" : ""));
-      }
+      if (fields.size() != layout.width) fail_width(layout, row, fields, chunk);
       for (std::size_t k = 0; k < layout.positions.size(); ++k) {
         const Field& field = fields[layout.positions[k]];
         const auto value = parse_number(field.text);
-        if (!value) fail_cell(layout.source, row, field, layout.header_names[layout.positions[k]]);
+        if (!value) {
+          if (is_header_again(layout, fields)) {
+            throw Error(SourceLocation{layout.source, row.number, 1},
+                        "a second header row in the data (records joined together?)");
+          }
+          fail_cell(layout.source, row, field, layout.header_names[layout.positions[k]]);
+        }
         if (!std::isfinite(*value)) {
           throw Error(SourceLocation{layout.source, row.number, field.column},
                       "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
@@ -184,10 +232,22 @@ void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout&
 
 // Splits data into one chunk per core (at line boundaries; small inputs stay whole) and parses them
 // in parallel; results are in file order.
+std::size_t thread_count(const TextTableOptions& options) {
+  if (options.threads > 0) return options.threads;
+  if (const char* text = std::getenv("INERTEST_THREADS"); text != nullptr && *text != '\0') {
+    std::size_t count = 0;
+    const auto result = std::from_chars(text, text + std::strlen(text), count);
+    if (result.ec != std::errc() || *result.ptr != '\0' || count == 0) {
+      throw Error("INERTEST_THREADS must be a positive integer, not '" + std::string(text) + "'");
+    }
+    return count;
+  }
+  return std::max(1U, std::thread::hardware_concurrency());
+}
+
 std::vector<ChunkResult> parse_chunks(std::string_view data, std::size_t first_line, const RowLayout& layout) {
-  constexpr std::size_t kMinimumChunk = 4 << 20;
-  const std::size_t threads = std::clamp<std::size_t>(data.size() / kMinimumChunk, 1,
-                                                      std::max(1U, std::thread::hardware_concurrency()));
+  const std::size_t threads = std::clamp<std::size_t>(data.size() / std::max<std::size_t>(layout.options.minimum_chunk_bytes, 1),
+                                                      1, thread_count(layout.options));
   std::vector<std::string_view> pieces;
   std::size_t begin = 0;
   for (std::size_t t = 1; t <= threads; ++t) {
@@ -276,6 +336,11 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
     has_header = std::any_of(fields.begin(), fields.end(), [](const Field& f) { return !parse_number(f.text); });
   }
   std::vector<std::string> header_names(width);
+  if (has_header && options.header == TextTableOptions::Header::kDetect) {
+    for (const Field& field : fields) {
+      if (is_decimal_comma(field.text)) fail_decimal_comma(SourceLocation{source, line.number, field.column}, field.text, "");
+    }
+  }
   if (has_header) {
     for (std::size_t i = 0; i < width; ++i) header_names[i] = std::string(fields[i].text);
   }
@@ -288,7 +353,7 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
     for (const auto& selector : options.columns) {
       if (selector.index > 0) {
         if (selector.index > width) {
-          throw Error(SourceLocation{source, line.number, 0},
+          throw Error(SourceLocation{source, line.number, 1},
                       "column " + std::to_string(selector.index) + " asked for, but the record has " +
                           std::to_string(width) + " columns");
         }
@@ -296,25 +361,30 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
         continue;
       }
       if (!has_header) {
-        throw Error(SourceLocation{source, line.number, 0},
+        throw Error(SourceLocation{source, line.number, 1},
                     "column '" + selector.name + "' asked for by name, but the record has no header row");
       }
       const auto it = std::find(header_names.begin(), header_names.end(), selector.name);
       if (it == header_names.end()) {
         std::string known;
         for (const auto& n : header_names) known += (known.empty() ? "" : ", ") + n;
-        throw Error(SourceLocation{source, line.number, 0},
+        throw Error(SourceLocation{source, line.number, 1},
                     "no column '" + selector.name + "' in the header (columns: " + known + ")");
       }
       positions.push_back(static_cast<std::size_t>(it - header_names.begin()));
     }
   }
   for (std::size_t p : positions) table.names.push_back(header_names[p]);
+  table.delimiter = delimiter;
+  table.header_line = has_header ? line.number : 0;
+  table.fields = positions;
 
   // The data rows: from the first data line (the header line excluded) to the end, cut into one
   // chunk per core at line boundaries and parsed in parallel. Line numbers stay exact: each chunk
   // starts at the line count of the chunks before it.
-  const std::size_t data_begin = has_header ? cursor.position() : static_cast<std::size_t>(line.text.data() - text.data());
+  // A header on the last line without a line end leaves the cursor one past the end.
+  const std::size_t data_begin =
+      has_header ? std::min(cursor.position(), text.size()) : static_cast<std::size_t>(line.text.data() - text.data());
   const std::size_t data_line = has_header ? line.number + 1 : line.number;
   const std::string_view data = text.substr(data_begin);
   const RowLayout layout{source, delimiter, width, has_header, positions, header_names, options};
@@ -346,6 +416,25 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
     table.row_lines.insert(table.row_lines.end(), chunk.row_lines.begin(), chunk.row_lines.end());
   }
   return table;
+}
+
+SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t column) {
+  SourceLocation location{table.source, row < table.row_lines.size() ? table.row_lines[row] : 0, 0};
+  std::error_code error;
+  if (location.line == 0 || column >= table.fields.size() || !std::filesystem::is_regular_file(table.source, error)) {
+    return location;
+  }
+  const MappedFile file(table.source);
+  LineCursor cursor(file.bytes());
+  Line line{};
+  while (cursor.next(line)) {
+    if (line.number != location.line) continue;
+    std::vector<Field> fields;
+    split(line.text, table.delimiter, fields);
+    if (table.fields[column] < fields.size()) location.column = fields[table.fields[column]].column;
+    break;
+  }
+  return location;
 }
 
 TextTable read_text_table(const std::string& path, const TextTableOptions& options) {

@@ -93,8 +93,8 @@ INSTANTIATE_TEST_SUITE_P(
     TextTable, MalformedText,
     ::testing::Values(
         BadInput{"malformed_number", "rate,output\n1,2\n3,4x\n", "rec.csv:3:3: expected a number in column 'output', found '4x'"},
-        BadInput{"too_few_columns", "rate,output\n1,2\n3\n", "rec.csv:3: expected 2 columns, found 1"},
-        BadInput{"too_many_columns", "rate,output\n1,2,5\n", "rec.csv:2: expected 2 columns, found 3"},
+        BadInput{"too_few_columns", "rate,output\n1,2\n3\n", "rec.csv:3:2: expected 2 columns, found 1"},
+        BadInput{"too_many_columns", "rate,output\n1,2,5\n", "rec.csv:2:5: expected 2 columns, found 3"},
         BadInput{"nan", "rate,output\n1,nan\n", "rec.csv:2:3: 'nan' is not a finite number"},
         BadInput{"inf", "a b\n-inf 2\n", "rec.csv:2:1: '-inf' is not a finite number"},
         BadInput{"empty_file", "", "rec.csv: no data"},
@@ -102,7 +102,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"header_only", "rate,output\n", "expected at least 1 data rows, found 0"},
         BadInput{"empty_cell", "rate,output\n1,\n", "rec.csv:2:3: empty cell in column 'output'"},
         BadInput{"decimal_comma", "rate;output\n1;2,5\n", "rec.csv:2:3: '2,5' in column 'output' looks like a decimal comma"},
-        BadInput{"second_header", "rate,output\n1,2\nrate,output\n", "rec.csv:3:1: expected a number in column 'rate'"},
+        BadInput{"second_header", "rate,output\n1,2\nrate,output\n", "rec.csv:3:1: a second header row in the data"},
         BadInput{"binary_garbage", std::string_view("\x01\x00\x02", 3), "rec.csv:1:2: binary data"}),
     testing::NameOfParam());
 
@@ -110,7 +110,7 @@ TEST(TextTable, UnknownColumnListsTheHeader) {
   TextTableOptions options;
   options.columns = {ColumnSelector{"rates"}};
   EXPECT_THAT(error_of("rate,output\n1,2\n", options),
-              HasSubstr("rec.csv:1: no column 'rates' in the header (columns: rate, output)"));
+              HasSubstr("rec.csv:1:1: no column 'rates' in the header (columns: rate, output)"));
   options.columns = {ColumnSelector::parse("3")};
   EXPECT_THAT(error_of("rate,output\n1,2\n", options), HasSubstr("column 3 asked for, but the record has 2 columns"));
   options.columns = {ColumnSelector{"rate"}};

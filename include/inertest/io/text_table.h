@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "inertest/core/error.h"
+
 namespace inertest {
 
 // A column chosen by its header name or by its 1-based position.
@@ -33,6 +35,11 @@ struct TextTableOptions {
   std::size_t minimum_rows = 1;
   // Keep the line number of every row (TextTable::row_lines). Off for records of 10^8+ samples.
   bool record_row_lines = true;
+  // Threads parsing the data rows: 0 takes the INERTEST_THREADS environment variable when set,
+  // else one per core. The result is the same whatever the count (same values, same errors).
+  std::size_t threads = 0;
+  // A thread is given a chunk only when each chunk holds at least this many bytes.
+  std::size_t minimum_chunk_bytes = std::size_t{4} << 20;
 };
 
 struct TextTable {
@@ -40,9 +47,12 @@ struct TextTable {
   std::vector<std::string> names;           // header names of the returned columns ("" without header)
   std::vector<std::vector<double>> columns; // column-major values
   std::size_t first_data_line = 0;          // 1-based line of the first data row
+  std::size_t header_line = 0;              // 1-based line of the header row (0: no header)
   // 1-based line of each data row, so procedures can point at the offending row (empty unless
   // TextTableOptions::record_row_lines).
   std::vector<std::size_t> row_lines;
+  char delimiter = ',';                     // the delimiter used (' ' for runs of blanks)
+  std::vector<std::size_t> fields;          // 0-based field of each returned column within a line
 
   std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
   // The returned column of that header name; throws Error listing the names present.
@@ -54,5 +64,11 @@ TextTable read_text_table(const std::string& path, const TextTableOptions& optio
 
 // The same, on text already in memory; `source` names it in messages.
 TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options = {});
+
+// Where the cell of data row `row` (0-based) in returned column `column` is: file, line and
+// character column, for errors found after reading (a time stamp going backwards, a stuck
+// channel). Reads the line again from table.source when that is a file; the column is 0 when it
+// is not, and the line is 0 without TextTable::row_lines.
+SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t column);
 
 }  // namespace inertest

@@ -1,0 +1,71 @@
+// Checking the time column of a record: time stamps must increase; a step of more than 1.5 sample
+// intervals is a gap (a logger that dropped samples). What happens at a gap is the user's choice:
+// stop with an error, split the record into its contiguous segments, or fill the missing samples
+// by linear interpolation. Procedures that take a time column call check_time_stamps() after
+// read_text_table() and work on the segments it returns.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "inertest/io/text_table.h"
+
+namespace inertest {
+
+enum class GapPolicy { kStop, kSplit, kInterpolate };
+
+// "stop", "split" or "interpolate"; throws Error naming the accepted words.
+GapPolicy parse_gap_policy(std::string_view text);
+std::string to_string(GapPolicy policy);
+
+struct TimeStampOptions {
+  GapPolicy policy = GapPolicy::kStop;
+  // The nominal sample interval in the time column's unit; absent: the median step of the record.
+  std::optional<double> sample_interval;
+  // A step longer than gap_factor sample intervals is a gap (1.5: one sample or more is missing).
+  double gap_factor = 1.5;
+  void validate() const;
+};
+
+// One gap: between data rows row - 1 and row (0-based rows of the record as read).
+struct TimeGap {
+  std::size_t row = 0;
+  std::size_t line = 0;       // 1-based file line of the first sample after the gap (0: unknown)
+  double time_before = 0.0;   // last time stamp before the gap
+  double time_after = 0.0;    // first time stamp after it
+  std::size_t missing = 0;    // samples missing: round(step / interval) - 1, at least 1
+};
+
+// Rows [begin, end) of the table as returned (after interpolation, if any) with no gap inside.
+struct TimeSegment {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t first_line = 0;  // file lines of its first and last samples (0: unknown)
+  std::size_t last_line = 0;
+  std::size_t size() const { return end - begin; }
+};
+
+struct TimeStampReport {
+  GapPolicy policy = GapPolicy::kStop;
+  double sample_interval = 0.0;
+  std::vector<TimeGap> gaps;           // every gap, in record order
+  std::vector<TimeSegment> segments;   // kSplit: one per contiguous run; otherwise one, the whole table
+  std::size_t interpolated_samples = 0;  // kInterpolate: rows added in all
+  nlohmann::json to_json() const;
+};
+
+// Checks table column `time_column` (an index into table.columns) and applies the policy.
+// Throws Error at the time stamp's file:line:column when time stands still or goes backwards, when
+// fewer than 2 samples give no interval, and, under kStop, at the first gap (naming the line, the
+// time before and after it, and the samples missing). Under kInterpolate the table grows in place:
+// every column gets the missing samples by linear interpolation in time, evenly spaced across the
+// gap, and row_lines gets 0 for them; filling more samples than the record holds is refused (an Error)
+// rather than inventing most of a record.
+TimeStampReport check_time_stamps(TextTable& table, std::size_t time_column, const TimeStampOptions& options);
+
+}  // namespace inertest

@@ -1,0 +1,77 @@
+// inertest inspect: the time-stamp checks (--time-column, --gaps) and the constant-channel warning.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+// 10 ms samples with 0.03 and 0.04 missing; gyro = 100 t + 1.
+constexpr const char* kGap = "time,gyro\n0.00,1\n0.01,2\n0.02,3\n0.05,6\n0.06,7\n";
+
+TEST(InspectCommand, SplitReportsTheGapAndTheSegments) {
+  testing::ScratchDirectory dir;
+  const std::string file = dir.write("gap.csv", kGap);
+  const auto run = testing::run_cli({"inspect", file, "--time-column", "time", "--gaps", "split", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  const auto& time = json["time_stamps"];
+  EXPECT_EQ(time["gap_policy"], "split");
+  EXPECT_DOUBLE_EQ(time["sample_interval"].get<double>(), 0.01);
+  ASSERT_EQ(time["gaps"].size(), 1u);
+  EXPECT_EQ(time["gaps"][0]["line"], 5);
+  EXPECT_EQ(time["gaps"][0]["missing_samples"], 2);
+  EXPECT_DOUBLE_EQ(time["gaps"][0]["time_before"].get<double>(), 0.02);
+  ASSERT_EQ(time["segments"].size(), 2u);
+  EXPECT_EQ(time["segments"][0], (nlohmann::json{{"first_line", 2}, {"last_line", 4}, {"samples", 3}}));
+  EXPECT_EQ(time["segments"][1], (nlohmann::json{{"first_line", 5}, {"last_line", 6}, {"samples", 2}}));
+  EXPECT_EQ(json["rows"], 5);
+}
+
+TEST(InspectCommand, InterpolateCountsTheFilledSamples) {
+  testing::ScratchDirectory dir;
+  const std::string file = dir.write("gap.csv", kGap);
+  const auto run = testing::run_cli({"inspect", file, "--time-column", "1", "--gaps", "interpolate", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["time_stamps"]["interpolated_samples"], 2);
+  EXPECT_EQ(json["rows"], 7);
+  // gyro = 100 t + 1 at t = 0 .. 0.06: mean 4.
+  EXPECT_NEAR(json["columns"][1]["mean"].get<double>(), 4.0, 1e-12);
+}
+
+TEST(InspectCommand, ReadableReportNamesTheGap) {
+  testing::ScratchDirectory dir;
+  const std::string file = dir.write("gap.csv", kGap);
+  const auto run = testing::run_cli({"inspect", file, "--time-column", "time", "--gaps", "split"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("gap before line 5: 0.02 to 0.05, 2 sample(s) missing"));
+}
+
+TEST(InspectCommand, GivenSampleIntervalAndBadPolicy) {
+  testing::ScratchDirectory dir;
+  const std::string file = dir.write("gap.csv", kGap);
+  // At a nominal 20 ms the 30 ms step is no gap.
+  auto run = testing::run_cli({"inspect", file, "--time-column", "time", "--sample-interval", "0.02", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(nlohmann::json::parse(run.out)["time_stamps"]["gaps"].empty());
+  run = testing::run_cli({"inspect", file, "--time-column", "time", "--gaps", "ignore", "--json"});
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_EQ(run.out, "");
+}
+
+TEST(InspectCommand, ConstantChannelIsAWarningInTheJson) {
+  testing::ScratchDirectory dir;
+  const std::string file = dir.write("c.csv", "a,b\n1,2\n1,3\n");
+  const auto run = testing::run_cli({"inspect", file, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("column 'a' is constant: all 2 samples equal 1"));
+  EXPECT_EQ(nlohmann::json::parse(run.out)["warnings"].size(), 1u);
+}
+
+}  // namespace
+}  // namespace inertest

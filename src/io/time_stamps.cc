@@ -1,0 +1,182 @@
+#include "inertest/io/time_stamps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "inertest/core/error.h"
+
+namespace inertest {
+namespace {
+
+// Samples missing in a step of `ratio` sample intervals: the nearest whole number of intervals
+// less one, at least one (a step of more than gap_factor intervals lost a sample). Clamped so that
+// absurd steps (1e300 s) stay representable; such a gap is refused by the interpolation bound.
+std::size_t missing_samples(double ratio) {
+  constexpr double kLargest = 1e15;
+  return static_cast<std::size_t>(std::clamp(std::round(ratio) - 1.0, 1.0, kLargest));
+}
+
+// The median of the steps between successive time stamps: the nominal interval of a record with
+// a few gaps (a mean would be pulled up by them). The lower median of an even count, so that of
+// two steps the shorter is the interval and the longer can be a gap.
+double median_step(const std::vector<double>& time) {
+  std::vector<double> steps(time.size() - 1);
+  for (std::size_t i = 1; i < time.size(); ++i) steps[i - 1] = time[i] - time[i - 1];
+  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>((steps.size() - 1) / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  return *middle;
+}
+
+std::size_t line_of(const TextTable& table, std::size_t row) {
+  return row < table.row_lines.size() ? table.row_lines[row] : 0;
+}
+
+void interpolate_gaps(TextTable& table, const std::vector<TimeGap>& gaps, std::size_t time_column) {
+  std::size_t added = 0;
+  for (const auto& gap : gaps) added += gap.missing;
+  const std::size_t rows = table.rows();
+  const bool lines = !table.row_lines.empty();
+  std::vector<std::vector<double>> columns(table.columns.size());
+  for (auto& c : columns) c.reserve(rows + added);
+  std::vector<std::size_t> row_lines;
+  if (lines) row_lines.reserve(rows + added);
+  auto gap = gaps.begin();
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (gap != gaps.end() && gap->row == i) {
+      const double t0 = table.columns[time_column][i - 1];
+      const double t1 = table.columns[time_column][i];
+      for (std::size_t k = 1; k <= gap->missing; ++k) {
+        // Linear interpolation between the samples either side of the gap, at time
+        // t0 + k (t1 - t0) / (missing + 1).
+        const double fraction = static_cast<double>(k) / static_cast<double>(gap->missing + 1);
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+          const double before = table.columns[c][i - 1];
+          const double after = table.columns[c][i];
+          columns[c].push_back(c == time_column ? t0 + fraction * (t1 - t0) : before + fraction * (after - before));
+        }
+        if (lines) row_lines.push_back(0);
+      }
+      ++gap;
+    }
+    for (std::size_t c = 0; c < columns.size(); ++c) columns[c].push_back(table.columns[c][i]);
+    if (lines) row_lines.push_back(table.row_lines[i]);
+  }
+  table.columns = std::move(columns);
+  if (lines) table.row_lines = std::move(row_lines);
+}
+
+// "'time'", or the 1-based column in the file when the record has no header.
+std::string column_name(const TextTable& table, std::size_t column) {
+  if (column < table.names.size() && !table.names[column].empty()) return "'" + table.names[column] + "'";
+  return std::to_string((column < table.fields.size() ? table.fields[column] : column) + 1);
+}
+
+TimeSegment segment(const TextTable& table, std::size_t begin, std::size_t end) {
+  return {begin, end, line_of(table, begin), line_of(table, end - 1)};
+}
+
+}  // namespace
+
+GapPolicy parse_gap_policy(std::string_view text) {
+  if (text == "stop") return GapPolicy::kStop;
+  if (text == "split") return GapPolicy::kSplit;
+  if (text == "interpolate") return GapPolicy::kInterpolate;
+  throw Error("unknown gap policy '" + std::string(text) + "' (expected stop, split or interpolate)");
+}
+
+std::string to_string(GapPolicy policy) {
+  switch (policy) {
+    case GapPolicy::kStop: return "stop";
+    case GapPolicy::kSplit: return "split";
+    case GapPolicy::kInterpolate: return "interpolate";
+  }
+  return "stop";
+}
+
+void TimeStampOptions::validate() const {
+  if (sample_interval && !(std::isfinite(*sample_interval) && *sample_interval > 0.0)) {
+    throw Error(fmt::format("the sample interval must be positive, not {:g}", *sample_interval));
+  }
+  if (!(std::isfinite(gap_factor) && gap_factor > 1.0)) {
+    throw Error(fmt::format("the gap factor must exceed 1 sample interval, not {:g}", gap_factor));
+  }
+}
+
+TimeStampReport check_time_stamps(TextTable& table, std::size_t time_column, const TimeStampOptions& options) {
+  options.validate();
+  if (time_column >= table.columns.size()) {
+    throw Error(SourceLocation{table.source, 0, 0}, "time column " + std::to_string(time_column + 1) + " was not read");
+  }
+  const std::vector<double>& time = table.columns[time_column];
+  const std::string name = column_name(table, time_column);
+  if (time.size() < 2) {
+    throw Error(locate_cell(table, 0, time_column),
+                fmt::format("time column {} has {} sample(s); a sample interval needs at least 2", name, time.size()));
+  }
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    if (time[i] > time[i - 1]) continue;
+    const std::string previous = line_of(table, i - 1) > 0 ? fmt::format(" at line {}", line_of(table, i - 1)) : "";
+    throw Error(locate_cell(table, i, time_column),
+                time[i] == time[i - 1]
+                    ? fmt::format("time stamp {:.10g} repeats the one before it{} (time column {})", time[i], previous, name)
+                    : fmt::format("time goes backwards: {:.10g} after {:.10g}{} (time column {})", time[i], time[i - 1],
+                                  previous, name));
+  }
+
+  TimeStampReport report;
+  report.policy = options.policy;
+  report.sample_interval = options.sample_interval.value_or(median_step(time));
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    const double ratio = (time[i] - time[i - 1]) / report.sample_interval;
+    if (ratio <= options.gap_factor) continue;
+    report.gaps.push_back({i, line_of(table, i), time[i - 1], time[i], missing_samples(ratio)});
+    if (options.policy != GapPolicy::kStop) continue;
+    const TimeGap& gap = report.gaps.back();
+    throw Error(locate_cell(table, i, time_column),
+                fmt::format("gap in the time stamps: {:.10g} to {:.10g} is {:.4g} sample intervals of {:.6g}, {} "
+                            "sample(s) missing (time column {}; the gap policy 'split' or 'interpolate' accepts it)",
+                            gap.time_before, gap.time_after, ratio, report.sample_interval, gap.missing, name));
+  }
+
+  if (options.policy == GapPolicy::kInterpolate && !report.gaps.empty()) {
+    for (const auto& gap : report.gaps) report.interpolated_samples += gap.missing;
+    if (report.interpolated_samples > time.size()) {
+      const TimeGap& longest = *std::max_element(report.gaps.begin(), report.gaps.end(),
+                                                 [](const auto& a, const auto& b) { return a.missing < b.missing; });
+      throw Error(locate_cell(table, longest.row, time_column),
+                  fmt::format("interpolation would add {} samples to a record of {}: the gaps are too long to fill "
+                              "(the longest, {} samples, ends here); split the record instead",
+                              report.interpolated_samples, time.size(), longest.missing));
+    }
+    interpolate_gaps(table, report.gaps, time_column);
+  }
+
+  if (options.policy == GapPolicy::kSplit) {
+    std::size_t begin = 0;
+    for (const auto& gap : report.gaps) {
+      report.segments.push_back(segment(table, begin, gap.row));
+      begin = gap.row;
+    }
+    report.segments.push_back(segment(table, begin, table.rows()));
+  } else {
+    report.segments.push_back(segment(table, 0, table.rows()));
+  }
+  return report;
+}
+
+nlohmann::json TimeStampReport::to_json() const {
+  nlohmann::json gap_list = nlohmann::json::array();
+  for (const auto& gap : gaps) {
+    gap_list.push_back({{"line", gap.line}, {"time_before", gap.time_before}, {"time_after", gap.time_after},
+                        {"missing_samples", gap.missing}});
+  }
+  nlohmann::json segment_list = nlohmann::json::array();
+  for (const auto& s : segments) {
+    segment_list.push_back({{"first_line", s.first_line}, {"last_line", s.last_line}, {"samples", s.size()}});
+  }
+  return {{"gap_policy", to_string(policy)}, {"sample_interval", sample_interval},   {"gaps", gap_list},
+          {"segments", segment_list},        {"interpolated_samples", interpolated_samples}};
+}
+
+}  // namespace inertest

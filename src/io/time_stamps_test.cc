@@ -1,0 +1,119 @@
+#include "inertest/io/time_stamps.h"
+
+#include <gtest/gtest.h>
+
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+// time,gyro at 10 ms with samples 0.03 and 0.04 missing (a gap of 3 intervals after line 4), and
+// gyro = 100 t + 1 so that interpolated values are known exactly.
+constexpr const char* kGap = "time,gyro\n0.00,1\n0.01,2\n0.02,3\n0.05,6\n0.06,7\n";
+
+TextTable table_of(const std::string& text) { return parse_text_table(text, "rec.csv"); }
+
+std::string error_of(const std::string& text, TimeStampOptions options = {}) {
+  TextTable table = table_of(text);
+  try {
+    check_time_stamps(table, 0, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(TimeStamps, RegularRecordIsOneSegment) {
+  TextTable table = table_of("t,v\n0,1\n0.5,2\n1.0,3\n1.5,4\n");
+  const TimeStampReport report = check_time_stamps(table, 0, {});
+  EXPECT_DOUBLE_EQ(report.sample_interval, 0.5);
+  EXPECT_TRUE(report.gaps.empty());
+  ASSERT_EQ(report.segments.size(), 1u);
+  EXPECT_EQ(report.segments[0].size(), 4u);
+  EXPECT_EQ(report.segments[0].first_line, 2u);
+  EXPECT_EQ(report.segments[0].last_line, 5u);
+}
+
+TEST(TimeStamps, StopNamesTheGap) {
+  EXPECT_THAT(error_of(kGap), HasSubstr("rec.csv:5: gap in the time stamps: 0.02 to 0.05 is 3 sample intervals of "
+                                        "0.01, 2 sample(s) missing (time column 'time'"));
+}
+
+TEST(TimeStamps, SplitReturnsTheContiguousSegments) {
+  TextTable table = table_of(kGap);
+  TimeStampOptions options;
+  options.policy = GapPolicy::kSplit;
+  const TimeStampReport report = check_time_stamps(table, 0, options);
+  ASSERT_EQ(report.gaps.size(), 1u);
+  EXPECT_EQ(report.gaps[0].row, 3u);
+  EXPECT_EQ(report.gaps[0].line, 5u);
+  EXPECT_EQ(report.gaps[0].missing, 2u);
+  EXPECT_DOUBLE_EQ(report.gaps[0].time_before, 0.02);
+  EXPECT_DOUBLE_EQ(report.gaps[0].time_after, 0.05);
+  ASSERT_EQ(report.segments.size(), 2u);
+  EXPECT_EQ(report.segments[0].begin, 0u);
+  EXPECT_EQ(report.segments[0].end, 3u);
+  EXPECT_EQ(report.segments[1].begin, 3u);
+  EXPECT_EQ(report.segments[1].end, 5u);
+  EXPECT_EQ(report.segments[1].first_line, 5u);
+  EXPECT_EQ(report.segments[1].last_line, 6u);
+  EXPECT_EQ(table.rows(), 5u);  // split leaves the table as read
+  EXPECT_EQ(report.to_json()["segments"][1]["samples"], 2);
+}
+
+TEST(TimeStamps, InterpolateFillsTheMissingSamplesLinearly) {
+  TextTable table = table_of(kGap);
+  TimeStampOptions options;
+  options.policy = GapPolicy::kInterpolate;
+  const TimeStampReport report = check_time_stamps(table, 0, options);
+  EXPECT_EQ(report.interpolated_samples, 2u);
+  ASSERT_EQ(table.rows(), 7u);
+  const std::vector<double> time{0.00, 0.01, 0.02, 0.03, 0.04, 0.05, 0.06};
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    EXPECT_NEAR(table.columns[0][i], time[i], 1e-15) << i;
+    EXPECT_NEAR(table.columns[1][i], 100.0 * time[i] + 1.0, 1e-12) << i;  // gyro = 100 t + 1
+  }
+  EXPECT_EQ(table.row_lines, (std::vector<std::size_t>{2, 3, 4, 0, 0, 5, 6}));
+  ASSERT_EQ(report.segments.size(), 1u);
+  EXPECT_EQ(report.segments[0].size(), 7u);
+}
+
+TEST(TimeStamps, GivenIntervalAndFactor) {
+  // At a nominal 20 ms the 30 ms step is no gap (1.5 intervals is not more than 1.5).
+  TextTable table = table_of("t,v\n0,1\n0.02,1\n0.05,1\n0.07,1\n");
+  TimeStampOptions options;
+  options.sample_interval = 0.02;
+  EXPECT_TRUE(check_time_stamps(table, 0, options).gaps.empty());
+  options.gap_factor = 1.2;
+  options.policy = GapPolicy::kSplit;
+  EXPECT_EQ(check_time_stamps(table, 0, options).gaps.size(), 1u);
+  options.gap_factor = 1.0;
+  EXPECT_THROW(check_time_stamps(table, 0, options), Error);
+}
+
+TEST(TimeStamps, BackwardsRepeatsAndTooFew) {
+  EXPECT_THAT(error_of("t,v\n0,1\n1,1\n0.5,1\n"), HasSubstr("rec.csv:4: time goes backwards: 0.5 after 1 at line 3"));
+  EXPECT_THAT(error_of("t,v\n0,1\n1,1\n1,1\n"), HasSubstr("rec.csv:4: time stamp 1 repeats the one before it at line 3"));
+  EXPECT_THAT(error_of("t,v\n0,1\n"), HasSubstr("rec.csv:2: time column 't' has 1 sample(s)"));
+}
+
+TEST(TimeStamps, RefusesToInventMostOfARecord) {
+  TimeStampOptions options;
+  options.policy = GapPolicy::kInterpolate;
+  EXPECT_THAT(error_of("t,v\n0,1\n1,1\n2,1\n1e300,1\n", options),
+              HasSubstr("rec.csv:5: interpolation would add 1000000000000000 samples to a record of 4"));
+  options.policy = GapPolicy::kSplit;
+  EXPECT_EQ(error_of("t,v\n0,1\n1,1\n2,1\n1e300,1\n", options), "no error");
+}
+
+TEST(TimeStamps, ParsesThePolicy) {
+  EXPECT_EQ(parse_gap_policy("split"), GapPolicy::kSplit);
+  EXPECT_EQ(to_string(parse_gap_policy("interpolate")), "interpolate");
+  EXPECT_THROW(parse_gap_policy("ignore"), Error);
+}
+
+}  // namespace
+}  // namespace inertest

@@ -66,7 +66,7 @@ test-fuzz-short:
 
 demo: build
 	@$(BUILD_DIR)/bin/inertest demo --out demo > /dev/null; status=$$?; \
-	  echo "demo: report in demo/report.txt, results (with truth_check) in demo/results.json"; exit $$status
+	  echo "demo: report in demo/report.html (text: demo/report.txt), results with truth_check in demo/results.json"; exit $$status
 
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null

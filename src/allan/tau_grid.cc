@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fast_float/fast_float.h>
+#include <fmt/format.h>
 
 #include "inertest/core/error.h"
 
@@ -55,9 +56,9 @@ TauGrid TauGrid::parse(std::string_view text) {
     double tau = 0.0;
     const auto [end, error] = fast_float::from_chars(item.data(), item.data() + item.size(), tau);
     if (item.empty() || error != std::errc() || end != item.data() + item.size()) {
-      bad_spec(text, "'" + std::string(item) + "' is not a number");
+      bad_spec(text, fmt::format("'{}' is not a number", item));
     }
-    if (!(tau > 0.0) || !std::isfinite(tau)) bad_spec(text, "tau must be positive, got '" + std::string(item) + "'");
+    if (!(tau > 0.0) || !std::isfinite(tau)) bad_spec(text, fmt::format("tau must be positive, got '{}'", item));
     grid.taus_s.push_back(tau);
     if (comma == std::string_view::npos) break;
     rest = rest.substr(comma + 1);

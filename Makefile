@@ -15,7 +15,7 @@ FUZZ_TARGETS := text_table binary_record plan
 export ASAN_OPTIONS ?= detect_leaks=1:strict_string_checks=1
 export UBSAN_OPTIONS ?= halt_on_error=1:print_stacktrace=1
 
-.PHONY: all deps configure build test demo bench clean sanitize-build test-sanitize fuzz test-fuzz-short
+.PHONY: all deps configure build test test-normal demo bench clean sanitize-build test-sanitize fuzz test-fuzz-short
 
 all: build
 
@@ -29,9 +29,10 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
-# The normal suite. The same suite under ASan + UBSan (`make test-sanitize`) and the short fuzz
-# pass (`make test-fuzz-short`) join it once they have passed on a fresh clone of main.
-test: build
+# The normal suite, then the same suite under ASan + UBSan, then a short pass of each fuzz target.
+test: test-normal test-sanitize test-fuzz-short
+
+test-normal: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 sanitize-build: deps

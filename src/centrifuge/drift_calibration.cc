@@ -228,6 +228,14 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
   options.validate();
   DriftCalibrationResult result;
   result.g_levels = check_runs(runs);
+  for (const CentrifugeRun& run : runs) {
+    if (run.harmonic_fit && run.harmonic_fit->constant_output) {
+      result.warnings.push_back(fmt::format(
+          "run at {} and beta = {}: all {} samples equal {:.10g} deg/h (a stuck channel?); its harmonics of 0 are "
+          "not a measurement",
+          g_label(run.accel_g), beta_label(run.beta_rad), run.harmonic_fit->sample_count, run.amplitudes[kK0]));
+    }
+  }
   result.site = options.site;
   result.compensation = options.compensation;
   const CentrifugeDesign design = centrifuge_design(runs, options.site);

@@ -1,6 +1,8 @@
 #include "inertest/centrifuge/drift_calibration.h"
 
+#include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -191,6 +193,19 @@ TEST(CentrifugeDriftCalibration, RecoversCoefficientsFromSimulatedSamples) {
   EXPECT_LT(result.residual_rms.value, 1e-10);
   ASSERT_TRUE(result.runs[0].harmonic_fit.has_value());
   EXPECT_LT(result.runs[0].harmonic_fit->residual_rms, 1e-10);
+}
+
+TEST(CentrifugeDriftCalibration, AStuckRunIsWarnedAbout) {
+  DriftCalibrationOptions options = paper_options();
+  auto samples = simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, false);
+  EXPECT_TRUE(calibrate_drift_coefficients(analyse_sample_runs(samples), options).warnings.empty());
+  std::fill(samples[1].output.begin(), samples[1].output.end(), 3.5);
+  const auto runs = analyse_sample_runs(samples);
+  EXPECT_TRUE(runs[1].harmonic_fit->constant_output);
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, options);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], HasSubstr(fmt::format("all {} samples equal 3.5 deg/h (a stuck channel?)",
+                                                        samples[1].output.size())));
 }
 
 // Any platform angles, three g-levels, irregular sampling (least-squares harmonic fit).

@@ -8,6 +8,7 @@
 #include "inertest/core/error.h"
 #include "inertest/numerics/compensated_sum.h"
 #include "inertest/numerics/least_squares.h"
+#include "inertest/numerics/statistics.h"
 
 namespace inertest::centrifuge {
 namespace {
@@ -67,6 +68,7 @@ HarmonicFit analyse_harmonics(std::span<const double> gamma_rad, std::span<const
   }
   HarmonicFit fit;
   fit.sample_count = n;
+  fit.constant_output = is_constant(output);
   const double revolutions = whole_revolutions(gamma_rad);
   if (revolutions > 0.0) {
     // Exact DFT bins over whole revolutions.

@@ -34,7 +34,7 @@ nlohmann::json describe(const std::string& name, const std::vector<double>& valu
   if (values.size() > 1) column["standard_deviation"] = sample_standard_deviation(values);
   // A channel that never changes is a stuck sensor or a wrong column; procedures that need its
   // variation (a slope, an Allan variance) will refuse it, so say so on the first look.
-  if (values.size() > 1 && *low == *high) {
+  if (is_constant(values)) {
     warnings.push_back(fmt::format("column '{}' is constant: all {} samples equal {:.10g} (a stuck channel?)", name,
                                    values.size(), *low));
   }

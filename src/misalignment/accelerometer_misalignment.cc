@@ -143,6 +143,9 @@ AccelerometerMisalignmentResult accelerometer_misalignment(std::span<const Accel
   for (std::size_t i = 0; i < run_order.size(); ++i)
     result.by_run.push_back(fit_run(run_order[i], run_rows[i], options));
   result.combined = combine_runs(result.by_run);
+  std::vector<double> outputs;
+  for (const AccelerometerMisalignmentRow& row : rows) outputs.push_back(row.output);
+  result.warnings = misalignment_detail::constant_output_warnings(outputs, options.output_unit);
   return result;
 }
 
@@ -174,6 +177,7 @@ nlohmann::json AccelerometerMisalignmentResult::to_json() const {
     runs.push_back(entry);
   }
   json["by_run"] = runs;
+  json["warnings"] = warnings;
   return json;
 }
 
@@ -187,6 +191,7 @@ std::string AccelerometerMisalignmentResult::report() const {
   }
   text += fmt::format("  mean of {} run(s)\n", by_run.size());
   text += angles_text(combined);
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
   return text;
 }
 

@@ -124,6 +124,18 @@ TEST(AccelerometerMisalignment, OneRunKeepsItsOwnLeastSquaresUncertainty) {
   EXPECT_NEAR_RELATIVE(result.combined.delta_theta_y2.value * kArcsec, 1e-5 - 2e-6, 1e-9);
 }
 
+TEST(AccelerometerMisalignment, AStuckOutputIsWarnedAboutAndRealDataIsNot) {
+  EXPECT_TRUE(accelerometer_misalignment(table2(), paper_options()).warnings.empty());
+  std::vector<AccelerometerMisalignmentRow> rows = table2();
+  for (auto& row : rows) row.output = -0.5;
+  const AccelerometerMisalignmentResult stuck = accelerometer_misalignment(rows, paper_options());
+  EXPECT_EQ(stuck.combined.misalignment.value, 0.0);
+  ASSERT_EQ(stuck.warnings.size(), 1u);
+  EXPECT_THAT(stuck.warnings[0], ::testing::HasSubstr("every position's output equals -0.5 V (a stuck channel?)"));
+  EXPECT_EQ(stuck.to_json().at("warnings"), nlohmann::json(stuck.warnings));
+  EXPECT_THAT(stuck.report(), ::testing::HasSubstr("warning: every position's output"));
+}
+
 TEST(AccelerometerMisalignment, PositionsThatCannotSeparateNameTheAngle) {
   std::vector<AccelerometerMisalignmentRow> rows = {{0, 0.1, 1, 5}, {180, 0.2, 1, 6}, {360 + 180, 0.3, 1, 7}};
   AccelerometerMisalignmentOptions options;

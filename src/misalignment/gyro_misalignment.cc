@@ -194,6 +194,9 @@ GyroMisalignmentResult gyro_misalignment(std::span<const GyroMisalignmentRow> ro
   // All rates together: the equations are in angle units, so every rate weighs the same; with the
   // same positions at every rate this is the mean of the per-rate solutions.
   result.combined = fit_pairs(all, options, "gyro misalignment: the positions of all rates");
+  std::vector<double> outputs;
+  for (const GyroMisalignmentRow& row : rows) outputs.push_back(row.output);
+  result.warnings = misalignment_detail::constant_output_warnings(outputs, options.output_unit);
   return result;
 }
 
@@ -232,6 +235,7 @@ nlohmann::json GyroMisalignmentResult::to_json() const {
     rates.push_back(entry);
   }
   json["by_rate"] = rates;
+  json["warnings"] = warnings;
   return json;
 }
 
@@ -246,6 +250,7 @@ std::string GyroMisalignmentResult::report() const {
   text += fmt::format("  all rates ({} equations, {} degrees of freedom, residual rms {:.3g} arcsec)\n",
                       combined.equation_count, combined.degrees_of_freedom, combined.residual_rms.value);
   text += angles_text(combined.angles);
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
   return text;
 }
 

@@ -181,6 +181,20 @@ TEST(GyroMisalignment, RecoversSyntheticAnglesFromAnyIdentifyingPositions) {
   EXPECT_NEAR(*result.by_rate[0].fit.angles.delta_theta_x0.uncertainty, 0.0, 1e-9);
 }
 
+TEST(GyroMisalignment, AStuckOutputIsWarnedAboutAndRealDataIsNot) {
+  const std::vector<std::array<double, 2>> positions(kPaperPositions.begin(), kPaperPositions.end());
+  const TrueAngles truth{-7.5 * kArcsec, 2.4 * kArcsec, -53.8 * kArcsec, -162.0 * kArcsec, 56.3 * kArcsec};
+  auto rows = synthetic_rows(truth, positions, {20}, kPaperScaleFactor);
+  EXPECT_TRUE(gyro_misalignment(rows, paper_options()).warnings.empty());
+  for (auto& row : rows) row.output = 0.125;
+  const GyroMisalignmentResult stuck = gyro_misalignment(rows, paper_options());
+  EXPECT_EQ(stuck.combined.angles.misalignment.value, 0.0);
+  ASSERT_EQ(stuck.warnings.size(), 1u);
+  EXPECT_THAT(stuck.warnings[0], ::testing::HasSubstr("every position's output equals 0.125 V (a stuck channel?)"));
+  EXPECT_EQ(stuck.to_json().at("warnings"), nlohmann::json(stuck.warnings));
+  EXPECT_THAT(stuck.report(), ::testing::HasSubstr("warning: every position's output"));
+}
+
 TEST(GyroMisalignment, ResidualsAndUncertaintiesOfAnOverDeterminedSetByHand) {
   // The paper's positions plus V6 (180°, 0): g6 = −Δθy0 − Δθy1 + Δθy2 closes the loop
   // g1 − g2 + g3 − g6 = 0, so a disturbance e on equation 6 leaves the residuals c·e/4 with

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "inertest/core/units.h"
+#include "inertest/numerics/statistics.h"
 
 namespace inertest::misalignment_detail {
 namespace {
@@ -96,6 +97,13 @@ Figure misalignment_figure(double delta_theta_y2, double delta_theta_z2,
     sigma = std::sqrt(std::max(variance, 0.0));
   }
   return arcsec_figure(gamma, sigma);
+}
+
+std::vector<std::string> constant_output_warnings(std::span<const double> outputs, const std::string& output_unit) {
+  if (!is_constant(outputs)) return {};
+  return {fmt::format("every position's output equals {:.10g} {} (a stuck channel?); angles of 0 arcsec from it are "
+                      "not a measurement",
+                      outputs.front(), output_unit)};
 }
 
 }  // namespace inertest::misalignment_detail

@@ -37,4 +37,8 @@ struct AnglePairCovariance {
 };
 Figure misalignment_figure(double delta_theta_y2, double delta_theta_z2, std::optional<AnglePairCovariance> covariance);
 
+// The result's warnings for its outputs: one when every position gave the same output (a stuck
+// channel), whose angles of 0 arcsec are then not a measurement; none otherwise.
+std::vector<std::string> constant_output_warnings(std::span<const double> outputs, const std::string& output_unit);
+
 }  // namespace inertest::misalignment_detail

@@ -1,5 +1,6 @@
 #include "inertest/numerics/statistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -33,6 +34,11 @@ std::vector<double> window_means(std::span<const double> values, std::size_t win
   std::vector<double> means(count);
   for (std::size_t i = 0; i < count; ++i) means[i] = mean(values.subspan(i * window, window));
   return means;
+}
+
+bool is_constant(std::span<const double> values) {
+  if (values.size() < 2) return false;
+  return std::all_of(values.begin() + 1, values.end(), [first = values.front()](double v) { return v == first; });
 }
 
 }  // namespace inertest

@@ -63,6 +63,12 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
   if (options.remove_earth_rate) {
     result.earth_rate_removed = Figure{to_deg_h(earth_rate_on_axis(*options.remove_earth_rate)), "deg/h", std::nullopt};
   }
+  if (is_constant(output)) {
+    result.warnings.push_back(fmt::format(
+        "the record is constant: all {} samples equal {:.10g} {} (a stuck channel?); its bias stability and random "
+        "walk of 0 are not measurements",
+        output.size(), output.front(), options.input_in_deg_h ? "deg/h" : options.output_unit));
+  }
   for (double s : options.smoothing_s) {
     const StabilityAtSmoothing stability = output_stability(output, options.sample_rate_hz, s);  // eq. (20)
     std::vector<double> smoothed;
@@ -117,6 +123,7 @@ nlohmann::json BiasResult::to_json() const {
   }
   json["smoothed_record"] = smoothed;
   if (earth_rate_removed) json["earth_rate_removed"] = *earth_rate_removed;
+  json["warnings"] = warnings;
   return json;
 }
 
@@ -137,6 +144,7 @@ std::string BiasResult::report() const {
     text += fmt::format("  {:<32} {:.6g} {}\n", "random walk coefficient", random_walk_coefficient->value,
                         random_walk_coefficient->unit);
   }
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
   return text;
 }
 

@@ -180,6 +180,21 @@ TEST(BiasTest, JsonHasTheContractKeys) {
   EXPECT_EQ(json.at("random_walk_coefficient").at("unit"), "deg/sqrt(h)");
 }
 
+TEST(BiasTest, AConstantRecordIsWarnedAbout) {
+  // A stuck channel gives a stability of exactly 0; the result must not present it as a measurement.
+  const std::vector<double> stuck(8, 1.0);
+  const BiasResult result = bias(stuck, unit_options(4.0, {1.0}, true));
+  EXPECT_EQ(result.bias_stability[0].value.value, 0.0);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("all 8 samples equal 1 1 (a stuck channel?)"));
+  EXPECT_EQ(result.to_json().at("warnings"), nlohmann::json(result.warnings));
+  EXPECT_THAT(result.report(), ::testing::HasSubstr("warning: the record is constant"));
+  // One differing sample is a record, not a stuck channel.
+  std::vector<double> moving = stuck;
+  moving.back() = 1.5;
+  EXPECT_TRUE(bias(moving, unit_options(4.0, {1.0}, true)).warnings.empty());
+}
+
 TEST(BiasTest, BadInputIsAnError) {
   const std::vector<double> output(10, 1.0);
   EXPECT_THROW(bias(output, unit_options(0.0, {1.0})), Error);     // non-positive rate

@@ -20,6 +20,8 @@ struct HarmonicFit {
   std::size_t sample_count = 0;
   double revolutions = 0.0;  // span covered by the samples (N * step / 2 pi for the DFT)
   Method method = Method::kLeastSquares;
+  // Every sample equal (a stuck channel): the harmonics k1..k2 are 0 by construction, not measured.
+  bool constant_output = false;
 };
 
 // "dft" or "least_squares".

@@ -65,6 +65,7 @@ struct AccelerometerMisalignmentResult {
   std::vector<AccelerometerMisalignmentRun> by_run;  // in order of first appearance
   std::string output_unit;
   double scale_factor = 0.0;
+  std::vector<std::string> warnings;  // e.g. every output equal (a stuck channel)
 
   nlohmann::json to_json() const;
   std::string report() const;

@@ -85,6 +85,7 @@ struct GyroMisalignmentResult {
   std::vector<GyroMisalignmentRateResult> by_rate;  // increasing |ω|
   std::string output_unit;
   double scale_factor = 0.0;
+  std::vector<std::string> warnings;  // e.g. every output equal (a stuck channel)
 
   nlohmann::json to_json() const;
   std::string report() const;

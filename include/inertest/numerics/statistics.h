@@ -17,4 +17,9 @@ double sample_standard_deviation(std::span<const double> values);
 // dropped. Throws Error if window is zero or longer than the record.
 std::vector<double> window_means(std::span<const double> values, std::size_t window);
 
+// True when there are two or more values and all are equal: a channel stuck at one value (or a
+// wrong column). A procedure given such a record computes zero spread, zero harmonics or zero
+// angles that are not measurements, and says so in its warnings.
+bool is_constant(std::span<const double> values);
+
 }  // namespace inertest

@@ -60,6 +60,7 @@ struct BiasResult {
   std::optional<Figure> earth_rate_removed;       // deg/h, when removed
   std::size_t samples = 0;
   Figure duration;                                // s
+  std::vector<std::string> warnings;              // e.g. a constant record (stuck channel)
 
   nlohmann::json to_json() const;
   std::string report() const;

@@ -69,5 +69,50 @@ TEST(AllanCommand, JsonHoldsEveryEstimatorWithItsEdfMethod) {
   EXPECT_THAT(json["mdev"]["edf_method"].get<std::string>(), HasSubstr("Greenhall"));
 }
 
+// White noise around 10 as a raw f64 record of n samples.
+std::string white_f64_record(std::size_t n) {
+  testing::UniformSequence uniform;
+  std::vector<double> y(n);
+  for (double& v : y) v = 10.0 + uniform.next();
+  return testing::f64_bytes(y);
+}
+
+TEST(AllanCommand, JsonOfAnF64Record) {
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("w.f64", white_f64_record(4096));
+  const auto run = testing::run_cli({"allan", path, "--rate", "100", "--format", "f64", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["tau"].size(), 11u);  // m = 1 .. 1024 <= 4096/3
+  EXPECT_DOUBLE_EQ(json["tau"][0].get<double>(), 0.01);
+  for (const char* name : {"adev", "oadev", "mdev", "hdev", "ohdev", "totdev"}) {
+    ASSERT_TRUE(json.contains(name)) << name;
+    EXPECT_EQ(json[name]["values"].size(), json["tau"].size());
+    EXPECT_EQ(json[name]["lower"].size(), json["tau"].size());
+    EXPECT_EQ(json[name]["upper"].size(), json["tau"].size());
+    EXPECT_EQ(json[name]["unit"], "deg/h");
+  }
+  for (const char* name : {"quantization", "angle_random_walk", "bias_instability", "rate_random_walk", "rate_ramp"}) {
+    EXPECT_TRUE(json["noise"][name].contains("unit")) << name;
+  }
+  EXPECT_EQ(json["noise"]["angle_random_walk"]["unit"], "deg/sqrt(h)");
+  EXPECT_TRUE(json["noise"]["slope_method"].contains("angle_random_walk"));
+}
+
+TEST(AllanCommand, ClearErrors) {
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("w.f64", white_f64_record(64));
+  auto run = testing::run_cli({"allan", path, "--rate", "0", "--format", "f64", "--json"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("sample rate"));
+  run = testing::run_cli({"allan", path, "--rate", "1", "--format", "f64", "--taus", "fortnightly"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("tau specification"));
+  const std::string tiny = dir.write("tiny.f64", white_f64_record(2));
+  run = testing::run_cli({"allan", tiny, "--rate", "1", "--format", "f64"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("too few samples"));
+}
+
 }  // namespace
 }  // namespace inertest

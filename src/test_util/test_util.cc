@@ -1,6 +1,8 @@
 #include "test_util/test_util.h"
 
+#include <bit>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +18,13 @@ namespace inertest::testing {
   return ::testing::AssertionFailure() << "actual " << actual << " differs from expected " << expected << " by "
                                        << error << " (relative " << error / std::abs(expected) << "), more than "
                                        << tolerance << (expected == 0.0 ? " absolute" : " relative");
+}
+
+std::string f64_bytes(const std::vector<double>& values) {
+  static_assert(std::endian::native == std::endian::little, "the f64 records of the tests are little-endian");
+  std::string bytes(values.size() * sizeof(double), '\0');
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  return bytes;
 }
 
 double log_relative_error(double actual, double expected) {

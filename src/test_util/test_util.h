@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,23 @@ class ScratchDirectory {
  private:
   std::string path_;
 };
+
+// Uniform numbers in [-0.5, 0.5) from a 64-bit linear congruential generator (Knuth's MMIX
+// constants): records that are the same on every platform, unlike <random>'s distributions.
+class UniformSequence {
+ public:
+  explicit UniformSequence(std::uint64_t seed = 12345) : state_(seed) {}
+  double next() {
+    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state_ >> 11) / 9007199254740992.0 - 0.5;
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+// The values as a raw little-endian f64 record holds them.
+std::string f64_bytes(const std::vector<double>& values);
 
 // Path of a file in the source tree, e.g. source_path("data/scale_factor/points.csv").
 std::string source_path(const std::string& relative);

@@ -22,7 +22,7 @@
 #include "inertest/allan/allan_engine.h"
 #include "inertest/allan/confidence.h"
 #include "inertest/allan/noise_terms.h"
-#include "inertest/allan/rate_record.h"
+#include "inertest/io/rate_record.h"
 #include "inertest/core/figure.h"
 #include "inertest/core/progress.h"
 

@@ -1,7 +1,8 @@
-// Streaming reader of a rate record for the Allan engine: one channel of text (CSV, TSV,
-// semicolon or whitespace separated, optional header, '#' comments) or raw little-endian f64/f32.
-// The file is read in chunks with read(2)-style I/O, never held whole: records of 10^9 samples
-// pass through a few MB of buffer.
+// Streaming reader of one channel of a rate record, for records too long to hold (the Allan
+// engine reads 10^9 samples through it): text (CSV, TSV, semicolon or whitespace separated,
+// optional header, '#' comments) or raw little-endian f64/f32. The file is read in chunks, never
+// held whole: a record of any length passes through a few MB of buffer. Text rows are checked
+// exactly as read_text_table checks them (same messages, same file:line:column).
 #pragma once
 
 #include <cstddef>

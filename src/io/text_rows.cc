@@ -1,0 +1,240 @@
+#include "io/text_rows.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fast_float/fast_float.h>
+
+#include "inertest/core/error.h"
+
+namespace inertest::io_detail {
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+bool is_skipped(std::string_view line, char comment) {
+  std::size_t i = 0;
+  while (i < line.size() && is_blank(line[i])) ++i;
+  return i == line.size() || (comment != '\0' && line[i] == comment);
+}
+
+// A line holding both ',' and ';' is taken as ';'-separated with decimal commas, the common
+// European lab export, so that the cells are reported as decimal commas rather than misread.
+char detect_delimiter(std::string_view line) {
+  for (char candidate : {'\t', ';', ','}) {
+    if (line.find(candidate) != std::string_view::npos) return candidate;
+  }
+  return ' ';
+}
+
+std::string printable(std::string_view text) {
+  std::string out(text.substr(0, 40));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  }
+  return text.size() > 40 ? out + "..." : out;
+}
+
+// Parses one numeric cell; nullopt when the text is not exactly one finite number.
+std::optional<double> parse_number(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (*begin == '+') ++begin;  // fast_float rejects a leading '+'
+  double value = 0.0;
+  const auto result = fast_float::from_chars(begin, end, value);
+  if (result.ec != std::errc() || result.ptr != end) return std::nullopt;
+  return value;
+}
+
+// Decimal commas ("1,25" in a ';' or whitespace separated file) are a common lab export.
+bool is_decimal_comma(std::string_view text) {
+  return text.find(',') != std::string_view::npos &&
+         std::any_of(text.begin(), text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }) &&
+         std::all_of(text.begin(), text.end(), [](char c) {
+           return std::isdigit(static_cast<unsigned char>(c)) || c == ',' || c == '-' || c == '+';
+         });
+}
+
+[[noreturn]] void fail_decimal_comma(const SourceLocation& location, std::string_view text, const std::string& where) {
+  throw Error(location, "'" + printable(text) + "'" + where + " looks like a decimal comma; inertest expects a decimal point");
+}
+
+[[noreturn]] void fail_cell(const std::string& source, const Line& line, const Field& field,
+                            const std::string& column_name) {
+  const std::string where = column_name.empty() ? "" : " in column '" + column_name + "'";
+  const SourceLocation location{source, line.number, field.column};
+  if (field.text.empty()) throw Error(location, "empty cell" + where + ", expected a number");
+  if (is_decimal_comma(field.text)) fail_decimal_comma(location, field.text, where);
+  throw Error(location, "expected a number" + where + ", found '" + printable(field.text) + "'");
+}
+
+bool is_header_again(const RowLayout& layout, const std::vector<Field>& fields) {
+  if (!layout.has_header || fields.size() != layout.header_names.size()) return false;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if (fields[i].text != layout.header_names[i]) return false;
+  }
+  return true;
+}
+
+// A row with the wrong number of fields. The column is where the first missing field would start
+// (the line's end) or where the first extra field starts.
+[[noreturn]] void fail_width(const RowLayout& layout, const Line& row, const std::vector<Field>& fields,
+                             std::string_view chunk) {
+  const bool too_few = fields.size() < layout.width;
+  std::size_t column = too_few ? row.text.size() + 1 : fields[layout.width].column;
+  std::string hint;
+  const bool unterminated = row.text.data() + row.text.size() == chunk.data() + chunk.size();
+  if (too_few && unterminated) {
+    hint = " (the last line has no line end: a truncated record?)";
+  } else if (fields.size() == 1 && layout.width > 1) {
+    for (char other : {',', ';', '\t'}) {
+      if (other != layout.delimiter && row.text.find(other) != std::string_view::npos) {
+        column = row.text.find(other) + 1;
+        hint = std::string(" (this line is separated by '") + (other == '\t' ? "\\t" : std::string(1, other)) +
+               "', the record by '" + (layout.delimiter == '\t' ? "\\t" : std::string(1, layout.delimiter)) +
+               "': mixed delimiters)";
+        break;
+      }
+    }
+  } else if (layout.has_header) {
+    hint = " (a stray header or a truncated line?)";
+  }
+  throw Error(SourceLocation{layout.source, row.number, column},
+              "expected " + std::to_string(layout.width) + " columns, found " + std::to_string(fields.size()) + hint);
+}
+
+}  // namespace
+
+std::optional<Line> next_content_line(LineCursor& cursor, char comment) {
+  Line line{};
+  while (cursor.next(line)) {
+    if (!is_skipped(line.text, comment)) return line;
+  }
+  return std::nullopt;
+}
+
+void split(std::string_view line, char delimiter, std::vector<Field>& fields) {
+  fields.clear();
+  std::size_t i = 0;
+  const std::size_t n = line.size();
+  if (delimiter == ' ') {
+    while (i < n) {
+      while (i < n && is_blank(line[i])) ++i;
+      if (i == n) break;
+      const std::size_t start = i;
+      while (i < n && !is_blank(line[i])) ++i;
+      fields.push_back({line.substr(start, i - start), start + 1});
+    }
+    return;
+  }
+  for (;;) {
+    std::size_t start = i;
+    while (i < n && line[i] != delimiter) ++i;
+    std::size_t stop = i;
+    while (start < stop && is_blank(line[start])) ++start;
+    while (stop > start && is_blank(line[stop - 1])) --stop;
+    fields.push_back({line.substr(start, stop - start), start + 1});
+    if (i == n) break;
+    ++i;
+  }
+}
+
+RowLayout read_row_layout(const Line& first, const std::string& source, const TextTableOptions& options) {
+  if (first.text.find('\0') != std::string_view::npos) {
+    throw Error(SourceLocation{source, first.number, first.text.find('\0') + 1},
+                "binary data in a text record (use a binary format option)");
+  }
+  RowLayout layout;
+  layout.source = source;
+  layout.comment = options.comment;
+  layout.record_row_lines = options.record_row_lines;
+  layout.delimiter = options.delimiter != '\0' ? options.delimiter : detect_delimiter(first.text);
+  std::vector<Field> fields;
+  split(first.text, layout.delimiter, fields);
+  layout.width = fields.size();
+
+  layout.has_header = options.header == TextTableOptions::Header::kPresent;
+  if (options.header == TextTableOptions::Header::kDetect) {
+    layout.has_header = std::any_of(fields.begin(), fields.end(), [](const Field& f) { return !parse_number(f.text); });
+    for (const Field& field : fields) {
+      if (layout.has_header && is_decimal_comma(field.text)) {
+        fail_decimal_comma(SourceLocation{source, first.number, field.column}, field.text, "");
+      }
+    }
+  }
+  layout.header_names.resize(layout.width);
+  if (layout.has_header) {
+    for (std::size_t i = 0; i < layout.width; ++i) layout.header_names[i] = std::string(fields[i].text);
+  }
+  layout.first_data_line = layout.has_header ? first.number + 1 : first.number;
+
+  // Resolve the selected columns to 0-based positions.
+  if (options.columns.empty()) {
+    for (std::size_t i = 0; i < layout.width; ++i) layout.positions.push_back(i);
+    return layout;
+  }
+  for (const auto& selector : options.columns) {
+    if (selector.index > 0) {
+      if (selector.index > layout.width) {
+        throw Error(SourceLocation{source, first.number, 1},
+                    "column " + std::to_string(selector.index) + " asked for, but the record has " +
+                        std::to_string(layout.width) + " columns");
+      }
+      layout.positions.push_back(selector.index - 1);
+      continue;
+    }
+    if (!layout.has_header) {
+      throw Error(SourceLocation{source, first.number, 1},
+                  "column '" + selector.name + "' asked for by name, but the record has no header row");
+    }
+    const auto it = std::find(layout.header_names.begin(), layout.header_names.end(), selector.name);
+    if (it == layout.header_names.end()) {
+      std::string known;
+      for (const auto& n : layout.header_names) known += (known.empty() ? "" : ", ") + n;
+      throw Error(SourceLocation{source, first.number, 1},
+                  "no column '" + selector.name + "' in the header (columns: " + known + ")");
+    }
+    layout.positions.push_back(static_cast<std::size_t>(it - layout.header_names.begin()));
+  }
+  return layout;
+}
+
+void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result) {
+  result.columns.resize(layout.positions.size());
+  const std::size_t estimate = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
+  for (auto& c : result.columns) c.reserve(estimate);
+  if (layout.record_row_lines) result.row_lines.reserve(estimate);
+  LineCursor cursor(chunk, first_line - 1);
+  Line row{};
+  std::vector<Field> fields;
+  try {
+    while (cursor.next(row)) {
+      if (is_skipped(row.text, layout.comment)) continue;
+      split(row.text, layout.delimiter, fields);
+      if (fields.size() != layout.width) fail_width(layout, row, fields, chunk);
+      for (std::size_t k = 0; k < layout.positions.size(); ++k) {
+        const Field& field = fields[layout.positions[k]];
+        const auto value = parse_number(field.text);
+        if (!value) {
+          if (is_header_again(layout, fields)) {
+            throw Error(SourceLocation{layout.source, row.number, 1},
+                        "a second header row in the data (records joined together?)");
+          }
+          fail_cell(layout.source, row, field, layout.header_names[layout.positions[k]]);
+        }
+        if (!std::isfinite(*value)) {
+          throw Error(SourceLocation{layout.source, row.number, field.column},
+                      "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
+        }
+        result.columns[k].push_back(*value);
+      }
+      if (layout.record_row_lines) result.row_lines.push_back(row.number);
+      if (result.row_count++ == 0) result.first_line = row.number;
+    }
+  } catch (...) {
+    result.error = std::current_exception();
+  }
+}
+
+}  // namespace inertest::io_detail

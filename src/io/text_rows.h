@@ -1,0 +1,91 @@
+// The row parser behind every text record reader: the layout the first line fixes (delimiter,
+// header, chosen columns) and the parse of a run of whole lines against it, with the messages of
+// the bad-input corpus (file:line:column, decimal commas, mixed delimiters, a second header,
+// NaN/Inf, a truncated last line). parse_text_table (text_table.cc) runs it on chunks in parallel;
+// read_rate_record (rate_record.cc) on consecutive buffers of a stream. Private to io.
+#pragma once
+
+#include <cstddef>
+#include <cstring>
+#include <exception>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "inertest/io/text_table.h"
+
+namespace inertest::io_detail {
+
+struct Line {
+  std::string_view text;  // without '\n' and trailing '\r'
+  std::size_t number;     // 1-based
+};
+
+// Iterates lines of a buffer with memchr.
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text, std::size_t lines_before = 0) : text_(text), number_(lines_before) {}
+  // Offset of the next line's first byte (one past the end after a last line without '\n').
+  std::size_t position() const { return pos_; }
+  bool next(Line& line) {
+    if (pos_ >= text_.size()) return false;
+    const char* begin = text_.data() + pos_;
+    const void* found = std::memchr(begin, '\n', text_.size() - pos_);
+    const std::size_t end = found ? static_cast<std::size_t>(static_cast<const char*>(found) - text_.data()) : text_.size();
+    std::size_t stop = end;
+    if (stop > pos_ && text_[stop - 1] == '\r') --stop;
+    line = {text_.substr(pos_, stop - pos_), ++number_};
+    pos_ = end + 1;
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t number_ = 0;
+};
+
+// The next line that is neither blank nor a comment, or nullopt at the end of the buffer.
+std::optional<Line> next_content_line(LineCursor& cursor, char comment);
+
+// A field: its text trimmed of blanks, and its 1-based column in the line.
+struct Field {
+  std::string_view text;
+  std::size_t column;
+};
+
+// Splits a line into fields. delimiter ' ' means runs of blanks.
+void split(std::string_view line, char delimiter, std::vector<Field>& fields);
+
+// What every data row must look like, decided from the first line.
+struct RowLayout {
+  std::string source;
+  char delimiter = ',';
+  std::size_t width = 0;
+  bool has_header = false;
+  std::vector<std::string> header_names;  // one per field, "" without a header
+  std::vector<std::size_t> positions;     // 0-based fields to keep, in the order asked
+  char comment = '#';
+  bool record_row_lines = true;
+  // The line after the header, or the first line itself when it is data.
+  std::size_t first_data_line = 0;
+};
+
+// The layout from the first line that is neither blank nor a comment. Throws Error for binary
+// data, a decimal comma in a header, or a selected column the line does not have.
+RowLayout read_row_layout(const Line& first, const std::string& source, const TextTableOptions& options);
+
+struct RowChunk {
+  std::vector<std::vector<double>> columns;  // one per layout position
+  std::vector<std::size_t> row_lines;        // with RowLayout::record_row_lines
+  std::size_t row_count = 0;
+  std::size_t first_line = 0;                // line of the first data row, 0 if none
+  std::exception_ptr error;                  // the first error in the chunk; parsing stops there
+};
+
+// Parses whole lines (a last line without '\n' is taken as the record's truncated end) starting at
+// line number first_line. Never throws: an error is left in result.error.
+void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result);
+
+}  // namespace inertest::io_detail

@@ -79,6 +79,14 @@ std::vector<Limit> read_limits(PlanTable& step) {
     const auto& begin = node->source().begin;
     limit.where = {step.plan_path(), static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     if (!limit.min && !limit.max) limit_table->fail("a limit needs 'min', 'max' or both");
+    if (figure.front() == '/') {
+      try {
+        const nlohmann::json::json_pointer pointer(figure);
+      } catch (const nlohmann::json::exception&) {
+        throw Error(limit.where, "limit on '" + figure +
+                                     "': not a valid JSON pointer (RFC 6901: '~' must be followed by '0' or '1')");
+      }
+    }
     if (!limit.unit.empty()) Unit::parse(limit.unit);
     limit_table->require_all_used();
     limits.push_back(std::move(limit));
@@ -157,8 +165,12 @@ Plan load_plan(const std::string& path) {
 
 const nlohmann::json* find_figure(const nlohmann::json& result, const std::string& figure) {
   if (!figure.empty() && figure.front() == '/') {
-    const nlohmann::json::json_pointer pointer(figure);
-    return result.contains(pointer) ? &result.at(pointer) : nullptr;
+    try {
+      const nlohmann::json::json_pointer pointer(figure);  // its syntax was checked by read_limits
+      return result.contains(pointer) ? &result.at(pointer) : nullptr;
+    } catch (const nlohmann::json::exception&) {
+      return nullptr;  // an array index beyond any size: no such figure
+    }
   }
   return result.contains(figure) ? &result.at(figure) : nullptr;
 }

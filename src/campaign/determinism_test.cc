@@ -32,11 +32,10 @@ std::string results_with_threads(const std::string& plan, const std::string& out
 // that 2 threads really split it. White noise from a fixed linear congruential generator.
 void write_rest_record(const std::string& path) {
   std::string text = "rate\n";
-  std::uint64_t state = 12345;
+  testing::UniformSequence uniform;
   char line[32];
   for (int i = 0; i < 900000; ++i) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double noise = static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;
+    const double noise = uniform.next();
     std::snprintf(line, sizeof line, "%.7f\n", 5.0 + 0.01 * noise);
     text += line;
   }

@@ -69,17 +69,9 @@ TEST(AllanCommand, JsonHoldsEveryEstimatorWithItsEdfMethod) {
   EXPECT_THAT(json["mdev"]["edf_method"].get<std::string>(), HasSubstr("Greenhall"));
 }
 
-// White noise around 10 as a raw f64 record of n samples.
-std::string white_f64_record(std::size_t n) {
-  testing::UniformSequence uniform;
-  std::vector<double> y(n);
-  for (double& v : y) v = 10.0 + uniform.next();
-  return testing::f64_bytes(y);
-}
-
 TEST(AllanCommand, JsonOfAnF64Record) {
   testing::ScratchDirectory dir;
-  const std::string path = dir.write("w.f64", white_f64_record(4096));
+  const std::string path = dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 4096)));
   const auto run = testing::run_cli({"allan", path, "--rate", "100", "--format", "f64", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
@@ -101,14 +93,14 @@ TEST(AllanCommand, JsonOfAnF64Record) {
 
 TEST(AllanCommand, ClearErrors) {
   testing::ScratchDirectory dir;
-  const std::string path = dir.write("w.f64", white_f64_record(64));
+  const std::string path = dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 64)));
   auto run = testing::run_cli({"allan", path, "--rate", "0", "--format", "f64", "--json"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("sample rate"));
   run = testing::run_cli({"allan", path, "--rate", "1", "--format", "f64", "--taus", "fortnightly"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("tau specification"));
-  const std::string tiny = dir.write("tiny.f64", white_f64_record(2));
+  const std::string tiny = dir.write("tiny.f64", testing::f64_bytes(testing::uniform_noise(10.0, 2)));
   run = testing::run_cli({"allan", tiny, "--rate", "1", "--format", "f64"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("too few samples"));

@@ -168,14 +168,11 @@ asymmetry = { max = 10, unit = "ppm" }
 // A white-noise rate record (deg/h) at 10 Hz from a fixed-seed generator, one sample a line.
 std::string white_noise_record(std::size_t samples) {
   std::string text = "rate\n";
-  std::uint64_t state = 12345;
+  inertest::testing::UniformSequence uniform;
   for (std::size_t i = 0; i < samples; ++i) {
-    double sum = 0.0;  // Irwin-Hall: the sum of 12 uniforms minus 6 is near-Gaussian, unit variance
-    for (int k = 0; k < 12; ++k) {
-      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-      sum += static_cast<double>(state >> 11) / 9007199254740992.0;
-    }
-    text += std::to_string(0.5 + 0.05 * (sum - 6.0)) + "\n";
+    double sum = 0.0;  // Irwin-Hall: the sum of 12 uniforms (each in [-0.5, 0.5)) is near-Gaussian, unit variance
+    for (int k = 0; k < 12; ++k) sum += uniform.next();
+    text += std::to_string(0.5 + 0.05 * sum) + "\n";
   }
   return text;
 }

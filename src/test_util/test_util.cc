@@ -20,6 +20,13 @@ namespace inertest::testing {
                                        << tolerance << (expected == 0.0 ? " absolute" : " relative");
 }
 
+std::vector<double> uniform_noise(double mean, std::size_t n) {
+  UniformSequence uniform;
+  std::vector<double> samples(n);
+  for (double& v : samples) v = mean + uniform.next();
+  return samples;
+}
+
 std::string f64_bytes(const std::vector<double>& values) {
   static_assert(std::endian::native == std::endian::little, "the f64 records of the tests are little-endian");
   std::string bytes(values.size() * sizeof(double), '\0');

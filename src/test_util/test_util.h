@@ -68,6 +68,9 @@ class UniformSequence {
   std::uint64_t state_;
 };
 
+// n samples of mean + UniformSequence noise: white noise of variance 1/12 around the mean.
+std::vector<double> uniform_noise(double mean, std::size_t n);
+
 // The values as a raw little-endian f64 record holds them.
 std::string f64_bytes(const std::vector<double>& values);
 

@@ -11,17 +11,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// White noise around 10 as a raw f64 record of n samples.
-std::string white_f64_record(std::size_t n) {
-  testing::UniformSequence uniform;
-  std::vector<double> y(n);
-  for (double& v : y) v = 10.0 + uniform.next();
-  return testing::f64_bytes(y);
-}
-
 TEST(AllanStep, RunsFromAPlanWithScaleFactor) {
   testing::ScratchDirectory dir;
-  dir.write("w.f64", white_f64_record(3000));
+  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
   const std::string plan = dir.write("plan.toml", R"(
 [plan]
 title = "noise"

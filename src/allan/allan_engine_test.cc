@@ -110,7 +110,7 @@ struct Reference {
 
 double mean_of(const std::vector<double>& y) {
   Real s = 0;
-  for (double v : y) s += v;
+  for (double v : y) s += static_cast<Real>(v);
   return static_cast<double>(s / static_cast<Real>(y.size()));
 }
 

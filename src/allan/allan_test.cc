@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <limits>
 
 #include "inertest/core/error.h"
 #include "test_util/test_util.h"
@@ -208,7 +209,7 @@ TEST(AllanVariance, BadInputIsAClearError) {
   EXPECT_THROW(allan_variance(many, bad_unit), Error);
   EXPECT_THROW(EstimatorSet::parse("adev,avar"), Error);
   std::vector<double> with_nan(many);
-  with_nan[5] = NAN;
+  with_nan[5] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(allan_variance(with_nan, options_at(1.0)), Error);
 }
 

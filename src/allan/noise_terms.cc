@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
@@ -144,7 +145,9 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
   const Eigen::MatrixXd normal = design.transpose() * design;
   const Eigen::FullPivLU<Eigen::MatrixXd> normal_lu(normal);
   const Eigen::MatrixXd full_covariance =
-      normal_lu.isInvertible() ? Eigen::MatrixXd(normal_lu.inverse()) : Eigen::MatrixXd::Constant(kTerms, kTerms, INFINITY);
+      normal_lu.isInvertible()
+          ? Eigen::MatrixXd(normal_lu.inverse())
+          : Eigen::MatrixXd::Constant(kTerms, kTerms, std::numeric_limits<double>::infinity());
   for (int j = 0; j < kTerms; ++j) {
     const auto k = static_cast<std::size_t>(j);
     terms.coefficients[k] = scaled(j) / column_scale(j);
@@ -209,7 +212,7 @@ SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const do
   const auto read = [&](double target, const std::string& name, SlopeReading& reading, double tau_power,
                         double factor, const FigureUnits& units) {
     std::optional<std::size_t> best;
-    double best_distance = INFINITY;
+    double best_distance = std::numeric_limits<double>::infinity();
     std::optional<double> closest_slope;  // among the resolved pairs
     for (std::size_t i = 0; i + 1 < tau_s.size(); ++i) {
       const double spacing = std::log(tau_s[i + 1] / tau_s[i]);

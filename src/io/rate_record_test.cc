@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include "inertest/core/error.h"
 #include "inertest/io/text_table.h"
@@ -66,7 +67,7 @@ TEST(RateRecord, BinaryRecords) {
   EXPECT_THAT(read_all({f32, RateRecordFormat::kFloat32, std::nullopt}), ElementsAre(1.5, 2.5));
   const std::string ragged = dir.write("ragged.f64", testing::f64_bytes({1.0}) + "abc");
   EXPECT_THROW(read_all({ragged, RateRecordFormat::kFloat64, std::nullopt}), Error);
-  const std::string nan = dir.write("nan.f64", testing::f64_bytes({1.0, NAN}));
+  const std::string nan = dir.write("nan.f64", testing::f64_bytes({1.0, std::numeric_limits<double>::quiet_NaN()}));
   EXPECT_THROW(read_all({nan, RateRecordFormat::kFloat64, std::nullopt}), Error);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <limits>
 
 #include "inertest/core/error.h"
 #include "inertest/procedures/bias_temperature_sensitivity.h"
@@ -23,7 +24,7 @@ TEST(BiasRepeatabilityTest, FewerThanSixRunsWarnsFewerThanTwoFails) {
   EXPECT_EQ(bias_repeatability(std::vector<double>{1.0, 2.0}).warnings.size(), 1u);
   EXPECT_THROW(bias_repeatability(std::vector<double>{1.0}), Error);
   EXPECT_THROW(bias_repeatability(std::vector<double>{}), Error);
-  EXPECT_THROW(bias_repeatability(std::vector<double>{1.0, NAN}), Error);
+  EXPECT_THROW(bias_repeatability(std::vector<double>{1.0, std::numeric_limits<double>::quiet_NaN()}), Error);
 }
 
 TEST(BiasTemperatureSensitivityTest, HandComputedFirstRunIsRoom) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <regex>
 #include <sstream>
+#include <limits>
 
 #include "test_util/test_util.h"
 
@@ -65,7 +66,7 @@ TEST(SvgPlotTicks, LinearDegenerateRangeGivesOneTick) {
   ASSERT_EQ(ticks.size(), 1u);
   EXPECT_EQ(ticks[0].value, 2.5);
   EXPECT_EQ(ticks[0].label, "2.5");
-  EXPECT_TRUE(linear_ticks(NAN, 1.0).empty());
+  EXPECT_TRUE(linear_ticks(std::numeric_limits<double>::quiet_NaN(), 1.0).empty());
 }
 
 TEST(SvgPlotTicks, LogDecadesAreLabelledReadably) {
@@ -112,7 +113,7 @@ TEST(SvgPlotTicks, LogRejectsNonPositiveRanges) {
 }
 
 TEST(SvgPlotRange, LinearWidensToNiceTicks) {
-  const std::vector<double> values{3.2, 7.9, NAN};
+  const std::vector<double> values{3.2, 7.9, std::numeric_limits<double>::quiet_NaN()};
   const Range range = auto_range(values, AxisScale::linear);
   EXPECT_DOUBLE_EQ(range.lo, 3.0);
   EXPECT_DOUBLE_EQ(range.hi, 8.0);
@@ -320,7 +321,7 @@ TEST(SvgPlotRender, DegenerateDataRendersWithoutNonFiniteCoordinates) {
   Panel empty;
   Panel bad_values;
   bad_values.y.scale = AxisScale::log;
-  bad_values.series.push_back(make_series("", {1, 2, 3, 4}, {1, -1, NAN, 3}));
+  bad_values.series.push_back(make_series("", {1, 2, 3, 4}, {1, -1, std::numeric_limits<double>::quiet_NaN(), 3}));
   plot.panels = {single, flat, empty, bad_values};
   const std::string svg = render_svg(plot);
   EXPECT_FALSE(std::regex_search(svg, std::regex("(^|[^a-z])(nan|inf)", std::regex::icase)));

@@ -55,7 +55,7 @@ std::string f64_record(const std::vector<std::int64_t>& pulses, double sample_ra
 double mean_output(const std::vector<std::int64_t>& pulses, double sample_rate_hz) {
   long double total = 0.0L;
   for (const auto p : pulses) total += static_cast<long double>(p);
-  return static_cast<double>(total * sample_rate_hz / static_cast<long double>(pulses.size()));
+  return static_cast<double>(total * static_cast<long double>(sample_rate_hz) / static_cast<long double>(pulses.size()));
 }
 
 namespace {

@@ -19,7 +19,8 @@ double allan_deviation(const std::vector<double>& angle, double dt, std::size_t 
   const std::size_t n = angle.size();
   long double sum = 0.0L;
   for (std::size_t k = 0; k + 2 * m < n; ++k) {
-    const long double d = static_cast<long double>(angle[k + 2 * m]) - 2.0L * angle[k + m] + angle[k];
+    const long double d = static_cast<long double>(angle[k + 2 * m]) - 2.0L * static_cast<long double>(angle[k + m]) +
+                          static_cast<long double>(angle[k]);
     sum += d * d;
   }
   const double tau = static_cast<double>(m) * dt;

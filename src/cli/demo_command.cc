@@ -33,7 +33,14 @@ CommandAction setup(CLI::App& root) {
     DemoOptions options;
     options.simulation_plan = arguments->plan;
     options.report = {report::parse_language(arguments->lang), report::current_date()};
-    options.progress = [](std::string_view stage, double fraction) {
+    // One line per stage and per tenth of a long stage: a log, not a flood (the long Allan record
+    // reports hundreds of steps).
+    options.progress = [last_stage = std::string(), last_tenth = -1](std::string_view stage,
+                                                                     double fraction) mutable {
+      const int tenth = static_cast<int>(10.0 * fraction);
+      if (stage == last_stage && tenth == last_tenth) return;
+      last_stage = std::string(stage);
+      last_tenth = tenth;
       fmt::print(stderr, "[demo] {:<40} {:5.1f} %\n", stage, 100.0 * fraction);
       std::fflush(stderr);
     };

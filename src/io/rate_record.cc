@@ -109,8 +109,7 @@ std::size_t read_text(const RateRecordSource& source, const SampleSink& sink) {
                           (layout->has_header ? " (" + names + ")" : "") +
                           ": choose one with --column (plan key `column`)");
         }
-        data_begin = layout->has_header ? std::min(cursor.position(), lines.size())
-                                        : static_cast<std::size_t>(first->text.data() - lines.data());
+        data_begin = io_detail::first_data_offset(*layout, *first, cursor, lines);
         first_line = layout->first_data_line;
       }
     }
@@ -126,8 +125,8 @@ std::size_t read_text(const RateRecordSource& source, const SampleSink& sink) {
     carried = text.size() - lines.size();
     std::memmove(buffer.data(), buffer.data() + lines.size(), carried);
   }
-  if (!layout) throw Error(SourceLocation{source.path, 0, 0}, "no data: the file is empty or holds only comments");
-  if (count == 0) throw Error(SourceLocation{source.path, 0, 0}, "expected at least 1 data rows, found 0");
+  if (!layout) io_detail::fail_no_content(source.path);
+  io_detail::require_rows(source.path, count, 1);
   return count;
 }
 

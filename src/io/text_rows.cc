@@ -200,6 +200,24 @@ RowLayout read_row_layout(const Line& first, const std::string& source, const Te
   return layout;
 }
 
+std::size_t first_data_offset(const RowLayout& layout, const Line& first, const LineCursor& cursor,
+                              std::string_view text) {
+  return layout.has_header ? std::min(cursor.position(), text.size())
+                           : static_cast<std::size_t>(first.text.data() - text.data());
+}
+
+void fail_no_content(const std::string& source) {
+  throw Error(SourceLocation{source, 0, 0}, "no data: the file is empty or holds only comments");
+}
+
+void require_rows(const std::string& source, std::size_t rows, std::size_t minimum) {
+  minimum = std::max<std::size_t>(minimum, 1);
+  if (rows < minimum) {
+    throw Error(SourceLocation{source, 0, 0},
+                "expected at least " + std::to_string(minimum) + " data rows, found " + std::to_string(rows));
+  }
+}
+
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result) {
   result.columns.resize(layout.positions.size());
   const std::size_t estimate = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;

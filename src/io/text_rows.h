@@ -76,6 +76,16 @@ struct RowLayout {
 // data, a decimal comma in a header, or a selected column the line does not have.
 RowLayout read_row_layout(const Line& first, const std::string& source, const TextTableOptions& options);
 
+// Offset in `text` of the first data row: where `cursor` stands after the header line (clamped
+// for a header without a line end), or the first line itself when it is data.
+std::size_t first_data_offset(const RowLayout& layout, const Line& first, const LineCursor& cursor,
+                              std::string_view text);
+
+// The errors of a record without data, the same from every reader: no line but blanks and
+// comments, or fewer than `minimum` data rows (at least 1).
+[[noreturn]] void fail_no_content(const std::string& source);
+void require_rows(const std::string& source, std::size_t rows, std::size_t minimum);
+
 struct RowChunk {
   std::vector<std::vector<double>> columns;  // one per layout position
   std::vector<std::size_t> row_lines;        // with RowLayout::record_row_lines

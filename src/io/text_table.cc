@@ -106,7 +106,7 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
   // The first line that is neither blank nor a comment decides delimiter and header.
   LineCursor cursor(text);
   const std::optional<Line> first = io_detail::next_content_line(cursor, options.comment);
-  if (!first) throw Error(SourceLocation{source, 0, 0}, "no data: the file is empty or holds only comments");
+  if (!first) io_detail::fail_no_content(source);
   const RowLayout layout = io_detail::read_row_layout(*first, source, options);
   for (std::size_t p : layout.positions) table.names.push_back(layout.header_names[p]);
   table.delimiter = layout.delimiter;
@@ -116,9 +116,7 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
   // The data rows: from the first data line (the header line excluded) to the end, cut into one
   // chunk per core at line boundaries and parsed in parallel. Line numbers stay exact: each chunk
   // starts at the line count of the chunks before it.
-  // A header on the last line without a line end leaves the cursor one past the end.
-  const std::size_t data_begin = layout.has_header ? std::min(cursor.position(), text.size())
-                                                   : static_cast<std::size_t>(first->text.data() - text.data());
+  const std::size_t data_begin = io_detail::first_data_offset(layout, *first, cursor, text);
   std::vector<RowChunk> chunks = parse_chunks(text.substr(data_begin), layout.first_data_line, layout, options);
 
   std::size_t row_count = 0;
@@ -126,11 +124,7 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
     if (chunk.error) std::rethrow_exception(chunk.error);
     row_count += chunk.row_count;
   }
-  if (row_count == 0 || row_count < options.minimum_rows) {
-    throw Error(SourceLocation{source, 0, 0},
-                "expected at least " + std::to_string(std::max<std::size_t>(options.minimum_rows, 1)) +
-                    " data rows, found " + std::to_string(row_count));
-  }
+  io_detail::require_rows(source, row_count, options.minimum_rows);
   table.columns.resize(layout.positions.size());
   for (std::size_t k = 0; k < layout.positions.size(); ++k) {
     if (chunks.size() == 1) {

@@ -54,6 +54,18 @@ std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> poi
   return phases;
 }
 
+// Polarity (reference README §3, "Polarity"): a gyro of negative scale factor (output falling as the
+// rate rises) has every phase of eq. (43) offset by π, which eqs. (44)-(46) would read as a delay.
+// The model of eq. (42) puts the phase at the lowest frequency, well below the bandwidth, in
+// (−π/2, 0] less ωL·Td, so a phase there beyond ±π/2 is the polarity, not a lag: π is taken from
+// every phase (keeping them unwrapped). Returns the polarity, +1 or −1 (the sign of K).
+int remove_polarity(std::vector<double>& phases) {
+  if (std::abs(phases.front()) <= kPi / 2.0) return 1;
+  const double offset = phases.front() > 0.0 ? kPi : -kPi;
+  for (double& p : phases) p -= offset;
+  return -1;
+}
+
 }  // namespace
 
 void BandwidthOptions::validate() const {
@@ -106,8 +118,9 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   const double sigma_bandwidth = bandwidth * std::sqrt(std::max(0.0, variance_t2)) / (2.0 * t_squared);
   const double sigma_k = std::sqrt(std::max(0.0, variance_k2)) / (2.0 * k);
 
-  // Eqs. (44)-(46): Td = Σ ωi·yi / Σ ωi², yi = −Pi − atan(ωi·T).
-  const std::vector<double> phase = unwrapped_phases(points);
+  // Eqs. (44)-(46): Td = Σ ωi·yi / Σ ωi², yi = −Pi − atan(ωi·T), on the phases with the polarity's π removed.
+  std::vector<double> phase = unwrapped_phases(points);
+  const int polarity = remove_polarity(phase);
   CompensatedSum omega_y;
   CompensatedSum omega_omega;
   CompensatedSum d_omega_y_dt;  // Σ ωi · dyi/dT, for the share of T's uncertainty in Td
@@ -135,6 +148,7 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   result.phase_fit_residual_rms = {std::sqrt(phase_rss.value() / static_cast<double>(n)) / constants::kDegree, "deg",
                                    std::nullopt};
   result.angle_unit = options.angle_unit;
+  result.polarity = polarity;
   for (std::size_t i = 0; i < n; ++i) {
     const double fitted_gain = k / std::sqrt(1.0 + omega[i] * omega[i] * t_squared);
     const double fitted_phase = -std::atan(omega[i] * t) - omega[i] * delay;
@@ -148,11 +162,6 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
     result.warnings.push_back(fmt::format("the highest frequency ({} Hz) is below twice the bandwidth ({:.6g} Hz); "
                                           "GJB 2426A 5.13.3 a) tests up to twice the bandwidth",
                                           points.back().frequency_hz, 2.0 * bandwidth));
-  }
-  if (std::abs(phase.front()) > kPi / 2.0) {
-    result.warnings.push_back(fmt::format("the phase at the lowest frequency is {:.1f} deg: is the output's polarity "
-                                          "reversed against the input rate?",
-                                          phase.front() / constants::kDegree));
   }
   return result;
 }
@@ -226,6 +235,7 @@ nlohmann::json BandwidthResult::to_json() const {
       {"time_constant", time_constant},
       {"gain_fit_residual_rms", gain_fit_residual_rms},
       {"phase_fit_residual_rms", phase_fit_residual_rms},
+      {"polarity", polarity},
       {"bode", bode_json},
       {"warnings", warnings},
   };
@@ -247,7 +257,8 @@ nlohmann::json BandwidthResult::to_json() const {
     json["vibration_fits"] = fits;
     const auto& lowest = vibration_fits.front();
     json["gain_at_lowest_frequency"] =
-        Figure{lowest.output.amplitude / lowest.rate_amplitude, output_unit + "/(" + rate_unit + ")", std::nullopt};
+        Figure{static_cast<double>(polarity) * lowest.output.amplitude / lowest.rate_amplitude,
+               output_unit + "/(" + rate_unit + ")", std::nullopt};
   }
   return json;
 }
@@ -263,6 +274,7 @@ std::string BandwidthResult::report() const {
   text += line("dc gain K", dc_gain);
   text += line("time constant T", time_constant);
   text += line("phase fit residual rms", phase_fit_residual_rms);
+  if (polarity < 0) text += "  output polarity negative: 180 deg removed from every phase before eqs. (43)-(46)\n";
   text += "  frequency/Hz      gain    fitted   phase/deg  fitted/deg\n";
   for (const auto& p : bode) {
     text += fmt::format("  {:>12.6g} {:>9.5f} {:>9.5f} {:>11.3f} {:>11.3f}\n", p.frequency_hz, p.gain, p.fitted_gain,

@@ -84,6 +84,24 @@ TEST(BandwidthAndDelay, PhaseLagsPastHalfATurnAreUnwrapped) {
   EXPECT_NEAR_RELATIVE(result.bandwidth.value, 400.0, 1e-9);
 }
 
+TEST(BandwidthAndDelay, NegativePolarityIsRemovedBeforeTheDelayFit) {
+  // A gyro of negative scale factor (the misalignment paper's K = -2.9222 V/(deg/s)): every phase
+  // is the lag's plus 180 deg, given wrapped to (-180, 180]. The delay stays 0.2 ms.
+  const Lag lag{1.0, 300.0, 2e-4};
+  auto points = response(lag, log_spaced(10.0, 1000.0, 12));
+  for (auto& p : points) p.phase_rad = std::remainder(p.phase_rad + kPi, 2 * kPi);
+  const auto result = bandwidth_and_delay(points);
+  EXPECT_EQ(result.polarity, -1);
+  EXPECT_NEAR_RELATIVE(result.delay.value, 2e-4, 1e-9);
+  EXPECT_NEAR_RELATIVE(result.bandwidth.value, 300.0, 1e-9);
+  EXPECT_NEAR(result.bode.front().phase_deg, lag.phase(10.0) / constants::kDegree, 1e-9);
+  EXPECT_TRUE(result.warnings.empty());
+  EXPECT_EQ(result.to_json().at("polarity"), -1);
+  EXPECT_THAT(result.report(), HasSubstr("polarity negative"));
+  // The same lag with positive polarity reports +1.
+  EXPECT_EQ(bandwidth_and_delay(response(lag, log_spaced(10.0, 1000.0, 12))).polarity, 1);
+}
+
 TEST(BandwidthAndDelay, NoisyGainsGiveUncertainties) {
   const Lag lag;
   auto points = response(lag, log_spaced(10.0, 1000.0, 12));
@@ -179,6 +197,21 @@ TEST(BandwidthAndDelay, RawRecordsGiveTheLagBack) {
   const auto json = result.to_json();
   EXPECT_NEAR_RELATIVE(json.at("gain_at_lowest_frequency").at("value").get<double>(), 5000.0 * lag.gain(10.0), 1e-9);
   EXPECT_EQ(json.at("gain_at_lowest_frequency").at("unit"), "pulse/s/(deg/s)");
+}
+
+TEST(BandwidthAndDelay, RawRecordsOfANegativeScaleFactorGiveTheDelayBack) {
+  // Output = K·rate through the lag with K = -2.9222 V/(deg/s): the output is in antiphase.
+  const Lag lag{1.0, 300.0, 2e-4};
+  std::vector<AngularVibrationRecord> records;
+  for (double f : log_spaced(10.0, 600.0, 10)) records.push_back(vibration_record(lag, f, 0.05, 0.2, -2.9222));
+  BandwidthOptions options;
+  options.output_unit = "V";
+  const auto result = bandwidth_and_delay(std::span<const AngularVibrationRecord>(records), options);
+  EXPECT_EQ(result.polarity, -1);
+  EXPECT_NEAR_RELATIVE(result.delay.value, 2e-4, 1e-8);
+  EXPECT_NEAR_RELATIVE(result.bandwidth.value, 300.0, 1e-8);
+  const auto json = result.to_json();
+  EXPECT_NEAR_RELATIVE(json.at("gain_at_lowest_frequency").at("value").get<double>(), -2.9222 * lag.gain(10.0), 1e-9);
 }
 
 TEST(BandwidthAndDelay, RawRecordWithoutVibrationIsAnError) {

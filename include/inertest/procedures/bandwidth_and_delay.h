@@ -6,6 +6,9 @@
 // Gi² = K² − Gi²·ωi²·T² gives B = [K², T²] (eq. 40) and Bw = 1/(2π·√T²) (eq. 41).
 // Delay: with Pi the phase of the output against the input RATE (negative for a lag),
 // −Pi − atan(ωi·T) = ωi·Td (eq. 44), so Td = (ΩΩᵀ)⁻¹Ω[−Pi − atan(ωi·T)] (eqs. 45-46).
+// Polarity: a gyro of negative scale factor has every Pi offset by π. When the phase at the lowest
+// frequency lies beyond ±90° the output's polarity is taken as negative and π is removed from
+// every phase before eqs. (43)-(46) (result.polarity = −1).
 //
 // Two inputs: a table of gains and phases (one per frequency), or raw records per frequency with
 // the gyro output and the interferometer angle, reduced by a sine fit at the vibration frequency.
@@ -60,7 +63,7 @@ struct BodePoint {
   double frequency_hz = 0.0;
   double gain = 0.0;               // measured Gi
   double fitted_gain = 0.0;        // K/√(1 + ωi²T²)
-  double phase_deg = 0.0;          // measured Pi (unwrapped)
+  double phase_deg = 0.0;          // measured Pi (unwrapped, the polarity's 180° removed)
   double fitted_phase_deg = 0.0;   // −atan(ωi·T) − ωi·Td
 };
 
@@ -71,6 +74,7 @@ struct BandwidthResult {
   Figure time_constant;    // T = √B(2), s (eq. 38)
   Figure gain_fit_residual_rms;   // rms of the residuals of eq. (37), gain² unit
   Figure phase_fit_residual_rms;  // rms of the residuals of eq. (44), rad → deg
+  int polarity = 1;        // sign of the output against the input rate: −1 when π was removed from the phases
   std::vector<BodePoint> bode;
   std::vector<VibrationFit> vibration_fits;  // raw-record input only
   std::string output_unit;                   // raw-record input only

@@ -143,6 +143,22 @@ TEST(ProcedureCommandsTest, TurnOnTimePolarityThresholdResolution) {
                            "--json"});
   ASSERT_EQ(th.exit_code, 0) << th.err;
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(th.out).at("threshold").at("value").get<double>(), 4.0);
+  // 60 % of the expected output at 2 deg/h: passes the default criterion, fails eq. (15) as printed.
+  const std::string sixty = scratch.write("th60.csv", "rate,output\n0,0\n4,4\n2,1.2\n1,0.45\n-4,-4\n-2,-2\n-1,-0.45\n");
+  const std::vector<std::string> threshold_args = {"threshold", sixty,         "--method", "1",     "--scale-factor",
+                                                   "3600",      "--rate-unit", "deg/h",    "--json"};
+  const auto th_expected = run_cli(threshold_args);
+  ASSERT_EQ(th_expected.exit_code, 0) << th_expected.err;
+  EXPECT_EQ(nlohmann::json::parse(th_expected.out).at("criterion_denominator"), "expected");
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(th_expected.out).at("threshold").at("value").get<double>(), 2.0);
+  auto measured_args = threshold_args;
+  measured_args.insert(measured_args.end(), {"--criterion-denominator", "measured"});
+  const auto th_measured = run_cli(measured_args);
+  ASSERT_EQ(th_measured.exit_code, 0) << th_measured.err;
+  EXPECT_EQ(nlohmann::json::parse(th_measured.out).at("criterion_denominator"), "measured");
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(th_measured.out).at("threshold").at("value").get<double>(), 4.0);
+  measured_args.back() = "theoretical";
+  EXPECT_EQ(run_cli(measured_args).exit_code, 2);
 
   const std::string steps = scratch.write("res.csv",
                                           "base_rate,base_output,rate,output\n100,0,110,10\n100,0,102,1.2\n"

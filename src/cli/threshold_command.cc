@@ -13,6 +13,7 @@ struct Arguments {
   std::string file;
   int method = 1;
   ThresholdOptions options;
+  std::string criterion_denominator = "expected";
   double table_rate_deg_s = 0.0;
   std::optional<double> sample_rate_hz;
   std::string time_column;
@@ -31,7 +32,9 @@ CommandAction setup(CLI::App& root) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = root.add_subcommand(
       "threshold",
-      "Threshold (GJB 2426A-2004 5.10, eqs. 14-17, 50 % criterion of eq. 15), K in output units per deg/s.\n"
+      "Threshold (GJB 2426A-2004 5.10, eqs. 14-17), K in output units per deg/s. The 50 % criterion is\n"
+      "relative to the expected output (IEEE Std 952-1997) unless --criterion-denominator measured (eq. 15 as\n"
+      "printed, relative to the measured output).\n"
       "--method 1: FILE has the header 'rate,output' (table rate, --rate-unit, default deg/s; mean output);\n"
       "  zero-rate rows give the zero output unless --zero.\n"
       "--method 2: FILE has the header 'angle_deg,output' (dividing-head angle of the IRA from north, plus\n"
@@ -39,13 +42,19 @@ CommandAction setup(CLI::App& root) {
       "--method 3: FILE is the record of one slow revolution: a time column (s) and an output column, or\n"
       "  the output alone with --rate HZ; --table-rate is the rate (deg/s) at which the IRA azimuth grows,\n"
       "  --heading its azimuth at t = 0; the zero is the record's mean unless --zero.\n"
-      "JSON: threshold (deg/h), method, branches (candidate per direction with every point).");
+      "JSON: threshold (deg/h), method, criterion_denominator, branches (candidate per direction with every point).");
   command->add_option("FILE", arguments->file, "test points or record")->required()->check(CLI::ExistingFile);
   command->add_option("--method", arguments->method, "1 (rate table), 2 (dividing head), 3 (slow rotation)")
       ->required()
       ->check(CLI::Range(1, 3));
   command->add_option("--scale-factor", arguments->options.scale_factor, "K, output units per deg/s")->required();
   command->add_option("--zero", arguments->options.zero_output, "zero output (output at zero input)");
+  command
+      ->add_option("--criterion-denominator", arguments->criterion_denominator,
+                   "50 % criterion relative to the 'expected' output (IEEE Std 952-1997) or the 'measured' one "
+                   "(GJB 2426A eq. 15 as printed)")
+      ->check(CLI::IsMember({"expected", "measured"}))
+      ->capture_default_str();
   command->add_option("--rate-unit", arguments->options.rate_unit, "method 1: unit of the rate column")
       ->capture_default_str();
   command->add_option("--latitude", arguments->options.latitude_deg, "site latitude, deg (methods 2, 3)");
@@ -57,7 +66,8 @@ CommandAction setup(CLI::App& root) {
   add_record_options(*command, arguments->source);
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments] {
-    const ThresholdOptions& options = arguments->options;
+    ThresholdOptions options = arguments->options;
+    options.criterion_denominator = parse_criterion_denominator(arguments->criterion_denominator);
     options.validate();
     ThresholdResult result;
     if (arguments->method == 1) {

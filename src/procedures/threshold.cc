@@ -20,7 +20,7 @@ struct Sample {
   double output;  // zero not yet removed
 };
 
-// Eqs. (14)-(15) on one branch.
+// Eq. (14) and the 50 % criterion (threshold.h) on one branch.
 ThresholdBranch evaluate_branch(const std::string& name, const std::vector<Sample>& samples, double zero,
                                 const ThresholdOptions& options) {
   std::vector<criterion::Point> points;
@@ -28,8 +28,10 @@ ThresholdBranch evaluate_branch(const std::string& name, const std::vector<Sampl
     const double expected = options.scale_factor * s.input_deg_h / kSecondsPerHour;  // eq. (14), K per deg/s
     points.push_back({s.input_deg_h, expected, s.output - zero, 0.0, false});
   }
-  const auto outcome = criterion::search(std::move(points), criterion::Denominator::kMeasured,
-                                         "threshold (" + name + " inputs)");
+  const auto denominator = options.criterion_denominator == CriterionDenominator::kMeasured
+                               ? criterion::Denominator::kMeasured
+                               : criterion::Denominator::kExpected;
+  const auto outcome = criterion::search(std::move(points), denominator, "threshold (" + name + " inputs)");
   ThresholdBranch branch;
   branch.name = name;
   branch.candidate_deg_h = std::abs(outcome.points[outcome.candidate].input);
@@ -40,16 +42,19 @@ ThresholdBranch evaluate_branch(const std::string& name, const std::vector<Sampl
   return branch;
 }
 
-ThresholdResult combine(int method, std::vector<ThresholdBranch> branches, double zero) {
+ThresholdResult combine(int method, std::vector<ThresholdBranch> branches, double zero,
+                        const ThresholdOptions& options) {
   ThresholdResult result;
   result.method = method;
+  result.criterion_denominator = options.criterion_denominator;
   double largest = 0.0;
   for (const auto& b : branches) {
     largest = std::max(largest, b.candidate_deg_h);
     if (!b.bounded) {
-      result.warnings.push_back(fmt::format("{} branch: eq. (15) holds down to the smallest input tested ({:.6g} deg/h); "
-                                            "the threshold there is at most that",
-                                            b.name, b.candidate_deg_h));
+      result.warnings.push_back(
+          fmt::format("{} branch: the 50 % criterion holds down to the smallest input tested "
+                      "({:.6g} deg/h); the threshold there is at most that",
+                      b.name, b.candidate_deg_h));
     }
   }
   result.threshold = {largest, "deg/h", std::nullopt};
@@ -66,7 +71,28 @@ double zero_from(const std::optional<double>& given, const std::vector<double>& 
   return mean(measured);
 }
 
+// How each criterion reads, with its source.
+const char* criterion_text(CriterionDenominator denominator) {
+  return denominator == CriterionDenominator::kMeasured
+             ? "|(F_expected - F)/F| <= 50 %, GJB 2426A-2004 eq. (15) as printed (measured output)"
+             : "|(F_expected - F)/F_expected| <= 50 %, IEEE Std 952-1997 (output at least 50 % of the expected), "
+               "as GJB 2426A-2004 eq. (18)";
+}
+
 }  // namespace
+
+std::string_view to_string(CriterionDenominator denominator) {
+  return denominator == CriterionDenominator::kMeasured ? "measured" : "expected";
+}
+
+CriterionDenominator parse_criterion_denominator(std::string_view text) {
+  if (text == "expected") return CriterionDenominator::kExpected;
+  if (text == "measured") return CriterionDenominator::kMeasured;
+  throw Error(
+      fmt::format("threshold: criterion denominator '{}' is neither 'expected' (IEEE Std 952-1997) nor "
+                  "'measured' (GJB 2426A-2004 eq. (15) as printed)",
+                  text));
+}
 
 void ThresholdOptions::validate() const {
   if (scale_factor == 0.0 || !std::isfinite(scale_factor)) {
@@ -107,7 +133,7 @@ ThresholdResult threshold_rate_table(std::span<const RateTablePoint> points, con
   std::vector<ThresholdBranch> branches;
   branches.push_back(evaluate_branch("positive", positive, zero, options));
   branches.push_back(evaluate_branch("negative", negative, zero, options));
-  return combine(1, std::move(branches), zero);
+  return combine(1, std::move(branches), zero, options);
 }
 
 ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> points, const ThresholdOptions& options) {
@@ -135,7 +161,7 @@ ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> point
   std::vector<ThresholdBranch> branches;
   branches.push_back(evaluate_branch("toward north", north, zero, options));
   branches.push_back(evaluate_branch("toward south", south, zero, options));
-  return combine(2, std::move(branches), zero);
+  return combine(2, std::move(branches), zero, options);
 }
 
 ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<const double> output,
@@ -172,7 +198,7 @@ ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<con
     }
     branches.push_back(evaluate_branch(kNames[q], quadrants[q], zero, options));
   }
-  ThresholdResult result = combine(3, std::move(branches), zero);
+  ThresholdResult result = combine(3, std::move(branches), zero, options);
   const double revolutions = std::abs(table_rate_deg_s) * (time_s.back() - time_s.front()) / 360.0;
   if (!options.zero_output && std::abs(revolutions - std::round(revolutions)) > 0.02) {
     result.warnings.push_back(fmt::format("the record spans {:.3f} revolutions; the zero output (the record's mean) is "
@@ -200,8 +226,10 @@ nlohmann::json ThresholdResult::to_json() const {
   }
   return {
       {"procedure", "threshold"},
-      {"clause", fmt::format("GJB 2426A-2004 5.10.4.{}, eqs. (14)-(17)", method)},
+      {"clause", fmt::format("GJB 2426A-2004 5.10.4.{}, eqs. (14)-(17); IEEE Std 952-1997", method)},
       {"method", method},
+      {"criterion_denominator", to_string(criterion_denominator)},
+      {"criterion", criterion_text(criterion_denominator)},
       {"threshold", threshold},
       {"zero_output", zero_output.value},
       {"branches", branch_json},
@@ -211,6 +239,7 @@ nlohmann::json ThresholdResult::to_json() const {
 
 std::string ThresholdResult::report() const {
   std::string text = fmt::format("Threshold, method {} (GJB 2426A-2004 5.10)\n", method);
+  text += fmt::format("  {:<32} {}\n", "criterion", criterion_text(criterion_denominator));
   for (const auto& b : branches) {
     text += fmt::format("  {:<32} {:.6g} deg/h{}\n", "candidate, " + b.name, b.candidate_deg_h,
                         b.bounded ? "" : " (smallest input tested)");

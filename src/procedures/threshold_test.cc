@@ -21,11 +21,12 @@ ThresholdOptions unit_options() {
 }
 
 TEST(ThresholdTest, MethodOneHandComputed) {
-  // Zero output 10 from the zero-rate points. Positive: 10 -> F 10, 5 -> 5, 2 -> 1.5 (|2-1.5|/1.5 =
-  // 0.33), 1 -> 0.6 (0.67 fails), 0.5 -> 0.5 (passes again, after a failure: not counted).
-  // Negative: -10 -> -10, -4 -> -3 (0.33), -2 -> -0.5 (3 fails). Threshold max(2, 4) = 4 deg/h.
-  const std::vector<RateTablePoint> points = {{0, 10.0},  {10, 20.0},  {5, 15.0},   {2, 11.5}, {1, 10.6},
-                                              {0.5, 10.5}, {-10, 0.0}, {-4, 7.0}, {-2, 9.5},  {0, 10.0}};
+  // Zero output 10 from the zero-rate points. Relative to the expected output: positive: 10 -> F 10,
+  // 5 -> 5, 2 -> 1.5 (|2-1.5|/2 = 0.25), 1 -> 0.4 (0.6 fails), 0.5 -> 0.5 (passes again, after a
+  // failure: not counted). Negative: -10 -> -10, -4 -> -3 (0.25), -2 -> -0.5 (0.75 fails).
+  // Threshold max(2, 4) = 4 deg/h.
+  const std::vector<RateTablePoint> points = {{0, 10.0},   {10, 20.0}, {5, 15.0}, {2, 11.5}, {1, 10.4},
+                                              {0.5, 10.5}, {-10, 0.0}, {-4, 7.0}, {-2, 9.5}, {0, 10.0}};
   const ThresholdResult result = threshold_rate_table(points, unit_options());
   ASSERT_EQ(result.branches.size(), 2u);
   EXPECT_DOUBLE_EQ(result.branches[0].candidate_deg_h, 2.0);
@@ -34,18 +35,55 @@ TEST(ThresholdTest, MethodOneHandComputed) {
   EXPECT_DOUBLE_EQ(result.threshold.value, 4.0);
   EXPECT_EQ(result.threshold.unit, "deg/h");
   EXPECT_TRUE(result.warnings.empty());
+  EXPECT_EQ(result.criterion_denominator, CriterionDenominator::kExpected);
 }
 
-TEST(ThresholdTest, MethodOneDenominatorIsTheMeasuredOutput) {
+TEST(ThresholdTest, DefaultCriterionIsHalfTheExpectedOutput) {
+  // IEEE Std 952-1997: an output of at least 50 % of the expected one. Input 2 gives 1.2 (60 %):
+  // |2 - 1.2| / 2 = 0.4 passes; input 1 gives 0.45 (45 %): 0.55 fails. Eq. (15) as printed divides
+  // by the measured output, |2 - 1.2| / 1.2 = 0.67, and fails input 2 already (a 67 % criterion).
+  const std::vector<RateTablePoint> points = {{4, 4.0}, {2, 1.2}, {1, 0.45}, {-4, -4.0}, {-2, -2.0}, {-1, -0.45}};
+  ThresholdOptions options = unit_options();
+  options.zero_output = 0.0;
+  const ThresholdResult expected = threshold_rate_table(points, options);
+  EXPECT_DOUBLE_EQ(expected.branches[0].candidate_deg_h, 2.0);
+  EXPECT_TRUE(expected.branches[0].bounded);
+  EXPECT_NEAR(expected.branches[0].points[1].relative_error, 0.4, 1e-12);
+  EXPECT_DOUBLE_EQ(expected.threshold.value, 2.0);
+  const nlohmann::json json = expected.to_json();
+  EXPECT_EQ(json.at("criterion_denominator"), "expected");
+  EXPECT_THAT(json.at("criterion").get<std::string>(), ::testing::HasSubstr("IEEE Std 952-1997"));
+  EXPECT_THAT(expected.report(), ::testing::HasSubstr("IEEE Std 952-1997"));
+
+  options.criterion_denominator = CriterionDenominator::kMeasured;
+  const ThresholdResult measured = threshold_rate_table(points, options);
+  EXPECT_DOUBLE_EQ(measured.branches[0].candidate_deg_h, 4.0);
+  EXPECT_NEAR(measured.branches[0].points[1].relative_error, 0.8 / 1.2, 1e-12);
+  EXPECT_DOUBLE_EQ(measured.threshold.value, 4.0);
+  EXPECT_EQ(measured.to_json().at("criterion_denominator"), "measured");
+  EXPECT_THAT(measured.report(), ::testing::HasSubstr("eq. (15) as printed"));
+}
+
+TEST(ThresholdTest, MeasuredDenominatorIsEquationFifteenAsPrinted) {
   // Input 2 with measured 3.5: eq. (15) gives |2 - 3.5| / 3.5 = 0.43 (passes); dividing by the
-  // theoretical output would give 0.75.
+  // expected output gives 0.75 (fails).
   const std::vector<RateTablePoint> points = {{4, 4.0}, {2, 3.5}, {-4, -4.0}, {-3, -3.0}};
   ThresholdOptions options = unit_options();
   options.zero_output = 0.0;
+  options.criterion_denominator = CriterionDenominator::kMeasured;
   const ThresholdResult result = threshold_rate_table(points, options);
   EXPECT_DOUBLE_EQ(result.branches[0].candidate_deg_h, 2.0);
   EXPECT_FALSE(result.branches[0].bounded);
   EXPECT_EQ(result.warnings.size(), 2u);  // neither branch found a failing input
+  options.criterion_denominator = CriterionDenominator::kExpected;
+  EXPECT_DOUBLE_EQ(threshold_rate_table(points, options).branches[0].candidate_deg_h, 4.0);
+}
+
+TEST(ThresholdTest, CriterionDenominatorParses) {
+  EXPECT_EQ(parse_criterion_denominator("expected"), CriterionDenominator::kExpected);
+  EXPECT_EQ(parse_criterion_denominator("measured"), CriterionDenominator::kMeasured);
+  EXPECT_EQ(to_string(CriterionDenominator::kMeasured), "measured");
+  EXPECT_THROW(parse_criterion_denominator("theoretical"), Error);
 }
 
 TEST(ThresholdTest, MethodTwoDeadZoneOnTheDividingHead) {

@@ -1,6 +1,6 @@
 // Simulated threshold (GJB 2426A-2004 5.10, method 2: dividing head) and resolution (5.11) tests.
-// The simulated gyro has no dead zone: every input gives its output, so the 50 % criteria of eqs.
-// (15) and (18) fail only by noise. The truth is then what the walk of 5.10.4 / 5.11.3 gives on the
+// The simulated gyro has no dead zone: every input gives its output, so the 50 % criteria (threshold.h,
+// eq. 18) fail only by noise. The truth is then what the walk of 5.10.4 / 5.11.3 gives on the
 // noise-free outputs, the smallest tested input of each branch, the largest over the branches; the
 // tolerance covers every answer the noise could give: from the first input (walking down) whose
 // criterion a 4-sigma error of its mean difference could break, upward.
@@ -70,8 +70,9 @@ void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab&
     fmt::format_to(std::back_inserter(text), "{},{}\n", exact(angle), exact(mean_output(pulses, fs)));
   }
   lab.write(name + "/positions.csv", text);
-  // Eq. (16): Ω_j = Ωe·cos φ·cos β_j. F_j − F0 has σ = √2 times that of a mean; eq. (15) holds for
-  // an error e with −K·Ω/3 <= e <= K·Ω, so it surely holds while 4σ < K·|Ω|/3.
+  // Eq. (16): Ω_j = Ωe·cos φ·cos β_j. F_j − F0 has σ = √2 times that of a mean; the plan step uses
+  // the default criterion, relative to the expected output (IEEE Std 952-1997), which holds for an
+  // error e with |e| <= K·|Ω|/2, so it surely holds while 4σ < K·|Ω|/2.
   const double horizontal = lab.site.earth_rate_enu()[1] / constants::kDegree * 3600.0;  // deg/h
   const double sigma = std::sqrt(2.0) * noise_of_mean_deg_s(gyro, seconds) * 3600.0;    // deg/h
   std::vector<double> north, south;
@@ -80,10 +81,11 @@ void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab&
     if (std::abs(input) < 1e-9 * horizontal) continue;
     (input > 0 ? north : south).push_back(std::abs(input));
   }
-  const auto [truth, highest] = noise_bounded_walk({north, south}, [&](double input) { return 4.0 * sigma < input / 3.0; });
+  const auto [truth, highest] =
+      noise_bounded_walk({north, south}, [&](double input) { return 4.0 * sigma < input / 2.0; });
   lab.truth.push_back({name, "threshold (no dead zone)", "threshold", truth, "deg/h",
                        highest - truth + rounding_tolerance(truth),
-                       "the inputs a 4-sigma error could make fail eq. (15); else exact but for rounding"});
+                       "the inputs a 4-sigma error could make fail the 50 % criterion; else exact but for rounding"});
   lab.plan_steps += fmt::format("[[procedure]]\nkind = \"threshold\"\nname = \"{}\"\nmethod = 2\nfile = \"{}/positions.csv\"\n"
                                 "heading_deg = 0\n\n",
                                 name, name);

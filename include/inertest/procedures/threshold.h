@@ -3,11 +3,16 @@
 // Every method compares the measured output F_j (the zero output removed) with the theoretical
 // output of the input Ω_j,
 //   F̄_j = K·Ω_j                                                                           (14)
-// and an input is a candidate threshold while
+// and an input is a candidate threshold while the 50 % criterion holds. By default it is
+//   | (F̄_j − F_j) / F̄_j | <= 50 %
+// relative to the expected output, as IEEE Std 952-1997 defines the threshold (the smallest input
+// giving an output of at least 50 % of the one expected from the scale factor) and as GJB 2426A
+// eq. (18) writes it for the resolution. GJB 2426A eq. (15) as printed divides by the measured F_j,
 //   | (F̄_j − F_j) / F_j | <= 50 %                                                         (15)
-// (the denominator is the measured F_j, as printed). The inputs are walked from the largest |Ω_j|
-// down, as the test decreases them; a branch's candidate is the smallest |Ω_j| that satisfies (15)
-// with every larger input of the branch satisfying it too. The threshold is the largest candidate
+// which passes an output down to F̄_j/1.5, i.e. a 67 % criterion; it is kept as an option
+// (ThresholdOptions::criterion_denominator = kMeasured). The inputs are walked from the largest |Ω_j|
+// down, as the test decreases them; a branch's candidate is the smallest |Ω_j| that satisfies the
+// criterion with every larger input of the branch satisfying it too. The threshold is the largest candidate
 // over the branches (5.10.3.1 e, 5.10.3.2 d, 5.10.4.3).
 //
 // Method 1 (rate table, 5.10.4.1): Ω_j the table rate; the table axis is orthogonal to the Earth's
@@ -26,6 +31,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -34,8 +40,19 @@
 
 namespace inertest {
 
+// The denominator of the 50 % criterion (see above).
+enum class CriterionDenominator {
+  kExpected,  // F̄_j: IEEE Std 952-1997, as GJB 2426A eq. (18) (the default)
+  kMeasured,  // F_j: GJB 2426A eq. (15) as printed
+};
+// "expected" or "measured".
+std::string_view to_string(CriterionDenominator denominator);
+// Parses "expected" or "measured"; throws Error naming the two otherwise.
+CriterionDenominator parse_criterion_denominator(std::string_view text);
+
 struct ThresholdOptions {
   double scale_factor = 0.0;  // K, output units per deg/s (from 5.8.1)
+  CriterionDenominator criterion_denominator = CriterionDenominator::kExpected;
   // The zero output (the output at zero input). When absent: method 1 uses the mean output at the
   // zero-rate points, method 2 at the angles where cos β = 0 (IRA east or west), method 3 the mean
   // output over the record (the input averages to zero over whole revolutions).
@@ -53,19 +70,20 @@ struct ThresholdPoint {
   double input_deg_h = 0.0;     // Ω_j
   double expected_output = 0.0; // F̄_j, eq. (14)
   double output = 0.0;          // F_j, zero removed
-  double relative_error = 0.0;  // left side of eq. (15)
+  double relative_error = 0.0;  // left side of the 50 % criterion
   bool satisfies = false;
 };
 
 struct ThresholdBranch {
   std::string name;              // "positive", "negative", "toward north", ...
   double candidate_deg_h = 0.0;  // |Ω| of the branch's candidate threshold
-  bool bounded = false;          // a smaller input of the branch failed eq. (15)
+  bool bounded = false;          // a smaller input of the branch failed the criterion
   std::vector<ThresholdPoint> points;  // by decreasing |Ω|
 };
 
 struct ThresholdResult {
   int method = 1;
+  CriterionDenominator criterion_denominator = CriterionDenominator::kExpected;  // the one used
   Figure threshold;    // deg/h
   Figure zero_output;  // output unit
   std::vector<ThresholdBranch> branches;
@@ -80,7 +98,7 @@ struct RateTablePoint {
   double output = 0.0;  // mean output at that rate
 };
 // Method 1. Throws Error when a direction has no rate, the zero output is neither given nor
-// measured, or the largest rate of a direction already fails eq. (15).
+// measured, or the largest rate of a direction already fails the criterion.
 ThresholdResult threshold_rate_table(std::span<const RateTablePoint> points, const ThresholdOptions& options);
 
 struct DividingHeadPoint {

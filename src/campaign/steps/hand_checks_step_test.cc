@@ -118,6 +118,34 @@ file = "on.csv"
   EXPECT_TRUE(summary.results.at("verdicts").at(0).at("pass").get<bool>());
 }
 
+TEST(HandChecksStepTest, ThresholdCriterionDenominatorKey) {
+  // Input 2 deg/h gives 60 % of its expected output: it passes the default criterion (relative to
+  // the expected output) and fails eq. (15) as printed (relative to the measured output).
+  ScratchDirectory scratch;
+  scratch.write("th.csv", "rate,output\n0,0\n4,4\n2,1.2\n1,0.45\n-4,-4\n-2,-2\n-1,-0.45\n");
+  const std::string plan = scratch.write("plan.toml", std::string(kHeader) + R"(
+[[procedure]]
+kind = "threshold"
+method = 1
+file = "th.csv"
+rate_unit = "deg/h"
+
+[[procedure]]
+kind = "threshold"
+name = "threshold, eq. 15 as printed"
+method = 1
+file = "th.csv"
+rate_unit = "deg/h"
+criterion_denominator = "measured"
+)");
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& p = summary.results.at("procedures");
+  EXPECT_EQ(p.at(0).at("result").at("criterion_denominator"), "expected");
+  EXPECT_DOUBLE_EQ(p.at(0).at("result").at("threshold").at("value").get<double>(), 2.0);
+  EXPECT_EQ(p.at(1).at("result").at("criterion_denominator"), "measured");
+  EXPECT_DOUBLE_EQ(p.at(1).at("result").at("threshold").at("value").get<double>(), 4.0);
+}
+
 TEST(HandChecksStepTest, PlanErrors) {
   ScratchDirectory scratch;
   auto expect_error = [&](const std::string& body, const std::string& message) {
@@ -137,6 +165,10 @@ TEST(HandChecksStepTest, PlanErrors) {
                "min 2 above max 1");
   expect_error("[[procedure]]\nkind = \"polarity\"\npositive_output = 1.0\n", "negative_file");
   expect_error("[[procedure]]\nkind = \"threshold\"\nmethod = 4\nfile = \"x\"\n", "must be 1, 2 or 3");
+  scratch.write("x.csv", "rate,output\n");
+  expect_error(
+      "[[procedure]]\nkind = \"threshold\"\nmethod = 1\nfile = \"x.csv\"\ncriterion_denominator = \"theoretical\"\n",
+      "criterion_denominator");
   expect_error("[[procedure]]\nkind = \"turn_on_time\"\n", "at least one [[procedure.run]]");
 }
 

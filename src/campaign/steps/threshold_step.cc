@@ -4,6 +4,8 @@
 //                             # method 3: the record of one revolution (time + output, or sample_rate_hz)
 //   scale_factor = 5000       # optional, output units per deg/s, default [instrument] nominal
 //   zero_output = 0.0         # optional (see threshold.h for what is used without it)
+//   criterion_denominator = "expected"   # optional: "expected" (IEEE Std 952-1997, default) or
+//                             # "measured" (GJB 2426A-2004 eq. (15) as printed)
 //   rate_unit = "deg/s"       # optional, method 1
 //   heading_deg = 0           # optional, methods 2 and 3, default [site] heading_deg
 //   table_rate_deg_s = 0.1    # method 3
@@ -30,6 +32,12 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
   ThresholdOptions options;
   options.scale_factor = read_scale_factor(step, context);
   options.zero_output = step.optional_number("zero_output");
+  const std::string denominator = step.string_or("criterion_denominator", "expected");
+  try {
+    options.criterion_denominator = parse_criterion_denominator(denominator);
+  } catch (const Error& e) {
+    step.fail_at("criterion_denominator", e.message());
+  }
   options.latitude_deg = context.site.latitude_deg;
   if (method == 1) {
     options.rate_unit = step.string_or("rate_unit", options.rate_unit);

@@ -189,12 +189,33 @@ class BandwidthResult(Result):
     delay: Figure  # s
     dc_gain: Figure
     time_constant: Figure  # s
+    polarity: int  # -1: a negative scale factor's 180 deg removed from every phase before eqs. (43)-(46)
     bode: list[Record]
 
 def bandwidth_and_delay(
     frequency_hz: ArrayLike, gain: ArrayLike, phase_deg: ArrayLike, *, minimum_frequencies: int = 10
 ) -> BandwidthResult:
     """Bandwidth (GJB 2426A-2004 5.13, eqs. 32-41) and output delay (5.14, eqs. 42-46)."""
+
+class ThresholdResult(Result):
+    """GJB 2426A-2004 5.10, eqs. (14)-(17); the 50 % criterion of IEEE Std 952-1997 by default."""
+
+    threshold: Figure  # deg/h
+    method: int
+    criterion_denominator: str  # "expected" (IEEE Std 952-1997) or "measured" (GJB eq. 15 as printed)
+    criterion: str
+    branches: list[Record]
+
+def threshold_rate_table(
+    rate: ArrayLike,
+    output: ArrayLike,
+    *,
+    scale_factor: float,
+    rate_unit: str = "deg/s",
+    zero_output: Optional[float] = None,
+    criterion_denominator: str = "expected",
+) -> ThresholdResult:
+    """Threshold by method 1 (rate table), GJB 2426A-2004 5.10.4.1; criterion relative to the expected output."""
 
 class InputAxisMisalignmentResult(Result):
     """GJB 2426A-2004 5.15, eqs. (47)-(50)."""
@@ -247,7 +268,7 @@ def allan_variance(
     *,
     sample_rate_hz: float,
     input_unit: str = "deg/h",
-    taus: str = "octave",
+    taus: Union[str, Sequence[float], FloatArray] = "octave",  # a grid name or taus in s
     estimators: str = "all",
     scale: float = 1.0,
     confidence: float = 0.6826894921370859,
@@ -262,7 +283,7 @@ def allan_variance_of_file(
     format: str = "csv",
     column: Optional[str] = None,
     input_unit: str = "deg/h",
-    taus: str = "octave",
+    taus: Union[str, Sequence[float], FloatArray] = "octave",  # a grid name or taus in s
     estimators: str = "all",
     scale: float = 1.0,
     confidence: float = 0.6826894921370859,

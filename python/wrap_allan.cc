@@ -1,9 +1,11 @@
 // allan: the Allan-family deviations with confidence bounds and the noise-term fit (GJB 2426A-2004
 // 5.12.5.4.2 eqs. (30)-(31), IEEE Std 952-1997 Annex C, NIST SP 1065).
 #include <nlohmann/json.hpp>
+#include <variant>
 
 #include "bindings.h"
 #include "inertest/allan/allan.h"
+#include "inertest/allan/tau_grid.h"
 #include "inertest/io/text_table.h"
 
 namespace inertest::python {
@@ -11,12 +13,25 @@ namespace {
 
 struct AllanTag {};
 
-AllanOptions allan_options(double sample_rate_hz, const std::string& input_unit, const std::string& taus,
+// `taus` as Python gives it: a grid specification (str), or taus in seconds (a list or a numpy
+// array, as allantools takes them), which become an explicit TauGrid (each tau must be a whole
+// number of sample intervals, tau_grid.h).
+using Taus = std::variant<std::string, std::vector<double>>;
+
+std::string tau_specification(const Taus& taus) {
+  if (const auto* text = std::get_if<std::string>(&taus)) return *text;
+  TauGrid grid;
+  grid.kind = TauGrid::Kind::kExplicit;
+  grid.taus_s = std::get<std::vector<double>>(taus);
+  return grid.to_string();
+}
+
+AllanOptions allan_options(double sample_rate_hz, const std::string& input_unit, const Taus& taus,
                            const std::string& estimators, double scale, double confidence, std::size_t worker_count) {
   AllanOptions options;
   options.sample_rate_hz = sample_rate_hz;
   options.input_unit = input_unit;
-  options.taus = taus;
+  options.taus = tau_specification(taus);
   options.estimators = EstimatorSet::parse(estimators);
   options.scale = scale;
   options.confidence = confidence;
@@ -33,8 +48,8 @@ RateRecordSource rate_source(const std::string& path, const std::string& format,
 }
 
 ResultOf<AllanTag> allan_of_samples(const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit,
-                                    const std::string& taus, const std::string& estimators, double scale,
-                                    double confidence, std::size_t worker_count) {
+                                    const Taus& taus, const std::string& estimators, double scale, double confidence,
+                                    std::size_t worker_count) {
   const auto samples = as_span(rate, "rate");
   const AllanOptions options =
       allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count);
@@ -48,8 +63,8 @@ ResultOf<AllanTag> allan_of_samples(const DoubleArray& rate, double sample_rate_
 
 ResultOf<AllanTag> allan_of_file(const std::string& path, double sample_rate_hz, const std::string& format,
                                  const std::optional<std::string>& column, const std::string& input_unit,
-                                 const std::string& taus, const std::string& estimators, double scale,
-                                 double confidence, std::size_t worker_count) {
+                                 const Taus& taus, const std::string& estimators, double scale, double confidence,
+                                 std::size_t worker_count) {
   const RateRecordSource source = rate_source(path, format, column);
   const AllanOptions options =
       allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count);
@@ -74,7 +89,9 @@ void wrap_allan(py::module_& module) {
       "slope_method), mean, sample_count, warnings, ...");
   const char* options_doc =
       "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
-      "taus: 'octave', 'decade', 'all', 'N/decade' or a comma list of tau in s; estimators: 'all' or a comma\n"
+      "taus: 'octave', 'decade', 'all', 'N/decade', a comma list of tau in s, or a list or numpy array of tau\n"
+      "in s (each a whole number of sample intervals to 1e-6, else an error; taus beyond the record are left\n"
+      "out); estimators: 'all' or a comma\n"
       "list of adev, oadev, mdev, hdev, ohdev, totdev; confidence: of the chi-squared bounds (1 sigma).\n"
       "Noise terms by the weighted fit of sigma^2 = sum A_p tau^p (GJB eq. 30; RWC = N, eq. 31) and by\n"
       "slope read-off. Raises inertest.Error (a ValueError) with the CLI's message.";

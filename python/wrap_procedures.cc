@@ -10,6 +10,7 @@
 #include "inertest/procedures/maximum_input_rate.h"
 #include "inertest/procedures/scale_factor.h"
 #include "inertest/procedures/scale_factor_repeatability.h"
+#include "inertest/procedures/threshold.h"
 
 namespace inertest::python {
 namespace {
@@ -119,6 +120,24 @@ ResultOf<BandwidthTag> bandwidth_of(const DoubleArray& frequency_hz, const Doubl
   return make_result<BandwidthTag>(bandwidth_and_delay(points, options));
 }
 
+struct ThresholdTag {};
+
+ResultOf<ThresholdTag> threshold_rate_table_of(const DoubleArray& rate, const DoubleArray& output, double scale_factor,
+                                               const std::string& rate_unit, std::optional<double> zero_output,
+                                               const std::string& criterion_denominator) {
+  const auto rates = as_span(rate, "rate");
+  const auto outputs = as_span(output, "output");
+  require_equal_lengths({{"rate", rates.size()}, {"output", outputs.size()}});
+  std::vector<RateTablePoint> points(rates.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {rates[i], outputs[i]};
+  ThresholdOptions options;
+  options.scale_factor = scale_factor;
+  options.rate_unit = rate_unit;
+  options.zero_output = zero_output;
+  options.criterion_denominator = parse_criterion_denominator(criterion_denominator);
+  return make_result<ThresholdTag>(threshold_rate_table(points, options));
+}
+
 struct InputAxisMisalignmentTag {};
 
 ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray& output_positive,
@@ -216,6 +235,17 @@ void wrap_procedures(py::module_& module) {
              "gain Gi and the phase Pi of the output against the input rate (deg, negative for a lag) at >= 10\n"
              "increasing frequencies: linearised least squares Gi^2 = K^2 - Gi^2 wi^2 T^2, Bw = 1/(2 pi T),\n"
              "Td from -Pi - atan(wi T) with wi = 2 pi fi.");
+
+  bind_result<ThresholdTag>(
+      module, "ThresholdResult",
+      "Threshold (GJB 2426A-2004 5.10, eqs. (14)-(17)). Members as in the JSON: threshold (deg/h),\n"
+      "method, criterion_denominator, criterion, branches, warnings.");
+  module.def("threshold_rate_table", &threshold_rate_table_of, "rate"_a, "output"_a, py::kw_only(), "scale_factor"_a,
+             "rate_unit"_a = "deg/s", "zero_output"_a = py::none(), "criterion_denominator"_a = "expected",
+             "Threshold by method 1 (GJB 2426A-2004 5.10.4.1, rate table): the mean output at each signed table\n"
+             "rate; K in output units per deg/s; zero-rate points give the zero output unless zero_output. An\n"
+             "input passes while |F_expected - F| <= 50 % of F_expected ('expected', IEEE Std 952-1997, as eq. 18)\n"
+             "or of the measured F ('measured', eq. (15) as printed, a 67 % criterion).");
 
   bind_result<InputAxisMisalignmentTag>(module, "InputAxisMisalignmentResult",
                                         "Input-axis misalignment (GJB 2426A-2004 5.15, eqs. (47)-(50)). Members as in the JSON.");

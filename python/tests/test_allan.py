@@ -40,6 +40,21 @@ def test_allan_equals_the_cli_on_the_same_file(tmp_path):
     np.testing.assert_array_equal(inertest.read_rate_record(str(path)), samples)
 
 
+def test_taus_as_a_list_or_an_array_of_seconds():
+    # As allantools takes them: taus in s, each a whole number of sample intervals (0.01 s here).
+    samples = white_noise_deg_h(seed=5, samples=5_000)
+    as_text = inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, taus="0.01,0.1,1,10")
+    for taus in ([0.01, 0.1, 1.0, 10.0], np.array([0.01, 0.1, 1.0, 10.0]), np.array([10.0, 1.0, 0.1, 0.01])):
+        result = inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, taus=taus)
+        np.testing.assert_array_equal(result.averaging_factor, [1, 10, 100, 1000])
+        np.testing.assert_allclose(result.tau, [0.01, 0.1, 1.0, 10.0], rtol=1e-15)
+        np.testing.assert_array_equal(result.oadev.values, as_text.oadev.values)
+    with pytest.raises(inertest.Error, match="whole number of sample intervals"):
+        inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, taus=[0.015])
+    with pytest.raises(inertest.Error, match="positive"):
+        inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, taus=np.array([-1.0]))
+
+
 def test_bad_allan_options_are_errors():
     with pytest.raises(inertest.Error, match="estimator"):
         inertest.allan_variance(np.ones(100), sample_rate_hz=1.0, estimators="bogus")

@@ -111,3 +111,26 @@ def test_maximum_input_rate_of_a_saturating_gyro():
     output = np.concatenate([[0.0], outputs, -outputs, [0.0]])
     result = inertest.maximum_input_rate(rate, output, nonlinearity_limit_ppm=100.0)
     assert result.maximum_input_rate.value == pytest.approx(100.0)
+
+
+def test_threshold_criterion_denominator_keyword_matches_the_cli(tmp_path):
+    # 60 % of the expected output at 2 deg/h (K = 3600 output units per deg/s, so 1 deg/h gives 1):
+    # passes the default criterion relative to the expected output (IEEE Std 952-1997), fails GJB
+    # eq. (15) as printed, relative to the measured output (|2 - 1.2| / 1.2 = 0.67).
+    rate = np.array([0, 4, 2, 1, -4, -2, -1], dtype=float)
+    output = np.array([0, 4, 1.2, 0.45, -4, -2, -0.45])
+    expected = inertest.threshold_rate_table(rate, output, scale_factor=3600.0, rate_unit="deg/h")
+    assert expected.criterion_denominator == "expected"
+    assert expected.threshold.value == pytest.approx(2.0, rel=1e-14)
+    measured = inertest.threshold_rate_table(
+        rate, output, scale_factor=3600.0, rate_unit="deg/h", criterion_denominator="measured"
+    )
+    assert measured.criterion_denominator == "measured"
+    assert measured.threshold.value == pytest.approx(4.0, rel=1e-14)
+    path = tmp_path / "th.csv"
+    path.write_text("rate,output\n" + "".join(f"{r},{f}\n" for r, f in zip(rate, output)))
+    cli = cli_json("threshold", path, "--method", "1", "--scale-factor", "3600", "--rate-unit", "deg/h",
+                   "--criterion-denominator", "measured")
+    assert measured.to_dict() == cli
+    with pytest.raises(inertest.Error, match="neither 'expected'"):
+        inertest.threshold_rate_table(rate, output, scale_factor=3600.0, criterion_denominator="theoretical")

@@ -5,7 +5,9 @@
 //   "decade"     m = 1, 2, 4, 10, 20, 40, 100, ...        (Stable32 / allantools "decade")
 //   "all"        every m = 1, 2, 3, ...
 //   "N/decade"   N points per decade, m = round(10^(i/N)), duplicates dropped (e.g. "10/decade")
-//   "0.1,1,10"   an explicit list of tau in seconds; each must be a whole number of samples.
+//   "0.1,1,10"   an explicit list of tau in seconds (also Kind::kExplicit with taus_s set, as Python's
+//                list or array of taus): m = round(tau * rate) when |tau * rate - m| <= 1e-6 * max(1, tau * rate),
+//                an Error otherwise (a tau between two samples is not rounded to either).
 // Averaging factors the record cannot support (m > the largest factor allowed) are left out.
 #pragma once
 

@@ -112,6 +112,11 @@ double centrifuge_input_rate(const CentrifugeSite& site, const CentrifugeErrors&
   return (horizontal * std::cos(beta_rad) + vertical * std::sin(beta_rad)) * kDegPerHourPerRadPerSecond;
 }
 
+SpecificForce in_standard_g(const SpecificForce& force_site_g, const CentrifugeSite& site) {
+  const double ratio = site.gravity_m_s2 / constants::kStandardGravity;  // g_site in standard g
+  return {force_site_g.input * ratio, force_site_g.output * ratio, force_site_g.spin * ratio};
+}
+
 DriftCoefficients drift_regressors(const SpecificForce& f) {
   // Eq. (2), in the order of q (eq. 13).
   return {1.0,
@@ -130,7 +135,7 @@ double centrifuge_model_output(const DriftCoefficients& coefficients, const Cent
                                const CentrifugeErrors& errors, double omega_rad_s, double beta_rad,
                                double gamma_rad) {
   const DriftCoefficients regressors =
-      drift_regressors(centrifuge_specific_force(site, omega_rad_s, beta_rad, gamma_rad));
+      drift_regressors(in_standard_g(centrifuge_specific_force(site, omega_rad_s, beta_rad, gamma_rad), site));
   double output = centrifuge_input_rate(site, errors, omega_rad_s, beta_rad, gamma_rad);  // w_I of eq. (2)
   for (std::size_t j = 0; j < kDriftTermCount; ++j) output += coefficients[j] * regressors[j];
   return output;
@@ -140,7 +145,7 @@ HarmonicModel centrifuge_harmonic_model(const CentrifugeSite& site, double omega
   HarmonicModel model;
   for (std::size_t j = 0; j < kDriftTermCount; ++j) {
     const HarmonicAmplitudes column = project([&](double gamma) {
-      return drift_regressors(centrifuge_specific_force(site, omega_rad_s, beta_rad, gamma))[j];
+      return drift_regressors(in_standard_g(centrifuge_specific_force(site, omega_rad_s, beta_rad, gamma), site))[j];
     });
     for (std::size_t h = 0; h < kHarmonicCount; ++h) model.structure[h][j] = column[h];
   }

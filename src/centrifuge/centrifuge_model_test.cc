@@ -88,24 +88,26 @@ TEST(CentrifugeModel, HarmonicModelMatchesSampledOutput) {
   }
 }
 
-// Hand-derived entries of Phi at beta = 0: f_I = -(A cos g + A_k), f_O = -A sin g, f_S = 1.
+// Hand-derived entries of Phi at beta = 0: f_I = -(A cos g + A_k), f_O = -A sin g, f_S = 1 in the
+// site's g (9.8 m/s^2 here), each times 9.8 / 9.80665 in standard g, the g of the coefficients.
 TEST(CentrifugeModel, StructureAtBetaZeroByHand) {
   const CentrifugeSite site = paper_site();
   const double omega = std::sqrt(10.0 * 9.8);
-  const double a = 10.0;
-  const double a_k = coriolis_specific_force(site, omega);
+  const double g = 9.8 / 9.80665;  // the site's g in standard g
+  const double a = 10.0 * g;
+  const double a_k = coriolis_specific_force(site, omega) * g;
   const HarmonicModel model = centrifuge_harmonic_model(site, omega, 0.0);
   EXPECT_NEAR(model.structure[kK0][kF], 1.0, 1e-14);
   EXPECT_NEAR(model.structure[kK0][kI], -a_k, 1e-14);
   EXPECT_NEAR(model.structure[kK1c][kI], -a, 1e-13);
   EXPECT_NEAR(model.structure[kK1s][kO], -a, 1e-13);
-  EXPECT_NEAR(model.structure[kK0][kS], 1.0, 1e-14);
+  EXPECT_NEAR(model.structure[kK0][kS], g, 1e-14);
   EXPECT_NEAR(model.structure[kK0][kII], a * a / 2.0 + a_k * a_k, 1e-12);      // f_I^2
   EXPECT_NEAR(model.structure[kK2c][kII], a * a / 2.0, 1e-12);
   EXPECT_NEAR(model.structure[kK2c][kOO], -a * a / 2.0, 1e-12);                // f_O^2
   EXPECT_NEAR(model.structure[kK2s][kIO], a * a / 2.0, 1e-12);                 // f_I f_O
   EXPECT_NEAR(model.structure[kK1s][kIO], a * a_k, 1e-12);
-  EXPECT_NEAR(model.structure[kK1s][kOS], -a, 1e-13);                          // f_O f_S
+  EXPECT_NEAR(model.structure[kK1s][kOS], -a * g, 1e-13);  // f_O f_S
   // Epsilon at beta = 0: k1c = -k1 Omega, k1s = -k2 Omega, in deg/h per rad.
   EXPECT_NEAR(model.per_k1[kK1c], -omega * kDegPerHourPerRadPerSecond, 1e-6);
   EXPECT_NEAR(model.per_k2[kK1s], -omega * kDegPerHourPerRadPerSecond, 1e-6);

@@ -383,9 +383,11 @@ nlohmann::json DriftCalibrationResult::to_json() const {
   }
   return {
       {"procedure", "centrifuge"},
-      {"source", "centrifuge drift-coefficient calibration with a counter-rotating platform, paper "
-                 "000_746ebd72f166769f eqs. (2), (5)-(16) and section 6"},
+      {"source",
+       "centrifuge drift-coefficient calibration with a counter-rotating platform, paper "
+       "000_746ebd72f166769f eqs. (2), (5)-(16) and section 6"},
       {"coefficients", coefficient_json(coefficients)},
+      {"coefficients_g", "per standard g (9.80665 m/s^2), converted from the site's gravity of A = Omega^2 R0 / g"},
       {"residual_rms", residual_rms},
       {"degrees_of_freedom", degrees_of_freedom},
       {"g_levels", g_levels},
@@ -409,6 +411,8 @@ std::string DriftCalibrationResult::report() const {
   };
   std::string text = fmt::format("Centrifuge drift coefficients ({} g-level(s), {} runs, compensation {})\n", g_levels,
                                  runs.size(), compensation ? "on" : "off");
+  text += fmt::format("  per standard g (9.80665 m/s^2), converted from the site's gravity {:.6g} m/s^2\n",
+                      site.gravity_m_s2);
   for (std::size_t j = 0; j < kDriftTermCount; ++j) text += line(drift_term_name(j), coefficients[j]);
   text += line("residual rms", residual_rms);
   for (const auto& e : estimated_errors) text += line(e.name + " (estimated)", e.value);

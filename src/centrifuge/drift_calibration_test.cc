@@ -34,9 +34,15 @@ std::vector<CentrifugeRun> table3_runs() {
   return read_centrifuge_record(testing::source_path("data/centrifuge/table3_harmonics.csv")).runs();
 }
 
-// |actual - printed| within half a unit of the printed value's last digit.
-void expect_to_last_digit(const Figure& actual, double printed, double last_digit) {
-  EXPECT_NEAR(actual.value, printed, 0.5 * last_digit) << "printed " << printed;
+// The paper's coefficients are per its g of 9.8 m/s^2; the results are per standard g. A
+// coefficient of order n (0 for D_F, 1 for D_I..D_S, 2 for D_II..D_OS) per 9.8 m/s^2 is
+// (9.80665 / 9.8)^n times that per standard g: f_9.8 = f_standard * 9.80665 / 9.8.
+double per_standard_g(double per_paper_g, int order) { return per_paper_g * std::pow(9.80665 / 9.8, order); }
+
+// |actual - printed| within half a unit of the printed value's last digit, the printed value (per
+// the paper's g) converted to per standard g.
+void expect_to_last_digit(const Figure& actual, double printed, double last_digit, int order) {
+  EXPECT_NEAR(actual.value, per_standard_g(printed, order), 0.5 * last_digit) << "printed " << printed;
 }
 
 TEST(CentrifugeDriftCalibration, ReproducesTheReferenceFitOfTable3) {
@@ -44,17 +50,17 @@ TEST(CentrifugeDriftCalibration, ReproducesTheReferenceFitOfTable3) {
   ASSERT_EQ(runs.size(), 8u);
   const DriftCalibrationResult result = calibrate_drift_coefficients(runs, paper_options());
   const auto& q = result.coefficients;
-  expect_to_last_digit(q[kF], 0.90605, 1e-5);
-  expect_to_last_digit(q[kI], 1.5366, 1e-4);
-  expect_to_last_digit(q[kO], 0.7431, 1e-4);
-  expect_to_last_digit(q[kS], -0.021962, 1e-6);
-  expect_to_last_digit(q[kOO], 3.2411e-4, 1e-8);
-  expect_to_last_digit(q[kSS], 2.0991e-4, 1e-8);
-  expect_to_last_digit(q[kOS], 2.5223e-5, 1e-9);
-  EXPECT_NEAR_RELATIVE(q[kII].value, -1.9246e-4, 0.01);
-  EXPECT_NEAR_RELATIVE(q[kIO].value, 1.3698e-5, 0.01);
-  EXPECT_NEAR_RELATIVE(q[kIS].value, -2.4943e-5, 0.01);
-  expect_to_last_digit(result.residual_rms, 0.0014, 1e-4);
+  expect_to_last_digit(q[kF], 0.90605, 1e-5, 0);
+  expect_to_last_digit(q[kI], 1.5366, 1e-4, 1);
+  expect_to_last_digit(q[kO], 0.7431, 1e-4, 1);
+  expect_to_last_digit(q[kS], -0.021962, 1e-6, 1);
+  expect_to_last_digit(q[kOO], 3.2411e-4, 1e-8, 2);
+  expect_to_last_digit(q[kSS], 2.0991e-4, 1e-8, 2);
+  expect_to_last_digit(q[kOS], 2.5223e-5, 1e-9, 2);
+  EXPECT_NEAR_RELATIVE(q[kII].value, per_standard_g(-1.9246e-4, 2), 0.01);
+  EXPECT_NEAR_RELATIVE(q[kIO].value, per_standard_g(1.3698e-5, 2), 0.01);
+  EXPECT_NEAR_RELATIVE(q[kIS].value, per_standard_g(-2.4943e-5, 2), 0.01);
+  expect_to_last_digit(result.residual_rms, 0.0014, 1e-4, 0);
   EXPECT_EQ(result.residual_rms.unit, "deg/h");
   EXPECT_EQ(result.degrees_of_freedom, 30u);
   EXPECT_EQ(result.g_levels, 2u);
@@ -73,7 +79,7 @@ TEST(CentrifugeDriftCalibration, WithoutCompensationDIIsThePapersWrongValue) {
   DriftCalibrationOptions options = paper_options();
   options.compensation = false;
   const DriftCalibrationResult result = calibrate_drift_coefficients(table3_runs(), options);
-  expect_to_last_digit(result.coefficients[kI], -1.5268, 1e-4);
+  expect_to_last_digit(result.coefficients[kI], -1.5268, 1e-4, 1);
   EXPECT_FALSE(result.compensation);
   EXPECT_EQ(result.errors.k1_rad, 0.0);
 }
@@ -101,7 +107,7 @@ TEST(CentrifugeDriftCalibration, ErrorInfluenceOfEachErrorAlone) {
   EXPECT_EQ(delta_omega.magnitude.unit, "rad/s");
   // k1 alone: at beta = 0, k1c gets -k1 Omega = 2e-5 * 9.9 rad/s = 40.8 deg/h at 10 g (57.7 at 20 g),
   // which the fit reads as -A * D_I: about -3.1 deg/h/g.
-  EXPECT_NEAR(k1.shift[kI].value, -3.1145, 5e-4);
+  EXPECT_NEAR(k1.shift[kI].value, per_standard_g(-3.1145, 1), 5e-4);
   EXPECT_EQ(k1.shift[kI].unit, "deg/h/g");
   ASSERT_TRUE(k1.sensitivity.has_value());
   EXPECT_EQ((*k1.sensitivity)[kI].unit, "deg/h/g/rad");
@@ -120,11 +126,11 @@ TEST(CentrifugeDriftCalibration, ErrorInfluenceOfEachErrorAlone) {
   const auto paper_figure = [&](const ErrorInfluence& error, double amount, std::size_t j) {
     return -((*error.sensitivity)[j].value * amount + earth.shift[j].value);
   };
-  EXPECT_NEAR(paper_figure(k1, -1e-5, kI), 1.5143, 0.5e-4);
-  EXPECT_NEAR(paper_figure(k1, -1e-5, kS), -0.0418, 0.5e-4);
-  EXPECT_NEAR(paper_figure(k2, 1e-5, kI), -0.0429, 0.5e-4);
-  EXPECT_NEAR(paper_figure(k2, 1e-5, kOS), -0.0182, 0.5e-4);
-  EXPECT_NEAR(paper_figure(delta_omega, 1e-5, kI), -0.0511, 0.5e-4);
+  EXPECT_NEAR(paper_figure(k1, -1e-5, kI), per_standard_g(1.5143, 1), 0.5e-4);
+  EXPECT_NEAR(paper_figure(k1, -1e-5, kS), per_standard_g(-0.0418, 1), 0.5e-4);
+  EXPECT_NEAR(paper_figure(k2, 1e-5, kI), per_standard_g(-0.0429, 1), 0.5e-4);
+  EXPECT_NEAR(paper_figure(k2, 1e-5, kOS), per_standard_g(-0.0182, 2), 0.5e-4);
+  EXPECT_NEAR(paper_figure(delta_omega, 1e-5, kI), per_standard_g(-0.0511, 1), 0.5e-4);
   // The shifts add up to uncompensated minus compensated, coefficient by coefficient.
   DriftCalibrationOptions uncompensated = options;
   uncompensated.compensation = false;
@@ -208,6 +214,42 @@ TEST(CentrifugeDriftCalibration, AStuckRunIsWarnedAbout) {
                                                         samples[1].output.size())));
 }
 
+// The coefficients are per standard g at any site: a gyro whose drift is D per standard g
+// (9.80665 m/s^2, what the unit deg/h/g means to Unit::parse) calibrated at a site of 9.78 m/s^2,
+// where each specific force in the site's g is 9.78 / 9.80665 of itself in standard g.
+TEST(CentrifugeDriftCalibration, CoefficientsArePerStandardGAtAnySiteGravity) {
+  DriftCalibrationOptions options = paper_options();
+  options.site.gravity_m_s2 = 9.78;
+  options.k1_rad = kTrueErrors.k1_rad;
+  options.k2_rad = kTrueErrors.k2_rad;
+  options.delta_omega_rad_s = kTrueErrors.delta_omega_rad_s;
+  const CentrifugeSite& site = options.site;
+  std::vector<CentrifugeRun> runs;
+  for (double a : {10.0, 20.0}) {
+    const double omega = std::sqrt(a * site.gravity_m_s2 / site.radius_m);
+    for (double beta_deg : {0.0, 90.0, 180.0, 270.0}) {
+      std::vector<double> gamma;
+      std::vector<double> output;
+      for (int i = 0; i < 36; ++i) {
+        gamma.push_back(2.0 * kPi * i / 36.0);
+        SpecificForce f = centrifuge_specific_force(site, omega, beta_deg * constants::kDegree, gamma.back());
+        f = {f.input * 9.78 / 9.80665, f.output * 9.78 / 9.80665, f.spin * 9.78 / 9.80665};  // in standard g
+        const DriftCoefficients r = drift_regressors(f);
+        double w = centrifuge_input_rate(site, kTrueErrors, omega, beta_deg * constants::kDegree, gamma.back());
+        for (std::size_t j = 0; j < kDriftTermCount; ++j) w += kTrueCoefficients[j] * r[j];
+        output.push_back(w);
+      }
+      runs.push_back({a, omega, beta_deg * constants::kDegree, analyse_harmonics(gamma, output).amplitudes, {}, {}});
+    }
+  }
+  const DriftCalibrationResult result = calibrate_drift_coefficients(runs, options);
+  expect_true_coefficients(result, 1e-6);
+  EXPECT_NEAR_RELATIVE(convert(result.coefficients[kI].value, result.coefficients[kI].unit, "deg/h/(m/s^2)"),
+                       kTrueCoefficients[kI] / 9.80665, 1e-6);
+  EXPECT_THAT(result.to_json().at("coefficients_g").get<std::string>(), HasSubstr("standard g"));
+  EXPECT_THAT(result.report(), HasSubstr("per standard g"));
+}
+
 // Any platform angles, three g-levels, irregular sampling (least-squares harmonic fit).
 TEST(CentrifugeDriftCalibration, RecoversCoefficientsForAnyBetasAndIrregularSampling) {
   const DriftCalibrationOptions options = paper_options();
@@ -270,8 +312,8 @@ TEST(CentrifugeDriftCalibration, EstimatesErrorsFromTable3) {
     EXPECT_NEAR(value.value, truth[e], 4.0 * *value.uncertainty) << result.estimated_errors[e].name;
     EXPECT_NEAR_RELATIVE(value.value, truth[e], 1e-3);
   }
-  expect_to_last_digit(result.coefficients[kF], 0.90605, 1e-5);
-  expect_to_last_digit(result.coefficients[kS], -0.021962, 1e-6);
+  expect_to_last_digit(result.coefficients[kF], 0.90605, 1e-5, 0);
+  expect_to_last_digit(result.coefficients[kS], -0.021962, 1e-6, 1);
 }
 
 TEST(CentrifugeDriftCalibration, OneGLevelCannotIdentifyAllTen) {

@@ -11,6 +11,10 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// The paper's Table 3 coefficients are per its g of 9.8 m/s^2, the results per standard g: a
+// coefficient of order n is (9.80665 / 9.8)^n times the paper's.
+constexpr double kPerStandardG = 9.80665 / 9.8;
+
 const std::string kTable3 = "data/centrifuge/table3_harmonics.csv";
 
 std::vector<std::string> paper_arguments(std::vector<std::string> extra) {
@@ -28,15 +32,15 @@ TEST(CentrifugeCommand, ReferenceCaseFromTable3) {
   const nlohmann::json json = nlohmann::json::parse(run.out);
   const auto& q = json["coefficients"];
   EXPECT_NEAR(q["D_F"]["value"].get<double>(), 0.90605, 0.5e-5);
-  EXPECT_NEAR(q["D_I"]["value"].get<double>(), 1.5366, 0.5e-4);
-  EXPECT_NEAR(q["D_O"]["value"].get<double>(), 0.7431, 0.5e-4);
-  EXPECT_NEAR(q["D_S"]["value"].get<double>(), -0.021962, 0.5e-6);
-  EXPECT_NEAR(q["D_OO"]["value"].get<double>(), 3.2411e-4, 0.5e-8);
-  EXPECT_NEAR(q["D_SS"]["value"].get<double>(), 2.0991e-4, 0.5e-8);
-  EXPECT_NEAR(q["D_OS"]["value"].get<double>(), 2.5223e-5, 0.5e-9);
-  EXPECT_NEAR_RELATIVE(q["D_II"]["value"].get<double>(), -1.9246e-4, 0.01);
-  EXPECT_NEAR_RELATIVE(q["D_IO"]["value"].get<double>(), 1.3698e-5, 0.01);
-  EXPECT_NEAR_RELATIVE(q["D_IS"]["value"].get<double>(), -2.4943e-5, 0.01);
+  EXPECT_NEAR(q["D_I"]["value"].get<double>(), 1.5366 * kPerStandardG, 0.5e-4);
+  EXPECT_NEAR(q["D_O"]["value"].get<double>(), 0.7431 * kPerStandardG, 0.5e-4);
+  EXPECT_NEAR(q["D_S"]["value"].get<double>(), -0.021962 * kPerStandardG, 0.5e-6);
+  EXPECT_NEAR(q["D_OO"]["value"].get<double>(), 3.2411e-4 * kPerStandardG * kPerStandardG, 0.5e-8);
+  EXPECT_NEAR(q["D_SS"]["value"].get<double>(), 2.0991e-4 * kPerStandardG * kPerStandardG, 0.5e-8);
+  EXPECT_NEAR(q["D_OS"]["value"].get<double>(), 2.5223e-5 * kPerStandardG * kPerStandardG, 0.5e-9);
+  EXPECT_NEAR_RELATIVE(q["D_II"]["value"].get<double>(), -1.9246e-4 * kPerStandardG * kPerStandardG, 0.01);
+  EXPECT_NEAR_RELATIVE(q["D_IO"]["value"].get<double>(), 1.3698e-5 * kPerStandardG * kPerStandardG, 0.01);
+  EXPECT_NEAR_RELATIVE(q["D_IS"]["value"].get<double>(), -2.4943e-5 * kPerStandardG * kPerStandardG, 0.01);
   EXPECT_EQ(q["D_F"]["unit"], "deg/h");
   EXPECT_EQ(q["D_I"]["unit"], "deg/h/g");
   EXPECT_EQ(q["D_IS"]["unit"], "deg/h/g^2");
@@ -51,7 +55,7 @@ TEST(CentrifugeCommand, NoCompensationGivesThePapersDI) {
   const CliRun run = run_cli(paper_arguments({"--no-compensation"}));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
-  EXPECT_NEAR(json["coefficients"]["D_I"]["value"].get<double>(), -1.5268, 0.5e-4);
+  EXPECT_NEAR(json["coefficients"]["D_I"]["value"].get<double>(), -1.5268 * kPerStandardG, 0.5e-4);
   EXPECT_FALSE(json["compensation"].get<bool>());
 }
 

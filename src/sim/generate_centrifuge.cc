@@ -24,11 +24,13 @@ constexpr std::size_t kTerms = 10;     // DF DI DO DS DII DOO DSS DIO DIS DOS (e
 constexpr std::size_t kHarmonics = 5;  // k0 k1c k1s k2c k2s (eq. 11)
 using Row = std::array<double, kTerms>;
 
-// The regressors of eq. (2) at one angle γ, with the nominal inputs fI, fO, fS of eqs. (6)-(8).
-Row regressors(double a, double beta, double gamma) {
-  const double fi = -a * std::cos(gamma) * std::cos(beta) + std::sin(beta);
+// The regressors of eq. (2) at one angle γ, with the nominal inputs fI, fO, fS of eqs. (6)-(8) in
+// standard g (the g of the drift coefficients, as the gyro model's specific force): a the
+// centripetal force and gravity the site's gravity, both in standard g.
+Row regressors(double a, double gravity, double beta, double gamma) {
+  const double fi = -a * std::cos(gamma) * std::cos(beta) + gravity * std::sin(beta);
   const double fo = -a * std::sin(gamma);
-  const double fs = a * std::cos(gamma) * std::sin(beta) + std::cos(beta);
+  const double fs = a * std::cos(gamma) * std::sin(beta) + gravity * std::cos(beta);
   return {1.0, fi, fo, fs, fi * fi, fo * fo, fs * fs, fi * fo, fi * fs, fo * fs};
 }
 
@@ -139,7 +141,8 @@ void generate_centrifuge(campaign::PlanTable& test, const std::string& name, Lab
       const double sigma[kHarmonics] = {sigma_sample / std::sqrt(n), sigma_sample * std::sqrt(2.0 / n),
                                         sigma_sample * std::sqrt(2.0 / n), sigma_sample * std::sqrt(2.0 / n),
                                         sigma_sample * std::sqrt(2.0 / n)};
-      const auto phi = harmonics([&](double g) { return regressors(level, c.beta_rad, g); });
+      const double gravity = lab.site.gravity_m_s2 / constants::kStandardGravity;
+      const auto phi = harmonics([&](double g) { return regressors(level, gravity, c.beta_rad, g); });
       // Known systematics the method does not model, pushed through the same fit: the Earth rate
       // leaking through the IA misalignment, and the gyro's dynamics (delay d, first-order f_c)
       // acting on the once- and twice-per-revolution output (the rate the Earth and the centrifuge
@@ -189,6 +192,7 @@ void generate_centrifuge(campaign::PlanTable& test, const std::string& name, Lab
   for (std::size_t j = 0; j < kTerms; ++j) {
     double shift = 0.0;
     for (std::size_t i = 0; i < kTerms; ++i) shift += covariance[j][i] * leak_projection[i];
+    // Per standard g (Unit::parse's g), as the gyro model's specific force and the procedure's result.
     const std::string unit = j == 0 ? "deg/h" : (j < 4 ? "deg/h/g" : "deg/h/g^2");
     lab.truth.push_back({name, std::string("drift coefficient ") + truth[j].first,
                          std::string("/coefficients/") + figure_names[j], truth[j].second, unit,

@@ -9,8 +9,12 @@
 // belongs elsewhere; this model is what the calibration inverts, and what tests use to make data.
 //
 // Units: angles (beta, gamma, k1, k2) in rad, rates (Omega, delta-omega, Earth rate) in rad/s,
-// specific forces in g (the site's gravity, as the paper defines A = Omega^2 R0 / g), the gyro
-// output and drift coefficients in deg/h, deg/h/g, deg/h/g^2 (the paper's units).
+// the gyro output in deg/h. Specific forces of eqs. (6)-(8) are in the site's g, as the paper
+// defines A = Omega^2 R0 / g (SpecificForce, centrifuge_specific_force). The drift coefficients are
+// per STANDARD g (9.80665 m/s^2, the "g" that Unit::parse reads in deg/h/g, deg/h/g^2): eq. (2) is
+// applied to the forces converted by in_standard_g, so a coefficient of order n per site g equals
+// the same coefficient per standard g times (g_site / 9.80665)^n (the paper's Table 3, with
+// g = 9.8, prints its coefficients per site g).
 #pragma once
 
 #include <array>
@@ -29,7 +33,7 @@ using DriftCoefficients = std::array<double, kDriftTermCount>;
 
 // "D_F", "D_I", ... "D_OS".
 std::string_view drift_term_name(std::size_t term);
-// "deg/h" (D_F), "deg/h/g" (first order), "deg/h/g^2" (second order).
+// "deg/h" (D_F), "deg/h/g" (first order), "deg/h/g^2" (second order); g is standard gravity.
 std::string_view drift_term_unit(std::size_t term);
 
 // The five harmonic amplitudes of eq. (11): k0, k1c, k1s, k2c, k2s (deg/h).
@@ -88,11 +92,16 @@ SpecificForce centrifuge_specific_force(const CentrifugeSite& site, double omega
 double centrifuge_input_rate(const CentrifugeSite& site, const CentrifugeErrors& errors, double omega_rad_s,
                              double beta_rad, double gamma_rad);
 
-// The ten regressors of eq. (2): 1, f_I, f_O, f_S, f_I^2, f_O^2, f_S^2, f_I f_O, f_I f_S, f_O f_S.
+// A specific force in the site's g expressed in standard g: f * g_site / 9.80665.
+SpecificForce in_standard_g(const SpecificForce& force_site_g, const CentrifugeSite& site);
+
+// The ten regressors of eq. (2): 1, f_I, f_O, f_S, f_I^2, f_O^2, f_S^2, f_I f_O, f_I f_S, f_O f_S
+// (in the unit of the force given).
 DriftCoefficients drift_regressors(const SpecificForce& force);
 
 // The first-order model's noise-free gyro output (deg/h): eq. (2) with the inputs of eqs. (5)-(8),
-// sigma = 0. gamma is the angle from the input axis to the centripetal direction (gamma0 = 0).
+// sigma = 0, coefficients per standard g. gamma is the angle from the input axis to the
+// centripetal direction (gamma0 = 0).
 double centrifuge_model_output(const DriftCoefficients& coefficients, const CentrifugeSite& site,
                                const CentrifugeErrors& errors, double omega_rad_s, double beta_rad,
                                double gamma_rad);
@@ -102,7 +111,7 @@ double centrifuge_model_output(const DriftCoefficients& coefficients, const Cent
 // Every term of the model is a trigonometric polynomial of degree <= 2 in gamma, so the projection
 // is exact (computed by an 8-point discrete Fourier transform, which does not alias degree 2).
 struct HarmonicModel {
-  std::array<DriftCoefficients, kHarmonicCount> structure{};  // rows of Phi (eq. 13) for this run
+  std::array<DriftCoefficients, kHarmonicCount> structure{};  // rows of Phi (eq. 13), q per standard g
   HarmonicAmplitudes earth_rate{};       // epsilon from omega_e (deg/h)
   HarmonicAmplitudes per_k1{};           // epsilon per rad of k1 (deg/h/rad)
   HarmonicAmplitudes per_k2{};           // epsilon per rad of k2 (deg/h/rad)

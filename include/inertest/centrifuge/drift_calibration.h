@@ -10,7 +10,8 @@
 // centrifuge errors k1, k2, delta-omega can be estimated together with the coefficients.
 //
 // Units: see centrifuge_model.h. Coefficients are reported in deg/h, deg/h/g, deg/h/g^2 with g the
-// site's gravity (the paper's convention: A = Omega^2 R0 / g).
+// standard gravity 9.80665 m/s^2 (what Unit::parse reads as g), converted from the site's gravity
+// of the paper's A = Omega^2 R0 / g: per site g they would be (g_site / 9.80665)^n times these.
 #pragma once
 
 #include <array>

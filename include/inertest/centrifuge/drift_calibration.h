@@ -139,8 +139,9 @@ struct DriftCalibrationResult {
 };
 
 // Throws Error (at the offending run's location where known) for an invalid run, a duplicated
-// (g-level, beta) run, a g-level missing a platform angle that another g-level has, fewer
-// amplitudes than parameters, or a design that cannot identify some parameters (naming them).
+// (g-level, beta) run, fewer amplitudes than parameters, or a design that cannot identify some
+// parameters (naming them). The g-levels may hold different platform angles when the design still
+// has full rank.
 DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRun> runs,
                                                     const DriftCalibrationOptions& options);
 

@@ -103,6 +103,16 @@ ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const S
   // Eqs. (10)-(11).
   const double k_positive = positive.fit.slope;
   const double k_negative = negative.fit.slope;
+  // K(+) and K(-) of opposite signs (or one zero) mean an output that does not follow the rate alike
+  // on both sides of zero; K(+) = -K(-) makes K-bar = 0 and eq. (10) infinite or NaN.
+  if (!(k_positive * k_negative > 0.0)) {
+    throw Error(
+        fmt::format("scale factor: K(+) = {:.6g} and K(-) = {:.6g} have opposite signs (or one is zero): "
+                    "the output does not follow the rate alike on both sides of zero, so the asymmetry of "
+                    "eq. (10), relative to K-bar = (K(+) + K(-))/2 = {:.6g} (eq. 11), has no meaning; check "
+                    "the signs of the negative rates and of the output",
+                    k_positive, k_negative, 0.5 * (k_positive + k_negative)));
+  }
   const double k_mean = 0.5 * (k_positive + k_negative);
   const double asymmetry = std::abs(k_positive - k_negative) / std::abs(k_mean);
 

@@ -166,12 +166,19 @@ TEST_P(ScaleFactorErrors, SayWhatIsMissing) {
 
 INSTANTIATE_TEST_SUITE_P(
     ScaleFactor, ScaleFactorErrors,
-    ::testing::Values(BadCase{"no_start_static", points({{-1, -1}, {-2, -2}, {1, 1}, {2, 2}, {0, 0}}), "static run at the start"},
-                      BadCase{"no_end_static", points({{0, 0}, {-1, -1}, {-2, -2}, {1, 1}, {2, 2}}), "static run at the end"},
-                      BadCase{"not_bracketing_zero", points({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 0}}), "0 negative rate(s)"},
-                      BadCase{"one_negative", points({{0, 0}, {-1, -1}, {1, 1}, {2, 2}, {0, 0}}), "1 negative rate(s)"},
-                      BadCase{"all_static", points({{0, 0}, {0, 0}}), "no nonzero rate"},
-                      BadCase{"no_response", points({{0, 0}, {-1, 5}, {-2, 5}, {1, 5}, {2, 5}, {0, 5}}), "scale factor is zero"}),
+    ::testing::Values(
+        BadCase{"no_start_static", points({{-1, -1}, {-2, -2}, {1, 1}, {2, 2}, {0, 0}}), "static run at the start"},
+        BadCase{"no_end_static", points({{0, 0}, {-1, -1}, {-2, -2}, {1, 1}, {2, 2}}), "static run at the end"},
+        BadCase{"not_bracketing_zero", points({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 0}}), "0 negative rate(s)"},
+        BadCase{"one_negative", points({{0, 0}, {-1, -1}, {1, 1}, {2, 2}, {0, 0}}), "1 negative rate(s)"},
+        BadCase{"all_static", points({{0, 0}, {0, 0}}), "no nonzero rate"},
+        BadCase{"no_response", points({{0, 0}, {-1, 5}, {-2, 5}, {1, 5}, {2, 5}, {0, 5}}), "scale factor is zero"},
+        // F = |rate|: K(+) = 1, K(-) = -1, K-bar of eq. (11) = 0 (was inf ppm).
+        BadCase{"opposite_slopes", points({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {-1, 1}, {-2, 2}, {0, 0}}),
+                "K(+) = 1 and K(-) = -1 have opposite signs"},
+        // K(+) = 1, K(-) = -0.5: opposite signs, an asymmetry of 600 % would mean nothing.
+        BadCase{"opposite_signs", points({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {-2, 1}, {-4, 2}, {0, 0}}),
+                "have opposite signs"}),
     testing::NameOfParam());
 
 TEST(ScaleFactor, OptionsAreValidated) {

@@ -15,6 +15,10 @@ namespace {
 constexpr double kSecondsPerHour = 3600.0;
 const double kEarthRateDegH = constants::kEarthRate / constants::kDegree * kSecondsPerHour;
 
+// |cos β| below this is the IRA east or west (β = 90° or 270°): no Earth-rate input. cos(90°) in
+// doubles is 6e-17, not 0, which would otherwise give an input of ~1e-12 deg/h of either sign.
+constexpr double kZeroInputCosine = 1e-9;
+
 struct Sample {
   double input_deg_h;
   double output;  // zero not yet removed
@@ -145,7 +149,7 @@ ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> point
   for (const auto& p : points) {
     const double beta = (p.angle_deg + options.heading_deg) * constants::kDegree;
     const double c = std::cos(beta);
-    if (std::abs(c) < 1e-9) {  // IRA east or west: no Earth-rate input
+    if (std::abs(c) < kZeroInputCosine) {  // IRA east or west: no Earth-rate input
       static_outputs.push_back(p.output);
       continue;
     }
@@ -184,8 +188,9 @@ ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<con
   for (std::size_t j = 0; j < output.size(); ++j) {
     double theta = std::fmod(table_rate_deg_s * time_s[j] + options.heading_deg, 360.0);
     if (theta < 0.0) theta += 360.0;
-    const double input = horizontal * std::cos(theta * constants::kDegree);  // eq. (17)
-    if (input == 0.0) continue;
+    const double c = std::cos(theta * constants::kDegree);
+    if (std::abs(c) < kZeroInputCosine) continue;  // at a crossing (90° or 270°): no input, in no branch
+    const double input = horizontal * c;           // eq. (17)
     const int quadrant = theta < 90.0 ? 0 : theta < 180.0 ? 1 : theta < 270.0 ? 2 : 3;
     quadrants[quadrant].push_back({input, output[j]});
   }

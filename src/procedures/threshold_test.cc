@@ -139,6 +139,29 @@ TEST(ThresholdTest, MethodThreeFourBranchesOfOneRevolution) {
   EXPECT_TRUE(result.warnings.empty());
 }
 
+TEST(ThresholdTest, MethodThreeSamplesAtTheCrossingsBelongToNoBranch) {
+  // One revolution at 1 deg/s sampled at 1 Hz from t = 0: samples at exactly 90 and 270 deg, where
+  // cos gives 6e-17, not 0. An ideal instrument (no dead zone): each branch's candidate is its
+  // smallest nonzero input, 1 deg from a crossing, and every input keeps its branch's sign.
+  ThresholdOptions options = unit_options();
+  options.zero_output = 0.0;
+  const double horizontal = kEarthDegH;  // latitude 0
+  std::vector<double> time, output;
+  for (int j = 0; j < 360; ++j) {
+    time.push_back(j);
+    output.push_back(horizontal * std::cos(j * kPi / 180.0));
+  }
+  const ThresholdResult result = threshold_rotating(time, output, 1.0, options);
+  ASSERT_EQ(result.branches.size(), 4u);
+  const double expected = horizontal * std::cos(89.0 * kPi / 180.0);
+  for (const auto& b : result.branches) {
+    EXPECT_NEAR_RELATIVE(b.candidate_deg_h, expected, 1e-9) << b.name;
+    const bool positive = b.name.starts_with("positive");
+    for (const auto& p : b.points) EXPECT_EQ(p.input_deg_h > 0.0, positive) << b.name << " " << p.input_deg_h;
+  }
+  EXPECT_NEAR_RELATIVE(result.threshold.value, expected, 1e-9);
+}
+
 TEST(ThresholdTest, BadInputIsAnError) {
   ThresholdOptions options = unit_options();
   const std::vector<RateTablePoint> one_side = {{0, 0.0}, {1, 1.0}, {2, 2.0}};

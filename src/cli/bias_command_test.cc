@@ -72,9 +72,13 @@ TEST(BiasCommandTest, NamedColumnAndBinaryFormat) {
 TEST(BiasCommandTest, ClearErrors) {
   ScratchDirectory scratch;
   const std::string file = scratch.write("short.txt", as_text(std::vector<double>(50, 1.0)));
-  const auto too_long = run_cli({"bias", file, "--rate", "10", "--scale-factor", "5", "--smoothing", "10"});
-  EXPECT_EQ(too_long.exit_code, 2);
-  EXPECT_THAT(too_long.err, ::testing::HasSubstr("longer than the record"));
+  // A smoothing time longer than the record: the bias, and a warning instead of that stability.
+  const auto too_long = run_cli({"bias", file, "--rate", "10", "--scale-factor", "5", "--smoothing", "10", "--json"});
+  ASSERT_EQ(too_long.exit_code, 0) << too_long.err;
+  const auto too_long_json = nlohmann::json::parse(too_long.out);
+  EXPECT_NEAR(too_long_json.at("bias").at("value").get<double>(), 720.0, 1e-9);  // 1 / 5 * 3600
+  EXPECT_TRUE(too_long_json.at("bias_stability").empty());
+  EXPECT_THAT(too_long_json.at("warnings").dump(), ::testing::HasSubstr("longer than the record"));
   const auto bad_rate = run_cli({"bias", file, "--rate", "0", "--scale-factor", "5", "--smoothing", "1"});
   EXPECT_EQ(bad_rate.exit_code, 2);
   EXPECT_THAT(bad_rate.err, ::testing::HasSubstr("sample rate must be positive"));

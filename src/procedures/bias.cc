@@ -69,8 +69,17 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
         "walk of 0 are not measurements",
         output.size(), output.front(), options.input_in_deg_h ? "deg/h" : options.output_unit));
   }
+  // Every figure the record supports; a smoothing time it does not (longer than half the record, not
+  // a whole number of samples) and a random walk coefficient it cannot give (a record under 2 s,
+  // samples more than 1 s apart) are warnings, not an end to the bias.
   for (double s : options.smoothing_s) {
-    const StabilityAtSmoothing stability = output_stability(output, options.sample_rate_hz, s);  // eq. (20)
+    StabilityAtSmoothing stability;
+    try {
+      stability = output_stability(output, options.sample_rate_hz, s);  // eq. (20)
+    } catch (const Error& e) {
+      result.warnings.push_back(e.message() + " (left out)");
+      continue;
+    }
     std::vector<double> smoothed;
     smoothed.reserve(stability.means.size());
     const double earth = result.earth_rate_removed ? result.earth_rate_removed->value : 0.0;
@@ -79,14 +88,18 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
         {s, stability.windows, Figure{stability.stability * magnitude, "deg/h", std::nullopt}, std::move(smoothed)});
   }
   if (options.random_walk) {
-    const double ner = noise_equivalent_rate(output, options.sample_rate_hz) * magnitude;  // deg/h
-    result.noise_equivalent_rate = Figure{ner, "deg/h", std::nullopt};
-    // Eq. (24) with τ = 1 s: NER·√τ in deg/h·√s, converted to deg/√h.
-    const double tau_s = 1.0;
-    result.random_walk_coefficient =
-        Figure{convert(ner * std::sqrt(tau_s), "deg/h*sqrt(s)", "deg/sqrt(h)"), "deg/sqrt(h)", std::nullopt};
     result.normalised_stability_curve = normalised_stability_curve(output, options.sample_rate_hz);
     for (auto& point : result.normalised_stability_curve) point.stability *= magnitude;
+    try {
+      const double ner = noise_equivalent_rate(output, options.sample_rate_hz) * magnitude;  // deg/h
+      result.noise_equivalent_rate = Figure{ner, "deg/h", std::nullopt};
+      // Eq. (24) with τ = 1 s: NER·√τ in deg/h·√s, converted to deg/√h.
+      const double tau_s = 1.0;
+      result.random_walk_coefficient =
+          Figure{convert(ner * std::sqrt(tau_s), "deg/h*sqrt(s)", "deg/sqrt(h)"), "deg/sqrt(h)", std::nullopt};
+    } catch (const Error& e) {
+      result.warnings.push_back(e.message() + " (noise equivalent rate and random walk coefficient left out)");
+    }
   }
   return result;
 }

@@ -204,17 +204,59 @@ TEST(BiasTest, BadInputIsAnError) {
   EXPECT_THROW(bias(output, zero_k), Error);                       // zero scale factor
   EXPECT_THROW(bias(output, unit_options(1.0, {})), Error);        // no smoothing time
   EXPECT_THROW(bias(output, unit_options(1.0, {-1.0})), Error);    // negative smoothing time
-  EXPECT_THROW(bias(output, unit_options(1.0, {1.5})), Error);     // not whole samples
   EXPECT_THROW(bias(std::vector<double>{1.0}, unit_options(1.0, {1.0})), Error);  // too few samples
-  try {
-    bias(output, unit_options(1.0, {20.0}));
-    FAIL() << "a window longer than the record must be an error";
-  } catch (const Error& e) {
-    EXPECT_THAT(e.message(), ::testing::HasSubstr("longer than the record"));
-  }
-  EXPECT_THROW(bias(output, unit_options(1.0, {6.0})), Error);     // one whole window only
-  EXPECT_THROW(bias(std::vector<double>(3, 0.0), unit_options(2.0, {0.5}, true)), Error);  // < 2 s for NER
-  EXPECT_THROW(bias(output, unit_options(0.5, {2.0}, true)), Error);  // sample interval > 1 s
+}
+
+// A record shorter than the longest smoothing time still gives its bias and the stabilities it
+// supports; the rest are warnings. 50 s at 10 Hz of a ramp 0, 0.1, ..., 49.9 (deg/h with K = 3600).
+TEST(BiasTest, ShortRecordGivesEveryFigureItSupports) {
+  std::vector<double> output(500);
+  for (std::size_t i = 0; i < output.size(); ++i) output[i] = 0.1 * static_cast<double>(i);
+  const BiasResult result = bias(output, unit_options(10.0, {1.0, 10.0, 30.0, 100.0, 0.15}, true));
+  EXPECT_NEAR(result.bias.value, 24.95, 1e-12);
+  ASSERT_EQ(result.bias_stability.size(), 2u);
+  // 1 s means 0.45, 1.45, ... 49.45: a ramp of 50 steps of 1, sd = sqrt(50 * 51 / 12).
+  EXPECT_EQ(result.bias_stability[0].smoothing_s, 1.0);
+  EXPECT_NEAR(result.bias_stability[0].value.value, std::sqrt(50.0 * 51.0 / 12.0), 1e-10);
+  // 10 s means 4.95, 14.95, ..., 44.95: sd = 10 sqrt(5 * 6 / 12).
+  EXPECT_EQ(result.bias_stability[1].smoothing_s, 10.0);
+  EXPECT_NEAR(result.bias_stability[1].value.value, 10.0 * std::sqrt(2.5), 1e-10);
+  ASSERT_EQ(result.warnings.size(), 3u);
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("1 whole window(s) of 30 s"));
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("(left out)"));
+  EXPECT_THAT(result.warnings[1], ::testing::HasSubstr("100 s (1000 samples) is longer than the record"));
+  EXPECT_THAT(result.warnings[2], ::testing::HasSubstr("0.15 s is not a whole number of samples"));
+  ASSERT_TRUE(result.random_walk_coefficient.has_value());
+  EXPECT_EQ(result.to_json().at("bias_stability").size(), 2u);
+  // Two samples: the bias, and warnings for every smoothing time and the random walk coefficient.
+  const BiasResult two = bias(std::vector<double>{1.0, 2.0}, unit_options(10.0, {1.0}, true));
+  EXPECT_DOUBLE_EQ(two.bias.value, 1.5);
+  EXPECT_TRUE(two.bias_stability.empty());
+  EXPECT_FALSE(two.random_walk_coefficient.has_value());
+  EXPECT_EQ(two.warnings.size(), 2u);
+}
+
+// Sampled below 1 Hz (every 2 s): no 1 s stability and no NER = Bs(1 s), but the bias, the
+// stabilities at whole numbers of samples and the normalised curve of eq. (23).
+TEST(BiasTest, RecordSampledBelowOneHertzGivesEveryFigureItSupports) {
+  std::vector<double> output(200);
+  for (std::size_t i = 0; i < output.size(); ++i) output[i] = i % 2 == 0 ? 1.0 : 3.0;  // square wave of 4 s
+  const BiasResult result = bias(output, unit_options(0.5, {1.0, 4.0, 10.0}, true));
+  EXPECT_DOUBLE_EQ(result.bias.value, 2.0);
+  ASSERT_EQ(result.bias_stability.size(), 2u);
+  EXPECT_EQ(result.bias_stability[0].smoothing_s, 4.0);  // whole periods: every mean is 2
+  EXPECT_NEAR(result.bias_stability[0].value.value, 0.0, 1e-12);
+  // 10 s = 5 samples: 40 means, 1.8 and 2.2 alternating, deviations of 0.2 over n - 1 = 39.
+  EXPECT_EQ(result.bias_stability[1].smoothing_s, 10.0);
+  EXPECT_NEAR(result.bias_stability[1].value.value, 0.2 * std::sqrt(40.0 / 39.0), 1e-12);
+  EXPECT_FALSE(result.random_walk_coefficient.has_value());
+  EXPECT_FALSE(result.noise_equivalent_rate.has_value());
+  ASSERT_FALSE(result.normalised_stability_curve.empty());
+  EXPECT_EQ(result.normalised_stability_curve[0].tau_s, 2.0);
+  ASSERT_EQ(result.warnings.size(), 2u);
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("1 s is not a whole number of samples at 0.5 Hz"));
+  EXPECT_THAT(result.warnings[1], ::testing::HasSubstr("longer than 1 s"));
+  EXPECT_THAT(result.report(), ::testing::HasSubstr("warning: "));
 }
 
 }  // namespace

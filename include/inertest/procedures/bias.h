@@ -4,10 +4,16 @@
 //
 //   B0 = F̄ / K                                                                            (19)
 //
-// Input: the instrument output, one sample per sampling interval (the accumulation over that
-// interval, 5.12.1.3 b), at sample_rate_hz. K is the scale factor in output units per deg/s, so
-// F̄/K is in deg/s and is reported in deg/h. With input_in_deg_h the record already holds rate in
-// deg/h and K is not used.
+// Input: the instrument output, one sample per sampling interval at sample_rate_hz, each the mean
+// output RATE over its interval (5.12.1.3 b records the accumulation over the interval; divided by
+// the interval's length it is that rate). K is the scale factor in output units per deg/s, so F̄/K
+// is in deg/s and is reported in deg/h. With input_in_deg_h the record already holds rate in deg/h
+// and K is not used.
+//
+// The bias is given for any record of two samples or more. Every bias stability and the random
+// walk coefficient that the record supports are given too; a smoothing time longer than half the
+// record or not a whole number of samples, and a random walk coefficient from a record under 2 s or
+// sampled below 1 Hz, are left out with a warning saying why.
 //
 // Earth rate: the standard's bias is the mean indicated rate, which includes whatever Earth rate
 // the IRA sees (5.12.1.3 points the IRA east-west, where that is zero). It is not removed unless
@@ -34,7 +40,7 @@ struct BiasOptions {
   bool input_in_deg_h = false;  // the record holds rate in deg/h already
   std::string output_unit = "1";  // for the report only
   std::vector<double> smoothing_s{1.0, 10.0, 100.0};  // bias stability smoothing times, s
-  bool random_walk = true;      // compute the random walk coefficient (needs at least 2 s at >= 1 Hz)
+  bool random_walk = true;  // compute the random walk coefficient (given for at least 2 s at >= 1 Hz)
   std::optional<AxisOrientation> remove_earth_rate;
 
   // Throws Error for a non-positive rate, a zero or non-finite scale factor, an empty or
@@ -53,9 +59,9 @@ struct BiasStabilityFigure {
 
 struct BiasResult {
   Figure bias;                                    // eq. (19), deg/h (Earth rate removed if asked)
-  std::vector<BiasStabilityFigure> bias_stability;  // eq. (20), one per smoothing time
-  std::optional<Figure> noise_equivalent_rate;    // NER = Bs(1 s), deg/h
-  std::optional<Figure> random_walk_coefficient;  // eq. (24), deg/sqrt(h)
+  std::vector<BiasStabilityFigure> bias_stability;  // eq. (20), one per smoothing time the record supports
+  std::optional<Figure> noise_equivalent_rate;      // NER = Bs(1 s), deg/h, when the record supports it
+  std::optional<Figure> random_walk_coefficient;    // eq. (24), deg/sqrt(h), when the record supports it
   std::vector<NormalisedStabilityPoint> normalised_stability_curve;  // Bs(τ) in deg/h, eq. (23)
   std::optional<Figure> earth_rate_removed;       // deg/h, when removed
   std::size_t samples = 0;
@@ -66,8 +72,8 @@ struct BiasResult {
   std::string report() const;
 };
 
-// Throws Error for invalid options, fewer than two samples, a smoothing window longer than the
-// record or holding fewer than two whole windows, or (with random_walk) a record too short for NER.
+// Throws Error for invalid options or fewer than two samples. Smoothing times and a random walk
+// coefficient the record cannot support are warnings (see above).
 BiasResult bias(std::span<const double> output, const BiasOptions& options);
 
 // Eq. (19) alone, in deg/h (Earth rate removed if asked): the bias of one run, as bias

@@ -124,9 +124,11 @@ constexpr Translation kTable[] = {
     {"method.centrifuge",
      "One platform revolution at each angle β and g-level gives the harmonic amplitudes of eq. (11); stacking "
      "them, Y = Φq + ε (eqs. 13-16) is solved by least squares for the ten drift coefficients, the centrifuge "
-     "errors and Earth rate compensated in ε.",
+     "errors and Earth rate compensated in ε. Coefficients are per standard g (9.80665 m/s²), converted from the "
+     "local g of A = Ω²R₀/g.",
      "在各平台角 β 与过载下采集平台一周数据，由谐波分析得式 (11) 的各谐波幅值；组成 Y = Φq + ε（式 13-16），"
-     "以最小二乘法求十项漂移系数，离心机误差与地球自转角速度在 ε 中补偿。"},
+     "以最小二乘法求十项漂移系数，离心机误差与地球自转角速度在 ε 中补偿。漂移系数以标准重力加速度 g（9.80665 m/s²）"
+     "为单位，由 A = Ω²R₀/g 中的当地 g 换算。"},
     {"method.gyro_misalignment",
      "The gyro turns at +ω and −ω in five positions (α, β) of the fixture on a single-axis rate table; the "
      "differences V(+) − V(−) give the table, fixture and input-axis error angles by least squares.",
@@ -139,9 +141,16 @@ constexpr Translation kTable[] = {
      "Δθz2 = (V(π/2) − V(3π/2))/(2kI)。"},
     {"method.bandwidth",
      "Sinusoidal rate inputs at logarithmically spaced frequencies; the gains fit the first-order model "
-     "G² = K² − G²·ω²·T² and the bandwidth is 1/(2πT); the phases give the output delay.",
+     "G² = K² − G²·ω²·T² and the bandwidth is 1/(2πT); the phases give the output delay (a negative scale "
+     "factor's 180° removed first).",
      "在按对数分布的各频率点施加正弦角速度输入；由各频率增益按一阶模型 G² = K² − G²ω²T² 拟合，带宽为 "
-     "1/(2πT)；由相位求输出延迟时间。"},
+     "1/(2πT)；由相位求输出延迟时间（标度因数为负时先去除其 180° 相移）。"},
+    {"method.threshold",
+     "The input is decreased step by step; the threshold is the smallest input whose output is within 50 % of "
+     "the expected output K·Ω (IEEE Std 952-1997; GJB 2426A eq. (15) as printed, relative to the measured "
+     "output, on request), the largest over the directions.",
+     "逐级减小输入角速度；阈值为输出与理论输出 K·Ω 之差不超过理论输出 50 % 的最小输入（IEEE Std 952-1997；"
+     "按需采用 GJB 2426A 式 (15) 原式，相对实测输出），取各方向中的最大值。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},

@@ -15,11 +15,13 @@
 namespace inertest::python {
 namespace {
 
-std::vector<ScaleFactorPoint> points_of(const DoubleArray& rate, const DoubleArray& output) {
+// (rate, output) pairs as a procedure's point type (ScaleFactorPoint, RateTablePoint).
+template <typename Point = ScaleFactorPoint>
+std::vector<Point> points_of(const DoubleArray& rate, const DoubleArray& output) {
   const auto rates = as_span(rate, "rate");
   const auto outputs = as_span(output, "output");
   require_equal_lengths({{"rate", rates.size()}, {"output", outputs.size()}});
-  std::vector<ScaleFactorPoint> points(rates.size());
+  std::vector<Point> points(rates.size());
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = {rates[i], outputs[i]};
   return points;
 }
@@ -125,17 +127,12 @@ struct ThresholdTag {};
 ResultOf<ThresholdTag> threshold_rate_table_of(const DoubleArray& rate, const DoubleArray& output, double scale_factor,
                                                const std::string& rate_unit, std::optional<double> zero_output,
                                                const std::string& criterion_denominator) {
-  const auto rates = as_span(rate, "rate");
-  const auto outputs = as_span(output, "output");
-  require_equal_lengths({{"rate", rates.size()}, {"output", outputs.size()}});
-  std::vector<RateTablePoint> points(rates.size());
-  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {rates[i], outputs[i]};
   ThresholdOptions options;
   options.scale_factor = scale_factor;
   options.rate_unit = rate_unit;
   options.zero_output = zero_output;
   options.criterion_denominator = parse_criterion_denominator(criterion_denominator);
-  return make_result<ThresholdTag>(threshold_rate_table(points, options));
+  return make_result<ThresholdTag>(threshold_rate_table(points_of<RateTablePoint>(rate, output), options));
 }
 
 struct InputAxisMisalignmentTag {};

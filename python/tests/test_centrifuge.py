@@ -35,17 +35,24 @@ def test_calibration_recovers_the_coefficients_of_model_samples():
     np.testing.assert_allclose(values, truth, rtol=1e-7, atol=1e-9)
 
 
-def test_missing_platform_angle_is_the_cli_message(tmp_path):
-    path = tmp_path / "harmonics.csv"
-    path.write_text(
+def test_platform_angles_that_differ_between_g_levels_are_judged_by_the_rank(tmp_path):
+    # 20 g without beta = 270 deg: the design keeps full rank, so the runs are accepted.
+    full = tmp_path / "full.csv"
+    full.write_text(
         "accel_g,beta_deg,k0,k1c,k1s,k2c,k2s\n"
         "10,0,1,0,0,0,0\n10,90,1,0,0,0,0\n10,180,1,0,0,0,0\n10,270,1,0,0,0,0\n"
         "20,0,1,0,0,0,0\n20,90,1,0,0,0,0\n20,180,1,0,0,0,0\n"
     )
-    record = inertest.read_centrifuge_record(str(path))
+    result = inertest.calibrate_drift_coefficients(inertest.read_centrifuge_record(str(full)).runs(), latitude_deg=45.0)
+    assert len(result.runs) == 7
+    # 20 g at beta = 0 alone beside 10 g at 0 and 90 deg: the rank check refuses, as the CLI does.
+    deficient = tmp_path / "deficient.csv"
+    deficient.write_text("accel_g,beta_deg,k0,k1c,k1s,k2c,k2s\n10,0,1,0,0,0,0\n10,90,1,0,0,0,0\n20,0,1,0,0,0,0\n")
+    record = inertest.read_centrifuge_record(str(deficient))
     with pytest.raises(ValueError) as raised:
         inertest.calibrate_drift_coefficients(record.runs(), latitude_deg=45.0)
-    assert str(raised.value) == cli_error("centrifuge", path, "--latitude", "45")
+    assert "cannot identify" in str(raised.value)
+    assert str(raised.value) == cli_error("centrifuge", deficient, "--latitude", "45")
 
 
 def test_latitude_is_required_while_compensating():

@@ -162,7 +162,7 @@ TEST(ProcedureCommandsTest, TurnOnTimePolarityThresholdResolution) {
   EXPECT_EQ(nlohmann::json::parse(th_measured.out).at("criterion_denominator"), "measured");
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(th_measured.out).at("threshold").at("value").get<double>(), 4.0);
   measured_args.back() = "theoretical";
-  EXPECT_EQ(run_cli(measured_args).exit_code, 2);
+  EXPECT_NE(run_cli(measured_args).exit_code, 0);  // a usage error (CLI11)
 
   const std::string steps = scratch.write("res.csv",
                                           "base_rate,base_output,rate,output\n100,0,110,10\n100,0,102,1.2\n"

@@ -22,13 +22,16 @@ CommandAction setup(CLI::App& root) {
       "bias",
       "Bias (eq. 19), bias stability (eq. 20) and random walk coefficient by the normalisation method\n"
       "(eqs. 23-24) from one record of the gyro at rest (GJB 2426A-2004 5.12.1, 5.12.2, 5.12.5.4.1).\n"
-      "FILE holds the instrument output, one sample per sampling interval: a text record (one column,\n"
-      "or --column NAME|INDEX) or a binary record (--format f64|f32|...). K is in output units per deg/s;\n"
+      "FILE holds the instrument output, one sample (the mean output rate) per sampling interval: a text\n"
+      "record (one column, or --column NAME|INDEX) or a binary record (--format f64|f32|...). K is in\n"
+      "output units per deg/s;\n"
       "bias = mean output / K in deg/h. Bias stability: standard deviation (n-1) of the means of\n"
       "consecutive whole windows of each smoothing time, in deg/h. Random walk coefficient in\n"
       "deg/sqrt(h) = Bs(1 s)[deg/h] / 60. Earth rate is not removed unless --remove-earth-rate.\n"
+      "A smoothing time the record cannot support (longer than half of it, not whole samples) and a random\n"
+      "walk coefficient from under 2 s or below 1 Hz are left out with a warning; the bias is always given.\n"
       "JSON: bias, bias_stability [{smoothing_s, value, unit}], random_walk_coefficient,\n"
-      "noise_equivalent_rate, normalised_stability_curve.");
+      "noise_equivalent_rate, normalised_stability_curve, warnings.");
   command->add_option("FILE", arguments->source.path, "instrument output record")->required()->check(CLI::ExistingFile);
   command->add_option("--rate", arguments->options.sample_rate_hz, "sample rate, Hz")->required();
   command->add_option("--scale-factor", arguments->options.scale_factor, "K, output units per deg/s");

@@ -231,7 +231,8 @@ void wrap_procedures(py::module_& module) {
              "Bandwidth (GJB 2426A-2004 5.13, eqs. (32)-(41)) and output delay (5.14, eqs. (42)-(46)) from the\n"
              "gain Gi and the phase Pi of the output against the input rate (deg, negative for a lag) at >= 10\n"
              "increasing frequencies: linearised least squares Gi^2 = K^2 - Gi^2 wi^2 T^2, Bw = 1/(2 pi T),\n"
-             "Td from -Pi - atan(wi T) with wi = 2 pi fi.");
+             "Td from -Pi - atan(wi T) with wi = 2 pi fi; a phase beyond +-90 deg at the lowest frequency is a\n"
+             "negative scale factor, whose 180 deg is removed from every phase first (polarity = -1).");
 
   bind_result<ThresholdTag>(
       module, "ThresholdResult",

@@ -34,8 +34,10 @@ CommandAction setup(CLI::App& root) {
       "(gyro output) and --angle-column (interferometer angle, --angle-unit); both are sine-fitted at\n"
       "the frequency. Gi = (Fi/Ri)/(FL/RL), Ri the rate amplitude, L the lowest frequency; the phase\n"
       "is the output's against the rate (the angle's phase + 90 deg).\n"
-      "At least --minimum-frequencies (default 10, 5.13.3 a) frequencies.\n"
-      "Outputs: bandwidth (Hz), delay (s, omega_i = 2 pi f_i), dc_gain, time_constant (s), each with\n"
+      "At least --minimum-frequencies (default 10, 5.13.3 a) frequencies. A phase beyond +-90 deg at the\n"
+      "lowest frequency is a negative scale factor: 180 deg is removed from every phase before the delay\n"
+      "fit (polarity -1).\n"
+      "Outputs: bandwidth (Hz), delay (s, omega_i = 2 pi f_i), dc_gain, time_constant (s), polarity, each with\n"
       "its 1-sigma uncertainty from the fit; bode (per frequency: gain, fitted_gain, phase_deg,\n"
       "fitted_phase_deg); with --records also vibration_fits and gain_at_lowest_frequency.");
   command->add_option("GAINS", arguments->gains_file, "CSV freq_hz,gain,phase_deg")->check(CLI::ExistingFile);

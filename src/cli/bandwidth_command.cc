@@ -37,8 +37,8 @@ CommandAction setup(CLI::App& root) {
       "At least --minimum-frequencies (default 10, 5.13.3 a) frequencies. A phase beyond +-90 deg at the\n"
       "lowest frequency is a negative scale factor: 180 deg is removed from every phase before the delay\n"
       "fit (polarity -1).\n"
-      "Outputs: bandwidth (Hz), delay (s, omega_i = 2 pi f_i), dc_gain, time_constant (s), polarity, each with\n"
-      "its 1-sigma uncertainty from the fit; bode (per frequency: gain, fitted_gain, phase_deg,\n"
+      "Outputs: bandwidth (Hz), delay (s, omega_i = 2 pi f_i), dc_gain, time_constant (s), each with\n"
+      "its 1-sigma uncertainty from the fit; polarity (+1 or -1); bode (per frequency: gain, fitted_gain, phase_deg,\n"
       "fitted_phase_deg); with --records also vibration_fits and gain_at_lowest_frequency.");
   command->add_option("GAINS", arguments->gains_file, "CSV freq_hz,gain,phase_deg")->check(CLI::ExistingFile);
   command->add_option("--records", arguments->records_listing, "CSV listing freq_hz,file of raw records")

@@ -141,7 +141,8 @@ void wrap_centrifuge(py::module_& module) {
   bind_result<DriftCalibrationTag>(
       module, "DriftCalibrationResult",
       "Drift coefficients calibrated on a centrifuge (paper 000_746ebd72f166769f, eqs. 2, 5-16). Members as\n"
-      "in the JSON: coefficients (D_F ... D_OS, Figures in deg/h, deg/h/g, deg/h/g^2 per standard g, with 1-sigma),\n"
+      "in the JSON: coefficients (D_F ... D_OS, Figures in deg/h, deg/h/g, deg/h/g^2 per standard g,\n"
+      "with 1-sigma),\n"
       "residual_rms, centrifuge_errors, influence (paper section 6), runs (residuals), warnings, ...");
   module.def("calibrate_drift_coefficients", &calibrate, "runs"_a, py::kw_only(), "latitude_deg"_a = py::none(),
              "radius_m"_a = 1.0, "gravity_m_s2"_a = constants::kStandardGravity, "k1_rad"_a = py::none(),
@@ -154,9 +155,10 @@ void wrap_centrifuge(py::module_& module) {
              "unless compensation=False; unmeasured errors are 0 unless estimate_errors (two or more g-levels).\n"
              "gravity_m_s2 is the site's gravity (A = Omega^2 R0 / g); the coefficients are per standard g\n"
              "(9.80665 m/s^2, the g of deg/h/g), converted from it.");
-  module.def("centrifuge_model_output", &model_output, "coefficients"_a, "omega_rad_s"_a, "beta_rad"_a, "gamma_rad"_a,
-             py::kw_only(), "radius_m"_a = 1.0, "latitude_deg"_a = 0.0, "gravity_m_s2"_a = constants::kStandardGravity,
-             "k1_rad"_a = 0.0, "k2_rad"_a = 0.0, "delta_omega_rad_s"_a = 0.0,
+  module.def("centrifuge_model_output", &model_output, "coefficients"_a, "omega_rad_s"_a, "beta_rad"_a,
+             "gamma_rad"_a, py::kw_only(), "radius_m"_a = 1.0, "latitude_deg"_a = 0.0,
+             "gravity_m_s2"_a = constants::kStandardGravity, "k1_rad"_a = 0.0, "k2_rad"_a = 0.0,
+             "delta_omega_rad_s"_a = 0.0,
              "The first-order model's noise-free gyro output (deg/h) at every gamma: eq. (2) with the inputs of\n"
              "eqs. (5)-(8) of the centrifuge paper; coefficients in the order D_F ... D_OS, per standard g.");
   py::list names;

@@ -638,14 +638,14 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
                                  {"identified", identified[k]},
                                  {"unit", p == 0 ? "(" + input_unit + ")^2" : unit}});
   }
-  // An identified figure with "identified": true; one held at zero as {"value": null, "unit",
-  // "identified": false, "upper_bound"}.
+  // An identified figure as a Figure; one held at zero as {"value": null, "unit", "identified":
+  // false, "upper_bound"}.
   const auto figure = [&](const Figure& f, int p) {
     const auto k = static_cast<std::size_t>(p + 2);
     nlohmann::json json = f;
-    json["identified"] = identified[k];
     if (!identified[k]) {
       json["value"] = nullptr;
+      json["identified"] = false;
       json["upper_bound"] = upper_bounds[k] ? nlohmann::json(upper_bounds[k]->value) : nlohmann::json(nullptr);
     }
     return json;

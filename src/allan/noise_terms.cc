@@ -554,6 +554,7 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
     }
   }
   terms.fit_range = FitRange{tau_s[first], tau_s[last]};
+  const PointSet fitted = points_between(all, first, last);
   terms.reduced_chi_squared = fit.reduced_chi_squared;
   terms.degrees_of_freedom = fit.degrees_of_freedom;
   terms.verdict = fit.degrees_of_freedom == 0 ? "undetermined" : fit.consistent ? "consistent" : "inconsistent";
@@ -593,22 +594,39 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       terms.*spec.figure = figure_of(fit.a[k], terms.coefficient_uncertainties[k], spec.c, spec.units);
       continue;
     }
-    // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty.
+    // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty give
+    // the bound. The covariance of the points depends on the model, and one without the term
+    // understates the scatter the term would bring: the bound is recomputed under the model that
+    // holds the term at its bound until it settles (at most kCovarianceIterations times).
     std::vector<Eigen::Index> with_it = columns;
     with_it.push_back(j);
-    Eigen::MatrixXd sub(fit.whitened_design.rows(), static_cast<Eigen::Index>(with_it.size()));
-    for (std::size_t c = 0; c < with_it.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = fit.whitened_design.col(with_it[c]);
-    const Eigen::MatrixXd joint = coefficient_covariance(fit.whitened_design, with_it);
-    const Eigen::VectorXd unconstrained = joint * (sub.transpose() * fit.whitened_observed);
-    const Eigen::Index last_column = joint.rows() - 1;
-    const double sigma = std::sqrt(inflation * joint(last_column, last_column));
-    const double estimate = unconstrained(last_column);
+    const auto bound_under = [&](const Eigen::MatrixXd& whitened_design, const Eigen::VectorXd& whitened_observed) {
+      Eigen::MatrixXd sub(whitened_design.rows(), static_cast<Eigen::Index>(with_it.size()));
+      for (std::size_t c = 0; c < with_it.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = whitened_design.col(with_it[c]);
+      const Eigen::MatrixXd joint = coefficient_covariance(whitened_design, with_it);
+      const Eigen::VectorXd unconstrained = joint * (sub.transpose() * whitened_observed);
+      const Eigen::Index last_column = joint.rows() - 1;
+      const double sigma = std::sqrt(inflation * joint(last_column, last_column));
+      return std::pair{sigma, std::max(0.0, unconstrained(last_column)) + 2.0 * sigma};
+    };
+    auto [sigma, bound] = bound_under(fit.whitened_design, fit.whitened_observed);
+    for (int pass = 0; pass < kCovarianceIterations && !fitted.moments.empty(); ++pass) {
+      Coefficients at_bound = fit.a;
+      at_bound[k] = bound;
+      Eigen::MatrixXd design = design_of(fitted);
+      Eigen::VectorXd observed = Eigen::Map<const Eigen::VectorXd>(fitted.variance.data(), design.rows());
+      whiten(model_covariance(fitted, at_bound, options), design, observed);
+      const auto [next_sigma, next_bound] = bound_under(design, observed);
+      const bool settled = std::abs(next_bound - bound) <= 0.01 * bound;
+      sigma = next_sigma;
+      bound = next_bound;
+      if (settled) break;
+    }
     terms.identified[k] = false;
     terms.coefficient_uncertainties[k] = sigma;
     Figure& figure = terms.*spec.figure;
     figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
-    terms.upper_bounds[k] = figure_of(std::max(0.0, estimate) + 2.0 * sigma, std::numeric_limits<double>::quiet_NaN(),
-                                      spec.c, spec.units);
+    terms.upper_bounds[k] = figure_of(bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
   }
   const auto& a = terms.coefficients;
   for (double tau : tau_s) {

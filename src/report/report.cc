@@ -490,7 +490,9 @@ class ReportWriter {
       out_ += fmt::format(
           "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
           "<td class=\"num\">± {}</td><td>{}</td>{}</tr>\n",
-          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")), html(number("measured")),
+          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")),
+          html(number("measured").empty() && !number("upper_bound").empty() ? "< " + number("upper_bound")
+                                                                             : number("measured")),
           html(number("tolerance")), html(pretty_unit(c.value("unit", ""))), verdict_cell(within, labels_));
     }
     out_ += "</tbody></table>\n</section>\n";

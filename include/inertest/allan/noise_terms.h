@@ -34,7 +34,7 @@
 // chi-squared when that exceeds 1, carried to each figure to first order. A coefficient that the
 // non-negative fit holds at zero was not measured: it is reported as not identified, with an upper
 // bound max(0, a) + 2 s, a and s its unconstrained estimate and 1-sigma uncertainty when it is
-// freed along with the free ones.
+// freed along with the free ones, under the covariance of the model that holds it at that bound.
 #pragma once
 
 #include <array>

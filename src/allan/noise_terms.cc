@@ -283,8 +283,8 @@ void whiten(const Eigen::MatrixXd& covariance, Eigen::MatrixXd& design, Eigen::V
 constexpr int kCovarianceIterations = 3;
 // A coefficient is measured when it lies at least this many 1-sigma uncertainties above zero.
 constexpr double kSignificance = 2.0;
-// Above this many points the covariance is not built (a dense grid, e.g. "all"): diagonal weights,
-// and the uncertainty scaled by the reduced chi-squared only.
+// Above this many points the covariance is not built (a dense grid, e.g. "all"; the cost grows as
+// the square): diagonal weights, and a warning that the uncertainties are understated.
 constexpr std::size_t kMostCorrelatedPoints = 64;
 
 // The covariance of the coefficients in `columns`, (J^T V^-1 J)^-1 on the whitened design.
@@ -504,6 +504,12 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
     }
   }
   NoiseTerms terms;
+  if (all.moments.empty()) {
+    terms.warnings.push_back(fmt::format(
+        "noise fit: {} taus, more than {}: the correlation of the overlapping estimates is not modelled and the "
+        "uncertainties are understated; use a sparser tau grid (e.g. octave)",
+        tau_s.size(), kMostCorrelatedPoints));
+  }
   std::size_t first = 0;
   std::size_t last = tau_s.size() - 1;
   Fit fit;

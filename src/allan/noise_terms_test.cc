@@ -2,6 +2,7 @@
 // records whose truth follows from how they were made, and a quantised, filtered MEMS-like record.
 #include "inertest/allan/noise_terms.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -100,6 +101,43 @@ TEST(NoiseTerms, FitRangeIsChosenAutomaticallyOrGiven) {
   NoiseFitOptions narrow;
   narrow.fit_range = FitRange{0.3, 0.45};
   EXPECT_THROW(fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h", narrow), Error);
+}
+
+// A dense grid (every averaging factor) is fitted without the correlation model, and says so.
+TEST(NoiseTerms, DenseGridWarnsThatUncertaintiesAreUnderstated) {
+  Curve curve;
+  for (int m = 1; m <= 100; ++m) {
+    curve.tau.push_back(0.1 * m);
+    curve.variance.push_back(1.0 / (0.1 * m));
+    curve.edf.push_back(1e4);
+  }
+  const NoiseTerms terms = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  EXPECT_NEAR_RELATIVE(terms.angle_random_walk.value, 1.0 / 60.0, 1e-6);
+  EXPECT_THAT(terms.warnings, ::testing::Contains(::testing::HasSubstr("not modelled")));
+}
+
+// The slope read-off reads B at the floor: a flat part at short tau (an anti-alias filter) lies
+// above the floor and is not read; the floor, flat beside its least point, is.
+TEST(SlopeReadOff, BiasInstabilityIsReadAtTheFloorNotAtAShortTauPlateau) {
+  std::vector<double> tau, deviation, edf;
+  for (double t = 0.01; t < 3000.0; t *= 2.0) {
+    tau.push_back(t);
+    const double white = 0.05 / std::sqrt(std::max(t, 0.04));  // flat below 0.04 s
+    deviation.push_back(std::sqrt(white * white + 0.01 * 0.01 + 1e-8 * t));
+    edf.push_back(1e5);
+  }
+  const SlopeReadOff slopes = read_noise_slopes(tau, deviation, edf, "deg/s");
+  ASSERT_TRUE(slopes.bias_instability.figure.has_value());
+  EXPECT_GT(slopes.bias_instability.tau_s, 10.0);
+  const double floor = *std::min_element(deviation.begin(), deviation.end());
+  EXPECT_NEAR_RELATIVE(slopes.bias_instability.figure->value, floor / kBiasInstabilityFactor * 3600.0, 1e-12);
+  // The same plateau over white noise alone: the least point is the last, the curve still falls
+  // there, and the read-off declines with a warning rather than read the plateau.
+  std::vector<double> falling;
+  for (double t : tau) falling.push_back(0.05 / std::sqrt(std::max(t, 0.04)));
+  const SlopeReadOff declined = read_noise_slopes(tau, falling, edf, "deg/s");
+  EXPECT_FALSE(declined.bias_instability.figure.has_value());
+  EXPECT_THAT(declined.warnings, ::testing::Contains(::testing::HasSubstr("the curve is still falling")));
 }
 
 TEST(NoiseTerms, FitRangeParsesTminColonTmax) {

@@ -22,7 +22,9 @@
 // polynomials of degree 1): K(h) = Q^2 delta(h) - N^2 |h| / 2 + B'^2 h^2 ln|h| / (4 ln 2) + K^2 |h|^3 / 12
 // with B' = 0.664 B; each term reproduces its line of Table C.1 exactly. The rate ramp is deterministic
 // and adds no covariance. Fit and covariance are iterated (the covariance from the previous fit,
-// which avoids the bias of weighting by the observed points).
+// which avoids the bias of weighting by the observed points). Checked by a Monte Carlo test over
+// 200 simulated records: the 1-sigma intervals of N, B and K cover the truth in 60-76 % of them.
+// For more than 64 taus (a dense grid) the correlation is not modelled and a warning says so.
 //
 // Fit range: eq. (30) describes the gyro's noise, not its anti-alias filter or coarse quantisation,
 // which flatten or bend the shortest taus. Unless a range is given, the shortest taus are dropped one

@@ -32,6 +32,10 @@
 // is consistent, the one of least reduced chi-squared is kept and the verdict says the model does not
 // fit. The range and the reason are reported.
 //
+// Q and R act only at the ends of the curve, where they trade off against N and K: a Q or R within
+// 2 of its 1-sigma uncertainties of zero is held at zero (backward elimination), since left free
+// its non-negativity bound biases N or K (a spurious Q >= 0 pulls N down).
+//
 // Uncertainty: the GLS covariance of the free coefficients, (J^T V^-1 J)^-1, scaled by the reduced
 // chi-squared when that exceeds 1, carried to each figure to first order. A coefficient that the
 // non-negative fit holds at zero was not measured: it is reported as not identified, with an upper

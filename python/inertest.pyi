@@ -259,7 +259,8 @@ class AllanResult(Result):
     ohdev: Record
     totdev: Record
     # quantization, angle_random_walk (= random_walk_coefficient, GJB eq. 31), bias_instability,
-    # rate_random_walk, rate_ramp (Figures), fit (GJB eq. 30), slope_method; None when not fitted.
+    # rate_random_walk, rate_ramp (Figures; identified False with an upper_bound when not measured),
+    # fit (GJB eq. 30: coefficients, reduced_chi_squared, verdict, fit_range), slope_method; None when not fitted.
     noise: Optional[Record]
     warnings: list[str]
 
@@ -273,6 +274,7 @@ def allan_variance(
     scale: float = 1.0,
     confidence: float = 0.6826894921370859,
     worker_count: int = 2,
+    fit_range: Optional[tuple[float, float]] = None,
 ) -> AllanResult:
     """ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV and the noise terms of rate samples in memory."""
 
@@ -288,14 +290,26 @@ def allan_variance_of_file(
     scale: float = 1.0,
     confidence: float = 0.6826894921370859,
     worker_count: int = 2,
+    fit_range: Optional[tuple[float, float]] = None,
 ) -> AllanResult:
     """The same on a record streamed from a file, as the CLI's allan command."""
 
 def read_rate_record(
     path: str, format: str = "csv", column: Optional[str] = None
 ) -> FloatArray: ...
-def fit_noise_terms(tau_s: ArrayLike, variance: ArrayLike, edf: ArrayLike, input_unit: str = "deg/h") -> Record:
-    """Weighted NNLS of sigma^2 = sum A_p tau^p (GJB 2426A-2004 eq. 30), then Q, N, B, K, R (IEEE 952 C.1)."""
+def fit_noise_terms(
+    tau_s: ArrayLike,
+    variance: ArrayLike,
+    edf: ArrayLike,
+    input_unit: str = "deg/h",
+    *,
+    fit_range: Optional[tuple[float, float]] = None,
+    sample_count: int = 0,
+    sample_interval_s: float = 0.0,
+) -> Record:
+    """Non-negative GLS of sigma^2 = sum A_p tau^p (GJB 2426A-2004 eq. 30), then Q, N, B, K, R (IEEE 952 C.1).
+    A term held at zero has identified False and an upper_bound; fit has reduced_chi_squared, verdict and
+    fit_range (tau_min_s, tau_max_s, chosen_by, reason)."""
 
 def read_noise_slopes(tau_s: ArrayLike, deviation: ArrayLike, edf: ArrayLike, input_unit: str = "deg/h") -> Record: ...
 

@@ -26,9 +26,18 @@ std::string tau_specification(const Taus& taus) {
   return grid.to_string();
 }
 
+using FitRangeArgument = std::optional<std::pair<double, double>>;
+
+std::optional<FitRange> fit_range_of(const FitRangeArgument& range) {
+  if (!range) return std::nullopt;
+  return FitRange{range->first, range->second};
+}
+
 AllanOptions allan_options(double sample_rate_hz, const std::string& input_unit, const Taus& taus,
-                           const std::string& estimators, double scale, double confidence, std::size_t worker_count) {
+                           const std::string& estimators, double scale, double confidence, std::size_t worker_count,
+                           const FitRangeArgument& fit_range) {
   AllanOptions options;
+  options.fit_range = fit_range_of(fit_range);
   options.sample_rate_hz = sample_rate_hz;
   options.input_unit = input_unit;
   options.taus = tau_specification(taus);
@@ -49,10 +58,10 @@ RateRecordSource rate_source(const std::string& path, const std::string& format,
 
 ResultOf<AllanTag> allan_of_samples(const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit,
                                     const Taus& taus, const std::string& estimators, double scale, double confidence,
-                                    std::size_t worker_count) {
+                                    std::size_t worker_count, const FitRangeArgument& fit_range) {
   const auto samples = as_span(rate, "rate");
   const AllanOptions options =
-      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count);
+      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count, fit_range);
   AllanResult result;
   {
     py::gil_scoped_release release;
@@ -64,10 +73,10 @@ ResultOf<AllanTag> allan_of_samples(const DoubleArray& rate, double sample_rate_
 ResultOf<AllanTag> allan_of_file(const std::string& path, double sample_rate_hz, const std::string& format,
                                  const std::optional<std::string>& column, const std::string& input_unit,
                                  const Taus& taus, const std::string& estimators, double scale, double confidence,
-                                 std::size_t worker_count) {
+                                 std::size_t worker_count, const FitRangeArgument& fit_range) {
   const RateRecordSource source = rate_source(path, format, column);
   const AllanOptions options =
-      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count);
+      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count, fit_range);
   AllanResult result;
   {
     py::gil_scoped_release release;
@@ -94,10 +103,11 @@ void wrap_allan(py::module_& module) {
       "out); estimators: 'all' or a comma\n"
       "list of adev, oadev, mdev, hdev, ohdev, totdev; confidence: of the chi-squared bounds (1 sigma).\n"
       "Noise terms by the weighted fit of sigma^2 = sum A_p tau^p (GJB eq. 30; RWC = N, eq. 31) and by\n"
-      "slope read-off. Raises inertest.Error (a ValueError) with the CLI's message.";
+      "slope read-off; fit_range: (tau_min, tau_max) in s of that fit, None: chosen automatically (the\n"
+      "result's noise.fit.fit_range says which and why). Raises inertest.Error (a ValueError) with the CLI's message.";
   module.def("allan_variance", &allan_of_samples, "rate"_a, py::kw_only(), "sample_rate_hz"_a,
              "input_unit"_a = "deg/h", "taus"_a = "octave", "estimators"_a = "all", "scale"_a = 1.0,
-             "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
+             "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2, "fit_range"_a = py::none(),
              (std::string("Allan deviations ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV of rate samples in memory (read in\n"
                           "place, no copy) with chi-squared bounds, and the noise terms Q, N, B, K, R.\n") +
               options_doc)
@@ -105,6 +115,7 @@ void wrap_allan(py::module_& module) {
   module.def("allan_variance_of_file", &allan_of_file, "path"_a, py::kw_only(), "sample_rate_hz"_a,
              "format"_a = "csv", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
              "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
+             "fit_range"_a = py::none(),
              (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
                           "allan command: format 'csv', 'f64' or 'f32' (raw little-endian); column: header name or\n"
                           "1-based index (text only).\n") +
@@ -126,15 +137,24 @@ void wrap_allan(py::module_& module) {
       "owns the buffer. Raises inertest.Error with file:line:column for a bad sample.");
   module.def(
       "fit_noise_terms",
-      [](const DoubleArray& tau_s, const DoubleArray& variance, const DoubleArray& edf, const std::string& input_unit) {
+      [](const DoubleArray& tau_s, const DoubleArray& variance, const DoubleArray& edf, const std::string& input_unit,
+         const FitRangeArgument& fit_range, std::size_t sample_count, double sample_interval_s) {
+        NoiseFitOptions options;
+        options.fit_range = fit_range_of(fit_range);
+        options.sample_count = sample_count;
+        options.sample_interval_s = sample_interval_s;
         return Record(fit_noise_terms(as_span(tau_s, "tau_s"), as_span(variance, "variance"), as_span(edf, "edf"),
-                                      input_unit)
+                                      input_unit, options)
                           .to_json(input_unit));
       },
-      "tau_s"_a, "variance"_a, "edf"_a, "input_unit"_a = "deg/h",
-      "Noise terms from an Allan variance: weighted non-negative least squares of\n"
-      "sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB 2426A-2004 eq. (30)), then Q, N (= RWC, eq. 31), B, K, R\n"
-      "by IEEE Std 952-1997 C.1 Table C.1. Returns a Record (Figures with 1-sigma uncertainties).");
+      "tau_s"_a, "variance"_a, "edf"_a, "input_unit"_a = "deg/h", py::kw_only(), "fit_range"_a = py::none(),
+      "sample_count"_a = 0, "sample_interval_s"_a = 0.0,
+      "Noise terms from an Allan variance: non-negative generalised least squares of\n"
+      "sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB 2426A-2004 eq. (30)), the covariance of the overlapping\n"
+      "estimates from the fitted model, then Q, N (= RWC, eq. 31), B, K, R by IEEE Std 952-1997 C.1 Table C.1.\n"
+      "fit_range: (tau_min, tau_max) in s, None: chosen automatically; sample_count and sample_interval_s of\n"
+      "the record (0: unknown; the interval is then the shortest tau). Returns a Record: Figures with 1-sigma\n"
+      "uncertainties, or identified False and upper_bound; fit holds reduced_chi_squared, verdict, fit_range.");
   module.def(
       "read_noise_slopes",
       [](const DoubleArray& tau_s, const DoubleArray& deviation, const DoubleArray& edf, const std::string& input_unit) {

@@ -65,3 +65,22 @@ def test_gyro_noise_is_reproducible_by_seed():
     np.testing.assert_array_equal(first, inertest.gyro_noise(1000, 10.0, angle_random_walk=1e-4, seed=5))
     assert not np.array_equal(first, inertest.gyro_noise(1000, 10.0, angle_random_walk=1e-4, seed=6))
     assert not first.flags.owndata  # owns the simulator's vector through a capsule
+
+
+def test_fit_range_keyword_and_unidentified_terms():
+    samples = white_noise_deg_h(seed=11, samples=50_000)
+    result = inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, estimators="oadev", fit_range=(0.02, 50.0))
+    fit = result.noise.fit
+    assert fit.fit_range.chosen_by == "user"
+    assert fit.fit_range.tau_min_s == pytest.approx(0.02)
+    assert fit.verdict in ("consistent", "inconsistent")
+    # White noise only: the fit holds B at zero, reported as not identified with an upper bound.
+    bias_instability = result.noise.bias_instability
+    assert bias_instability.identified is False
+    assert bias_instability.upper_bound > 0.0
+    # The same fit from the curve alone, with the record's size and interval.
+    direct = inertest.fit_noise_terms(result.tau, result.oadev.values**2, result.oadev.edf, fit_range=(0.02, 50.0),
+                                      sample_count=50_000, sample_interval_s=1 / SAMPLE_RATE_HZ)
+    assert direct.angle_random_walk.value == pytest.approx(result.noise.angle_random_walk.value, rel=1e-12)
+    with pytest.raises(inertest.Error, match="fit range"):
+        inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, fit_range=(5.0, 1.0))

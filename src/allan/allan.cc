@@ -58,7 +58,7 @@ void compute_bounds(AllanResult& result) {
   }
 }
 
-void identify_noise(AllanResult& result) {
+void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_range) {
   const DeviationCurve* basis = nullptr;
   for (Estimator e : {Estimator::kOadev, Estimator::kAdev, Estimator::kTotdev}) {
     if (result.curves.contains(e)) {
@@ -85,10 +85,15 @@ void identify_noise(AllanResult& result) {
     for (double d : basis->values) v.push_back(d * d);
     return v;
   };
-  NoiseTerms first = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit);
+  NoiseFitOptions fit_options;
+  fit_options.fit_range = fit_range;
+  fit_options.sample_count = result.sample_count;
+  fit_options.sample_interval_s = 1.0 / result.sample_rate_hz;
+  NoiseTerms first = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
   for (std::size_t i = 0; i < result.tau_s.size(); ++i) result.noise_types[i] = noise_type_of_power(first.dominant_power[i]);
   compute_bounds(result);
-  result.noise = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit);
+  result.noise = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
+  result.warnings.insert(result.warnings.end(), result.noise->warnings.begin(), result.noise->warnings.end());
   result.slopes = read_noise_slopes(result.tau_s, basis->values, basis->edf, result.input_unit);
   result.warnings.insert(result.warnings.end(), result.slopes->warnings.begin(), result.slopes->warnings.end());
 }
@@ -116,7 +121,7 @@ AllanResult assemble(std::size_t sample_count, double mean, const std::vector<Al
     }
   }
   compute_bounds(result);
-  identify_noise(result);
+  identify_noise(result, options.fit_range);
   return result;
 }
 
@@ -185,6 +190,9 @@ void AllanOptions::validate() const {
   if (!(scale != 0.0) || !std::isfinite(scale)) throw Error("the scale must be finite and nonzero");
   if (!(confidence > 0.0 && confidence < 1.0)) throw Error("the confidence level must lie between 0 and 1");
   if (worker_count == 0) throw Error("at least one worker thread is needed");
+  NoiseFitOptions fit_options;
+  fit_options.fit_range = fit_range;
+  fit_options.validate();
 }
 
 AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options) {
@@ -282,17 +290,27 @@ std::string AllanResult::report() const {
     return fmt::format("  {:<24} {:.5g} ± {:.2g} {}\n", name, f.value, f.uncertainty.value_or(0.0), f.unit);
   };
   if (noise) {
-    text += "Noise terms (fit of GJB 2426A eq. 30):\n";
-    text += line("quantization Q", noise->quantization);
-    text += line("angle random walk N", noise->angle_random_walk);
-    text += line("bias instability B", noise->bias_instability);
-    text += line("rate random walk K", noise->rate_random_walk);
-    text += line("rate ramp R", noise->rate_ramp);
+    text += fmt::format("Noise terms (fit of GJB 2426A eq. 30, tau {:g} to {:g} s, {}: {}):\n",
+                        noise->fit_range.tau_min_s, noise->fit_range.tau_max_s, noise->fit_range_chosen_by,
+                        noise->fit_range_reason);
+    const auto term = [&](const std::string& name, const Figure& f, int p) {
+      const auto k = static_cast<std::size_t>(p + 2);
+      if (noise->identified[k]) return line(name, f);
+      return fmt::format("  {:<24} not identified (< {:.2g} {})\n", name, noise->upper_bounds[k]->value,
+                         noise->upper_bounds[k]->unit);
+    };
+    text += term("quantization Q", noise->quantization, -2);
+    text += term("angle random walk N", noise->angle_random_walk, -1);
+    text += term("bias instability B", noise->bias_instability, 0);
+    text += term("rate random walk K", noise->rate_random_walk, 1);
+    text += term("rate ramp R", noise->rate_ramp, 2);
+    text += fmt::format("  fit: {} (reduced chi-squared {:.3g}, {} degrees of freedom)\n", noise->verdict,
+                        noise->reduced_chi_squared, noise->degrees_of_freedom);
   }
   if (slopes) {
     text += "Slope read-off:\n";
     const auto reading = [&](const std::string& name, const SlopeReading& r) {
-      return r.figure ? line(name, *r.figure) : fmt::format("  {:<24} not identified (no region of its slope)\n", name);
+      return r.figure ? line(name, *r.figure) : fmt::format("  {:<24} not identified (see the warnings)\n", name);
     };
     text += reading("angle random walk N", slopes->angle_random_walk);
     text += reading("bias instability B", slopes->bias_instability);

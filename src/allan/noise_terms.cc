@@ -103,68 +103,538 @@ void check_points(std::span<const double> tau_s, std::span<const double> values,
   }
 }
 
-}  // namespace
+using Coefficients = std::array<double, kTerms>;
 
-NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double> variance,
-                           std::span<const double> edf, const std::string& input_unit) {
-  check_points(tau_s, variance, edf);
-  const auto rows = static_cast<Eigen::Index>(tau_s.size());
-  // Rows weighted by sqrt(edf/2)/sigma^2 (1 / standard deviation of the variance estimate), columns
-  // scaled to unit norm so that tau^-2 and tau^2 over many decades stay well conditioned.
-  Eigen::MatrixXd design(rows, kTerms);
-  Eigen::VectorXd observed(rows);
-  for (Eigen::Index i = 0; i < rows; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const double row_weight = std::sqrt(edf[k] / 2.0) / variance[k];
-    for (int p = -2; p <= 2; ++p) design(i, p + 2) = row_weight * std::pow(tau_s[k], p);
-    observed(i) = row_weight * variance[k];
+// sum_k C_ij(k)^2 is quadratic in the coefficients: a^T S a over a = (A_-2, A_-1, A_0, A_1) (the
+// rate ramp adds no covariance), S the lag moments of the terms' cross-covariances.
+using LagMoments = Eigen::Matrix4d;
+using Kernel = Eigen::Vector4d;
+
+// The smooth part of the generalised covariance of the angle per unit coefficient (see the header),
+// h in s: white FM, flicker FM, random walk FM. The white PM part, a Kronecker delta, is added at its
+// lags apart.
+Kernel smooth_generalised_covariance(double h) {
+  const double x = std::abs(h);
+  if (x == 0.0) return Kernel::Zero();
+  return Kernel(0.0, -x / 2.0, x * x * std::log(x) / (4.0 * std::log(2.0)), x * x * x / 4.0);
+}
+
+// The lag moments of second differences of spans m_i, m_j samples (see the header), over integer
+// lags k. Between the lags where two taps meet, C_ij is smooth (piecewise polynomial, or h^2 ln h):
+// each such piece is summed exactly when short, else by a 16-point midpoint rule; the flicker tails
+// beyond the taps are summed out to 8 times the span.
+LagMoments lag_moments(double t0, std::int64_t m_i, std::int64_t m_j) {
+  static constexpr std::array<double, 3> kWeights = {1.0, -2.0, 1.0};
+  const double norm = 1.0 / (2.0 * static_cast<double>(m_i) * static_cast<double>(m_j) * t0 * t0);
+  const auto smooth = [&](double k) {
+    Kernel c = Kernel::Zero();
+    for (int p = 0; p < 3; ++p) {
+      for (int q = 0; q < 3; ++q) {
+        c += kWeights[static_cast<std::size_t>(p)] * kWeights[static_cast<std::size_t>(q)] *
+             smooth_generalised_covariance((k + static_cast<double>(q * m_j - p * m_i)) * t0);
+      }
+    }
+    return Kernel(c * norm);
+  };
+  std::vector<std::int64_t> breaks;
+  for (int p = 0; p < 3; ++p) {
+    for (int q = 0; q < 3; ++q) breaks.push_back(p * m_i - q * m_j);
   }
+  const std::int64_t reach = 16 * (m_i + m_j);
+  breaks.push_back(-reach);
+  breaks.push_back(reach + 1);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  LagMoments sum = LagMoments::Zero();
+  for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+    const std::int64_t lo = breaks[b];
+    const std::int64_t count = breaks[b + 1] - lo;
+    if (count <= 16) {
+      for (std::int64_t k = lo; k < lo + count; ++k) {
+        const Kernel c = smooth(static_cast<double>(k));
+        sum += c * c.transpose();
+      }
+    } else {
+      const double step = static_cast<double>(count) / 16.0;
+      for (int n = 0; n < 16; ++n) {
+        const Kernel c = smooth(static_cast<double>(lo) - 0.5 + (n + 0.5) * step);
+        sum += step * c * c.transpose();
+      }
+    }
+  }
+  // White PM: C_ij(k) gains w_p w_q norm / 3 per unit A_-2 where k = p m_i - q m_j (Q^2 = A_-2 / 3).
+  std::vector<std::pair<std::int64_t, double>> spikes;
+  for (int p = 0; p < 3; ++p) {
+    for (int q = 0; q < 3; ++q) {
+      const std::int64_t k = p * m_i - q * m_j;
+      const double c = kWeights[static_cast<std::size_t>(p)] * kWeights[static_cast<std::size_t>(q)] * norm / 3.0;
+      const auto found = std::find_if(spikes.begin(), spikes.end(), [k](const auto& spike) { return spike.first == k; });
+      if (found == spikes.end()) {
+        spikes.emplace_back(k, c);
+      } else {
+        found->second += c;
+      }
+    }
+  }
+  for (const auto& [k, c] : spikes) {
+    const Kernel base = smooth(static_cast<double>(k));
+    Kernel with_spike = base;
+    with_spike(0) += c;
+    sum += with_spike * with_spike.transpose() - base * base.transpose();
+  }
+  return sum;
+}
+
+struct PointSet {
+  std::vector<double> tau_s;
+  std::vector<double> variance;
+  std::vector<double> edf;
+  std::vector<std::int64_t> spans;  // averaging factors
+  // moments[i][j], j <= i: the lag moments of points i and j (empty: the covariance is not built).
+  std::vector<std::vector<LagMoments>> moments;
+};
+
+// The covariance of the variance estimates of the points under the model a (see the header).
+Eigen::MatrixXd model_covariance(const PointSet& points, const Coefficients& a, const NoiseFitOptions& options) {
+  const auto n = static_cast<Eigen::Index>(points.tau_s.size());
+  const Kernel random_part(a[0], a[1], a[2], a[3]);
+  std::vector<double> model;
+  for (std::size_t i = 0; i < points.tau_s.size(); ++i) {
+    double value = 0.0;
+    for (int p = -2; p <= 2; ++p) value += a[static_cast<std::size_t>(p + 2)] * std::pow(points.tau_s[i], p);
+    model.push_back(value > 0.0 ? value : points.variance[i]);
+  }
+  const auto terms = [&](std::size_t i) {
+    const auto m = static_cast<std::size_t>(2 * points.spans[i]);
+    return options.sample_count > m ? static_cast<double>(options.sample_count - m) : 1.0;
+  };
+  const auto lag_sum = [&](std::size_t i, std::size_t j) {
+    return random_part.dot(points.moments[i][j] * random_part);
+  };
+  Eigen::MatrixXd covariance(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const double variance_i = 2.0 * model[u] * model[u] / points.edf[u];
+    const double own_i = lag_sum(u, u);
+    covariance(i, i) = variance_i;
+    for (Eigen::Index j = 0; j < i; ++j) {
+      const auto v = static_cast<std::size_t>(j);
+      const double variance_j = 2.0 * model[v] * model[v] / points.edf[v];
+      const double own_j = lag_sum(v, v);
+      const double terms_factor = options.sample_count > 0 ? std::sqrt(terms(u) * terms(v)) / std::max(terms(u), terms(v)) : 1.0;
+      const double correlation =
+          own_i > 0.0 && own_j > 0.0 ? std::clamp(terms_factor * lag_sum(u, v) / std::sqrt(own_i * own_j), 0.0, 1.0) : 0.0;
+      covariance(i, j) = covariance(j, i) = correlation * std::sqrt(variance_i * variance_j);
+    }
+  }
+  return covariance;
+}
+
+// One fit over the points: NNLS on the system whitened by the covariance (diagonal from the observed
+// points on the first pass, the model's afterwards).
+struct Fit {
+  Coefficients a{};
+  std::vector<bool> free;
+  Eigen::MatrixXd whitened_design;  // columns unscaled
+  Eigen::VectorXd whitened_observed;
+  double chi_squared = 0.0;
+  std::size_t degrees_of_freedom = 0;
+  double reduced_chi_squared = 0.0;
+  bool consistent = false;
+};
+
+// The NNLS solution of the whitened system, columns scaled to unit norm so that tau^-2 and tau^2
+// over many decades stay well conditioned.
+Coefficients solve_non_negative(const Eigen::MatrixXd& design, const Eigen::VectorXd& observed,
+                                const std::vector<bool>& allowed, std::vector<bool>& free) {
+  Eigen::MatrixXd scaled = design;
   Eigen::VectorXd column_scale(kTerms);
   for (int j = 0; j < kTerms; ++j) {
-    column_scale(j) = design.col(j).norm();
-    design.col(j) /= column_scale(j);
+    if (!allowed[static_cast<std::size_t>(j)]) scaled.col(j).setZero();  // held at zero: never enters
+    column_scale(j) = scaled.col(j).norm();
+    if (!(column_scale(j) > 0.0)) column_scale(j) = 1.0;
+    scaled.col(j) /= column_scale(j);
   }
-  std::vector<bool> free;
-  const Eigen::VectorXd scaled = non_negative_least_squares(design, observed, free);
+  const Eigen::VectorXd x = non_negative_least_squares(scaled, observed, free);
+  Coefficients a{};
+  for (int j = 0; j < kTerms; ++j) a[static_cast<std::size_t>(j)] = x(j) / column_scale(j);
+  return a;
+}
 
-  NoiseTerms terms;
-  const double residual = (design * scaled - observed).squaredNorm();
-  const auto free_count = static_cast<Eigen::Index>(std::count(free.begin(), free.end(), true));
-  const double dof = static_cast<double>(rows - free_count);
-  terms.reduced_chi_squared = dof > 0.0 ? residual / dof : 0.0;
-  const double inflation = std::max(1.0, terms.reduced_chi_squared);
-  // Covariance of the free coefficients; a coefficient at zero takes its variance from the whole
-  // normal matrix (as if it were free).
-  std::vector<Eigen::Index> columns;
-  for (Eigen::Index j = 0; j < kTerms; ++j) {
-    if (free[static_cast<std::size_t>(j)]) columns.push_back(j);
+Eigen::MatrixXd design_of(const PointSet& points) {
+  Eigen::MatrixXd design(static_cast<Eigen::Index>(points.tau_s.size()), kTerms);
+  for (std::size_t i = 0; i < points.tau_s.size(); ++i) {
+    for (int p = -2; p <= 2; ++p) design(static_cast<Eigen::Index>(i), p + 2) = std::pow(points.tau_s[i], p);
   }
-  Eigen::MatrixXd sub(rows, static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t c = 0; c < columns.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = design.col(columns[c]);
-  const Eigen::MatrixXd free_covariance = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse();
-  const Eigen::MatrixXd normal = design.transpose() * design;
-  const Eigen::FullPivLU<Eigen::MatrixXd> normal_lu(normal);
-  const Eigen::MatrixXd full_covariance =
-      normal_lu.isInvertible()
-          ? Eigen::MatrixXd(normal_lu.inverse())
-          : Eigen::MatrixXd::Constant(kTerms, kTerms, std::numeric_limits<double>::infinity());
-  for (int j = 0; j < kTerms; ++j) {
-    const auto k = static_cast<std::size_t>(j);
-    terms.coefficients[k] = scaled(j) / column_scale(j);
-    double variance_scaled = full_covariance(j, j);
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (columns[c] == j) variance_scaled = free_covariance(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c));
+  return design;
+}
+
+// Whitening by the inverse of the Cholesky factor; eigenvalues are floored at 1e-12 of the largest
+// (neighbouring taus of a dense grid are almost fully correlated).
+void whiten(const Eigen::MatrixXd& covariance, Eigen::MatrixXd& design, Eigen::VectorXd& observed) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
+  const Eigen::VectorXd values = eigen.eigenvalues().cwiseMax(1e-12 * eigen.eigenvalues().maxCoeff());
+  const Eigen::MatrixXd inverse_root =
+      values.cwiseSqrt().cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
+  design = inverse_root * design;
+  observed = inverse_root * observed;
+}
+
+constexpr int kCovarianceIterations = 3;
+// A coefficient is measured when it lies at least this many 1-sigma uncertainties above zero.
+constexpr double kSignificance = 2.0;
+// Above this many points the covariance is not built (a dense grid, e.g. "all"; the cost grows as
+// the square): diagonal weights, and a warning that the uncertainties are understated.
+constexpr std::size_t kMostCorrelatedPoints = 64;
+
+// The covariance of the coefficients in `columns`, (J^T V^-1 J)^-1 on the whitened design.
+Eigen::MatrixXd coefficient_covariance(const Eigen::MatrixXd& whitened_design, const std::vector<Eigen::Index>& columns) {
+  Eigen::MatrixXd sub(whitened_design.rows(), static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t c = 0; c < columns.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = whitened_design.col(columns[c]);
+  // Scaled to unit columns for the inversion.
+  Eigen::VectorXd scale(sub.cols());
+  for (Eigen::Index c = 0; c < sub.cols(); ++c) {
+    scale(c) = sub.col(c).norm() > 0.0 ? sub.col(c).norm() : 1.0;
+    sub.col(c) /= scale(c);
+  }
+  const Eigen::MatrixXd inverse = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse();
+  return scale.cwiseInverse().asDiagonal() * inverse * scale.cwiseInverse().asDiagonal();
+}
+
+std::vector<Eigen::Index> free_columns(const std::vector<bool>& free) {
+  std::vector<Eigen::Index> columns;
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    if (free[j]) columns.push_back(static_cast<Eigen::Index>(j));
+  }
+  return columns;
+}
+
+void set_goodness(Fit& fit, std::size_t points) {
+  const Eigen::VectorXd a = Eigen::Map<const Eigen::VectorXd>(fit.a.data(), kTerms);
+  fit.chi_squared = (fit.whitened_design * a - fit.whitened_observed).squaredNorm();
+  const auto free_count = static_cast<std::size_t>(std::count(fit.free.begin(), fit.free.end(), true));
+  fit.degrees_of_freedom = points > free_count ? points - free_count : 0;
+  fit.reduced_chi_squared = 0.0;
+  fit.consistent = false;
+  if (fit.degrees_of_freedom > 0) {
+    const auto dof = static_cast<double>(fit.degrees_of_freedom);
+    fit.reduced_chi_squared = fit.chi_squared / dof;
+    // A reduced chi-squared beyond 3 of its standard deviations sqrt(2 / dof) above 1.
+    fit.consistent = fit.reduced_chi_squared <= 1.0 + 3.0 * std::sqrt(2.0 / dof);
+  }
+}
+
+// The fit over the points, then backward elimination of the end terms at the covariance of the
+// full model: while the weaker of Q (A_-2) and R (A_2) lies within kSignificance of its 1-sigma
+// uncertainty of zero, it is held at zero and the others refitted. Q and R act only at the ends of
+// the curve, where they trade off against N and K: a Q or R the data do not distinguish from zero
+// is not measured, and left free it biases N or K through the non-negativity bound (Q >= 0 pulls
+// N down). The covariance is then updated from the final model.
+Fit fit_points(const PointSet& points, const NoiseFitOptions& options) {
+  const Eigen::MatrixXd design = design_of(points);
+  const Eigen::VectorXd observed = Eigen::Map<const Eigen::VectorXd>(points.variance.data(), design.rows());
+  Fit fit;
+  std::vector<bool> allowed(kTerms, true);
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(design.rows(), design.rows());
+  for (Eigen::Index i = 0; i < design.rows(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    covariance(i, i) = 2.0 * points.variance[k] * points.variance[k] / points.edf[k];
+  }
+  const bool correlated = !points.moments.empty();
+  const auto solve = [&] {
+    fit.whitened_design = design;
+    fit.whitened_observed = observed;
+    whiten(covariance, fit.whitened_design, fit.whitened_observed);
+    fit.a = solve_non_negative(fit.whitened_design, fit.whitened_observed, allowed, fit.free);
+  };
+  const auto iterate = [&] {
+    for (int pass = 0; pass < kCovarianceIterations && correlated; ++pass) {
+      covariance = model_covariance(points, fit.a, options);
+      solve();
     }
-    terms.coefficient_uncertainties[k] = std::sqrt(inflation * variance_scaled) / column_scale(j);
+  };
+  solve();
+  iterate();
+  for (;;) {
+    set_goodness(fit, points.tau_s.size());
+    const std::vector<Eigen::Index> columns = free_columns(fit.free);
+    if (columns.size() <= 1) break;
+    const Eigen::MatrixXd coefficients = coefficient_covariance(fit.whitened_design, columns);
+    const double inflation = std::max(1.0, fit.reduced_chi_squared);
+    std::optional<std::size_t> weakest;
+    double weakest_z = kSignificance;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (columns[c] != 0 && columns[c] != kTerms - 1) continue;  // only Q and R (see above)
+      const auto e = static_cast<Eigen::Index>(c);
+      const double z = fit.a[static_cast<std::size_t>(columns[c])] / std::sqrt(inflation * coefficients(e, e));
+      if (z < weakest_z) {
+        weakest_z = z;
+        weakest = static_cast<std::size_t>(columns[c]);
+      }
+    }
+    if (!weakest) break;
+    allowed[*weakest] = false;
+    fit.a = solve_non_negative(fit.whitened_design, fit.whitened_observed, allowed, fit.free);
+  }
+  iterate();
+  set_goodness(fit, points.tau_s.size());
+  return fit;
+}
+
+PointSet points_between(const PointSet& all, std::size_t first, std::size_t last) {
+  PointSet points;
+  for (std::size_t i = first; i <= last; ++i) {
+    points.tau_s.push_back(all.tau_s[i]);
+    points.variance.push_back(all.variance[i]);
+    points.edf.push_back(all.edf[i]);
+    points.spans.push_back(all.spans[i]);
+    if (!all.moments.empty()) {
+      points.moments.emplace_back(all.moments[i].begin() + static_cast<std::ptrdiff_t>(first),
+                                  all.moments[i].begin() + static_cast<std::ptrdiff_t>(i + 1));
+    }
+  }
+  return points;
+}
+
+std::string tau_text(double tau) { return fmt::format("{:g} s", tau); }
+
+// The log-log slope of the pair (i, i + 1) and its 1-sigma uncertainty (see the header).
+struct PairSlope {
+  double slope = 0.0;
+  double uncertainty = 0.0;
+  bool resolved() const { return uncertainty <= kSlopeResolution; }
+};
+
+PairSlope pair_slope(std::span<const double> tau_s, std::span<const double> deviation, std::span<const double> edf,
+                     std::size_t i) {
+  const double spacing = std::log(tau_s[i + 1] / tau_s[i]);
+  return {std::log(deviation[i + 1] / deviation[i]) / spacing,
+          std::sqrt(1.0 / (2.0 * edf[i]) + 1.0 / (2.0 * edf[i + 1])) / spacing};
+}
+
+// B = sigma / 0.664 at the floor: the least point of the resolved pairs, when a resolved pair beside
+// it has a slope within kSlopeTolerance of 0 (IEEE 952 C.1: the flat part at the bottom of the curve).
+void read_floor(SlopeReadOff& result, std::span<const double> tau_s, std::span<const double> deviation,
+                std::span<const double> edf, const FigureUnits& units) {
+  std::vector<bool> in_resolved_pair(tau_s.size(), false);
+  for (std::size_t i = 0; i + 1 < tau_s.size(); ++i) {
+    if (pair_slope(tau_s, deviation, edf, i).resolved()) in_resolved_pair[i] = in_resolved_pair[i + 1] = true;
+  }
+  std::optional<std::size_t> floor;
+  for (std::size_t i = 0; i < tau_s.size(); ++i) {
+    if (in_resolved_pair[i] && (!floor || deviation[i] < deviation[*floor])) floor = i;
+  }
+  const std::string what = "slope read-off: bias instability B not identified";
+  if (!floor) {
+    result.warnings.push_back(what + ": no resolved pair of points on the curve");
+    return;
+  }
+  const std::size_t i = *floor;
+  std::optional<double> flattest;
+  for (std::size_t pair : {i - 1, i}) {  // i - 1 wraps for i = 0 and is skipped
+    if (pair + 1 >= tau_s.size()) continue;
+    const PairSlope s = pair_slope(tau_s, deviation, edf, pair);
+    if (s.resolved() && (!flattest || std::abs(s.slope) < std::abs(*flattest))) flattest = s.slope;
+  }
+  if (!flattest || std::abs(*flattest) > kSlopeTolerance) {
+    result.warnings.push_back(fmt::format(
+        "{}: the curve's floor at tau = {:g} s is not flat (slope beside it {:+.2f}, tolerance {:g}){}", what,
+        tau_s[i], flattest.value_or(std::numeric_limits<double>::quiet_NaN()), kSlopeTolerance,
+        i + 1 == tau_s.size() || !in_resolved_pair[std::min(i + 1, tau_s.size() - 1)] ? ": the curve is still falling"
+                                                                                     : ""));
+    return;
+  }
+  SlopeReading& reading = result.bias_instability;
+  reading.tau_s = tau_s[i];
+  reading.slope = *flattest;
+  const double value = deviation[i] / kBiasInstabilityFactor;
+  reading.figure = Figure{value, units.computed, value / std::sqrt(2.0 * edf[i])}.in(units.reported);
+}
+
+}  // namespace
+
+void NoiseFitOptions::validate() const {
+  if (fit_range && !(fit_range->tau_min_s > 0.0 && fit_range->tau_min_s <= fit_range->tau_max_s &&
+                     std::isfinite(fit_range->tau_max_s))) {
+    throw Error(fmt::format("the fit range needs 0 < TMIN <= TMAX (got {}:{})", fit_range->tau_min_s,
+                            fit_range->tau_max_s));
+  }
+  if (!(sample_interval_s >= 0.0) || !std::isfinite(sample_interval_s)) {
+    throw Error("the sample interval must be positive and finite");
+  }
+}
+
+FitRange parse_fit_range(const std::string& text) {
+  const auto colon = text.find(':');
+  const auto number = [&](const std::string& part) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != part.size()) {
+      throw Error(fmt::format("the fit range must read TMIN:TMAX in s (got '{}')", text));
+    }
+    return value;
+  };
+  if (colon == std::string::npos) throw Error(fmt::format("the fit range must read TMIN:TMAX in s (got '{}')", text));
+  NoiseFitOptions options;
+  options.fit_range = FitRange{number(text.substr(0, colon)), number(text.substr(colon + 1))};
+  options.validate();
+  return *options.fit_range;
+}
+
+NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double> variance,
+                           std::span<const double> edf, const std::string& input_unit, const NoiseFitOptions& options) {
+  check_points(tau_s, variance, edf);
+  options.validate();
+  const double t0 = options.sample_interval_s > 0.0 ? options.sample_interval_s
+                                                    : *std::min_element(tau_s.begin(), tau_s.end());
+  PointSet all;
+  all.tau_s.assign(tau_s.begin(), tau_s.end());
+  all.variance.assign(variance.begin(), variance.end());
+  all.edf.assign(edf.begin(), edf.end());
+  for (double tau : tau_s) all.spans.push_back(std::max<std::int64_t>(1, std::llround(tau / t0)));
+  if (tau_s.size() <= kMostCorrelatedPoints) {
+    for (std::size_t i = 0; i < tau_s.size(); ++i) {
+      all.moments.emplace_back();
+      for (std::size_t j = 0; j <= i; ++j) all.moments[i].push_back(lag_moments(t0, all.spans[i], all.spans[j]));
+    }
+  }
+  NoiseTerms terms;
+  if (all.moments.empty()) {
+    terms.warnings.push_back(fmt::format(
+        "noise fit: {} taus, more than {}: the correlation of the overlapping estimates is not modelled and the "
+        "uncertainties are understated; use a sparser tau grid (e.g. octave)",
+        tau_s.size(), kMostCorrelatedPoints));
+  }
+  std::size_t first = 0;
+  std::size_t last = tau_s.size() - 1;
+  Fit fit;
+  if (options.fit_range) {
+    // The taus inside the range, within a relative 1e-9 (a range typed from printed taus).
+    const auto inside = [&](double tau) {
+      return tau >= options.fit_range->tau_min_s * (1.0 - 1e-9) && tau <= options.fit_range->tau_max_s * (1.0 + 1e-9);
+    };
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < tau_s.size(); ++i) {
+      if (inside(tau_s[i])) kept.push_back(i);
+    }
+    if (kept.size() < 2) {
+      throw Error(fmt::format("the fit range {}:{} s holds {} of the curve's taus; the fit needs at least 2",
+                              options.fit_range->tau_min_s, options.fit_range->tau_max_s, kept.size()));
+    }
+    first = kept.front();
+    last = kept.back();
+    fit = fit_points(points_between(all, first, last), options);
+    terms.fit_range_chosen_by = "user";
+    terms.fit_range_reason = "given by the user";
+  } else {
+    // Drop the shortest taus while the fit is inconsistent, keeping at least kTerms + 1 points (one
+    // degree of freedom with every term free); if none is consistent, keep the least inconsistent.
+    fit = fit_points(points_between(all, first, last), options);
+    const double full_reduced_chi_squared = fit.reduced_chi_squared;
+    Fit best = fit;
+    std::size_t best_first = first;
+    for (std::size_t start = 1; !best.consistent && last + 1 - start >= kTerms + 1; ++start) {
+      Fit trial = fit_points(points_between(all, start, last), options);
+      if (trial.consistent || trial.reduced_chi_squared < best.reduced_chi_squared) {
+        best = std::move(trial);
+        best_first = start;
+      }
+    }
+    first = best_first;
+    fit = std::move(best);
+    terms.fit_range_chosen_by = "automatic";
+    if (first == 0) {
+      terms.fit_range_reason = fit.consistent || fit.degrees_of_freedom == 0
+                                   ? "the whole curve: the model fits it"
+                                   : "the whole curve: no shorter range fits better";
+    } else {
+      terms.fit_range_reason = fmt::format(
+          "taus below {} dropped: the model does not hold there (anti-alias filter or quantisation at short tau); "
+          "reduced chi-squared {:.3g} over the whole curve, {:.3g} from {}",
+          tau_text(tau_s[first]), full_reduced_chi_squared, fit.reduced_chi_squared, tau_text(tau_s[first]));
+    }
+  }
+  terms.fit_range = FitRange{tau_s[first], tau_s[last]};
+  const PointSet fitted = points_between(all, first, last);
+  terms.reduced_chi_squared = fit.reduced_chi_squared;
+  terms.degrees_of_freedom = fit.degrees_of_freedom;
+  terms.verdict = fit.degrees_of_freedom == 0 ? "undetermined" : fit.consistent ? "consistent" : "inconsistent";
+  if (fit.degrees_of_freedom == 0) {
+    terms.warnings.push_back("noise fit: no degree of freedom left over the fit range: how well the model fits is unknown");
+  } else if (!fit.consistent) {
+    terms.warnings.push_back(fmt::format(
+        "noise fit: the model of GJB eq. (30) does not fit the curve from {} to {} (reduced chi-squared {:.3g} over {} "
+        "degrees of freedom): its figures are doubtful; try --fit-range",
+        tau_text(terms.fit_range.tau_min_s), tau_text(terms.fit_range.tau_max_s), fit.reduced_chi_squared,
+        fit.degrees_of_freedom));
+  }
+  const double inflation = std::max(1.0, fit.reduced_chi_squared);
+  const std::vector<Eigen::Index> columns = free_columns(fit.free);
+  const Eigen::MatrixXd free_covariance = coefficient_covariance(fit.whitened_design, columns);
+  const double b_factor = 1.0 / (kBiasInstabilityFactor * kBiasInstabilityFactor);
+  struct TermSpec {
+    Figure NoiseTerms::*figure;
+    double c;
+    FigureUnits units;
+  };
+  const std::array<TermSpec, kTerms> specs = {
+      TermSpec{&NoiseTerms::quantization, 1.0 / 3.0, units_for(input_unit, "*s", "arcsec")},
+      TermSpec{&NoiseTerms::angle_random_walk, 1.0, units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)")},
+      TermSpec{&NoiseTerms::bias_instability, b_factor, units_for(input_unit, "", "deg/h")},
+      TermSpec{&NoiseTerms::rate_random_walk, 3.0, units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)")},
+      TermSpec{&NoiseTerms::rate_ramp, 2.0, units_for(input_unit, "/s", "deg/h/h")}};
+  for (Eigen::Index j = 0; j < kTerms; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    terms.coefficients[k] = fit.a[k];
+    const TermSpec& spec = specs[k];
+    const auto place = std::find(columns.begin(), columns.end(), j);
+    if (place != columns.end()) {
+      const auto c = place - columns.begin();
+      terms.coefficient_uncertainties[k] = std::sqrt(inflation * free_covariance(c, c));
+      terms.identified[k] = true;
+      terms.*spec.figure = figure_of(fit.a[k], terms.coefficient_uncertainties[k], spec.c, spec.units);
+      continue;
+    }
+    // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty give
+    // the bound. The covariance of the points depends on the model, and one without the term
+    // understates the scatter the term would bring: the bound is recomputed under the model that
+    // holds the term at its bound until it settles (at most kCovarianceIterations times).
+    std::vector<Eigen::Index> with_it = columns;
+    with_it.push_back(j);
+    const auto bound_under = [&](const Eigen::MatrixXd& whitened_design, const Eigen::VectorXd& whitened_observed) {
+      Eigen::MatrixXd sub(whitened_design.rows(), static_cast<Eigen::Index>(with_it.size()));
+      for (std::size_t c = 0; c < with_it.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = whitened_design.col(with_it[c]);
+      const Eigen::MatrixXd joint = coefficient_covariance(whitened_design, with_it);
+      const Eigen::VectorXd unconstrained = joint * (sub.transpose() * whitened_observed);
+      const Eigen::Index last_column = joint.rows() - 1;
+      const double sigma = std::sqrt(inflation * joint(last_column, last_column));
+      return std::pair{sigma, std::max(0.0, unconstrained(last_column)) + 2.0 * sigma};
+    };
+    auto [sigma, bound] = bound_under(fit.whitened_design, fit.whitened_observed);
+    for (int pass = 0; pass < kCovarianceIterations && !fitted.moments.empty(); ++pass) {
+      Coefficients at_bound = fit.a;
+      at_bound[k] = bound;
+      Eigen::MatrixXd design = design_of(fitted);
+      Eigen::VectorXd observed = Eigen::Map<const Eigen::VectorXd>(fitted.variance.data(), design.rows());
+      whiten(model_covariance(fitted, at_bound, options), design, observed);
+      const auto [next_sigma, next_bound] = bound_under(design, observed);
+      const bool settled = std::abs(next_bound - bound) <= 0.01 * bound;
+      sigma = next_sigma;
+      bound = next_bound;
+      if (settled) break;
+    }
+    terms.identified[k] = false;
+    terms.coefficient_uncertainties[k] = sigma;
+    Figure& figure = terms.*spec.figure;
+    figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
+    terms.upper_bounds[k] = figure_of(bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
   }
   const auto& a = terms.coefficients;
-  const auto& s = terms.coefficient_uncertainties;
-  const double b_factor = 1.0 / (kBiasInstabilityFactor * kBiasInstabilityFactor);
-  terms.quantization = figure_of(a[0], s[0], 1.0 / 3.0, units_for(input_unit, "*s", "arcsec"));
-  terms.angle_random_walk = figure_of(a[1], s[1], 1.0, units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)"));
-  terms.bias_instability = figure_of(a[2], s[2], b_factor, units_for(input_unit, "", "deg/h"));
-  terms.rate_random_walk = figure_of(a[3], s[3], 3.0, units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)"));
-  terms.rate_ramp = figure_of(a[4], s[4], 2.0, units_for(input_unit, "/s", "deg/h/h"));
   for (double tau : tau_s) {
     int best = -2;
     double largest = -1.0;
@@ -189,18 +659,40 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
     coefficients_json.push_back({{"power", p},
                                  {"value", coefficients[k]},
                                  {"uncertainty", coefficient_uncertainties[k]},
+                                 {"identified", identified[k]},
                                  {"unit", p == 0 ? "(" + input_unit + ")^2" : unit}});
   }
-  return {{"quantization", quantization},
-          {"angle_random_walk", angle_random_walk},
-          {"random_walk_coefficient", angle_random_walk},
-          {"bias_instability", bias_instability},
-          {"rate_random_walk", rate_random_walk},
-          {"rate_ramp", rate_ramp},
+  // An identified figure as a Figure; one held at zero as {"value": null, "unit", "identified":
+  // false, "upper_bound"}.
+  const auto figure = [&](const Figure& f, int p) {
+    const auto k = static_cast<std::size_t>(p + 2);
+    nlohmann::json json = f;
+    if (!identified[k]) {
+      json["value"] = nullptr;
+      json["identified"] = false;
+      json["upper_bound"] = upper_bounds[k] ? nlohmann::json(upper_bounds[k]->value) : nlohmann::json(nullptr);
+    }
+    return json;
+  };
+  return {{"quantization", figure(quantization, -2)},
+          {"angle_random_walk", figure(angle_random_walk, -1)},
+          {"random_walk_coefficient", figure(angle_random_walk, -1)},
+          {"bias_instability", figure(bias_instability, 0)},
+          {"rate_random_walk", figure(rate_random_walk, 1)},
+          {"rate_ramp", figure(rate_ramp, 2)},
           {"fit",
-           {{"model", "sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB 2426A eq. 30), weighted non-negative least squares"},
+           {{"model",
+             "sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB 2426A eq. 30), non-negative generalised least squares "
+             "(covariance of the overlapping estimates from the fitted model)"},
             {"coefficients", coefficients_json},
-            {"reduced_chi_squared", reduced_chi_squared}}}};
+            {"reduced_chi_squared", reduced_chi_squared},
+            {"degrees_of_freedom", degrees_of_freedom},
+            {"verdict", verdict},
+            {"fit_range",
+             {{"tau_min_s", fit_range.tau_min_s},
+              {"tau_max_s", fit_range.tau_max_s},
+              {"chosen_by", fit_range_chosen_by},
+              {"reason", fit_range_reason}}}}}};
 }
 
 SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const double> deviation,
@@ -215,9 +707,7 @@ SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const do
     double best_distance = std::numeric_limits<double>::infinity();
     std::optional<double> closest_slope;  // among the resolved pairs
     for (std::size_t i = 0; i + 1 < tau_s.size(); ++i) {
-      const double spacing = std::log(tau_s[i + 1] / tau_s[i]);
-      const double slope = std::log(deviation[i + 1] / deviation[i]) / spacing;
-      const double uncertainty = std::sqrt(1.0 / (2.0 * edf[i]) + 1.0 / (2.0 * edf[i + 1])) / spacing;
+      const auto [slope, uncertainty] = pair_slope(tau_s, deviation, edf, i);
       const double distance = std::abs(slope - target);
       if (uncertainty > kSlopeResolution) continue;
       if (!closest_slope || distance < std::abs(*closest_slope - target)) closest_slope = slope;
@@ -243,9 +733,7 @@ SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const do
   // sigma = N / sqrt(tau): N = sigma(tau) sqrt(tau), the -1/2 line at tau = 1 s.
   read(-0.5, "angle random walk N", result.angle_random_walk, 0.5, 1.0,
        units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)"));
-  // The flat part: sigma = 0.664 B.
-  read(0.0, "bias instability B", result.bias_instability, 0.0, 1.0 / kBiasInstabilityFactor,
-       units_for(input_unit, "", "deg/h"));
+  read_floor(result, tau_s, deviation, edf, units_for(input_unit, "", "deg/h"));
   // sigma = K sqrt(tau / 3): K = sigma(tau) sqrt(3 / tau), the +1/2 line at tau = 3 s.
   read(0.5, "rate random walk K", result.rate_random_walk, -0.5, std::sqrt(3.0),
        units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)"));

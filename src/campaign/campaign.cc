@@ -180,7 +180,12 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   if (node == nullptr || !node->is_object() || !node->contains("value") || !node->contains("unit")) {
     throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name + "' reports no such figure");
   }
-  const Figure figure = node->get<Figure>();
+  // A figure the analysis could not identify ({"value": null, "identified": false, "upper_bound"})
+  // is judged by its upper bound: it passes a maximum the bound meets, and never a minimum.
+  const bool identified = node->value("identified", true);
+  const Figure figure = identified ? node->get<Figure>()
+                                   : Figure{node->at("upper_bound").get<double>(), node->at("unit").get<std::string>(),
+                                            std::nullopt};
   const std::string unit = limit.unit.empty() ? figure.unit : limit.unit;
   double value = 0.0;
   try {
@@ -188,9 +193,11 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   } catch (const Error& e) {
     throw Error(limit.where, "limit on '" + limit.figure + "': " + e.message());
   }
-  const bool pass = (!limit.min || value >= *limit.min) && (!limit.max || value <= *limit.max);
+  const bool pass = identified ? (!limit.min || value >= *limit.min) && (!limit.max || value <= *limit.max)
+                               : !limit.min && limit.max && value <= *limit.max;
   nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", value},
                             {"unit", unit},           {"pass", pass}};
+  if (!identified) verdict["identified"] = false;  // value: the upper bound
   if (limit.min) verdict["min"] = *limit.min;
   if (limit.max) verdict["max"] = *limit.max;
   return verdict;

@@ -1,5 +1,5 @@
 // inertest allan FILE --rate HZ [--format csv|f64|f32] [--column N] [--taus SPEC] [--input-unit U]
-//                [--scale-factor K] [--estimators LIST] [--threads N] [--json]
+//                [--scale-factor K] [--estimators LIST] [--fit-range TMIN:TMAX] [--threads N] [--json]
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -14,6 +14,7 @@ struct Arguments {
   std::string format = "csv";
   std::string column;
   std::string estimators = "all";
+  std::string fit_range;
   double scale_factor = 0.0;
   bool scaled = false;
   AllanOptions options;
@@ -47,12 +48,16 @@ CommandAction setup(CLI::App& root) {
       ->excludes(unit);
   command->add_option("--estimators", arguments->estimators, "comma list of adev,oadev,mdev,hdev,ohdev,totdev")
       ->capture_default_str();
+  command->add_option("--fit-range", arguments->fit_range,
+                      "TMIN:TMAX in s: the taus of the eq. (30) fit (default: chosen automatically, see the JSON's "
+                      "noise.fit.fit_range)");
   command->add_option("--threads", arguments->options.worker_count, "worker threads")->capture_default_str();
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments] {
     arguments->source.format = parse_rate_record_format(arguments->format);
     if (!arguments->column.empty()) arguments->source.column = ColumnSelector::parse(arguments->column);
     arguments->options.estimators = EstimatorSet::parse(arguments->estimators);
+    if (!arguments->fit_range.empty()) arguments->options.fit_range = parse_fit_range(arguments->fit_range);
     if (arguments->scaled) {
       const double k = arguments->scale_factor;
       if (!(k != 0.0) || !std::isfinite(k)) throw Error("--scale-factor must be finite and nonzero");

@@ -91,6 +91,29 @@ TEST(AllanCommand, JsonOfAnF64Record) {
   EXPECT_TRUE(json["noise"]["slope_method"].contains("angle_random_walk"));
 }
 
+// --fit-range sets the taus of the eq. (30) fit; the JSON says who chose them, and the verdict.
+TEST(AllanCommand, FitRangeIsTakenAndReported) {
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("rate.csv", white_record(1.0));
+  auto run = run_cli({"allan", path, "--rate", "10", "--fit-range", "0.2:50", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  const auto& range = json["noise"]["fit"]["fit_range"];
+  EXPECT_EQ(range["chosen_by"], "user");
+  EXPECT_DOUBLE_EQ(range["tau_min_s"].get<double>(), 0.2);
+  EXPECT_DOUBLE_EQ(range["tau_max_s"].get<double>(), 25.6);
+  EXPECT_TRUE(json["noise"]["fit"]["reduced_chi_squared"].is_number());
+  EXPECT_TRUE(json["noise"]["fit"]["verdict"].is_string());
+  run = run_cli({"allan", path, "--rate", "10", "--json"});
+  EXPECT_EQ(nlohmann::json::parse(run.out)["noise"]["fit"]["fit_range"]["chosen_by"], "automatic");
+  run = run_cli({"allan", path, "--rate", "10", "--fit-range", "50"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("TMIN:TMAX"));
+  run = run_cli({"allan", path, "--rate", "10", "--fit-range", "1000:2000"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("the fit needs at least 2"));
+}
+
 TEST(AllanCommand, ClearErrors) {
   testing::ScratchDirectory dir;
   const std::string path = dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 64)));

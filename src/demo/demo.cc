@@ -35,10 +35,15 @@ std::string report_text(const nlohmann::json& results, const std::string& campai
   text += campaign_report;
   text += "\nTruth check (expected = true value + the predicted systematic of rig and method; tolerance from the noise)\n";
   for (const auto& c : results.at("truth_check")) {
-    text += fmt::format("  {:<7} {:<26} {:<36} true {:>13.7g}  expected {:>13.7g}  measured {:>13.7g}  ±{:<10.3g} {}\n",
+    // A figure the analysis could not identify is checked against its upper bound.
+    const std::string measured = c.at("measured").is_null()
+                                     ? fmt::format("not identified, < {:.3g}", c.at("upper_bound").get<double>())
+                                     : fmt::format("measured {:>13.7g}  ±{:<10.3g}", c.at("measured").get<double>(),
+                                                   c.at("tolerance").get<double>());
+    text += fmt::format("  {:<7} {:<26} {:<36} true {:>13.7g}  expected {:>13.7g}  {} {}\n",
                         c.at("within").get<bool>() ? "within" : "OUTSIDE", c.at("procedure").get<std::string>(),
                         c.at("quantity").get<std::string>(), c.at("true").get<double>(), c.at("expected").get<double>(),
-                        c.at("measured").get<double>(), c.at("tolerance").get<double>(), c.at("unit").get<std::string>());
+                        measured, c.at("unit").get<std::string>());
   }
   if (!results.at("not_checked").empty()) {
     text += "\nSimulated but not yet measured (no plan step in this build reports them):\n";
@@ -86,8 +91,20 @@ DemoSummary run_demo(const std::string& out_dir, const DemoOptions& options) {
     const std::string figure_key = truth.at("figure");
     const nlohmann::json* node = find_figure(*result, figure_key);
     if (node == nullptr) throw Error("demo: procedure '" + procedure + "' reports no figure '" + figure_key + "'");
-    const Figure figure = node->get<Figure>();
     const std::string unit = truth.at("unit");
+    if (node->value("identified", true) == false) {
+      // Not identified (e.g. a noise term the fit holds at zero): the truth must lie below the bound.
+      const double bound = convert(node->at("upper_bound").get<double>(), node->at("unit").get<std::string>(), unit);
+      const double expected = truth.at("expected");
+      const bool within = expected <= bound;
+      all_within = all_within && within;
+      checks.push_back({{"procedure", procedure}, {"quantity", truth.at("quantity")}, {"true", truth.at("true")},
+                        {"expected", expected}, {"measured", nullptr}, {"upper_bound", bound}, {"unit", unit},
+                        {"tolerance", bound}, {"within", within},
+                        {"basis", "not identified: the truth must lie below the reported upper bound"}});
+      continue;
+    }
+    const Figure figure = node->get<Figure>();
     const double measured = convert(figure.value, figure.unit, unit);
     const double true_value = truth.at("true");
     const double expected = truth.at("expected");

@@ -92,9 +92,19 @@ std::string qualifier_of(const json& element) {
   return " (" + text + ")";
 }
 
+// A figure the analysis could not measure: {"value": null, "unit", "identified": false,
+// "upper_bound"} (e.g. a noise term that the fit of GJB eq. (30) holds at zero).
+bool is_unidentified_figure(const json& node) {
+  const auto* identified = member(node, "identified");
+  const auto* bound = member(node, "upper_bound");
+  const auto* unit = member(node, "unit");
+  return identified != nullptr && identified->is_boolean() && !identified->get<bool>() && bound != nullptr &&
+         bound->is_number() && unit != nullptr && unit->is_string();
+}
+
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
-  if (is_figure(node)) {
+  if (is_figure(node) || is_unidentified_figure(node)) {
     rows.push_back({pointer, name, node, depth, headline && depth <= 2});
     return;
   }
@@ -146,8 +156,12 @@ std::string verdict_key(const std::string& procedure, const std::string& pointer
   return procedure + '\x1f' + pointer;
 }
 
-// Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits.
-std::pair<std::string, std::string> format_figure(const json& figure) {
+// Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits;
+// an unidentified figure as "not identified (< upper bound)".
+std::pair<std::string, std::string> format_figure(const json& figure, const Labels& labels) {
+  if (is_unidentified_figure(figure)) {
+    return {labels("ui.not_identified") + " (< " + format_number(figure.at("upper_bound").get<double>(), 2) + ")", ""};
+  }
   const double value = figure.at("value").get<double>();
   const auto* u = member(figure, "uncertainty");
   if (u == nullptr || !u->is_number() || !(u->get<double>() > 0.0) || !std::isfinite(value)) {
@@ -342,7 +356,7 @@ class ReportWriter {
                           html(procedure_title(procedure)));
     }
     for (const auto& row : rows) {
-      const auto [value, uncertainty] = format_figure(row.figure);
+      const auto [value, uncertainty] = format_figure(row.figure, labels_);
       const auto found = verdict_by_figure_.find(verdict_key(name, row.pointer));
       const json* verdict = found == verdict_by_figure_.end() ? nullptr : found->second;
       if (group_heading && !row.headline && verdict == nullptr) continue;
@@ -476,7 +490,9 @@ class ReportWriter {
       out_ += fmt::format(
           "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
           "<td class=\"num\">± {}</td><td>{}</td>{}</tr>\n",
-          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")), html(number("measured")),
+          html(c.value("procedure", "")), html(c.value("quantity", "")), html(number("true")),
+          html(number("measured").empty() && !number("upper_bound").empty() ? "< " + number("upper_bound")
+                                                                             : number("measured")),
           html(number("tolerance")), html(pretty_unit(c.value("unit", ""))), verdict_cell(within, labels_));
     }
     out_ += "</tbody></table>\n</section>\n";

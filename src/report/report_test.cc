@@ -257,6 +257,9 @@ radius_m = 1.0
   EXPECT_THAT(page, HasSubstr("−3 dB"));
   EXPECT_THAT(page, HasSubstr("Bw = 300"));
   EXPECT_THAT(page, HasSubstr("(slope −1/2)"));  // an Allan noise term with its slope
+  // White noise only: the fit's verdict and range, and B held at zero shown as not identified.
+  EXPECT_THAT(page, HasSubstr("fit of eq. (30): consistent (reduced χ² "));
+  EXPECT_THAT(page, ::testing::ContainsRegex("Bias instability</td><td class=\"num\">not identified \\(&lt; [0-9.e+-]+\\)"));
   EXPECT_THAT(page, HasSubstr("10 s smoothing"));
   EXPECT_THAT(page, HasSubstr("k1s, 10 g"));
   EXPECT_THAT(page, HasSubstr("α = 180°"));

@@ -42,6 +42,8 @@ struct AllanOptions {
   // pass that re-reads the record (AllanEngine). 0: for files, from the record so that the peak
   // memory stays within 1.5 times its raw binary size; in memory, no limit.
   std::size_t ring_capacity_limit = 0;
+  // The taus of the fit of GJB eq. (30); empty: chosen automatically (noise_terms.h).
+  std::optional<FitRange> fit_range;
 
   // Throws Error saying what is wrong (rate, unit, tau grid, estimators, scale, confidence).
   void validate() const;

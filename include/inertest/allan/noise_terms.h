@@ -1,10 +1,9 @@
 // Identification of the noise terms of a gyro from its Allan variance (IEEE Std 952-1997 Annex C,
 // GJB 2426A-2004 5.12.5.4.2 eqs. (30)-(31)).
 //
-// Fit: sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB eq. 30) by weighted non-negative least squares
-// (Lawson & Hanson, "Solving Least Squares Problems", 1974, ch. 23, active set), each point weighted
-// by 1/var(sigma^2) = edf / (2 sigma^4), the chi-squared variance of the estimate. Then
-// (IEEE 952 C.1, Table C.1):
+// Fit: sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB eq. 30) by non-negative generalised least squares
+// (Lawson & Hanson, "Solving Least Squares Problems", 1974, ch. 23, active set, on the whitened
+// system). Then (IEEE 952 C.1, Table C.1):
 //   quantization       sigma^2 = 3 Q^2 / tau^2         Q = sqrt(A_-2 / 3)
 //   angle random walk  sigma^2 = N^2 / tau             N = sqrt(A_-1)   (= RWC of GJB eq. 31)
 //   bias instability   sigma   = 0.664 B (flat part)   B = sqrt(A_0) / 0.664, 0.664 = sqrt(2 ln 2 / pi)
@@ -13,13 +12,39 @@
 // For an angular-rate input the figures are in arcsec, deg/sqrt(h), deg/h, deg/h/sqrt(h), deg/h/h;
 // for another input unit U in (U)*s, (U)*sqrt(s), U, (U)/sqrt(s), (U)/s.
 //
-// Uncertainty: the covariance of the free coefficients, (J^T W J)^-1, scaled by the reduced
-// chi-squared when that exceeds 1 (the octave points share data and are not independent), carried
-// to each figure to first order. A coefficient held at zero reports value 0 and as uncertainty the
-// figure that its 1-sigma bound would give.
+// Covariance of the points: overlapping estimates at different taus share data and are correlated.
+// The variance of point i is 2 sigma_i^4 / edf_i (sigma_i of the model, the curve's edf); the
+// correlation of points i, j is that of two means of squared, jointly Gaussian second differences,
+//   Cov(s_i^2, s_j^2) = (2 / max(M_i, M_j)) sum_k C_ij(k)^2     (Isserlis' theorem)
+// with C_ij(k) the cross-covariance at lag k of the second differences at tau_i and tau_j, computed
+// from the fitted model through the generalised covariance of the angle (Matheron, "The intrinsic
+// random functions and their applications", Adv. Appl. Prob. 5, 1973; second differences filter out
+// polynomials of degree 1): K(h) = Q^2 delta(h) - N^2 |h| / 2 + B'^2 h^2 ln|h| / (4 ln 2) + K^2 |h|^3 / 12
+// with B' = 0.664 B; each term reproduces its line of Table C.1 exactly. The rate ramp is deterministic
+// and adds no covariance. Fit and covariance are iterated (the covariance from the previous fit,
+// which avoids the bias of weighting by the observed points). Checked by a Monte Carlo test over
+// 200 simulated records: the 1-sigma intervals of N, B and K cover the truth in 60-76 % of them.
+// For more than 64 taus (a dense grid) the correlation is not modelled and a warning says so.
+//
+// Fit range: eq. (30) describes the gyro's noise, not its anti-alias filter or coarse quantisation,
+// which flatten or bend the shortest taus. Unless a range is given, the shortest taus are dropped one
+// by one while the fit is inconsistent (reduced chi-squared above 1 + 3 sqrt(2 / dof)); if no range
+// is consistent, the one of least reduced chi-squared is kept and the verdict says the model does not
+// fit. The range and the reason are reported.
+//
+// Q and R act only at the ends of the curve, where they trade off against N and K: a Q or R within
+// 2 of its 1-sigma uncertainties of zero is held at zero (backward elimination), since left free
+// its non-negativity bound biases N or K (a spurious Q >= 0 pulls N down).
+//
+// Uncertainty: the GLS covariance of the free coefficients, (J^T V^-1 J)^-1, scaled by the reduced
+// chi-squared when that exceeds 1, carried to each figure to first order. A coefficient that the
+// non-negative fit holds at zero was not measured: it is reported as not identified, with an upper
+// bound max(0, a) + 2 s, a and s its unconstrained estimate and 1-sigma uncertainty when it is
+// freed along with the free ones, under the covariance of the model that holds it at that bound.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -30,6 +55,24 @@
 #include "inertest/core/figure.h"
 
 namespace inertest {
+
+// The taus fitted, inclusive, and why.
+struct FitRange {
+  double tau_min_s = 0.0;
+  double tau_max_s = 0.0;
+};
+
+struct NoiseFitOptions {
+  std::optional<FitRange> fit_range;  // empty: chosen automatically (see above)
+  // Samples in the record, for the number of terms M_i = N - 2 m_i of each point; 0: unknown (M_i
+  // taken equal, which overstates the correlation of the longest taus a little).
+  std::size_t sample_count = 0;
+  // The record's sample interval; 0: the shortest tau.
+  double sample_interval_s = 0.0;
+
+  // Throws Error for a range that is not 0 < tau_min <= tau_max (finite).
+  void validate() const;
+};
 
 struct NoiseTerms {
   Figure quantization;
@@ -42,21 +85,38 @@ struct NoiseTerms {
   // A_p for p = -2..2, in (input unit)^2 s^p, and their 1-sigma uncertainties.
   std::array<double, 5> coefficients{};
   std::array<double, 5> coefficient_uncertainties{};
-  double reduced_chi_squared = 0.0;
+  // Per coefficient A_p (index p + 2): false when the fit holds it at zero; its figure's upper bound.
+  std::array<bool, 5> identified{};
+  std::array<std::optional<Figure>, 5> upper_bounds;
+  double reduced_chi_squared = 0.0;  // of the generalised least squares, over the fit range
+  std::size_t degrees_of_freedom = 0;
+  std::string verdict;  // "consistent", "inconsistent" or "undetermined" (no degree of freedom)
+  FitRange fit_range;
+  std::string fit_range_chosen_by;  // "automatic" or "user"
+  std::string fit_range_reason;
+  std::vector<std::string> warnings;
   // For each tau, the power p of the largest term A_p tau^p of the fitted model.
   std::vector<int> dominant_power;
 
   nlohmann::json to_json(const std::string& input_unit) const;
 };
 
-// Throws Error when the spans differ in length, hold fewer than 2 points, or hold a non-positive
-// tau, variance or edf.
+// Throws Error when the spans differ in length, hold fewer than 2 points, hold a non-positive
+// tau, variance or edf, or when the fit range holds fewer than 2 taus.
 NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double> variance,
-                           std::span<const double> edf, const std::string& input_unit);
+                           std::span<const double> edf, const std::string& input_unit,
+                           const NoiseFitOptions& options = {});
+
+// "TMIN:TMAX" in s, as the CLI's --fit-range. Throws Error saying what is wrong.
+FitRange parse_fit_range(const std::string& text);
 
 // The slope read-off of MATLAB's allanvar example on the (overlapping) Allan deviation: the pair of
-// neighbouring points whose log-log slope is closest to -1/2, 0 and +1/2 gives, on the line of that
-// slope through its first point, N at tau = 1 s, B = sigma / 0.664 and K at tau = 3 s.
+// neighbouring points whose log-log slope is closest to -1/2 and +1/2 gives, on the line of that
+// slope through its first point, N at tau = 1 s and K at tau = 3 s. B = sigma_min / 0.664 is read at
+// the curve's floor (IEEE 952 C.1, Fig. C.1: the flat part is where the curve bottoms out), the
+// least resolved point, and only when a resolved pair beside it is flat (slope within the
+// tolerance of 0): a flat part at short tau (anti-alias filter, quantisation) lies above the floor
+// and is never read.
 //
 // A figure is read only where the curve has a region of its slope: a pair qualifies when its slope
 // lies within kSlopeTolerance of the target and is resolved, i.e. its 1-sigma uncertainty

@@ -7,6 +7,8 @@
 //   taus = "octave"              # optional: octave, decade, all, N/decade or "0.1,1,10"
 //   scale_factor = 1.2e5         # optional: output units per deg/s; the raw output is divided by it
 //                                # and converted to deg/h (input_unit must then be left out)
+//   fit_range = [1.0, 1000.0]    # optional: the taus (s) of the eq. (30) fit, or "1:1000";
+//                                # default: chosen automatically
 // The result is the JSON of `inertest allan --json`.
 #include <cmath>
 
@@ -56,6 +58,22 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
     options.input_unit = "deg/h";
   } else if (unit) {
     options.input_unit = *unit;
+  }
+  if (step.contains("fit_range")) {
+    try {
+      const toml::node* node = step.raw().get("fit_range");
+      if (node != nullptr && node->is_string()) {
+        options.fit_range = parse_fit_range(step.string("fit_range"));
+      } else {
+        const std::vector<double> range = step.numbers("fit_range");
+        if (range.size() != 2) step.fail_at("fit_range", "give [tau_min, tau_max] in s");
+        options.fit_range = FitRange{range[0], range[1]};
+      }
+      options.validate();
+    } catch (const Error& e) {
+      if (e.location()) throw;
+      step.fail_at("fit_range", e.message());
+    }
   }
   try {
     options.validate();

@@ -55,5 +55,70 @@ format = "f64"
   EXPECT_THROW(validate_plan(bad), Error);  // no sample rate anywhere
 }
 
+// fit_range = [tau_min, tau_max] (or "TMIN:TMAX") sets the taus of the eq. (30) fit.
+TEST(AllanStep, FitRangeKey) {
+  testing::ScratchDirectory dir;
+  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
+  const auto plan_with = [&](const std::string& name, const std::string& range) {
+    return dir.write(name, R"(
+[plan]
+title = "noise"
+[instrument]
+id = "FOG-1"
+sample_rate_hz = 10.0
+[[procedure]]
+kind = "allan"
+file = "w.f64"
+format = "f64"
+fit_range = )" + range + "\n");
+  };
+  for (const std::string range : {"[0.2, 25.6]", "\"0.2:25.6\""}) {
+    const CampaignSummary summary = run_campaign(plan_with("plan.toml", range), dir.path() + "/out");
+    const nlohmann::json& fit = summary.results["procedures"][0]["result"]["noise"]["fit"];
+    EXPECT_EQ(fit["fit_range"]["chosen_by"], "user") << range;
+    EXPECT_DOUBLE_EQ(fit["fit_range"]["tau_min_s"].get<double>(), 0.2);
+  }
+  try {
+    validate_plan(plan_with("bad.toml", "[5.0]"));
+    ADD_FAILURE() << "a one-element fit range was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad.toml:11"));
+    EXPECT_THAT(e.what(), HasSubstr("[tau_min, tau_max]"));
+  }
+  EXPECT_THROW(validate_plan(plan_with("bad2.toml", "[5.0, 1.0]")), Error);
+}
+
+// A spec limit on a noise term the fit could not identify (R of white noise) is judged by its
+// upper bound: a maximum above the bound passes, one below it fails, a minimum always fails.
+TEST(AllanStep, LimitOnAnUnidentifiedTermUsesItsUpperBound) {
+  testing::ScratchDirectory dir;
+  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
+  const auto verdict_for = [&](const std::string& limit) {
+    const std::string plan = dir.write("plan.toml", R"(
+[plan]
+title = "noise"
+[instrument]
+id = "FOG-1"
+sample_rate_hz = 10.0
+[[procedure]]
+kind = "allan"
+file = "w.f64"
+format = "f64"
+input_unit = "deg/h"
+[procedure.limits]
+"/noise/rate_ramp" = )" + limit + "\n");
+    const CampaignSummary summary = run_campaign(plan, dir.path() + "/out");
+    const nlohmann::json& b = summary.results["procedures"][0]["result"]["noise"]["rate_ramp"];
+    EXPECT_EQ(b["identified"], false);
+    return std::pair{summary.results["verdicts"][0], b["upper_bound"].get<double>()};
+  };
+  const auto [loose, bound] = verdict_for("{ max = 1e3 }");
+  EXPECT_TRUE(loose["pass"].get<bool>());
+  EXPECT_EQ(loose["identified"], false);
+  EXPECT_DOUBLE_EQ(loose["value"].get<double>(), bound);
+  EXPECT_FALSE(verdict_for("{ max = " + std::to_string(bound / 2.0) + " }").first["pass"].get<bool>());
+  EXPECT_FALSE(verdict_for("{ min = 0 }").first["pass"].get<bool>());
+}
+
 }  // namespace
 }  // namespace inertest

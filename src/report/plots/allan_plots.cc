@@ -3,6 +3,7 @@
 // of its terms as a line of slope p/2: quantization −1, angle random walk −1/2, bias instability 0,
 // rate random walk +1/2, rate ramp +1.
 #include <algorithm>
+#include <fmt/format.h>
 #include <cmath>
 #include <limits>
 
@@ -128,6 +129,20 @@ std::vector<ReportPlot> allan_plots(const PlotContext& context) {
   plot.caption = context.labels("axis.allan_deviation") +
                  " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std "
                  "952-1997 Annex C";
+  // The fit's verdict and range: how far the fitted model can be trusted.
+  const auto* fit = member(result, "noise") ? member(*member(result, "noise"), "fit") : nullptr;
+  const auto* range = fit ? member(*fit, "fit_range") : nullptr;
+  const auto* verdict = fit ? member(*fit, "verdict") : nullptr;
+  const auto* chi_squared = fit ? member(*fit, "reduced_chi_squared") : nullptr;
+  if (range != nullptr && verdict != nullptr && verdict->is_string() && chi_squared != nullptr &&
+      chi_squared->is_number()) {
+    plot.caption += fmt::format(". {}: {} ({} {}), τ {}–{} s ({}: {})", context.labels("ui.noise_fit"),
+                                verdict->get<std::string>(), context.labels("ui.reduced_chi_squared"),
+                                format_number(chi_squared->get<double>(), 3),
+                                format_number(range->value("tau_min_s", 0.0), 4),
+                                format_number(range->value("tau_max_s", 0.0), 4), range->value("chosen_by", ""),
+                                range->value("reason", ""));
+  }
   plot.plot.panels.push_back(std::move(panel));
   return {std::move(plot)};
 }

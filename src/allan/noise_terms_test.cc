@@ -1,0 +1,258 @@
+// The noise-term fit (GJB 2426A eq. 30) and the slope read-off against exact curves, simulated
+// records whose truth follows from how they were made, and a quantised, filtered MEMS-like record.
+#include "inertest/allan/noise_terms.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "inertest/allan/allan.h"
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/sim/noise.h"
+#include "inertest/sim/random.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+// The exact curve sigma^2 = sum A_p tau^p on an octave grid, with a large edf at every point.
+struct Curve {
+  std::vector<double> tau, variance, edf;
+};
+
+Curve exact_curve(const std::array<double, 5>& a, double tau_min, double tau_max) {
+  Curve curve;
+  for (double t = tau_min; t <= tau_max * 1.0001; t *= 2.0) {
+    double v = 0.0;
+    for (int p = -2; p <= 2; ++p) v += a[static_cast<std::size_t>(p + 2)] * std::pow(t, p);
+    curve.tau.push_back(t);
+    curve.variance.push_back(v);
+    curve.edf.push_back(1e6);
+  }
+  return curve;
+}
+
+// Q = 2 arcsec, N = 0.5 deg/sqrt(h), B = 3 deg/h, K = 4 deg/h/sqrt(h), R = 30 deg/h/h, input in deg/h:
+// A_-2 = 3 Q^2 (Q in deg/h*s = arcsec), A_-1 = N^2 (N = 30 deg/h*sqrt(s)), A_0 = (0.664 B)^2,
+// A_1 = K^2 / 3 (K = 4/60 deg/h/sqrt(s)), A_2 = R^2 / 2 (R = 30/3600 deg/h/s) (IEEE 952 Table C.1).
+TEST(NoiseTerms, FitConvertsEveryCoefficientOfAnExactCurve) {
+  const double b = kBiasInstabilityFactor * 3.0;
+  const std::array<double, 5> a = {3.0 * 4.0, 30.0 * 30.0, b * b, std::pow(4.0 / 60.0, 2) / 3.0,
+                                   std::pow(30.0 / 3600.0, 2) / 2.0};
+  const Curve curve = exact_curve(a, 1e-3, 1e7);
+  const NoiseTerms terms = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  for (bool identified : terms.identified) EXPECT_TRUE(identified);
+  EXPECT_EQ(terms.quantization.unit, "arcsec");
+  EXPECT_NEAR_RELATIVE(terms.quantization.value, 2.0, 1e-6);
+  EXPECT_NEAR_RELATIVE(terms.angle_random_walk.value, 0.5, 1e-6);
+  EXPECT_NEAR_RELATIVE(terms.bias_instability.value, 3.0, 1e-6);
+  EXPECT_NEAR_RELATIVE(terms.rate_random_walk.value, 4.0, 1e-6);
+  EXPECT_EQ(terms.rate_ramp.unit, "deg/h/h");
+  EXPECT_NEAR_RELATIVE(terms.rate_ramp.value, 30.0, 1e-6);
+  EXPECT_EQ(terms.verdict, "consistent");
+  EXPECT_LT(terms.reduced_chi_squared, 1e-6);
+  EXPECT_EQ(terms.fit_range_chosen_by, "automatic");
+  EXPECT_DOUBLE_EQ(terms.fit_range.tau_min_s, curve.tau.front());
+}
+
+// White noise and rate random walk only: the fit holds A_0 at zero, which is reported as not
+// identified with an upper bound, never as 0 +- sigma.
+TEST(NoiseTerms, ACoefficientHeldAtZeroIsNotIdentified) {
+  const Curve curve = exact_curve({0.0, 1.0, 0.0, 1e-4, 0.0}, 0.1, 1e4);
+  const NoiseTerms terms = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  EXPECT_TRUE(terms.identified[1]);
+  EXPECT_TRUE(terms.identified[3]);
+  EXPECT_FALSE(terms.identified[2]);
+  ASSERT_TRUE(terms.upper_bounds[2].has_value());
+  EXPECT_GT(terms.upper_bounds[2]->value, 0.0);
+  EXPECT_EQ(terms.upper_bounds[2]->unit, "deg/h");
+  const nlohmann::json json = terms.to_json("deg/h");
+  EXPECT_EQ(json["bias_instability"]["identified"], false);
+  EXPECT_TRUE(json["bias_instability"]["value"].is_null());
+  EXPECT_FALSE(json["bias_instability"].contains("uncertainty"));
+  EXPECT_DOUBLE_EQ(json["bias_instability"]["upper_bound"].get<double>(), terms.upper_bounds[2]->value);
+  EXPECT_FALSE(json["angle_random_walk"].contains("identified"));  // a plain Figure
+  EXPECT_EQ(json["fit"]["verdict"], "consistent");
+}
+
+// A curve that eq. (30) describes from 1 s on, bent below it (as an anti-alias filter does: the
+// deviation at 0.125..0.5 s falls short of the white-noise line): the automatic range drops the
+// bent taus and says why; a user range is taken as given.
+TEST(NoiseTerms, FitRangeIsChosenAutomaticallyOrGiven) {
+  Curve curve = exact_curve({0.0, 1.0, 0.01, 1e-5, 0.0}, 0.125, 4096.0);
+  curve.variance[0] *= 0.3;
+  curve.variance[1] *= 0.6;
+  curve.variance[2] *= 0.85;
+  const NoiseTerms automatic = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  EXPECT_DOUBLE_EQ(automatic.fit_range.tau_min_s, 1.0);
+  EXPECT_EQ(automatic.fit_range_chosen_by, "automatic");
+  EXPECT_THAT(automatic.fit_range_reason, ::testing::HasSubstr("taus below 1 s dropped"));
+  EXPECT_EQ(automatic.verdict, "consistent");
+  EXPECT_NEAR_RELATIVE(automatic.angle_random_walk.value, 1.0 / 60.0, 1e-6);
+  NoiseFitOptions whole;
+  whole.fit_range = FitRange{0.125, 4096.0};
+  const NoiseTerms given = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h", whole);
+  EXPECT_EQ(given.fit_range_chosen_by, "user");
+  EXPECT_EQ(given.verdict, "inconsistent");
+  EXPECT_GT(given.reduced_chi_squared, 100.0);
+  EXPECT_THAT(given.warnings, ::testing::Contains(::testing::HasSubstr("does not fit")));
+  NoiseFitOptions narrow;
+  narrow.fit_range = FitRange{0.3, 0.45};
+  EXPECT_THROW(fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h", narrow), Error);
+}
+
+// A dense grid (every averaging factor) is fitted without the correlation model, and says so.
+TEST(NoiseTerms, DenseGridWarnsThatUncertaintiesAreUnderstated) {
+  Curve curve;
+  for (int m = 1; m <= 100; ++m) {
+    curve.tau.push_back(0.1 * m);
+    curve.variance.push_back(1.0 / (0.1 * m));
+    curve.edf.push_back(1e4);
+  }
+  const NoiseTerms terms = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  EXPECT_NEAR_RELATIVE(terms.angle_random_walk.value, 1.0 / 60.0, 1e-6);
+  EXPECT_THAT(terms.warnings, ::testing::Contains(::testing::HasSubstr("not modelled")));
+}
+
+// The slope read-off reads B at the floor: a flat part at short tau (an anti-alias filter) lies
+// above the floor and is not read; the floor, flat beside its least point, is.
+TEST(SlopeReadOff, BiasInstabilityIsReadAtTheFloorNotAtAShortTauPlateau) {
+  std::vector<double> tau, deviation, edf;
+  for (double t = 0.01; t < 3000.0; t *= 2.0) {
+    tau.push_back(t);
+    const double white = 0.05 / std::sqrt(std::max(t, 0.04));  // flat below 0.04 s
+    deviation.push_back(std::sqrt(white * white + 0.01 * 0.01 + 1e-8 * t));
+    edf.push_back(1e5);
+  }
+  const SlopeReadOff slopes = read_noise_slopes(tau, deviation, edf, "deg/s");
+  ASSERT_TRUE(slopes.bias_instability.figure.has_value());
+  EXPECT_GT(slopes.bias_instability.tau_s, 10.0);
+  const double floor = *std::min_element(deviation.begin(), deviation.end());
+  EXPECT_NEAR_RELATIVE(slopes.bias_instability.figure->value, floor / kBiasInstabilityFactor * 3600.0, 1e-12);
+  // The same plateau over white noise alone: the least point is the last, the curve still falls
+  // there, and the read-off declines with a warning rather than read the plateau.
+  std::vector<double> falling;
+  for (double t : tau) falling.push_back(0.05 / std::sqrt(std::max(t, 0.04)));
+  const SlopeReadOff declined = read_noise_slopes(tau, falling, edf, "deg/s");
+  EXPECT_FALSE(declined.bias_instability.figure.has_value());
+  EXPECT_THAT(declined.warnings, ::testing::Contains(::testing::HasSubstr("the curve is still falling")));
+}
+
+TEST(NoiseTerms, FitRangeParsesTminColonTmax) {
+  const FitRange range = parse_fit_range("0.5:1e3");
+  EXPECT_DOUBLE_EQ(range.tau_min_s, 0.5);
+  EXPECT_DOUBLE_EQ(range.tau_max_s, 1000.0);
+  EXPECT_THROW(parse_fit_range("10"), Error);
+  EXPECT_THROW(parse_fit_range("10:1"), Error);
+  EXPECT_THROW(parse_fit_range("0:1"), Error);
+  EXPECT_THROW(parse_fit_range("a:1"), Error);
+}
+
+// The simulator's noise at dt / 4, averaged to dt (the mean rate over each interval): its flicker
+// processes start at dt / 4, so that the flicker floor holds down to tau = dt.
+std::vector<double> simulated_rate(const sim::NoiseParameters& parameters, double dt, std::size_t samples,
+                                   std::uint64_t seed) {
+  constexpr int kOversampling = 4;
+  sim::NoiseGenerator noise(parameters, dt / kOversampling, sim::Random(seed));
+  std::vector<double> rate(samples);
+  for (double& v : rate) {
+    v = 0.0;
+    for (int k = 0; k < kOversampling; ++k) v += noise.next() / kOversampling;
+  }
+  return rate;
+}
+
+// Monte Carlo over 200 seeds: white noise, flicker and rate random walk each dominating about a
+// decade of a 16384-sample record (deg/h at 10 Hz; N = 1 deg/h*sqrt(s), B = 0.673 deg/h, K = 0.1
+// deg/h/sqrt(s)). The 1-sigma interval of each of N, B and K covers the truth in 60-76 % of the
+// seeds (68 % expected; the binomial spread over 200 seeds is 3.3 %); a figure not identified counts
+// as not covering.
+TEST(NoiseTerms, OneSigmaIntervalsCoverTheTruthInAboutTwoThirdsOfTheSeeds) {
+  sim::NoiseParameters p;
+  p.angle_random_walk = 1.0;
+  p.bias_instability = 0.673;
+  p.rate_random_walk = 0.1;
+  const double dt = 0.1;
+  p.flicker_shortest_s = dt / 4;
+  p.flicker_longest_s = 1e5;
+  AllanOptions options;
+  options.sample_rate_hz = 1.0 / dt;
+  options.estimators = EstimatorSet::parse("oadev");
+  options.worker_count = 1;
+  const std::array<double, 3> truth = {p.angle_random_walk / 60.0, p.bias_instability, p.rate_random_walk * 60.0};
+  std::array<int, 3> covered = {0, 0, 0};
+  constexpr int kSeeds = 200;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    const AllanResult result = allan_variance(simulated_rate(p, dt, 1 << 14, static_cast<std::uint64_t>(seed)), options);
+    ASSERT_TRUE(result.noise.has_value());
+    const NoiseTerms& n = *result.noise;
+    const std::array<const Figure*, 3> figures = {&n.angle_random_walk, &n.bias_instability, &n.rate_random_walk};
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (n.identified[k + 1] && std::abs(figures[k]->value - truth[k]) <= figures[k]->uncertainty.value()) ++covered[k];
+    }
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double coverage = static_cast<double>(covered[k]) / kSeeds;
+    EXPECT_GE(coverage, 0.60) << "term " << k;
+    EXPECT_LE(coverage, 0.76) << "term " << k;
+  }
+}
+
+// A MEMS-like record: 1e6 samples at 100 Hz of white noise N = 0.05 deg/s*sqrt(s) (3 deg/sqrt(h)),
+// flicker B = 44 deg/h and rate random walk K = 4.4e-4 deg/s/sqrt(s), through a first-order 10 Hz
+// low-pass (the DLPF) and quantised to 0.05 deg/s. Its Allan deviation is flat at the shortest
+// taus (the filter), the failure of the old read-off (B ~ 50 times too large at tau = 0.01 s).
+// Neither method may report a B outside 0.6..1.4 of min(OADEV) / 0.664, nor an N more than 15 %
+// from sigma(1 s) x 60, unless it declines with a warning.
+TEST(NoiseTerms, QuantisedFilteredRecordIsReadAtItsFloor) {
+  constexpr double kRateHz = 100.0;
+  constexpr double kQuantum = 0.05;  // deg/s
+  sim::NoiseParameters p;
+  p.angle_random_walk = 0.05;
+  p.bias_instability = 44.0 / 3600.0;
+  p.rate_random_walk = 4.4e-4;
+  p.flicker_shortest_s = 0.01;
+  p.flicker_longest_s = 1e5;
+  std::vector<double> rate = simulated_rate(p, 1.0 / kRateHz, 1'000'000, 2426);
+  const double alpha = 1.0 - std::exp(-2.0 * constants::kPi * 10.0 / kRateHz);
+  double filtered = 0.0;
+  for (double& v : rate) {
+    filtered += alpha * (v - filtered);
+    v = kQuantum * std::round(filtered / kQuantum);
+  }
+  AllanOptions options;
+  options.sample_rate_hz = kRateHz;
+  options.input_unit = "deg/s";
+  options.estimators = EstimatorSet::parse("oadev");
+  const AllanResult result = allan_variance(rate, options);
+  const DeviationCurve& oadev = result.curves.at(Estimator::kOadev);
+  // The short-tau plateau is there: the first pair is flat within the old read-off's tolerance.
+  EXPECT_LT(std::abs(std::log(oadev.values[1] / oadev.values[0]) / std::log(2.0)), kSlopeTolerance);
+  const double floor_b = *std::min_element(oadev.values.begin(), oadev.values.end()) / kBiasInstabilityFactor * 3600.0;
+  const auto one_second = std::find(result.tau_s.begin(), result.tau_s.end(), 1.28);
+  ASSERT_NE(one_second, result.tau_s.end());
+  // sigma(1 s) from the 1.28 s point on its -1/2 line: deg/s -> deg/sqrt(h) is x 60.
+  const double sigma_n = oadev.values[static_cast<std::size_t>(one_second - result.tau_s.begin())] * std::sqrt(1.28) * 60.0;
+  ASSERT_TRUE(result.noise.has_value());
+  const NoiseTerms& fit = *result.noise;
+  ASSERT_TRUE(fit.identified[1] && fit.identified[2]);
+  EXPECT_EQ(fit.fit_range_chosen_by, "automatic");
+  EXPECT_GT(fit.fit_range.tau_min_s, 0.01);
+  EXPECT_GE(fit.bias_instability.value, 0.6 * floor_b);
+  EXPECT_LE(fit.bias_instability.value, 1.4 * floor_b);
+  EXPECT_NEAR_RELATIVE(fit.angle_random_walk.value, sigma_n, 0.15);
+  ASSERT_TRUE(result.slopes->bias_instability.figure.has_value());
+  EXPECT_GT(result.slopes->bias_instability.tau_s, 1.0);
+  EXPECT_GE(result.slopes->bias_instability.figure->value, 0.6 * floor_b);
+  EXPECT_LE(result.slopes->bias_instability.figure->value, 1.4 * floor_b);
+  ASSERT_TRUE(result.slopes->angle_random_walk.figure.has_value());
+  EXPECT_NEAR_RELATIVE(result.slopes->angle_random_walk.figure->value, sigma_n, 0.15);
+  // And both near the truth: B = 44 deg/h, N = 3 deg/sqrt(h).
+  EXPECT_NEAR_RELATIVE(fit.bias_instability.value, 44.0, 0.25);
+  EXPECT_NEAR_RELATIVE(fit.angle_random_walk.value, 3.0, 0.1);
+}
+
+}  // namespace
+}  // namespace inertest

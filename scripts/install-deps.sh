@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config clang libclang-rt-14-dev llvm
+  build-essential cmake ccache pkg-config clang libclang-rt-14-dev llvm
   libeigen3-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libfast-float-dev
   libboost-dev
   libgtest-dev googletest libbenchmark-dev

@@ -1,4 +1,4 @@
-"""Misalignment separation (paper 001, HIT): the CLI's JSON on the paper's tables, and errors."""
+"""Misalignment separation (the misalignment paper, inertest.CITATIONS["misalignment"]): the CLI's JSON on the paper's tables, and errors."""
 
 import numpy as np
 import pytest

@@ -1,3 +1,4 @@
+#include "inertest/core/citations.h"
 #include "inertest/centrifuge/drift_calibration.h"
 
 #include <Eigen/Dense>
@@ -383,8 +384,7 @@ nlohmann::json DriftCalibrationResult::to_json() const {
   }
   return {
       {"procedure", "centrifuge"},
-      {"source", "centrifuge drift-coefficient calibration with a counter-rotating platform, paper "
-                 "000_746ebd72f166769f eqs. (2), (5)-(16) and section 6"},
+      {"source", std::string(citations::kCentrifugePaper) + ", eqs. (2), (5)-(16) and section 6"},
       {"coefficients", coefficient_json(coefficients)},
       {"residual_rms", residual_rms},
       {"degrees_of_freedom", degrees_of_freedom},

@@ -2,7 +2,6 @@
 // of the developers' text extractions ("000_746ebd72f166769f.txt", "paper 001", ".../seeds/"): not in
 // the --help of any command, nor in the JSON, the text report or the HTML report of a run.
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -12,14 +11,9 @@
 namespace inertest {
 namespace {
 
+using testing::names_a_seed_file;
 using testing::run_cli;
 using testing::source_path;
-
-// The file names of the papers' extractions and the ways code once cited them.
-const std::regex kSeedName(R"(\b00[0-2]_[0-9a-f]{8}|\b00[0-2]_\w*\.txt|paper (seed )?00[0-2]\b|seeds/)",
-                           std::regex::icase);
-
-bool names_a_seed_file(const std::string& text) { return std::regex_search(text, kSeedName); }
 
 // The subcommands listed under "Subcommands:" in a --help text.
 std::vector<std::string> subcommands(const std::string& help) {
@@ -37,11 +31,6 @@ std::vector<std::string> subcommands(const std::string& help) {
     if (listing && std::regex_search(line, match, entry)) names.push_back(match[1]);
   }
   return names;
-}
-
-std::string read_whole(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
 }
 
 TEST(Citations, TheTestCatchesASeedFileName) {
@@ -91,7 +80,7 @@ TEST(Citations, NoResultOrReportNamesASeedFile) {
     EXPECT_FALSE(names_a_seed_file(run.out + run.err)) << plan;
     std::string everything;
     for (const auto& entry : std::filesystem::directory_iterator(out)) {
-      const std::string text = read_whole(entry.path());
+      const std::string text = testing::read_file(entry.path().string());
       EXPECT_FALSE(names_a_seed_file(text)) << entry.path();
       everything += text;
     }

@@ -19,7 +19,8 @@
 //   [centrifuge] radius_m, platform_rate_error_rad_s, perpendicularity_arcsec = [x2t, y2t],
 //                wobble_arcsec (platform axis), sleeve_arcsec = [x1t, y1t]
 //   [[test]] kind = "...", name = "..." (optional), then the kind's keys (in the header comment of
-//   src/sim/generate_*.cc). Kinds: scale_factor, scale_factor_repeatability,
+//   src/sim/generate_*.cc), and optionally [test.limits]: the specification limits of the test's
+//   step, figure = { min, max, unit } as in a processing plan's [procedure.limits]. Kinds: scale_factor, scale_factor_repeatability,
 //   scale_factor_temperature, maximum_input_rate, bias, bias_repeatability, bias_temperature,
 //   turn_on_time, polarity, threshold, resolution, bandwidth, input_axis_misalignment,
 //   gyro_misalignment, accelerometer_misalignment, allan, centrifuge.

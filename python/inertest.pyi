@@ -16,6 +16,7 @@ FloatArray = numpy.typing.NDArray[numpy.float64]
 IntArray = numpy.typing.NDArray[numpy.int64]
 
 __version__: str
+CITATIONS: dict[str, str]  # 'misalignment', 'centrifuge': the papers by title, authors, institution
 DRIFT_TERMS: tuple[str, ...]  # 'D_F', 'D_I', ... 'D_OS', the order of q in eq. (13) of the centrifuge paper
 
 class Error(ValueError):
@@ -313,7 +314,7 @@ def fit_noise_terms(
 
 def read_noise_slopes(tau_s: ArrayLike, deviation: ArrayLike, edf: ArrayLike, input_unit: str = "deg/h") -> Record: ...
 
-# misalignment (paper 001, HIT; reference README section 2) -------------------------------------
+# misalignment (the misalignment paper, CITATIONS["misalignment"]) --------------------------------
 
 class GyroMisalignmentResult(Result):
     delta_theta_y0: Figure  # arcsec
@@ -341,7 +342,7 @@ def gyro_misalignment(
     line: Optional[ArrayLike] = None,
     source: Optional[str] = None,
 ) -> GyroMisalignmentResult:
-    """Gyro misalignment separation on a rate table, least squares on V(+) - V(-) (paper 001, HIT)."""
+    """Gyro misalignment separation on a rate table, least squares on V(+) - V(-) (the misalignment paper)."""
 
 def accelerometer_misalignment(
     beta_deg: ArrayLike,
@@ -353,7 +354,7 @@ def accelerometer_misalignment(
     line: Optional[ArrayLike] = None,
     source: Optional[str] = None,
 ) -> AccelerometerMisalignmentResult:
-    """Accelerometer misalignment by the multi-position gravity test (paper 001, HIT)."""
+    """Accelerometer misalignment by the multi-position gravity test (the misalignment paper)."""
 
 def read_gyro_misalignment_positions(path: str) -> dict[str, Any]:
     """The keyword arguments of gyro_misalignment (arrays, line, source) from a means CSV."""
@@ -369,7 +370,7 @@ def five_position_misalignment(
     plus: Sequence[float], minus: Sequence[float], scale_factor: float, rate_dps: float
 ) -> tuple[float, float, float, float, float]: ...
 
-# centrifuge (paper 000_746ebd72f166769f; reference README section 1) ----------------------------
+# centrifuge (the centrifuge paper, CITATIONS["centrifuge"]) --------------------------------------
 
 class HarmonicFit:
     amplitudes: list[float]  # k0, k1c, k1s, k2c, k2s

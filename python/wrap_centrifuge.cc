@@ -1,5 +1,5 @@
 // centrifuge: calibration of a gyro's drift coefficients on a precision centrifuge with a
-// counter-rotating platform (paper seed 000_746ebd72f166769f; reference README section 1).
+// counter-rotating platform (the centrifuge paper, cited in core/citations.h).
 #include <fmt/format.h>
 
 #include "bindings.h"
@@ -140,16 +140,19 @@ void wrap_centrifuge(py::module_& module) {
 
   bind_result<DriftCalibrationTag>(
       module, "DriftCalibrationResult",
-      "Drift coefficients calibrated on a centrifuge (paper 000_746ebd72f166769f, eqs. 2, 5-16). Members as\n"
-      "in the JSON: coefficients (D_F ... D_OS, Figures in deg/h, deg/h/g, deg/h/g^2 per standard g,\n"
-      "with 1-sigma),\n"
+      "Drift coefficients calibrated on a centrifuge (the centrifuge paper, inertest.CITATIONS['centrifuge'],
+"
+      "eqs. 2, 5-16). Members as in the JSON: coefficients (D_F ... D_OS, Figures in deg/h, deg/h/g,
+"
+      "deg/h/g^2 per standard g, with 1-sigma),
+"
       "residual_rms, centrifuge_errors, influence (paper section 6), runs (residuals), warnings, ...");
   module.def("calibrate_drift_coefficients", &calibrate, "runs"_a, py::kw_only(), "latitude_deg"_a = py::none(),
              "radius_m"_a = 1.0, "gravity_m_s2"_a = constants::kStandardGravity, "k1_rad"_a = py::none(),
              "k2_rad"_a = py::none(), "delta_omega_rad_s"_a = py::none(), "compensation"_a = true,
              "estimate_errors"_a = false, "rank_threshold"_a = 1e-4,
              "The ten drift coefficients D_F, D_I, D_O, D_S, D_II, D_OO, D_SS, D_IO, D_IS, D_OS of eq. (2) by least\n"
-             "squares q = (Phi^T Phi)^-1 Phi^T (Y - epsilon) (paper 000_746ebd72f166769f, eqs. 12-16), with the\n"
+             "squares q = (Phi^T Phi)^-1 Phi^T (Y - epsilon) (centrifuge paper, eqs. 12-16), with the\n"
              "Earth rate and the centrifuge errors k1, k2, delta-omega compensated (epsilon), and the influence\n"
              "of each error (paper section 6). As the CLI's centrifuge command: latitude_deg is required\n"
              "unless compensation=False; unmeasured errors are 0 unless estimate_errors (two or more g-levels).\n"

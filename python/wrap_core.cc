@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "bindings.h"
+#include "inertest/core/citations.h"
 #include "inertest/core/figure.h"
 #include "inertest/core/units.h"
 #include "inertest/version.h"
@@ -259,6 +260,10 @@ void wrap_core(py::module_& module) {
   wrap_record(module);
   wrap_units(module);
   module.attr("__version__") = version();
+  py::dict citations;
+  citations["misalignment"] = citations::kMisalignmentPaper;
+  citations["centrifuge"] = citations::kCentrifugePaper;
+  module.attr("CITATIONS") = citations;
 }
 
 }  // namespace inertest::python

@@ -1,6 +1,6 @@
 // misalignment: separation of an instrument's input-axis misalignment from the table's and the
-// fixture's errors (paper 001, "separating the misalignment angles of inertial instruments", HIT;
-// shared/reference/README.md section 2).
+// fixture's errors (the misalignment paper, cited in core/citations.h).
+
 #include <array>
 
 #include "bindings.h"
@@ -123,19 +123,21 @@ void wrap_misalignment(py::module_& module) {
   using namespace pybind11::literals;
   bind_result<GyroMisalignmentTag>(
       module, "GyroMisalignmentResult",
-      "Gyro misalignment separation (paper 001, HIT; reference README section 2). Members as in the JSON:\n"
+      "Gyro misalignment separation (the misalignment paper, inertest.CITATIONS['misalignment']).\n"
+      "Members as in the JSON:\n"
       "delta_theta_y0, delta_theta_x0, delta_theta_y1, delta_theta_y2, delta_theta_z2, misalignment\n"
       "(arcsec, all rates together), residual_rms, by_rate (the same per rate, with rate_dps), ...");
   bind_result<AccelerometerMisalignmentTag>(
       module, "AccelerometerMisalignmentResult",
-      "Accelerometer misalignment by the multi-position gravity test (paper 001, HIT; reference README\n"
-      "section 2). Members as in the JSON: delta_theta_y2, delta_theta_z2, misalignment (arcsec, mean\n"
+      "Accelerometer misalignment by the multi-position gravity test (the misalignment paper,\n"
+      "inertest.CITATIONS['misalignment']). Members as in the JSON: delta_theta_y2, delta_theta_z2,\n"
+      "misalignment (arcsec, mean\n"
       "over runs with its standard error), by_run (the same per run, with run), ...");
 
   module.def("gyro_misalignment", &gyro_misalignment_of, "alpha_deg"_a, "beta_deg"_a, "rate_dps"_a, "output"_a,
              py::kw_only(), "scale_factor"_a, "output_unit"_a = "1", "line"_a = py::none(), "source"_a = py::none(),
              "Separates the gyro's input-axis misalignment (dy2, dz2) from the table's (dy0, dx0) and the\n"
-             "fixture's (dy1) errors (paper 001, HIT, eq. for w_I; reference README section 2): least squares\n"
+             "fixture's (dy1) errors (the misalignment paper, eq. for w_I): least squares\n"
              "on V(+) - V(-) = 2 kI w (-dy0 cos b + dx0 sin b - dy1 + dz2 sin a - dy2 cos a), at every rate and\n"
              "over all rates together. One row per position and direction: alpha_deg, beta_deg, rate_dps\n"
              "(signed: the direction), output averaged over whole revolutions. scale_factor: kI in output\n"
@@ -144,8 +146,8 @@ void wrap_misalignment(py::module_& module) {
   module.def("accelerometer_misalignment", &accelerometer_misalignment_of, "beta_deg"_a, "output"_a, py::kw_only(),
              "scale_factor"_a, "run"_a = py::none(), "output_unit"_a = "1", "line"_a = py::none(),
              "source"_a = py::none(),
-             "Accelerometer input-axis misalignment dy2, dz2 by the multi-position gravity test (paper 001,\n"
-             "HIT; reference README section 2): least squares on V = V0 + kI(-dy0 - dy1 + dz2 sin b - dy2 cos b)\n"
+             "Accelerometer input-axis misalignment dy2, dz2 by the multi-position gravity test (the misalignment\n"
+             "paper): least squares on V = V0 + kI(-dy0 - dy1 + dz2 sin b - dy2 cos b)\n"
              "run by run, combined by the mean over runs. scale_factor: kI in output units per g. run: the\n"
              "run of every row (all run 1 when None). Angles in arcsec.");
 
@@ -184,7 +186,7 @@ void wrap_misalignment(py::module_& module) {
       },
       "table_angle_deg"_a, "output"_a,
       "Mean output over the whole table revolutions at the start of a record, cut by the (unwrapped)\n"
-      "table angle, so that the Earth-rate terms of paper 001's w_I average to zero. Returns a Record\n"
+      "table angle, so that the Earth-rate terms of the misalignment paper's w_I average to zero. Returns a Record\n"
       "with mean, revolutions and samples_used. The arrays are read in place (no copy).");
   module.def(
       "whole_revolution_mean_by_time",
@@ -200,7 +202,7 @@ void wrap_misalignment(py::module_& module) {
 
   module.def("four_position_misalignment", &four_position_misalignment, "v_0"_a, "v_90"_a, "v_180"_a, "v_270"_a,
              "scale_factor"_a,
-             "The paper's closed forms (paper 001, HIT): (dy2, dz2) in rad = ((V(pi) - V(0)) / (2 kI),\n"
+             "The closed forms of the misalignment paper: (dy2, dz2) in rad = ((V(pi) - V(0)) / (2 kI),\n"
              "(V(pi/2) - V(3pi/2)) / (2 kI)); kI in output units per g.");
   module.def(
       "five_position_misalignment",
@@ -208,7 +210,8 @@ void wrap_misalignment(py::module_& module) {
         return five_position_misalignment(FivePositionOutputs{plus, minus}, scale_factor, rate_dps);
       },
       "plus"_a, "minus"_a, "scale_factor"_a, "rate_dps"_a,
-      "The paper's five-position closed forms (paper 001, HIT; reference README section 2): outputs V1..V5\n"
+      "The five-position closed forms of the misalignment paper (inertest.CITATIONS['misalignment']):\n"
+      "outputs V1..V5\n"
       "at +w (plus) and -w (minus) at positions (alpha, beta) = (0,0), (0,180), (180,180), (90,180),\n"
       "(0,90) deg; returns (dy0, dx0, dy1, dy2, dz2) in rad. kI in output units per deg/s, w in deg/s.");
 }

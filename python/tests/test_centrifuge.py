@@ -1,4 +1,4 @@
-"""Centrifuge drift calibration (paper 000_746ebd72f166769f): the CLI's JSON on Table 3, and a
+"""Centrifuge drift calibration (the centrifuge paper, inertest.CITATIONS["centrifuge"]): the CLI's JSON on Table 3, and a
 synthetic record whose coefficients are known because the first-order model made it."""
 
 import numpy as np

@@ -1,4 +1,5 @@
-"""Misalignment separation (paper 001, HIT): the CLI's JSON on the paper's tables, and errors."""
+"""Misalignment separation (the misalignment paper, inertest.CITATIONS["misalignment"]): the CLI's JSON on
+the paper's tables, and errors."""
 
 import numpy as np
 import pytest
@@ -14,6 +15,16 @@ def test_gyro_misalignment_equals_the_cli_on_table_1(source_dir):
     expected = cli_json("misalignment", "gyro", path, "--scale-factor", "-2.9222", "--output-unit", "V")
     assert result.to_dict() == expected
     assert result.misalignment.unit == "arcsec"
+
+
+def test_papers_are_cited_by_title_not_by_file_name():
+    assert "《惯性元件的失准角分离技术研究》" in inertest.CITATIONS["misalignment"]
+    assert "Harbin Institute of Technology" in inertest.CITATIONS["misalignment"]
+    assert "counter-rotating platform" in inertest.CITATIONS["centrifuge"]
+    docs = [inertest.gyro_misalignment.__doc__, inertest.GyroMisalignmentResult.__doc__,
+            inertest.calibrate_drift_coefficients.__doc__, inertest.DriftCalibrationResult.__doc__]
+    for doc in docs:
+        assert "000_" not in doc and "paper 001" not in doc and "seed" not in doc
 
 
 def test_accelerometer_misalignment_equals_the_cli_on_table_2(source_dir):

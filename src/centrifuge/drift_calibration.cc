@@ -1,3 +1,4 @@
+#include "inertest/core/citations.h"
 #include "inertest/centrifuge/drift_calibration.h"
 
 #include <Eigen/Dense>
@@ -368,8 +369,7 @@ nlohmann::json DriftCalibrationResult::to_json() const {
   }
   return {
       {"procedure", "centrifuge"},
-      {"source", "centrifuge drift-coefficient calibration with a counter-rotating platform, paper "
-                 "000_746ebd72f166769f eqs. (2), (5)-(16) and section 6"},
+      {"source", std::string(citations::kCentrifugePaper) + ", eqs. (2), (5)-(16) and section 6"},
       {"coefficients", coefficient_json(coefficients)},
       {"coefficients_g", "per standard g (9.80665 m/s^2), converted from the site's gravity of A = Omega^2 R0 / g"},
       {"residual_rms", residual_rms},

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "command.h"
+#include "inertest/core/citations.h"
 #include "inertest/centrifuge/centrifuge_record.h"
 #include "inertest/centrifuge/drift_calibration.h"
 #include "inertest/core/error.h"
@@ -28,10 +29,11 @@ CommandAction setup(CLI::App& root) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = root.add_subcommand(
       "centrifuge",
-      "Drift coefficients D_F, D_I, D_O, D_S, D_II, D_OO, D_SS, D_IO, D_IS, D_OS of a gyro calibrated on a\n"
-      "precision centrifuge with a counter-rotating platform, centrifuge errors compensated (paper\n"
-      "000_746ebd72f166769f, eqs. 2, 5-16; error influence, section 6).\n"
-      "FILE is either harmonic amplitudes, header 'accel_g,beta_deg,k0,k1c,k1s,k2c,k2s' (deg/h, one row per\n"
+      std::string("Drift coefficients D_F, D_I, D_O, D_S, D_II, D_OO, D_SS, D_IO, D_IS, D_OS of a gyro calibrated on a\n"
+                  "precision centrifuge with a counter-rotating platform, centrifuge errors compensated.\nSource: ") +
+          citations::kCentrifugePaper +
+          "; eqs. 2, 5-16; error influence, section 6.\n"
+          "FILE is either harmonic amplitudes, header 'accel_g,beta_deg,k0,k1c,k1s,k2c,k2s' (deg/h, one row per\n"
       "g-level and platform angle), or raw samples, header 'accel_g,beta_deg,gamma_deg,output' (output in\n"
       "deg/h, gamma the angle from the input axis to the centripetal direction; analysed over whole\n"
       "revolutions, exact DFT when equally spaced, else least squares). Either may add 'omega_rad_s', the\n"

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
+#include "inertest/core/citations.h"
 #include "inertest/misalignment/accelerometer_misalignment.h"
 #include "inertest/misalignment/gyro_misalignment.h"
 #include "inertest/misalignment/misalignment_files.h"
@@ -23,8 +24,9 @@ CommandAction setup(CLI::App& root) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = root.add_subcommand(
       "misalignment",
-      "Separate an instrument's input-axis misalignment from the table's and the fixture's errors\n"
-      "(paper: separating the misalignment angles of inertial instruments, HIT). Angles in arcsec.");
+      std::string("Separate an instrument's input-axis misalignment from the table's and the fixture's errors.\n"
+                  "Angles in arcsec. Source: ") +
+          citations::kMisalignmentPaper + ".");
   command->require_subcommand(1);
 
   CLI::App* gyro = command->add_subcommand(

@@ -27,7 +27,7 @@ TEST(MisalignmentCommand, GyroTable1JsonHasTheExactKeys) {
   }
   ASSERT_EQ(json["by_rate"].size(), 3u);
   const std::array<double, 3> rates = {20, 30, 40};
-  const std::array<double, 3> z2 = {55.4, 55.8, 56.3};  // Table 1 of paper 001
+  const std::array<double, 3> z2 = {55.4, 55.8, 56.3};  // Table 1 of the misalignment paper
   for (std::size_t i = 0; i < 3; ++i) {
     const auto& entry = json["by_rate"][i];
     EXPECT_EQ(entry["rate_dps"].get<double>(), rates[i]);

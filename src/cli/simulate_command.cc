@@ -18,7 +18,9 @@ CommandAction setup(CLI::App& root) {
       "simulate",
       "Virtual lab: simulate the gyro and the rigs a simulation plan (TOML) names, and write into DIR\n"
       "the records of every test, plan.toml (the test plan that processes them: inertest run) and\n"
-      "truth.json (the true parameters and the tolerance of each measured figure). Same seed, same files.");
+      "truth.json (the true parameters and the tolerance of each measured figure). Same seed, same files.\n"
+      "A [[test]] may carry [test.limits], figure = { min, max, unit }: the specification limits of its\n"
+      "step in plan.toml ([procedure.limits]), which inertest run checks (a PASS/FAIL verdict per limit).");
   command->add_option("PLAN", arguments->plan, "simulation plan, TOML")->required();
   command->add_option("--out", arguments->out, "output directory")->required();
   return [arguments] {

@@ -20,25 +20,6 @@ std::string_view trim(std::string_view text) {
   return text.substr(first, last - first + 1);
 }
 
-struct Cell {
-  std::string_view text;
-  std::size_t column = 0;  // 1-based character column
-};
-
-std::vector<Cell> split_cells(std::string_view line) {
-  std::vector<Cell> cells;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    const std::string_view raw = line.substr(start, comma == std::string_view::npos ? line.npos : comma - start);
-    const std::size_t lead = raw.find_first_not_of(" \t");
-    cells.push_back({trim(raw), start + (lead == std::string_view::npos ? 0 : lead) + 1});
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return cells;
-}
-
 TextTable read_columns(const std::string& path, std::vector<std::string> names) {
   TextTableOptions options;
   for (const auto& name : names) options.columns.push_back(ColumnSelector::parse(name));
@@ -70,7 +51,7 @@ std::vector<ListedFile> read_file_listing(const std::string& listing, const std:
     ++line_number;
     const std::string_view content = trim(line);
     if (content.empty() || content.front() == '#') continue;
-    const std::vector<Cell> cells = split_cells(line);
+    const std::vector<TextField> cells = split_text_line(line, ',', listing, line_number);
     if (!have_header) {
       bool found_key = false;
       bool found_file = false;
@@ -90,7 +71,7 @@ std::vector<ListedFile> read_file_listing(const std::string& listing, const std:
       throw Error(SourceLocation{listing, line_number, 1},
                   fmt::format("{} columns, but the header has {}", cells.size(), columns));
     }
-    const Cell& key = cells[key_index];
+    const TextField& key = cells[key_index];
     ListedFile row;
     const auto parsed = std::from_chars(key.text.data(), key.text.data() + key.text.size(), row.key);
     if (key.text.empty() || parsed.ec != std::errc() || parsed.ptr != key.text.data() + key.text.size() ||
@@ -98,7 +79,7 @@ std::vector<ListedFile> read_file_listing(const std::string& listing, const std:
       throw Error(SourceLocation{listing, line_number, key.column},
                   fmt::format("expected a number in column '{}', found '{}'", key_column, key.text));
     }
-    const Cell& name = cells[file_index];
+    const TextField& name = cells[file_index];
     if (name.text.empty()) {
       throw Error(SourceLocation{listing, line_number, name.column}, "expected a file name in column '" + file_column + "'");
     }

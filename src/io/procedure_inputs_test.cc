@@ -32,6 +32,19 @@ TEST(FileListing, ResolvesPathsAgainstTheListingsDirectory) {
   EXPECT_EQ(rows[1].where.line, 5u);
 }
 
+TEST(FileListing, QuotedFieldsHoldCommasAndBlanks) {
+  ScratchDirectory scratch;
+  scratch.write("run 1, cold.csv", "1\n");
+  const auto listing = scratch.write("list.csv", "\"freq_hz\",\"file\"\n\"10\",\"run 1, cold.csv\"\n");
+  const auto rows = read_file_listing(listing, "freq_hz");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].key, 10.0);
+  EXPECT_EQ(rows[0].path, scratch.path() + "/run 1, cold.csv");
+  const auto open_quote = scratch.write("o.csv", "freq_hz,file\n10,\"run 1.csv\n");
+  EXPECT_THAT(error_of([&] { read_file_listing(open_quote, "freq_hz"); }),
+              HasSubstr(open_quote + ":2:4: a quoted field with no closing quote"));
+}
+
 TEST(FileListing, BadListingsNameTheirPlace) {
   ScratchDirectory scratch;
   scratch.write("a.csv", "1\n");

@@ -37,6 +37,14 @@ TEST(RateRecord, TextWithHeaderCommentsAndColumns) {
   EXPECT_THAT(read_all({single, RateRecordFormat::kCsv, std::nullopt}), ElementsAre(4, 5, 6));
 }
 
+// R's write.csv and many loggers quote the header names (RFC 4180); a column is still asked for by
+// its name without the quotes.
+TEST(RateRecord, QuotedHeaderAndFields) {
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("q.csv", "\"gx_dps\",\"gy_dps\",\"gz_dps\"\n1,2,3\n\"4\",\"5\",\"6\"\n");
+  EXPECT_THAT(read_all({path, RateRecordFormat::kCsv, ColumnSelector::parse("gz_dps")}), ElementsAre(3, 6));
+}
+
 TEST(RateRecord, BadTextNamesFileLineAndColumn) {
   testing::ScratchDirectory dir;
   const std::string path = dir.write("bad.csv", "t,rate\n0,1\n1,abc\n");

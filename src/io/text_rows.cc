@@ -20,9 +20,17 @@ bool is_skipped(std::string_view line, char comment) {
 
 // A line holding both ',' and ';' is taken as ';'-separated with decimal commas, the common
 // European lab export, so that the cells are reported as decimal commas rather than misread.
+// Delimiters inside quoted fields ("time, s") do not count.
 char detect_delimiter(std::string_view line) {
-  for (char candidate : {'\t', ';', ','}) {
-    if (line.find(candidate) != std::string_view::npos) return candidate;
+  bool quoted = false;
+  bool found[3] = {false, false, false};
+  constexpr char kCandidates[3] = {'\t', ';', ','};
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;  // a doubled "" toggles twice
+    for (std::size_t k = 0; k < 3; ++k) found[k] = found[k] || (!quoted && c == kCandidates[k]);
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (found[k]) return kCandidates[k];
   }
   return ' ';
 }
@@ -60,10 +68,21 @@ bool is_decimal_comma(std::string_view text) {
   throw Error(location, "'" + printable(text) + "'" + where + " looks like a decimal comma; inertest expects a decimal point");
 }
 
+// RFC 4180 2.5: a field holding a quote must be quoted as a whole, the quote doubled.
+void check_no_stray_quote(const std::string& source, std::size_t line_number, const Field& field) {
+  const std::size_t quote = field.quoted ? std::string_view::npos : field.text.find('"');
+  if (quote != std::string_view::npos) {
+    throw Error(SourceLocation{source, line_number, field.column + quote},
+                "a quote inside an unquoted field '" + printable(field.text) +
+                    "' (quote the whole field, as in \"a\"\"b\", or remove the quote)");
+  }
+}
+
 [[noreturn]] void fail_cell(const std::string& source, const Line& line, const Field& field,
                             const std::string& column_name) {
   const std::string where = column_name.empty() ? "" : " in column '" + column_name + "'";
   const SourceLocation location{source, line.number, field.column};
+  check_no_stray_quote(source, line.number, field);
   if (field.text.empty()) throw Error(location, "empty cell" + where + ", expected a number");
   if (is_decimal_comma(field.text)) fail_decimal_comma(location, field.text, where);
   throw Error(location, "expected a number" + where + ", found '" + printable(field.text) + "'");
@@ -72,7 +91,7 @@ bool is_decimal_comma(std::string_view text) {
 bool is_header_again(const RowLayout& layout, const std::vector<Field>& fields) {
   if (!layout.has_header || fields.size() != layout.header_names.size()) return false;
   for (std::size_t i = 0; i < fields.size(); ++i) {
-    if (fields[i].text != layout.header_names[i]) return false;
+    if (fields[i].value() != layout.header_names[i]) return false;
   }
   return true;
 }
@@ -104,6 +123,36 @@ bool is_header_again(const RowLayout& layout, const std::vector<Field>& fields) 
               "expected " + std::to_string(layout.width) + " columns, found " + std::to_string(fields.size()) + hint);
 }
 
+// The quoted field whose opening quote is at `open` (RFC 4180 2.5-2.7: it runs to the next quote
+// that is not doubled; blanks after it are ignored). Appends it and returns the index of the
+// delimiter (or the line's end) after it.
+std::size_t split_quoted(std::string_view line, std::size_t open, char delimiter, std::vector<Field>& fields,
+                         const std::string& source, std::size_t line_number) {
+  const std::size_t n = line.size();
+  bool escaped = false;
+  std::size_t close = open + 1;
+  for (;;) {
+    close = line.find('"', close);
+    if (close == std::string_view::npos) {
+      throw Error(SourceLocation{source, line_number, open + 1},
+                  "a quoted field with no closing quote on its line (a quote inside a quoted field is written \"\")");
+    }
+    if (close + 1 >= n || line[close + 1] != '"') break;
+    escaped = true;
+    close += 2;
+  }
+  std::size_t i = close + 1;
+  if (delimiter != ' ') {
+    while (i < n && line[i] != delimiter && is_blank(line[i])) ++i;
+  }
+  if (i < n && (delimiter == ' ' ? !is_blank(line[i]) : line[i] != delimiter)) {
+    throw Error(SourceLocation{source, line_number, i + 1},
+                "text after the closing quote of a quoted field (a quote inside a quoted field is written \"\")");
+  }
+  fields.push_back({line.substr(open + 1, close - open - 1), open + 1, true, escaped});
+  return i;
+}
+
 }  // namespace
 
 std::optional<Line> next_content_line(LineCursor& cursor, char comment) {
@@ -114,7 +163,21 @@ std::optional<Line> next_content_line(LineCursor& cursor, char comment) {
   return std::nullopt;
 }
 
-void split(std::string_view line, char delimiter, std::vector<Field>& fields) {
+std::string Field::value() const {
+  if (!escaped) return std::string(text);
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '"') ++i;  // the second quote of a doubled ""
+  }
+  return out;
+}
+
+// The unquoted paths are those of a record without quotes, kept as lean as they were: the
+// quote costs one comparison per field.
+void split(std::string_view line, char delimiter, std::vector<Field>& fields, const std::string& source,
+           std::size_t line_number) {
   fields.clear();
   std::size_t i = 0;
   const std::size_t n = line.size();
@@ -123,6 +186,10 @@ void split(std::string_view line, char delimiter, std::vector<Field>& fields) {
       while (i < n && is_blank(line[i])) ++i;
       if (i == n) break;
       const std::size_t start = i;
+      if (line[start] == '"') {
+        i = split_quoted(line, start, delimiter, fields, source, line_number);
+        continue;
+      }
       while (i < n && !is_blank(line[i])) ++i;
       fields.push_back({line.substr(start, i - start), start + 1});
     }
@@ -133,8 +200,12 @@ void split(std::string_view line, char delimiter, std::vector<Field>& fields) {
     while (i < n && line[i] != delimiter) ++i;
     std::size_t stop = i;
     while (start < stop && is_blank(line[start])) ++start;
-    while (stop > start && is_blank(line[stop - 1])) --stop;
-    fields.push_back({line.substr(start, stop - start), start + 1});
+    if (start < stop && line[start] == '"') {
+      i = split_quoted(line, start, delimiter, fields, source, line_number);  // the field may hold delimiters
+    } else {
+      while (stop > start && is_blank(line[stop - 1])) --stop;
+      fields.push_back({line.substr(start, stop - start), start + 1});
+    }
     if (i == n) break;
     ++i;
   }
@@ -151,7 +222,7 @@ RowLayout read_row_layout(const Line& first, const std::string& source, const Te
   layout.record_row_lines = options.record_row_lines;
   layout.delimiter = options.delimiter != '\0' ? options.delimiter : detect_delimiter(first.text);
   std::vector<Field> fields;
-  split(first.text, layout.delimiter, fields);
+  split(first.text, layout.delimiter, fields, source, first.number);
   layout.width = fields.size();
 
   layout.has_header = options.header == TextTableOptions::Header::kPresent;
@@ -165,7 +236,10 @@ RowLayout read_row_layout(const Line& first, const std::string& source, const Te
   }
   layout.header_names.resize(layout.width);
   if (layout.has_header) {
-    for (std::size_t i = 0; i < layout.width; ++i) layout.header_names[i] = std::string(fields[i].text);
+    for (std::size_t i = 0; i < layout.width; ++i) {
+      check_no_stray_quote(source, first.number, fields[i]);
+      layout.header_names[i] = fields[i].value();
+    }
   }
   layout.first_data_line = layout.has_header ? first.number + 1 : first.number;
 
@@ -229,7 +303,7 @@ void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout&
   try {
     while (cursor.next(row)) {
       if (is_skipped(row.text, layout.comment)) continue;
-      split(row.text, layout.delimiter, fields);
+      split(row.text, layout.delimiter, fields, layout.source, row.number);
       if (fields.size() != layout.width) fail_width(layout, row, fields, chunk);
       for (std::size_t k = 0; k < layout.positions.size(); ++k) {
         const Field& field = fields[layout.positions[k]];
@@ -256,3 +330,20 @@ void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout&
 }
 
 }  // namespace inertest::io_detail
+
+namespace inertest {
+
+std::vector<TextField> split_text_line(std::string_view line, char delimiter, const std::string& source,
+                                       std::size_t line_number) {
+  std::vector<io_detail::Field> fields;
+  io_detail::split(line, delimiter, fields, source, line_number);
+  std::vector<TextField> result;
+  result.reserve(fields.size());
+  for (const auto& field : fields) {
+    io_detail::check_no_stray_quote(source, line_number, field);
+    result.push_back({field.value(), field.column});
+  }
+  return result;
+}
+
+}  // namespace inertest

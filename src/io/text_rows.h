@@ -1,7 +1,7 @@
 // The row parser behind every text record reader: the layout the first line fixes (delimiter,
-// header, chosen columns) and the parse of a run of whole lines against it, with the messages of
-// the bad-input corpus (file:line:column, decimal commas, mixed delimiters, a second header,
-// NaN/Inf, a truncated last line). parse_text_table (text_table.cc) runs it on chunks in parallel;
+// header, chosen columns) and the parse of a run of whole lines against it, RFC 4180 quoted fields
+// included, with the messages of the bad-input corpus (file:line:column, decimal commas, mixed
+// delimiters, a second header, NaN/Inf, a truncated last line, a quote left open or misplaced). parse_text_table (text_table.cc) runs it on chunks in parallel;
 // read_rate_record (rate_record.cc) on consecutive buffers of a stream. Private to io.
 #pragma once
 
@@ -49,14 +49,24 @@ class LineCursor {
 // The next line that is neither blank nor a comment, or nullopt at the end of the buffer.
 std::optional<Line> next_content_line(LineCursor& cursor, char comment);
 
-// A field: its text trimmed of blanks, and its 1-based column in the line.
+// A field: its text trimmed of blanks (of a quoted field, the text between the quotes, a doubled
+// quote still doubled), and its 1-based column in the line (of a quoted field, its opening quote).
 struct Field {
   std::string_view text;
   std::size_t column;
+  bool quoted = false;
+  bool escaped = false;  // a quoted field holding a doubled quote: value() undoubles it
+  // The field's value: text, with each doubled quote "" of a quoted field made one ".
+  std::string value() const;
 };
 
-// Splits a line into fields. delimiter ' ' means runs of blanks.
-void split(std::string_view line, char delimiter, std::vector<Field>& fields);
+// Splits a line into fields. delimiter ' ' means runs of blanks. A field may be quoted as RFC 4180
+// says: "a,b" holds the delimiter, "" is a quote; blanks around the quotes are ignored. Throws Error
+// at `source`:`line_number` (the column is the quote's) for a quote that does not close on its
+// line or text after a closing quote. A quote inside an unquoted field is left in the field's text: a
+// number cannot hold one (fail_cell names it) and a header name is checked by read_row_layout.
+void split(std::string_view line, char delimiter, std::vector<Field>& fields, const std::string& source,
+           std::size_t line_number);
 
 // What every data row must look like, decided from the first line.
 struct RowLayout {

@@ -155,7 +155,7 @@ SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t 
   while (cursor.next(line)) {
     if (line.number != location.line) continue;
     std::vector<Field> fields;
-    io_detail::split(line.text, table.delimiter, fields);
+    io_detail::split(line.text, table.delimiter, fields, table.source, line.number);
     if (table.fields[column] < fields.size()) location.column = fields[table.fields[column]].column;
     break;
   }

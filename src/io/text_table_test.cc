@@ -46,7 +46,13 @@ INSTANTIATE_TEST_SUITE_P(
                       DelimiterCase{"tsv", "rate\toutput\n1.5\t10\n-2\t20.25\n3e-3\t-30\n"},
                       DelimiterCase{"semicolon", "rate;output\n1.5;10\n-2;20.25\n3e-3;-30\n"},
                       DelimiterCase{"whitespace", "rate   output\n 1.5  10\n-2 20.25\n  3e-3   -30  \n"},
-                      DelimiterCase{"crlf_comments_blank", "# lab export\r\nrate,output\r\n\r\n1.5, 10\r\n# note\r\n-2 ,20.25\r\n+3e-3,-30"}),
+                      DelimiterCase{"crlf_comments_blank", "# lab export\r\nrate,output\r\n\r\n1.5, 10\r\n# note\r\n-2 ,20.25\r\n+3e-3,-30"},
+                      // RFC 4180 quotes: R's write.csv (quoted header), a logger quoting every field,
+                      // R's write.table (blank separated, quoted header), a quoted TSV.
+                      DelimiterCase{"quoted_header", "\"rate\",\"output\"\n1.5,10\n-2,20.25\n3e-3,-30\n"},
+                      DelimiterCase{"quoted_fields", "\"rate\",\"output\"\r\n\"1.5\",\"10\"\r\n \"-2\" , \"20.25\"\r\n\"3e-3\",-30\r\n"},
+                      DelimiterCase{"quoted_whitespace", "\"rate\" \"output\"\n1.5 10\n\"-2\"  20.25\n3e-3 \"-30\"\n"},
+                      DelimiterCase{"quoted_tsv", "\"rate\"\t\"output\"\n\"1.5\"\t10\n-2\t\"20.25\"\n3e-3\t-30\n"}),
     testing::NameOfParam());
 
 TEST(TextTable, WithoutHeaderColumnsAreChosenByIndex) {
@@ -103,8 +109,53 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"empty_cell", "rate,output\n1,\n", "rec.csv:2:3: empty cell in column 'output'"},
         BadInput{"decimal_comma", "rate;output\n1;2,5\n", "rec.csv:2:3: '2,5' in column 'output' looks like a decimal comma"},
         BadInput{"second_header", "rate,output\n1,2\nrate,output\n", "rec.csv:3:1: a second header row in the data"},
-        BadInput{"binary_garbage", std::string_view("\x01\x00\x02", 3), "rec.csv:1:2: binary data"}),
+        BadInput{"binary_garbage", std::string_view("\x01\x00\x02", 3), "rec.csv:1:2: binary data"},
+        BadInput{"unterminated_quote", "rate,output\n1,\"2\n", "rec.csv:2:3: a quoted field with no closing quote on its line"},
+        BadInput{"unterminated_quoted_header", "\"rate,output\n1,2\n", "rec.csv:1:1: a quoted field with no closing quote"},
+        BadInput{"text_after_quote", "rate,output\n1,\"2\" 5\n", "rec.csv:2:7: text after the closing quote"},
+        BadInput{"quote_inside_unquoted", "rate,output\n1,2\"5\n", "rec.csv:2:4: a quote inside an unquoted field '2\"5'"},
+        BadInput{"quote_inside_unquoted_header", "rate,out\"put\n1,2\n", "rec.csv:1:9: a quote inside an unquoted field"},
+        BadInput{"quoted_not_a_number", "rate,output\n1,\"2x\"\n", "rec.csv:2:3: expected a number in column 'output', found '2x'"},
+        BadInput{"quoted_empty_cell", "rate,output\n1,\"\"\n", "rec.csv:2:3: empty cell in column 'output'"},
+        BadInput{"quoted_decimal_comma", "rate,output\n1,\"2,5\"\n", "rec.csv:2:3: '2,5' in column 'output' looks like a decimal comma"},
+        BadInput{"quoted_second_header", "\"rate\",\"output\"\n1,2\n\"rate\",output\n", "rec.csv:3:1: a second header row"}),
     testing::NameOfParam());
+
+// RFC 4180 2.6-2.7: a quoted header name may hold the delimiter and a doubled quote; neither is
+// taken for a delimiter when the delimiter is detected, nor for the end of the name.
+TEST(TextTable, QuotedHeaderNamesHoldDelimitersAndQuotes) {
+  TextTableOptions options;
+  options.columns = {ColumnSelector{"gyro \"z\"; deg/s"}, ColumnSelector{"time, s"}};
+  const TextTable table = parse("\"time, s\",\"gyro \"\"z\"\"; deg/s\"\n0,1.5\n0.01,\"2.5\"\n", options);
+  EXPECT_EQ(table.delimiter, ',');
+  EXPECT_EQ(table.names, (std::vector<std::string>{"gyro \"z\"; deg/s", "time, s"}));
+  EXPECT_EQ(table.columns[0], (std::vector<double>{1.5, 2.5}));
+  EXPECT_EQ(table.columns[1], (std::vector<double>{0.0, 0.01}));
+  // A quoted line of numbers is data, not a header.
+  const TextTable numbers = parse("\"1\",\"2\"\n\"3\",\"4\"\n");
+  EXPECT_EQ(numbers.header_line, 0u);
+  EXPECT_EQ(numbers.columns[1], (std::vector<double>{2.0, 4.0}));
+  // The column of a cell found later is that of its opening quote.
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("q.csv", "\"a\",\"b\"\n1,  \"2\"\n");
+  EXPECT_EQ(locate_cell(read_text_table(path), 0, 1).column, 5u);
+}
+
+TEST(TextTable, SplitTextLineUnquotesFields) {
+  const std::vector<TextField> fields = split_text_line(" 10 ,\"run 1, \"\"cold\"\".csv\" ,x", ',', "l.csv", 2);
+  ASSERT_EQ(fields.size(), 3u);
+  EXPECT_EQ(fields[0].text, "10");
+  EXPECT_EQ(fields[0].column, 2u);
+  EXPECT_EQ(fields[1].text, "run 1, \"cold\".csv");
+  EXPECT_EQ(fields[1].column, 6u);
+  EXPECT_EQ(fields[2].text, "x");
+  try {
+    split_text_line("10,a\"b", ',', "l.csv", 2);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(std::string(e.what()), HasSubstr("l.csv:2:5: a quote inside an unquoted field"));
+  }
+}
 
 TEST(TextTable, UnknownColumnListsTheHeader) {
   TextTableOptions options;

@@ -1,3 +1,4 @@
+#include "inertest/core/citations.h"
 #include "inertest/misalignment/accelerometer_misalignment.h"
 
 #include <fmt/format.h>
@@ -29,7 +30,7 @@ AccelerometerMisalignmentRun fit_run(long run, const std::vector<const Accelerom
   Matrix design(rows.size(), kUnknownCount);
   std::vector<double> observations(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    // Paper 001: V/kI = c + Δθz2·sinβ − Δθy2·cosβ.
+    // Misalignment paper: V/kI = c + Δθz2·sinβ − Δθy2·cosβ.
     design(i, kOffset) = 1.0;
     design(i, kY2) = -cos_deg(rows[i]->beta_deg);
     design(i, kZ2) = sin_deg(rows[i]->beta_deg);
@@ -155,16 +156,16 @@ std::array<double, 2> four_position_misalignment(double v_0, double v_90, double
     throw Error(fmt::format("accelerometer misalignment: the scale factor kI must be finite and nonzero, got {}",
                             scale_factor));
   }
-  // Paper 001 (reference README §2): Δθy2 = (V(π) − V(0))/(2kI), Δθz2 = (V(π/2) − V(3π/2))/(2kI).
+  // The misalignment paper (reference README §2): Δθy2 = (V(π) − V(0))/(2kI), Δθz2 = (V(π/2) − V(3π/2))/(2kI).
   return {(v_180 - v_0) / (2.0 * scale_factor), (v_90 - v_270) / (2.0 * scale_factor)};
 }
 
 nlohmann::json AccelerometerMisalignmentResult::to_json() const {
   nlohmann::json json = combined.to_json();
   json["procedure"] = "accelerometer_misalignment";
-  json["source"] =
-      "Misalignment separation of inertial instruments (HIT), accelerometer multi-position gravity "
-      "test; least squares on V = V0 + kI (-dy0 - dy1 + dz2 sin b - dy2 cos b)";
+  json["source"] = std::string(citations::kMisalignmentPaper) +
+                   ", accelerometer multi-position gravity test; least squares on V = V0 + kI (-dy0 - dy1 + dz2 sin b - "
+                   "dy2 cos b)";
   json["scale_factor"] = Figure{scale_factor, output_unit + "/g", std::nullopt};
   json["run_count"] = by_run.size();
   nlohmann::json runs = nlohmann::json::array();
@@ -182,7 +183,8 @@ nlohmann::json AccelerometerMisalignmentResult::to_json() const {
 }
 
 std::string AccelerometerMisalignmentResult::report() const {
-  std::string text = "Accelerometer misalignment, multi-position gravity test (paper 001, HIT)\n";
+  std::string text = fmt::format("Accelerometer misalignment, multi-position gravity test\n  ({})\n",
+                                 citations::kMisalignmentPaper);
   text += fmt::format("  scale factor kI {:.9g} {}/g\n", scale_factor, output_unit);
   for (const auto& r : by_run) {
     text +=

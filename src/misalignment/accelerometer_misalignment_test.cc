@@ -13,7 +13,7 @@ namespace inertest {
 namespace {
 
 constexpr double kArcsec = constants::kArcsecond;
-constexpr double kPaperScaleFactor = 1.299;  // V/g, paper 001 Table 2
+constexpr double kPaperScaleFactor = 1.299;  // V/g, misalignment paper, Table 2
 
 AccelerometerMisalignmentOptions paper_options() {
   AccelerometerMisalignmentOptions options;
@@ -34,7 +34,7 @@ double model_output(double beta_deg, double y2, double z2, double constant, doub
 
 TEST(AccelerometerMisalignment, ReproducesPaperTable2EveryRunAndTheMeans) {
   const AccelerometerMisalignmentResult result = accelerometer_misalignment(table2(), paper_options());
-  // Table 2 of paper 001 (reference README §2), arcsec: Δθy2, Δθz2, γ.
+  // Table 2 of the misalignment paper, arcsec: Δθy2, Δθz2, γ.
   const std::array<std::array<double, 3>, 3> published = {{{-5.2, 20.9, 21.5}, {-5.4, 20.3, 21.0}, {-5.3, 20.2, 20.9}}};
   ASSERT_EQ(result.by_run.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {

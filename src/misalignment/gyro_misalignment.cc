@@ -1,3 +1,4 @@
+#include "inertest/core/citations.h"
 #include "inertest/misalignment/gyro_misalignment.h"
 
 #include <fmt/format.h>
@@ -224,9 +225,9 @@ std::array<double, 5> five_position_misalignment(const FivePositionOutputs& outp
 nlohmann::json GyroMisalignmentResult::to_json() const {
   nlohmann::json json = fit_json(combined);
   json["procedure"] = "gyro_misalignment";
-  json["source"] =
-      "Misalignment separation of inertial instruments (HIT), gyro on a rate table; "
-      "least squares on V(+) - V(-) = 2 kI w (-dy0 cos b + dx0 sin b - dy1 + dz2 sin a - dy2 cos a)";
+  json["source"] = std::string(citations::kMisalignmentPaper) +
+                   ", gyro on a rate table; least squares on V(+) - V(-) = 2 kI w (-dy0 cos b + dx0 sin b - dy1 + "
+                   "dz2 sin a - dy2 cos a)";
   json["scale_factor"] = Figure{scale_factor, output_unit + "/(deg/s)", std::nullopt};
   nlohmann::json rates = nlohmann::json::array();
   for (const auto& r : by_rate) {
@@ -240,7 +241,7 @@ nlohmann::json GyroMisalignmentResult::to_json() const {
 }
 
 std::string GyroMisalignmentResult::report() const {
-  std::string text = "Gyro misalignment separation on a rate table (paper 001, HIT)\n";
+  std::string text = fmt::format("Gyro misalignment separation on a rate table\n  ({})\n", citations::kMisalignmentPaper);
   text += fmt::format("  scale factor kI {:.9g} {}/(deg/s)\n", scale_factor, output_unit);
   for (const auto& r : by_rate) {
     text += fmt::format("  at {} deg/s ({} positions, {} degrees of freedom)\n", r.rate_dps, r.fit.equation_count,

@@ -13,7 +13,7 @@ namespace inertest {
 namespace {
 
 constexpr double kArcsec = constants::kArcsecond;
-constexpr double kPaperScaleFactor = -2.9222;  // V/(deg/s), paper 001 Table 1
+constexpr double kPaperScaleFactor = -2.9222;  // V/(deg/s), misalignment paper, Table 1
 
 // The paper's five positions V1..V5 as (alpha, beta) in deg.
 constexpr std::array<std::array<double, 2>, 5> kPaperPositions = {{{0, 0}, {0, 180}, {180, 180}, {90, 180}, {0, 90}}};
@@ -70,7 +70,7 @@ std::string table1_path() { return testing::source_path("data/misalignment/gyro_
 TEST(GyroMisalignment, ReproducesPaperTable1AtEveryRate) {
   const auto rows = read_gyro_misalignment_positions(table1_path());
   const GyroMisalignmentResult result = gyro_misalignment(rows, paper_options());
-  // Table 1 of paper 001 (reference README §2), arcsec: Δθy0, Δθx0, Δθy1, Δθy2, Δθz2, γ.
+  // Table 1 of the misalignment paper, arcsec: Δθy0, Δθx0, Δθy1, Δθy2, Δθz2, γ.
   const std::array<std::array<double, 7>, 3> published = {{
       {20, -7.6, 2.3, -54.0, -162.2, 55.4, 171.4},
       {30, -7.4, 2.4, -53.7, -162.2, 55.8, 171.5},

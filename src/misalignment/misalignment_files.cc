@@ -27,29 +27,7 @@ std::string_view trim(std::string_view text) {
   return text;
 }
 
-// One comma-separated field with its 1-based column in the line.
-struct Field {
-  std::string_view text;
-  std::size_t column = 0;
-};
-
-std::vector<Field> split_fields(std::string_view line) {
-  std::vector<Field> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    const std::string_view raw =
-        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
-    const std::size_t first_text = raw.find_first_not_of(" \t");
-    const std::size_t leading = first_text == std::string_view::npos ? raw.size() : first_text;
-    fields.push_back({trim(raw), start + leading + 1});
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return fields;
-}
-
-double parse_number(const Field& field, const SourceLocation& line_location, const char* name) {
+double parse_number(const TextField& field, const SourceLocation& line_location, const char* name) {
   double value = 0.0;
   const char* first = field.text.data();
   const char* last = first + field.text.size();
@@ -93,10 +71,10 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::strin
     ++line_number;
     if (trim(line).empty() || trim(line).front() == '#') continue;
     const SourceLocation where{listing_path, line_number, 0};
-    const std::vector<Field> fields = split_fields(line);
+    const std::vector<TextField> fields = split_text_line(line, ',', listing_path, line_number);
     if (index_of.empty()) {
       for (const std::string& name : names) {
-        const auto found = std::find_if(fields.begin(), fields.end(), [&](const Field& f) { return f.text == name; });
+        const auto found = std::find_if(fields.begin(), fields.end(), [&](const TextField& f) { return f.text == name; });
         if (found == fields.end()) {
           throw Error(where, fmt::format("record listing: the header has no column '{}'; expected "
                                          "alpha_deg,beta_deg,rate_dps,file",
@@ -114,7 +92,7 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::strin
     row.beta_deg = parse_number(fields[index_of[1]], where, "beta_deg");
     row.rate_dps = parse_number(fields[index_of[2]], where, "rate_dps");
     row.line = line_number;
-    const Field& file_field = fields[index_of[3]];
+    const TextField& file_field = fields[index_of[3]];
     if (file_field.text.empty()) {
       throw Error(SourceLocation{listing_path, line_number, file_field.column}, "record listing: empty file name");
     }

@@ -85,7 +85,7 @@ Figure arcsec_figure(double radians, std::optional<double> sigma_radians) {
 
 Figure misalignment_figure(double delta_theta_y2, double delta_theta_z2,
                            std::optional<AnglePairCovariance> covariance) {
-  // Paper 001: γ = √(Δθy2² + Δθz2²).
+  // Misalignment paper: γ = √(Δθy2² + Δθz2²).
   const double gamma = std::hypot(delta_theta_y2, delta_theta_z2);
   std::optional<double> sigma;
   if (covariance && gamma > 0.0) {

@@ -28,7 +28,7 @@ LeastSquaresResult solve_separating(const Matrix& design, std::span<const double
 // An angle in rad as a Figure in arcsec, with its 1-sigma uncertainty when given.
 Figure arcsec_figure(double radians, std::optional<double> sigma_radians);
 
-// γ = √(Δθy2² + Δθz2²) (paper 001) in arcsec; its uncertainty by first-order propagation of the
+// γ = √(Δθy2² + Δθz2²) (misalignment paper) in arcsec; its uncertainty by first-order propagation of the
 // covariance of (Δθy2, Δθz2) when given (variances and covariance in rad²).
 struct AnglePairCovariance {
   double var_y2 = 0.0;

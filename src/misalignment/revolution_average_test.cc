@@ -9,7 +9,7 @@
 namespace inertest {
 namespace {
 
-// Earth-rate terms of the gyro misalignment model (paper 001): ωe·cosφ·(sin(ωt)·cosβ + cos(ωt)·sinβ).
+// Earth-rate terms of the gyro misalignment model (misalignment paper): ωe·cosφ·(sin(ωt)·cosβ + cos(ωt)·sinβ).
 double earth_terms(double table_angle_deg, double beta_deg) {
   const double horizontal = 15.041067 / 3600.0 * std::cos(45.75 * constants::kDegree);  // deg/s
   const double angle = table_angle_deg * constants::kDegree;

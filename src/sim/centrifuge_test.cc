@@ -1,4 +1,4 @@
-// The centrifuge's full homogeneous-transform chain (Table 1 of paper 000) against the first-order
+// The centrifuge's full homogeneous-transform chain (Table 1 of the centrifuge paper) against the first-order
 // inputs of reference section 1 (ωI of eq. 5 as the reference restates it, fI, fO, fS of eqs. 6-8).
 #include <cmath>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // Simulated misalignment tests:
 //
-// gyro_misalignment (paper 001, rate table; reference README §2): the gyro on a vertical fixture
+// gyro_misalignment (the misalignment paper, rate table): the gyro on a vertical fixture
 // face with IA along the fixture-face normal (horizontal), the fixture turned β about the table
 // face normal and the gyro α about IA, in the paper's five positions (α, β) = (0, 0), (0, 180),
 // (180, 180), (90, 180), (0, 90), each at +ω and −ω over whole revolutions. Test keys:
@@ -18,7 +18,7 @@
 // Writes <name>/positions.csv (position,output_positive,output_negative). Truth: δx = sin a·cos b,
 // δy = sin b, α = asin(√(δx² + δy²)), the mounting error ε = the table axis's component along IA.
 //
-// accelerometer_misalignment (paper 001, 4-position gravity test): the accelerometer on the dividing
+// accelerometer_misalignment (the misalignment paper, 4-position gravity test): the accelerometer on the dividing
 // head, IA along its horizontal axis, turned β about it. Test keys:
 //   beta_deg = [0, 90, 180, 270], runs = 3, seconds_per_position = 60
 // Writes <name>/positions.csv (beta_deg,output,run). Truth: Δθy2 = −sin b, Δθz2 = sin a·cos b of the
@@ -30,6 +30,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "inertest/core/citations.h"
 #include "inertest/core/units.h"
 #include "sim/generators.h"
 
@@ -85,9 +86,9 @@ void generate_gyro_misalignment(campaign::PlanTable& test, const std::string& na
   const GyroParameters& gyro = lab.gyro;
   const double fs = gyro.sample_rate_hz;
   const std::array<std::array<double, 2>, 5> positions = {{{0, 0}, {0, 180}, {180, 180}, {90, 180}, {0, 90}}};
-  std::string text = fmt::format("# gyro misalignment separation '{}' (paper 001): means over {} whole revolutions, "
+  std::string text = fmt::format("# gyro misalignment separation '{}' ({}): means over {} whole revolutions, "
                                  "{} degC\nalpha_deg,beta_deg,rate_dps,output\n",
-                                 name, revolutions, temperature);
+                                 name, citations::kMisalignmentPaper, revolutions, temperature);
   std::array<double, 5> expected{};
   double noise = 0.0;  // Σ_r σ²(e_r): variance of one position's (V+ − V−)/(2·kI·ω) at each rate
   for (const double rate : rates) {
@@ -220,9 +221,9 @@ void generate_accelerometer_misalignment(campaign::PlanTable& test, const std::s
   const AccelerometerParameters& acc = lab.accelerometer;
   AccelerometerModel model(acc, lab.random(name));
   const std::size_t samples = static_cast<std::size_t>(std::llround(seconds * acc.sample_rate_hz));
-  std::string text = fmt::format("# accelerometer 4-position test '{}' (paper 001): mean output over {} s per position\n"
+  std::string text = fmt::format("# accelerometer 4-position test '{}' ({}): mean output over {} s per position\n"
                                  "beta_deg,output,run\n",
-                                 name, seconds);
+                                 name, citations::kMisalignmentPaper, seconds);
   // Dividing head: axis north, tilted up by Δθy0, the fixture by Δθy1, the accelerometer turned β
   // about IA; gravity's specific force is 1 g up (site gravity in g).
   const Vector3 up = lab.site.specific_force_enu_g();

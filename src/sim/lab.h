@@ -45,9 +45,9 @@ struct Lab {
   std::string site_name;
   GyroParameters gyro;
   RateTable rate_table;
-  double fixture_tilt_rad = 0.0;  // Δθy1: the rate-table fixture's vertical face leaning (paper 001)
+  double fixture_tilt_rad = 0.0;  // Δθy1: the rate-table fixture's vertical face leaning (misalignment paper)
   // The dividing head of the accelerometer test: its horizontal axis tilted up by Δθy0, the
-  // fixture face by Δθy1 (paper 001).
+  // fixture face by Δθy1 (misalignment paper).
   double dividing_head_tilt_rad = 0.0;
   double dividing_head_fixture_rad = 0.0;
   AccelerometerParameters accelerometer;

@@ -1,5 +1,6 @@
 #include "inertest/sim/simulation.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
@@ -43,6 +44,51 @@ std::array<double, 2> pair_or(PlanTable& table, std::string_view key, std::array
   if (!values) return fallback;
   if (values->size() != 2) table.fail_at(key, "must hold two numbers");
   return {(*values)[0], (*values)[1]};
+}
+
+// A TOML basic string: the text in quotes, '"' and '\\' escaped.
+std::string toml_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// The specification limits of a test (key `limits`, in the form of a processing plan's
+// [procedure.limits]: figure = { min, max, unit }), checked here and written as the [procedure.limits]
+// of the test's step, in the plan's order, so that `inertest run` gives a verdict per limit.
+std::string limits_text(PlanTable& test) {
+  auto table = test.optional_table("limits");
+  if (!table) return "";
+  std::vector<std::pair<std::string, toml::source_position>> entries;
+  for (const auto& [key, node] : table->raw()) entries.emplace_back(std::string(key.str()), node.source().begin);
+  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    return a.second.line != b.second.line ? a.second.line < b.second.line : a.second.column < b.second.column;
+  });
+  std::string text = "[procedure.limits]\n";
+  for (const auto& [figure, position] : entries) {
+    auto limit = table->optional_table(figure);
+    const auto min = limit->optional_number("min");
+    const auto max = limit->optional_number("max");
+    const auto unit = limit->optional_string("unit");
+    if (!min && !max) limit->fail("a limit needs 'min', 'max' or both");
+    if (unit) {
+      try {
+        Unit::parse(*unit);
+      } catch (const Error& e) {
+        limit->fail_at("unit", e.message());
+      }
+    }
+    limit->require_all_used();
+    std::string fields;
+    if (min) fields += "min = " + exact(*min);
+    if (max) fields += (fields.empty() ? "" : ", ") + std::string("max = ") + exact(*max);
+    if (unit) fields += ", unit = " + toml_string(*unit);
+    text += fmt::format("{} = {{ {} }}\n", toml_string(figure), fields);
+  }
+  return text + "\n";
 }
 
 void read_gyro(PlanTable& table, GyroParameters& g) {
@@ -167,6 +213,7 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   auto tests = top.tables("test");
   if (tests.empty()) top.fail("no [[test]] tables: nothing to simulate");
   std::vector<std::pair<TestGenerator, std::string>> prepared;
+  std::vector<std::string> limits;
   std::map<std::string, int> names;
   for (auto& test : tests) {
     const std::string kind = test.string("kind");
@@ -181,6 +228,7 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
       test.fail_at("name", "must be a plain file name");
     }
     if (names[name]++ > 0) test.fail_at("name", "'" + name + "' names two tests");
+    limits.push_back(limits_text(test));
     lab.dry_run = true;
     found->second(test, name, lab);
     test.require_all_used();
@@ -192,6 +240,7 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   for (std::size_t i = 0; i < prepared.size(); ++i) {
     if (options.progress) options.progress("simulate " + prepared[i].second, static_cast<double>(i) / prepared.size());
     prepared[i].first(tests[i], prepared[i].second, lab);
+    lab.plan_steps += limits[i];
   }
   if (options.progress) options.progress("simulated", 1.0);
 

@@ -120,6 +120,23 @@ TEST(SimSimulate, BadPlansNameTheLineAndWriteNothing) {
   expect_plan_error("seed = 1\n[gyro\n", "", 2);
 }
 
+// [test.limits] of a simulation plan becomes [procedure.limits] of the processing plan it writes,
+// in the plan's order, figure names and JSON pointers quoted; a bad limit is the simulation plan's error.
+TEST(SimSimulate, TestLimitsBecomeTheStepsLimits) {
+  ScratchDirectory dir;
+  simulate_text("seed = 1\n[gyro]\n[[test]]\nkind = \"polarity\"\n[test.limits]\nsign = { min = 0.5 }\n"
+                "\"/a/0\" = { min = -1.5, max = 2, unit = \"deg/h\" }\n",
+                "limits.toml", dir.path() + "/out");
+  EXPECT_NE(read(dir.path() + "/out/plan.toml")
+                .find("[procedure.limits]\n\"sign\" = { min = 0.5 }\n\"/a/0\" = { min = -1.5, max = 2, unit = \"deg/h\" }\n"),
+            std::string::npos)
+      << read(dir.path() + "/out/plan.toml");
+  const std::string test = "seed = 1\n[gyro]\n[[test]]\nkind = \"polarity\"\n[test.limits]\n";
+  expect_plan_error(test + "sign = { unit = \"1\" }\n", "a limit needs 'min', 'max' or both", 6);
+  expect_plan_error(test + "sign = { max = 1, unti = \"1\" }\n", "unti", 6);
+  expect_plan_error(test + "sign = { max = 1, unit = \"furlong\" }\n", "furlong", 6);
+}
+
 TEST(DemoPlan, BuiltInPlanMatchesTheExample) {
   EXPECT_EQ(demo_simulation_plan(), read(inertest::testing::source_path("examples/demo/simulation.toml")));
 }

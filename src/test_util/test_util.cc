@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <regex>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -86,6 +88,17 @@ std::string ScratchDirectory::write(const std::string& name, const std::string& 
   std::ofstream file(path, std::ios::binary);
   file << content;
   return path;
+}
+
+bool names_a_seed_file(const std::string& text) {
+  static const std::regex seed_name(R"(\b00[0-2]_[0-9a-f]{8}|\b00[0-2]_\w*\.txt|paper (seed )?00[0-2]\b|seeds/)",
+                                    std::regex::icase);
+  return std::regex_search(text, seed_name);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
 }
 
 std::string source_path(const std::string& relative) { return std::string(INERTEST_SOURCE_DIR) + "/" + relative; }

@@ -39,6 +39,13 @@ struct CliRun {
 // Runs build/bin/inertest with the arguments (no shell quoting; each is one argv entry).
 CliRun run_cli(const std::vector<std::string>& arguments);
 
+// Whether `text` names one of the papers by the file name of the developers' text extraction
+// ("000_746ebd72f166769f.txt", "paper 001", ".../seeds/"): users cite them as core/citations.h does.
+bool names_a_seed_file(const std::string& text);
+
+// The whole content of a file.
+std::string read_file(const std::string& path);
+
 // A fresh scratch directory for this test, removed when the object dies.
 class ScratchDirectory {
  public:

@@ -1,6 +1,6 @@
 // First-order model of a gyro on a precision centrifuge with a counter-rotating platform, after
-// the paper "calibrating gyro drift coefficients on a precision centrifuge with a counter-rotating
-// platform" (seed 000_746ebd72f166769f; restated in reference README section 1):
+// the paper on calibrating gyro drift coefficients on a precision centrifuge with a counter-rotating
+// platform (core/citations.h):
 //   gyro static error model, eq. (2); input rate, eq. (5) in the reconstructed form that reproduces
 //   the paper's Table 3; nominal specific forces with the Coriolis term, eqs. (6)-(8); harmonic
 //   form of the output, eq. (11).

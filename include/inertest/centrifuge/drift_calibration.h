@@ -1,6 +1,6 @@
 // Calibration of a gyro's ten acceleration-sensitive drift coefficients on a precision centrifuge
-// with a counter-rotating platform, with the centrifuge's errors compensated (paper seed
-// 000_746ebd72f166769f, sections 5-6; reference README section 1):
+// with a counter-rotating platform, with the centrifuge's errors compensated (the
+// centrifuge paper, core/citations.h, sections 5-6):
 //   harmonic amplitudes of each run (eq. 11) stacked into Y (eqs. 12, 15), the structure matrix
 //   Phi built from the first-order model (centrifuge_model.h; eqs. 13, 16), the compensation
 //   vector epsilon (Earth rate and centrifuge errors), and least squares

@@ -65,6 +65,20 @@ TextTable read_text_table(const std::string& path, const TextTableOptions& optio
 // The same, on text already in memory; `source` names it in messages.
 TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options = {});
 
+// One field of a line of delimited text: its value (RFC 4180 quotes removed, a doubled "" made one
+// ") and the 1-based column where it starts in the line.
+struct TextField {
+  std::string text;
+  std::size_t column = 0;
+};
+
+// Splits one line of delimited text as the record readers do (delimiter ' ': runs of blanks; blanks
+// around a field trimmed; RFC 4180 quotes), for files of text cells such as record listings.
+// Throws Error at `source`:`line_number` with the column of a quote that does not close on its
+// line, text after a closing quote, or a quote inside an unquoted field.
+std::vector<TextField> split_text_line(std::string_view line, char delimiter, const std::string& source,
+                                       std::size_t line_number);
+
 // Where the cell of data row `row` (0-based) in returned column `column` is: file, line and
 // character column, for errors found after reading (a time stamp going backwards, a stuck
 // channel). Reads the line again from table.source when that is a file; the column is 0 when it

@@ -1,6 +1,6 @@
-// Input-axis misalignment of an accelerometer by the multi-position gravity test (paper 001,
-// "separating the misalignment angles of inertial instruments", HIT; restated in
-// shared/reference/README.md §2).
+// Input-axis misalignment of an accelerometer by the multi-position gravity test (the
+// misalignment paper: Li Wei, Ren Shunqing, Zhao Hongbo, "misalignment angle separation of inertial
+// instruments", HIT; core/citations.h).
 //
 // The input axis lies horizontal on a vertical reference face and is turned β about the face
 // normal. The paper's output model:

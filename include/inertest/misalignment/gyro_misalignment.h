@@ -1,5 +1,6 @@
-// Misalignment separation of a gyro on a single-axis rate table (paper 001, "separating the
-// misalignment angles of inertial instruments", HIT; restated in shared/reference/README.md §2).
+// Misalignment separation of a gyro on a single-axis rate table (the misalignment
+// paper: Li Wei, Ren Shunqing, Zhao Hongbo, "misalignment angle separation of inertial instruments",
+// HIT; core/citations.h).
 //
 // Error angles (rad inside the library, reported in arcsec): table face to table axis Δθy0, Δθx0;
 // fixture face Δθy1; gyro input axis to its mounting face Δθy2, Δθz2. The fixture is turned β about

@@ -1,4 +1,4 @@
-// Reading the input files of the misalignment separations (paper 001) into rows, with the line of
+// Reading the input files of the misalignment separations (the misalignment paper) into rows, with the line of
 // every row kept for error messages. Shared by the CLI and the test-plan steps.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Mean output of a rate-table record over whole revolutions, so that the Earth-rate terms of the
-// gyro misalignment model (ωe·cosφ·sin(ωt), ωe·cosφ·cos(ωt), paper 001) average to zero.
+// gyro misalignment model (ωe·cosφ·sin(ωt), ωe·cosφ·cos(ωt), misalignment paper) average to zero.
 //
 // Samples are taken as equally spaced; sample k stands for the interval from its angle (or time) to
 // the next. Whole revolutions are cut from the start of the record.

@@ -1,4 +1,4 @@
-// The simulated accelerometer of the 4-position gravity test (paper 001, reference README §2): a
+// The simulated accelerometer of the 4-position gravity test (the misalignment paper): a
 // single-axis accelerometer with bias, scale factor and the two misalignment angles of its input
 // axis, white noise and an output quantised by the voltmeter's resolution.
 //

@@ -1,4 +1,4 @@
-// Precision centrifuge with a counter-rotating platform (reference section 1; paper 000, Fig. 2
+// Precision centrifuge with a counter-rotating platform (the centrifuge paper, Fig. 2
 // and Table 1). The nine frames ground → main-axis sleeve → main axis → platform sleeve →
 // platform → rate-table sleeve → rate table → work face → gyro are chained with the error angles
 // of Table 1, and the gyro's angular velocity and specific force come from that whole chain:

@@ -14,12 +14,13 @@
 //   [accelerometer] id, output_unit, sample_rate_hz, scale_factor, bias_mg, misalignment_arcsec,
 //                   noise_ug_rt_hz, output_resolution (accelerometer_model.h)
 //   [rate_table] tilt_arcsec = [east, north], wobble_arcsec, face_arcsec = [x, y], rate_error_ppm,
-//                fixture_arcsec (the misalignment fixture's vertical face, paper 001's Δθy1)
+//                fixture_arcsec (the misalignment fixture's vertical face, the misalignment paper's Δθy1)
 //   [dividing_head] tilt_arcsec (Δθy0), fixture_arcsec (Δθy1) of the accelerometer test
 //   [centrifuge] radius_m, platform_rate_error_rad_s, perpendicularity_arcsec = [x2t, y2t],
 //                wobble_arcsec (platform axis), sleeve_arcsec = [x1t, y1t]
 //   [[test]] kind = "...", name = "..." (optional), then the kind's keys (in the header comment of
-//   src/sim/generate_*.cc). Kinds: scale_factor, scale_factor_repeatability,
+//   src/sim/generate_*.cc), and optionally [test.limits]: the specification limits of the test's
+//   step, figure = { min, max, unit } as in a processing plan's [procedure.limits]. Kinds: scale_factor, scale_factor_repeatability,
 //   scale_factor_temperature, maximum_input_rate, bias, bias_repeatability, bias_temperature,
 //   turn_on_time, polarity, threshold, resolution, bandwidth, input_axis_misalignment,
 //   gyro_misalignment, accelerometer_misalignment, allan, centrifuge.

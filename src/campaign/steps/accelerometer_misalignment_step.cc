@@ -1,4 +1,4 @@
-// Plan kind "accelerometer_misalignment": multi-position gravity test (paper 001, HIT).
+// Plan kind "accelerometer_misalignment": multi-position gravity test (the misalignment paper, core/citations.h).
 //   file = "positions.csv"     # header beta_deg,output and optionally run
 //   scale_factor = 1.299       # optional: kI in output units per g; default [instrument] nominal_scale_factor
 #include "campaign/step_registry.h"

@@ -1,5 +1,5 @@
 // Plan kind "centrifuge": drift coefficients from a centrifuge test with a counter-rotating platform
-// (paper 000_746ebd72f166769f, eqs. 2, 5-16; see inertest/centrifuge/drift_calibration.h).
+// (the centrifuge paper, core/citations.h, eqs. 2, 5-16; see inertest/centrifuge/drift_calibration.h).
 //   file = "table3.csv"         # harmonic amplitudes or raw samples (inertest/centrifuge/centrifuge_record.h)
 //   radius_m = 1.0              # optional, default 1 m
 //   latitude_deg = 45.75        # optional, default the plan's [site] latitude

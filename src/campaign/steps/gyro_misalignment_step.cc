@@ -1,4 +1,4 @@
-// Plan kind "gyro_misalignment": misalignment separation on a rate table (paper 001, HIT).
+// Plan kind "gyro_misalignment": misalignment separation on a rate table (the misalignment paper, core/citations.h).
 //   file = "positions.csv"     # header alpha_deg,beta_deg,rate_dps,output (one row per position and direction)
 //   scale_factor = -2.9222     # optional: kI in output units per deg/s; default [instrument] nominal_scale_factor
 #include "campaign/step_registry.h"

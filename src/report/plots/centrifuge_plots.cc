@@ -1,4 +1,4 @@
-// Plots of plan kind "centrifuge" (paper 000, centrifuge drift calibration): the harmonic
+// Plots of plan kind "centrifuge" (the centrifuge paper, cited in core/citations.h): the harmonic
 // amplitudes k0, k1c, k1s, k2c, k2s of eq. (11) at each platform angle β and g-level (the paper's
 // Table 3), and the residuals of the least-squares fit Y = Φq + ε (eqs. 13-16) at the same points.
 #include <algorithm>
@@ -64,10 +64,10 @@ std::vector<ReportPlot> centrifuge_plots(const PlotContext& context) {
   if (runs == nullptr || !runs->is_array() || runs->empty()) return {};
   std::vector<ReportPlot> plots;
   ReportPlot harmonics;
-  harmonics.caption = context.labels("axis.harmonic") + " — paper 000, eq. (11), Table 3";
+  harmonics.caption = context.labels("axis.harmonic") + " — eq. (11), Table 3 of the centrifuge paper";
   harmonics.plot.panels.push_back(harmonic_panel(*runs, "amplitudes", context.labels("axis.harmonic")));
   ReportPlot residuals;
-  residuals.caption = context.labels("axis.residual") + " — paper 000, eqs. (13)-(16)";
+  residuals.caption = context.labels("axis.residual") + " — eqs. (13)-(16) of the centrifuge paper";
   residuals.plot.panels.push_back(harmonic_panel(*runs, "residuals", context.labels("axis.residual")));
   if (!harmonics.plot.panels.back().series.empty()) plots.push_back(std::move(harmonics));
   if (!residuals.plot.panels.back().series.empty()) plots.push_back(std::move(residuals));

@@ -1,5 +1,5 @@
-// Plots of plan kinds "gyro_misalignment" and "accelerometer_misalignment" (paper 001, HIT;
-// reference README §2): the least-squares residual at each test position (α, β), and the
+// Plots of plan kinds "gyro_misalignment" and "accelerometer_misalignment" (the misalignment
+// paper, core/citations.h): the least-squares residual at each test position (α, β), and the
 // separated error angles with their 1σ bars at each table rate (gyro) or in each run
 // (accelerometer), the combined solution dashed.
 #include <cmath>

@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config clang libclang-rt-14-dev llvm
   libeigen3-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libfast-float-dev
   libboost-dev
+  libsqlite3-dev libpq-dev postgresql
   libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-pandas python3-scipy python3-pytest python3-dev pybind11-dev
   chromium

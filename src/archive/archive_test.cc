@@ -321,6 +321,69 @@ TEST_P(ArchiveBackend, CommandLineRoundTrip) {
   EXPECT_EQ(nlohmann::json::parse(after.out).at("campaigns").size(), 1u);
 }
 
+// Day-to-day repeatability of the archived campaigns. Scale factors 36000, 36001, 35999:
+// K̄ = 36000, s = 1, Kr = 1/36000 = 27.78 ppm (GJB 2426A eq. 12). Biases 0.01, 0.02, 0.03 deg/h
+// (in deg/s in the archive, converted): Br = 0.01 deg/h (eq. 21).
+TEST_P(ArchiveBackend, RepeatabilityAcrossArchivedCampaigns) {
+  auto archive = open();
+  const double scale_factors[] = {36000.0, 36001.0, 35999.0};
+  for (int i = 0; i < 3; ++i) {
+    nlohmann::json results = campaign("FOG-0417", fmt::format("2026-02-0{}", i + 1), scale_factors[i]);
+    results["procedures"][1]["result"]["bias"] = {{"value", 0.01 * (i + 1) / 3600.0}, {"unit", "deg/s"}};
+    archive->add(results, "r.json");
+  }
+  const auto scale = testing::run_cli({"archive", "repeatability", "FOG-0417", "--figure",
+                                       "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(scale.exit_code, 0) << scale.err;
+  const auto kr = nlohmann::json::parse(scale.out);
+  EXPECT_EQ(kr["clause"], "GJB 2426A-2004 5.8.4, eq. (12)");
+  EXPECT_EQ(kr["campaigns"].size(), 3u);
+  EXPECT_NEAR_RELATIVE(kr["result"]["scale_factor_repeatability"]["value"].get<double>(), 1e6 / 36000.0, 1e-9);
+  EXPECT_EQ(kr["result"]["scale_factor_repeatability"]["unit"], "ppm");
+
+  const auto bias = testing::run_cli(
+      {"archive", "repeatability", "FOG-0417", "--figure", "bias_static/bias", "--db", location_, "--json"});
+  ASSERT_EQ(bias.exit_code, 0) << bias.err;
+  const auto br = nlohmann::json::parse(bias.out);
+  EXPECT_EQ(br["clause"], "GJB 2426A-2004 5.12.3, eq. (21)");
+  EXPECT_NEAR_RELATIVE(br["result"]["bias_repeatability"]["value"].get<double>(), 0.01, 1e-9);
+
+  const auto neither = testing::run_cli(
+      {"archive", "repeatability", "FOG-0417", "--figure", "scale_factor/nonlinearity", "--db", location_});
+  EXPECT_EQ(neither.exit_code, 2);
+  EXPECT_THAT(neither.err, HasSubstr("repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias"));
+}
+
+// The fleet: each instrument's latest value in the order of first test; A = 36000.0,
+// B = 36000.3, C = 36000.1 (C's earlier 36002 superseded). x̄ = 36000.1333, MR̄ = (0.3 + 0.2)/2,
+// σ = MR̄/1.128379; limits [35999, 36001] from the plans: Cp = 2/6σ, Cpk = (36001 − x̄)/3σ.
+TEST_P(ArchiveBackend, FleetControlChartAndCapability) {
+  auto archive = open();
+  archive->add(campaign("FOG-A", "2026-01-01", 36000.0), "a");
+  archive->add(campaign("FOG-B", "2026-01-02", 36000.3), "b");
+  archive->add(campaign("FOG-C", "2026-01-03", 36002.0), "c1");
+  archive->add(campaign("FOG-C", "2026-01-09", 36000.1), "c2");
+  const auto run = testing::run_cli({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto fleet = nlohmann::json::parse(run.out);
+  ASSERT_EQ(fleet["instruments"].size(), 3u);
+  EXPECT_EQ(fleet["instruments"][2]["instrument"], "FOG-C");
+  EXPECT_EQ(fleet["instruments"][2]["value"], 36000.1);
+  EXPECT_EQ(fleet["instruments"][2]["tests"], 2);
+  const double center = (36000.0 + 36000.3 + 36000.1) / 3.0;
+  const double sigma = ((0.3 + 0.2) / 2.0) / 1.1283791670955126;
+  EXPECT_NEAR(fleet["control_chart"]["center"].get<double>(), center, 1e-9);
+  EXPECT_NEAR(fleet["control_chart"]["ucl"].get<double>(), center + 3 * sigma, 1e-9);
+  EXPECT_NEAR(fleet["control_chart"]["lcl"].get<double>(), center - 3 * sigma, 1e-9);
+  EXPECT_TRUE(fleet["control_chart"]["out_of_control"].empty());
+  EXPECT_NEAR(fleet["capability"]["cp"].get<double>(), 2.0 / (6 * sigma), 1e-6);
+  EXPECT_NEAR(fleet["capability"]["cpk"].get<double>(), (36001.0 - center) / (3 * sigma), 1e-6);
+  // Since 2026-01-02: A drops out, C's earlier test too.
+  const auto since = testing::run_cli({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--since",
+                                       "2026-01-02", "--db", location_, "--json"});
+  EXPECT_EQ(nlohmann::json::parse(since.out)["instruments"].size(), 2u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),
                          [](const ::testing::TestParamInfo<const char*>& param) { return std::string(param.param); });
 

@@ -384,6 +384,19 @@ TEST_P(ArchiveBackend, FleetControlChartAndCapability) {
   EXPECT_EQ(nlohmann::json::parse(since.out)["instruments"].size(), 2u);
 }
 
+// inertest run --archive DB: the campaign's results go straight into the archive.
+TEST_P(ArchiveBackend, RunAddsItsResultsToTheArchive) {
+  const auto run = testing::run_cli({"run", testing::source_path("examples/scale_factor/plan.toml"), "--out",
+                                     scratch_.path() + "/out", "--archive", location_});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto written = read_results_file(scratch_.path() + "/out/results.json");
+  const auto campaigns = open()->list(std::nullopt);
+  ASSERT_EQ(campaigns.size(), 1u);
+  EXPECT_EQ(campaigns[0].instrument, written["instrument"]["id"]);
+  EXPECT_EQ(campaigns[0].processed_at, written["processed_at"]);
+  EXPECT_EQ(open()->results(campaigns[0].id), written);
+}
+
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),
                          [](const ::testing::TestParamInfo<const char*>& param) { return std::string(param.param); });
 

@@ -297,6 +297,23 @@ FigurePoint point_from_row(const Row& row, const std::string& unit) {
   return point;
 }
 
+// The limits of the latest test that set any, converted into unit (rows ordered by test date
+// within an instrument; across instruments the latest date wins).
+void take_limits(const std::vector<Row>& rows, const std::string& unit, std::optional<double>& lower,
+                 std::optional<double>& upper) {
+  std::string limits_tested_on;
+  for (const auto& row : rows) {
+    if ((row.is_null(6) && row.is_null(7)) || row.text(0) < limits_tested_on) continue;
+    limits_tested_on = row.text(0);
+    const std::string row_unit = row.text(4);
+    const auto in_unit = [&](std::optional<double> v) -> std::optional<double> {
+      return v ? std::optional<double>(convert(*v, row_unit, unit)) : std::nullopt;
+    };
+    lower = in_unit(row.optional_real(6));
+    upper = in_unit(row.optional_real(7));
+  }
+}
+
 constexpr const char* figure_columns =
     "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit "
     "FROM figure f JOIN campaign c ON c.id = f.campaign ";
@@ -379,8 +396,9 @@ class DatabaseArchive final : public Archive {
       }
       throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
     }
-    FigureHistory history{instrument, figure, rows.front().text(4), {}};
+    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
     for (const auto& row : rows) history.points.push_back(point_from_row(row, history.unit));
+    take_limits(rows, history.unit, history.lower_limit, history.upper_limit);
     return history;
   }
 
@@ -396,21 +414,19 @@ class DatabaseArchive final : public Archive {
       throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
     }
     FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
-    std::string limits_tested_on;
-    for (const auto& row : rows) {
-      fleet.points.push_back(point_from_row(row, fleet.unit));
-      // The limits of the most recent campaign that set any.
-      if ((!row.is_null(6) || !row.is_null(7)) && row.text(0) >= limits_tested_on) {
-        limits_tested_on = row.text(0);
-        const std::string row_unit = row.text(4);
-        const auto in_unit = [&](std::optional<double> v) -> std::optional<double> {
-          return v ? std::optional<double>(convert(*v, row_unit, fleet.unit)) : std::nullopt;
-        };
-        fleet.lower_limit = in_unit(row.optional_real(6));
-        fleet.upper_limit = in_unit(row.optional_real(7));
-      }
-    }
+    for (const auto& row : rows) fleet.points.push_back(point_from_row(row, fleet.unit));
+    take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit);
     return fleet;
+  }
+
+  std::vector<std::string> figures(bool with_limits_only) override {
+    const auto rows = db_->query(
+        std::string("SELECT DISTINCT procedure, figure FROM figure") +
+        (with_limits_only ? " WHERE lower_limit IS NOT NULL OR upper_limit IS NOT NULL" : "") +
+        " ORDER BY procedure, figure");
+    std::vector<std::string> names;
+    for (const auto& row : rows) names.push_back(row.text(0) + "/" + row.text(1));
+    return names;
   }
 
   nlohmann::json results(const std::string& id) override {
@@ -435,7 +451,10 @@ nlohmann::json FigureHistory::to_json() const {
                     {"uncertainty", p.uncertainty ? nlohmann::json(*p.uncertainty) : nlohmann::json(nullptr)},
                     {"campaign", p.campaign}});
   }
-  return {{"instrument", instrument}, {"figure", figure}, {"unit", unit}, {"points", std::move(list)}};
+  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"instrument", instrument},         {"figure", figure},
+          {"unit", unit},                     {"points", std::move(list)},
+          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)}};
 }
 
 void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }

@@ -111,12 +111,19 @@ TEST_P(ArchiveBackend, AddListHistoryGiveBackExactlyWhatWasStored) {
   EXPECT_EQ(history.points[0].uncertainty, u1);
   EXPECT_EQ(history.points[0].campaign, second.id);
   EXPECT_EQ(history.points[1].value, k2);
+  EXPECT_EQ(history.lower_limit, 35999.0);  // the plans' limits on the figure
+  EXPECT_EQ(history.upper_limit, 36001.0);
+  EXPECT_EQ(archive->figures(true), std::vector<std::string>{"scale_factor/scale_factor"});
+  EXPECT_EQ(archive->figures(false),
+            (std::vector<std::string>{"bias_static/bias", "bias_static/noise/white", "scale_factor/nonlinearity",
+                                      "scale_factor/scale_factor"}));
   // A nested figure is named by its path of keys; one without uncertainty has none.
   const auto nested = archive->history("FOG-0417", "bias_static/noise/white");
   ASSERT_EQ(nested.points.size(), 2u);
   EXPECT_EQ(nested.points[0].value, 1e-3);
   EXPECT_FALSE(nested.points[0].uncertainty);
   EXPECT_EQ(nested.to_json()["points"][0]["uncertainty"], nullptr);
+  EXPECT_EQ(nested.to_json()["upper_limit"], nullptr);
 
   // The stored JSON is the file's, whole.
   EXPECT_EQ(archive->results(first.id), campaign("FOG-0417", "2026-03-02", k2, u1));

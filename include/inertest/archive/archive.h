@@ -51,8 +51,11 @@ struct FigureHistory {
   std::string figure;  // PROCEDURE/FIGURE
   std::string unit;
   std::vector<FigurePoint> points;
-  // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}]};
-  // "uncertainty" is null where none is known.
+  // The specification limits the campaigns' plans set on it (the latest test's), in unit.
+  std::optional<double> lower_limit;
+  std::optional<double> upper_limit;
+  // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}],
+  // "lower_limit", "upper_limit"}; "uncertainty" and the limits are null where none is known.
   nlohmann::json to_json() const;
 };
 
@@ -94,12 +97,30 @@ class Archive {
   // Throws Error when no campaign archived the figure.
   virtual FleetFigure fleet(const std::string& figure, const std::optional<std::string>& since) = 0;
 
+  // The figures (PROCEDURE/FIGURE) archived, sorted; only those some plan set limits on when
+  // with_limits_only.
+  virtual std::vector<std::string> figures(bool with_limits_only) = 0;
+
   // The stored results JSON of a campaign, exactly as added. Throws Error for an unknown id.
   virtual nlohmann::json results(const std::string& id) = 0;
 
   // "sqlite" or "postgresql".
   virtual std::string backend() const = 0;
 };
+
+// The fleet's view of one figure (`inertest archive fleet --json`): each instrument's latest
+// value, ordered by the instrument's first test (the order a batch came off the line),
+// {"figure", "unit", "since", "lower_limit", "upper_limit", "instruments": [{"instrument",
+// "value", "uncertainty", "tested_on", "campaign", "tests"}], "control_chart": {"center", "ucl",
+// "lcl", "moving_range_mean", "sigma", "out_of_control": [{"instrument", "value", "rule"}]} (null
+// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack)}.
+// The chart and indices: numerics/control_chart.h.
+nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since);
+
+// What the archive's report pages show (report/archive_pages.h): {"histories": [{"instrument",
+// "figures": [FigureHistory::to_json() of each of figures the instrument has]}], "fleet":
+// [fleet_summary of each figure]}.
+nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures);
 
 // Opens (creating it when needed, and migrating its schema) the archive at location: a
 // postgresql:// (or postgres://) URL, else a file path for SQLite. Throws Error when it cannot be

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
 
@@ -17,6 +18,7 @@ namespace inertest::archive {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // FIPS 180-2 appendix B.1 and B.2: the digests of "abc" and of the 448-bit two-block message.
 TEST(Sha256, PublishedExamples) {
@@ -402,6 +404,28 @@ TEST_P(ArchiveBackend, RunAddsItsResultsToTheArchive) {
   EXPECT_EQ(campaigns[0].instrument, written["instrument"]["id"]);
   EXPECT_EQ(campaigns[0].processed_at, written["processed_at"]);
   EXPECT_EQ(open()->results(campaigns[0].id), written);
+}
+
+// inertest archive report: the fleet page and one history page per instrument; by default the
+// figures some plan set limits on; an unknown figure is an error that writes nothing.
+TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
+  auto archive = open();
+  archive->add(campaign("FOG-A", "2026-01-01", 36000.0), "a");
+  archive->add(campaign("FOG-B", "2026-01-02", 36000.3), "b");
+  const auto run = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/pages", "--db", location_, "--lang", "zh"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* page : {"fleet.html", "history-FOG-A.html", "history-FOG-B.html"}) {
+    EXPECT_TRUE(std::filesystem::exists(scratch_.path() + "/pages/" + page)) << page;
+  }
+  std::ifstream fleet(scratch_.path() + "/pages/fleet.html");
+  const std::string text{std::istreambuf_iterator<char>(fleet), {}};
+  EXPECT_THAT(text, HasSubstr("scale_factor/scale_factor"));
+  EXPECT_THAT(text, Not(HasSubstr("scale_factor/nonlinearity")));  // no limits on it
+  const auto unknown = testing::run_cli(
+      {"archive", "report", "--out", scratch_.path() + "/none", "--figure", "x/y", "--db", location_});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("figure 'x/y' is not archived"));
+  EXPECT_FALSE(std::filesystem::exists(scratch_.path() + "/none"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),

@@ -22,6 +22,12 @@ done
 sudo=()
 if [[ $(id -u) -ne 0 ]]; then sudo=(sudo); fi
 echo "install-deps: installing ${missing[*]}" >&2
+# The tests start their own PostgreSQL server in a temporary directory: keep Debian's package from
+# creating (and starting) its default cluster.
+if [[ " ${missing[*]} " == *" postgresql "* && ! -d /var/lib/postgresql/15/main ]]; then
+  "${sudo[@]}" mkdir -p /etc/postgresql-common/createcluster.d
+  echo "create_main_cluster = false" | "${sudo[@]}" tee /etc/postgresql-common/createcluster.d/inertest.conf > /dev/null
+fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo[@]}" apt-get update -q
 "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -374,7 +374,9 @@ class DatabaseArchive final : public Archive {
   }
 
   FigureHistory history(const std::string& instrument, const std::string& figure) override {
-    const auto [procedure, name] = split_figure(figure);
+    const auto parts = split_figure(figure);  // not a structured binding: the lambda below captures it
+    const std::string& procedure = parts.first;
+    const std::string& name = parts.second;
     const auto rows = db_->query(std::string(figure_columns) +
                                      "WHERE c.instrument = $1 AND f.procedure = $2 AND f.figure = $3"
                                      " ORDER BY c.tested_on, c.processed_at, c.id",

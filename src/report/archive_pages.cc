@@ -41,7 +41,6 @@ constexpr PageWord page_words[] = {
     {"instrument_number", "instrument, in order of first test", "仪表（按首次测试顺序）"},
     {"rule.beyond_3_sigma", "beyond 3σ (rule 1)", "超出 3σ 控制限（准则 1）"},
     {"rule.8_on_one_side", "8 on one side of the center (rule 4)", "连续 8 点位于中心线同侧（准则 4）"},
-    {"none", "none", "无"},
     {"method", "Shewhart individuals chart: limits x̄ ± 3·MR̄/1.128 (NIST/SEMATECH e-Handbook 6.3.2.2), Western Electric rules 1 and 4; Cp = (USL − LSL)/6σ, Cpk = min(USL − x̄, x̄ − LSL)/3σ with σ = MR̄/1.128 (6.1.6); each instrument's latest value.",
      "休哈特单值控制图：控制限 x̄ ± 3·MR̄/1.128（NIST/SEMATECH 统计方法手册 6.3.2.2），西方电气准则 1 与 4；Cp = (USL − LSL)/6σ，Cpk = min(USL − x̄, x̄ − LSL)/3σ，σ = MR̄/1.128（6.1.6）；每台仪表取最近一次测试值。"},
 };

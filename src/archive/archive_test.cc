@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "archive/sha256.h"
+#include "inertest/demo/demo.h"
 #include "inertest/core/error.h"
 #include "test_util/postgresql_server.h"
 #include "test_util/test_util.h"
@@ -427,6 +428,44 @@ TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_THAT(unknown.err, HasSubstr("figure 'x/y' is not archived"));
   EXPECT_FALSE(std::filesystem::exists(scratch_.path() + "/none"));
+}
+
+// The demo's results.json (inertest demo), made once per test program.
+const std::string& demo_results() {
+  static const testing::ScratchDirectory dir;
+  static const std::string path = [] {
+    run_demo(dir.path() + "/demo");
+    return dir.path() + "/demo/results.json";
+  }();
+  return path;
+}
+
+// The acceptance: the demo's results added twice, then list and history give back exactly
+// the scale factor stored in results.json, as one campaign.
+TEST_P(ArchiveBackend, DemoResultsRoundTripExactly) {
+  for (int i = 0; i < 2; ++i) {
+    const auto added = testing::run_cli({"archive", "add", demo_results(), "--db", location_, "--json"});
+    ASSERT_EQ(added.exit_code, 0) << added.err;
+  }
+  const auto list = testing::run_cli({"archive", "list", "--db", location_, "--json"});
+  const auto campaigns = nlohmann::json::parse(list.out).at("campaigns");
+  ASSERT_EQ(campaigns.size(), 1u);
+  EXPECT_EQ(campaigns[0]["instrument"], "FOG-SIM-NAV");
+  const auto history = testing::run_cli(
+      {"archive", "history", "FOG-SIM-NAV", "--figure", "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(history.exit_code, 0) << history.err;
+  const auto points = nlohmann::json::parse(history.out).at("points");
+  ASSERT_EQ(points.size(), 1u);
+  const nlohmann::json results = read_results_file(demo_results());
+  int found = 0;
+  for (const auto& procedure : results.at("procedures")) {
+    if (procedure.at("name") != "scale_factor") continue;
+    ++found;
+    EXPECT_EQ(points[0]["value"], procedure.at("result").at("scale_factor").at("value"));
+    EXPECT_EQ(points[0]["uncertainty"], procedure.at("result").at("scale_factor").at("uncertainty"));
+  }
+  EXPECT_EQ(found, 1);
+  EXPECT_EQ(points[0]["campaign"], campaigns[0]["id"]);
 }
 
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),

@@ -3,7 +3,10 @@
 #include "inertest/archive/archive.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -251,23 +254,32 @@ TEST_P(ArchiveBackend, NewerSchemaIsRefused) {
   }
 }
 
-// Several processes add at once: every campaign is there after.
+// Several processes add at once: every campaign is there after. Each child process runs
+// `inertest archive add` (run_cli) and reports its exit; all start before any is waited for.
 TEST_P(ArchiveBackend, ConcurrentAddsFromSeveralProcessesLoseNothing) {
   constexpr int processes = 8;
-  std::string files;
+  std::vector<std::string> files;
   for (int i = 0; i < processes; ++i) {
-    files += fmt::format(" {}", scratch_.write(fmt::format("r{}.json", i),
-                                               campaign(fmt::format("FOG-{:02}", i), "2026-02-01", 36000.0 + i).dump()));
+    files.push_back(scratch_.write(fmt::format("r{}.json", i),
+                                   campaign(fmt::format("FOG-{:02}", i), "2026-02-01", 36000.0 + i).dump()));
   }
   // No open() before the race: the processes also race to create the schema (migrations are
   // serialised: SQLite's write lock, PostgreSQL's advisory lock).
-  const std::string script = fmt::format(
-      "pids=; for f in{}; do {} archive add \"$f\" --db '{}' > /dev/null 2>> {}/errors & pids=\"$pids $!\"; done; "
-      "status=0; for p in $pids; do wait $p || status=1; done; exit $status",
-      files, INERTEST_CLI_PATH, location_, scratch_.path());
-  EXPECT_EQ(std::system(script.c_str()), 0);
-  std::ifstream errors(scratch_.path() + "/errors");
-  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(errors), {}), "");
+  std::vector<pid_t> children;
+  for (const auto& file : files) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      const auto run = testing::run_cli({"archive", "add", file, "--db", location_});
+      if (run.exit_code != 0 || !run.err.empty()) std::fprintf(stderr, "%s", run.err.c_str());
+      ::_exit(run.exit_code == 0 && run.err.empty() ? 0 : 1);
+    }
+    children.push_back(pid);
+  }
+  for (const pid_t pid : children) {
+    int status = -1;
+    ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "a station's add failed";
+  }
   const auto all = open()->list(std::nullopt);
   ASSERT_EQ(all.size(), static_cast<std::size_t>(processes));
   for (int i = 0; i < processes; ++i) {

@@ -65,7 +65,10 @@ test-fuzz-short:
 
 demo: build
 	@$(BUILD_DIR)/bin/inertest demo --out demo > /dev/null; status=$$?; \
-	  echo "demo: report in demo/report.html (text: demo/report.txt), results with truth_check in demo/results.json"; exit $$status
+	  echo "demo: report in demo/report.html (text: demo/report.txt), results with truth_check in demo/results.json"; \
+	  [ $$status -eq 0 ] || exit $$status; \
+	  $(BUILD_DIR)/bin/inertest demo --fleet --out demo/fleet > /dev/null && \
+	  echo "demo: fleet archive in demo/fleet/archive.sqlite, pages demo/fleet/fleet.html and demo/fleet/history-*.html"
 
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null

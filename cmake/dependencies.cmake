@@ -7,3 +7,6 @@ find_package(FastFloat REQUIRED)
 find_package(tomlplusplus REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(Boost 1.74 REQUIRED)
+# The results archive: SQLite embedded, PostgreSQL (libpq) for a lab's shared server.
+find_package(SQLite3 REQUIRED)
+find_package(PostgreSQL REQUIRED)

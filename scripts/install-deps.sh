@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ccache pkg-config clang libclang-rt-14-dev llvm
   libeigen3-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libfast-float-dev
   libboost-dev
+  libsqlite3-dev libpq-dev postgresql
   libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-pandas python3-scipy python3-pytest python3-dev pybind11-dev
   chromium
@@ -21,6 +22,12 @@ done
 sudo=()
 if [[ $(id -u) -ne 0 ]]; then sudo=(sudo); fi
 echo "install-deps: installing ${missing[*]}" >&2
+# The tests start their own PostgreSQL server in a temporary directory: keep Debian's package from
+# creating (and starting) its default cluster.
+if [[ " ${missing[*]} " == *" postgresql "* && ! -d /var/lib/postgresql/15/main ]]; then
+  "${sudo[@]}" mkdir -p /etc/postgresql-common/createcluster.d
+  echo "create_main_cluster = false" | "${sudo[@]}" tee /etc/postgresql-common/createcluster.d/inertest.conf > /dev/null
+fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo[@]}" apt-get update -q
 "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

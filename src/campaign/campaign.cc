@@ -1,6 +1,9 @@
 #include "inertest/campaign/campaign.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -109,7 +112,7 @@ Plan load_plan(const std::string& path) {
 
   if (header) {
     plan.header = nlohmann::json::object();
-    for (const char* key : {"title", "date", "operator", "laboratory", "standard"}) {
+    for (const char* key : {"title", "date", "operator", "station", "laboratory", "standard"}) {
       if (auto value = header->optional_string(key)) plan.header[key] = *value;
     }
     header->require_all_used();
@@ -161,6 +164,23 @@ Plan load_plan(const std::string& path) {
     plan.steps.push_back(std::move(prepared));
   }
   return plan;
+}
+
+// When the results are processed, UTC ISO 8601 to the second. SOURCE_DATE_EPOCH (seconds since
+// 1970, the reproducible-builds convention) overrides the clock, so that a run can be made
+// byte-identical to another; the determinism tests set it.
+std::string processing_time() {
+  std::time_t seconds = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch != nullptr && *epoch != '\0') {
+    char* end = nullptr;
+    const long long value = std::strtoll(epoch, &end, 10);
+    if (*end != '\0' || value < 0) throw Error("SOURCE_DATE_EPOCH='" + std::string(epoch) + "': expected whole seconds since 1970");
+    seconds = static_cast<std::time_t>(value);
+  }
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
+                     utc.tm_hour, utc.tm_min, utc.tm_sec);
 }
 
 const nlohmann::json* find_figure(const nlohmann::json& result, const std::string& figure) {
@@ -236,9 +256,18 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   bool all_pass = true;
   for (const auto& v : verdicts) all_pass = all_pass && v.at("pass").get<bool>();
   const char* verdict = verdicts.empty() ? "NONE" : (all_pass ? "PASS" : "FAIL");
+  // When the test was done (the plan's date, else the day it is processed) and when processed:
+  // the archive orders a campaign's figures by the first and shows the second.
+  const std::string processed_at = processing_time();
+  const std::string tested_on = plan.header.is_object() && plan.header.contains("date")
+                                    ? plan.header.at("date").get<std::string>()
+                                    : processed_at.substr(0, 10);
   CampaignSummary summary;
   summary.results = {
+      {"results_schema_version", 1},
       {"inertest_version", version()},
+      {"tested_on", tested_on},
+      {"processed_at", processed_at},
       {"plan", plan.header.is_null() ? nlohmann::json::object() : plan.header},
       {"instrument", plan.context.instrument.to_json()},
       {"site", plan.context.site.to_json()},

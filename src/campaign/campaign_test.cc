@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -49,6 +50,31 @@ TEST(Campaign, RunsThePlanAndWritesResults) {
   EXPECT_EQ(results["verdict"], "FAIL");
   std::ifstream written(dir.path() + "/out/results.json");
   EXPECT_EQ(nlohmann::json::parse(written), results);
+}
+
+// When the test was done and when processed (the archive's ordering and its display): the plan's
+// date, operator and station; processed_at in UTC ISO 8601, pinned by SOURCE_DATE_EPOCH.
+TEST(Campaign, ResultsCarryTestDateAndProcessingTime) {
+  testing::ScratchDirectory dir;
+  dir.write("points.csv", kPoints);
+  const std::string plan = dir.write(
+      "plan.toml", "[plan]\ndate = \"2026-03-04\"\noperator = \"Li Wei\"\nstation = \"rate table 2\"\n\n" + plan_text(""));
+  ::setenv("SOURCE_DATE_EPOCH", "1700000000", 1);  // 2023-11-14 22:13:20 UTC
+  const auto summary = run_campaign(plan, dir.path() + "/out");
+  ::unsetenv("SOURCE_DATE_EPOCH");
+  EXPECT_EQ(summary.results["tested_on"], "2026-03-04");
+  EXPECT_EQ(summary.results["processed_at"], "2023-11-14T22:13:20Z");
+  EXPECT_EQ(summary.results["plan"]["operator"], "Li Wei");
+  EXPECT_EQ(summary.results["plan"]["station"], "rate table 2");
+  EXPECT_EQ(summary.results["results_schema_version"], 1);
+
+  // Without a plan date the test date is the day of processing.
+  const std::string undated = dir.write("undated.toml", plan_text(""));
+  ::setenv("SOURCE_DATE_EPOCH", "0", 1);
+  const auto undated_summary = run_campaign(undated, dir.path() + "/undated");
+  ::unsetenv("SOURCE_DATE_EPOCH");
+  EXPECT_EQ(undated_summary.results["tested_on"], "1970-01-01");
+  EXPECT_EQ(undated_summary.results["processed_at"], "1970-01-01T00:00:00Z");
 }
 
 TEST(Campaign, LimitsConvertUnits) {

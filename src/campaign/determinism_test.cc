@@ -1,5 +1,6 @@
 // The same plan and data give a byte-identical results.json, run after run and whatever the
-// number of threads reading the records (INERTEST_THREADS).
+// number of threads reading the records (INERTEST_THREADS). The processing time stamp is pinned
+// with SOURCE_DATE_EPOCH (campaign.cc), the one thing that may differ between two runs.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -23,8 +24,10 @@ std::string read_bytes(const std::string& path) {
 // results.json of running the plan with the given number of reader threads.
 std::string results_with_threads(const std::string& plan, const std::string& out, const char* threads) {
   ::setenv("INERTEST_THREADS", threads, 1);
+  ::setenv("SOURCE_DATE_EPOCH", "1700000000", 1);
   run_campaign(plan, out);
   ::unsetenv("INERTEST_THREADS");
+  ::unsetenv("SOURCE_DATE_EPOCH");
   return read_bytes(out + "/results.json");
 }
 

@@ -1,9 +1,10 @@
-// inertest demo --out DIR
+// inertest demo --out DIR [--fleet]
 #include <cstdio>
 #include <fmt/format.h>
 
 #include "command.h"
 #include "inertest/demo/demo.h"
+#include "inertest/demo/fleet_demo.h"
 
 namespace inertest::cli {
 namespace {
@@ -13,6 +14,7 @@ struct Arguments {
   std::string plan;
   std::string lang = "en";
   bool json = false;
+  bool fleet = false;
 };
 
 CommandAction setup(CLI::App& root) {
@@ -29,7 +31,18 @@ CommandAction setup(CLI::App& root) {
   command->add_option("--lang", arguments->lang, "language of report.html: en or zh (GJB terms)")
       ->check(CLI::IsMember({"en", "zh"}));
   command->add_flag("--json", arguments->json, "print results.json on stdout");
+  command->add_flag("--fleet", arguments->fleet,
+                    "instead: a production batch of 12 simulated gyros (3 out of specification), each tested on 3\n"
+                    "days, archived into DIR/archive.sqlite; writes DIR/fleet.html and DIR/history-<ID>.html");
   return [arguments] {
+    if (arguments->fleet) {
+      FleetDemoOptions fleet_options;
+      fleet_options.report = {report::parse_language(arguments->lang), report::current_date()};
+      fleet_options.progress = terminal_progress();
+      const FleetDemoSummary summary = run_fleet_demo(arguments->out, fleet_options);
+      print_result(summary.fleet, summary.report(), arguments->json);
+      return 0;
+    }
     DemoOptions options;
     options.simulation_plan = arguments->plan;
     options.report = {report::parse_language(arguments->lang), report::current_date()};

@@ -1,6 +1,7 @@
-// inertest run PLAN.toml --out DIR
+// inertest run PLAN.toml --out DIR [--archive [DB]]
 #include <fmt/format.h>
 
+#include "archive_command.h"
 #include "command.h"
 #include "inertest/campaign/campaign.h"
 #include "inertest/report/report.h"
@@ -12,6 +13,7 @@ struct Arguments {
   std::string plan;
   std::string out;
   std::string lang = "en";
+  std::string archive;
   bool json = false;
 };
 
@@ -27,12 +29,22 @@ CommandAction setup(CLI::App& root) {
   command->add_option("--lang", arguments->lang, "language of the report: en or zh (GJB terms)")
       ->check(CLI::IsMember({"en", "zh"}));
   command->add_flag("--json", arguments->json, "print results.json on stdout as well");
-  return [arguments] {
+  CLI::Option* archive_option =
+      command->add_option("--archive", arguments->archive,
+                          "add the results to the archive DB (a file or a postgresql:// URL; without DB, "
+                          "$INERTEST_DB, else ~/.local/share/inertest/archive.sqlite)")
+          ->expected(0, 1);
+  return [arguments, archive_option] {
     CampaignOptions options;
     options.progress = terminal_progress();
     const CampaignSummary summary = run_campaign(arguments->plan, arguments->out, options);
     const std::string report_path = report::write_report(
         summary.results, arguments->out, {report::parse_language(arguments->lang), report::current_date()});
+    if (archive_option->count() > 0) {
+      const auto outcome =
+          open_archive_option(arguments->archive)->add(summary.results, summary.written_files.front());
+      fmt::print(stderr, "{} the archive as campaign {}\n", outcome.added ? "added to" : "already in", outcome.id);
+    }
     print_result(summary.results, summary.report(), arguments->json);
     if (!arguments->json) fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(), report_path);
     return 0;

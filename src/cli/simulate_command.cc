@@ -1,4 +1,5 @@
-// inertest simulate PLAN.toml --out DIR
+// inertest simulate PLAN.toml --out DIR [--seed N] [--instrument ID] [--date YYYY-MM-DD]
+#include <cstdint>
 #include <fmt/format.h>
 
 #include "command.h"
@@ -10,6 +11,9 @@ namespace {
 struct Arguments {
   std::string plan;
   std::string out;
+  std::uint64_t seed = 0;
+  std::string instrument;
+  std::string date;
 };
 
 CommandAction setup(CLI::App& root) {
@@ -23,9 +27,15 @@ CommandAction setup(CLI::App& root) {
       "step in plan.toml ([procedure.limits]), which inertest run checks (a PASS/FAIL verdict per limit).");
   command->add_option("PLAN", arguments->plan, "simulation plan, TOML")->required();
   command->add_option("--out", arguments->out, "output directory")->required();
-  return [arguments] {
+  CLI::Option* seed = command->add_option("--seed", arguments->seed, "seed instead of the plan's (one instrument of a batch)");
+  command->add_option("--instrument", arguments->instrument, "the gyro's id instead of the plan's");
+  command->add_option("--date", arguments->date, "test date written into the processing plan, YYYY-MM-DD");
+  return [arguments, seed] {
     sim::SimulationOptions options;
     options.progress = terminal_progress();
+    if (seed->count() > 0) options.seed = arguments->seed;
+    options.instrument_id = arguments->instrument;
+    options.date = arguments->date;
     const sim::SimulationSummary summary = sim::simulate(arguments->plan, arguments->out, options);
     fmt::print(stderr, "{} files written; processing plan: {}\n", summary.written_files.size(), summary.plan_path);
     return 0;

@@ -143,12 +143,21 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   lab.progress = options.progress;
   const double seed = top.number("seed");
   if (seed < 0 || seed != std::floor(seed) || seed > 9.007199254740992e15) top.fail_at("seed", "must be a whole number >= 0");
-  lab.seed = static_cast<std::uint64_t>(seed);
+  lab.seed = options.seed.value_or(static_cast<std::uint64_t>(seed));
   std::string title = "simulated test campaign";
+  std::string date = options.date;
   if (auto header = top.optional_table("plan")) {
     title = header->string_or("title", title);
+    const std::string plan_date = header->string_or("date", "");
+    if (date.empty()) date = plan_date;
     header->require_all_used();
   }
+  const bool date_ok = date.empty() || (date.size() == 10 && std::all_of(date.begin(), date.end(), [i = 0](char c) mutable {
+                                          const bool dash = (i == 4 || i == 7);
+                                          ++i;
+                                          return dash ? c == '-' : (c >= '0' && c <= '9');
+                                        }));
+  if (!date_ok) throw Error(SourceLocation{source, 0, 0}, "test date '" + date + "': expected YYYY-MM-DD");
   if (auto site = top.optional_table("site")) {
     lab.site_name = site->string_or("name", "");
     lab.site.latitude_deg = site->number_or("latitude_deg", 0.0);
@@ -162,6 +171,13 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   auto gyro = top.optional_table("gyro");
   if (!gyro) top.fail("missing [gyro] table");
   read_gyro(*gyro, lab.gyro);
+  if (!options.instrument_id.empty()) {
+    const bool id_ok = std::all_of(options.instrument_id.begin(), options.instrument_id.end(), [](char c) {
+      return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
+    });
+    if (!id_ok) throw Error("instrument id '" + options.instrument_id + "': use letters, digits, '-', '_' and '.' only");
+    lab.gyro.id = options.instrument_id;
+  }
   if (auto table = top.optional_table("rate_table")) {
     const auto tilt = pair_or(*table, "tilt_arcsec", {0, 0});
     const auto face = pair_or(*table, "face_arcsec", {0, 0});
@@ -248,10 +264,10 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   std::string plan = fmt::format(
       "# Processing plan written by inertest simulate (seed {}): run it with\n"
       "#   inertest run plan.toml --out results\n"
-      "[plan]\ntitle = \"{}\"\n\n[instrument]\nid = \"{}\"\ntype = \"gyro\"\noutput_unit = \"{}\"\n"
+      "[plan]\ntitle = \"{}\"\n{}\n[instrument]\nid = \"{}\"\ntype = \"gyro\"\noutput_unit = \"{}\"\n"
       "nominal_scale_factor = {}\nsample_rate_hz = {}\n\n[site]\nname = \"{}\"\nlatitude_deg = {}\n"
       "gravity_m_s2 = {}\n\n",
-      lab.seed, title, g.id, g.output_unit, exact(g.scale_factor), exact(g.sample_rate_hz), lab.site_name,
+      lab.seed, title, date.empty() ? std::string() : "date = \"" + date + "\"\n", g.id, g.output_unit, exact(g.scale_factor), exact(g.sample_rate_hz), lab.site_name,
       exact(lab.site.latitude_deg), exact(lab.site.gravity_m_s2));
   plan += lab.plan_steps;
   SimulationSummary summary;

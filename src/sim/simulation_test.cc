@@ -94,6 +94,33 @@ TEST(SimSimulate, WritesRecordsPlanAndTruth) {
   EXPECT_EQ(std::count(points.begin(), points.end(), '\n'), 2 + 2 + 6);
 }
 
+// One plan, a batch: the seed, the instrument id and the test date come from the options.
+TEST(SimSimulate, SeedInstrumentAndDateOverrideThePlan) {
+  ScratchDirectory a;
+  ScratchDirectory b;
+  SimulationOptions options;
+  options.seed = 8;
+  options.instrument_id = "FOG-0417";
+  options.date = "2026-03-04";
+  const SimulationSummary overridden = simulate_text(kSmallPlan, "small", a.path(), options);
+  EXPECT_EQ(overridden.truth.at("seed"), 8);
+  const std::string plan = read(overridden.plan_path);
+  EXPECT_NE(plan.find("id = \"FOG-0417\""), std::string::npos) << plan;
+  EXPECT_NE(plan.find("date = \"2026-03-04\""), std::string::npos) << plan;
+  // The same records as the plan with seed = 8 written in it.
+  std::string other = kSmallPlan;
+  other.replace(other.find("seed = 7"), 8, "seed = 8");
+  simulate_text(other, "small", b.path());
+  EXPECT_EQ(read(a.path() + "/bias.f64"), read(b.path() + "/bias.f64"));
+
+  SimulationOptions bad_id;
+  bad_id.instrument_id = "FOG \"1\"";
+  EXPECT_THROW(simulate_text(kSmallPlan, "small", a.path() + "/x", bad_id), Error);
+  SimulationOptions bad_date;
+  bad_date.date = "04/03/2026";
+  EXPECT_THROW(simulate_text(kSmallPlan, "small", a.path() + "/y", bad_date), Error);
+}
+
 void expect_plan_error(const std::string& text, const std::string& fragment, std::size_t line) {
   ScratchDirectory dir;
   try {

@@ -8,7 +8,7 @@
 //
 // Simulation plan:
 //   seed = 20240601                        # same seed, byte-identical files
-//   [plan] title = "..."                   # optional
+//   [plan] title = "...", date = "YYYY-MM-DD"  # optional; the date goes into the processing plan
 //   [site] name, latitude_deg, gravity_m_s2 (default: WGS 84 normal gravity)
 //   [gyro] the GyroParameters keys (gyro_model.h), [gyro.drift] DI ... DOS
 //   [accelerometer] id, output_unit, sample_rate_hz, scale_factor, bias_mg, misalignment_arcsec,
@@ -31,6 +31,8 @@
 // "tolerance_sigmas" where the tolerance is that many times the uncertainty the procedure reports.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +45,12 @@ namespace inertest::sim {
 
 struct SimulationOptions {
   ProgressCallback progress;
+  // Overrides of the plan, so that one plan simulates a batch (`inertest simulate --seed
+  // --instrument --date`, `inertest demo --fleet`): the seed, the gyro's id (letters, digits,
+  // '-', '_', '.') and the test date (YYYY-MM-DD) written into the processing plan.
+  std::optional<std::uint64_t> seed;
+  std::string instrument_id;
+  std::string date;
 };
 
 struct SimulationSummary {

@@ -1,0 +1,139 @@
+// The results archive: every campaign's results.json stored whole, plus one row per figure
+// (campaign, procedure, figure, value, unit, uncertainty, verdict) for queries across days and
+// across a fleet. One interface, two back-ends: SQLite (one file, WAL mode, the embedded default)
+// and PostgreSQL (libpq; one server shared by a lab's test stations).
+//
+// The archive knows results, not procedures: a figure is any object {"value": number, "unit":
+// string} inside a procedure's "result", named PROCEDURE/FIGURE as in results.json (the step's
+// name, then the keys down to the figure, e.g. "scale_factor/scale_factor").
+//
+// Contract: the schema is versioned and migrated on open; an add is one transaction (a process
+// killed mid-add leaves the archive as it was); a campaign is identified by its content (the
+// results JSON without its "processed_at" stamp), so adding it twice stores it once; several
+// processes may add at once (SQLite: busy wait on the write lock; PostgreSQL: row locks and a
+// unique key). Every query is parameterised.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace inertest::archive {
+
+// The schema version this inertest writes and reads (migrations bring older archives up to it).
+inline constexpr int schema_version = 1;
+
+// One archived campaign, as `archive list` shows it.
+struct CampaignEntry {
+  std::string id;            // content hash (16 hex digits)
+  std::string instrument;    // instrument.id
+  std::string title;         // plan.title, "" when the plan has none
+  std::string tested_on;     // when the test was done (results.json "tested_on")
+  std::string processed_at;  // when it was processed, UTC ISO 8601
+  std::string verdict;       // PASS, FAIL or NONE
+};
+
+// One archived value of a figure.
+struct FigurePoint {
+  std::string tested_on;
+  double value = 0.0;
+  std::optional<double> uncertainty;  // 1 sigma, in the figure's unit
+  std::string campaign;               // CampaignEntry::id
+  std::string instrument;
+};
+
+// The values of one figure for one instrument, oldest test first.
+struct FigureHistory {
+  std::string instrument;
+  std::string figure;  // PROCEDURE/FIGURE
+  std::string unit;
+  std::vector<FigurePoint> points;
+  // The specification limits the campaigns' plans set on it (the latest test's), in unit.
+  std::optional<double> lower_limit;
+  std::optional<double> upper_limit;
+  // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}],
+  // "lower_limit", "upper_limit"}; "uncertainty" and the limits are null where none is known.
+  nlohmann::json to_json() const;
+};
+
+// The values of one figure across every instrument (optionally tested on or after a date),
+// ordered by instrument then test date, with the specification limits the campaigns' plans set
+// on it (the last campaign's, when they differ).
+struct FleetFigure {
+  std::string figure;
+  std::string unit;
+  std::vector<FigurePoint> points;
+  std::optional<double> lower_limit;
+  std::optional<double> upper_limit;
+};
+
+// What one add did.
+struct AddOutcome {
+  std::string id;
+  std::string instrument;
+  bool added = false;  // false: the same content was already archived
+};
+
+class Archive {
+ public:
+  virtual ~Archive() = default;
+
+  // Adds a campaign's results (results.json parsed); source names the file in error messages.
+  // Throws Error, changing nothing, when the results are malformed (a missing or mistyped key, a
+  // results_schema_version this inertest does not know, a figure without a finite value or unit).
+  virtual AddOutcome add(const nlohmann::json& results, const std::string& source) = 0;
+
+  // Campaigns, oldest test first; only the instrument's when instrument is given.
+  virtual std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) = 0;
+
+  // The archived values of figure (PROCEDURE/FIGURE) for instrument. Throws Error when the
+  // instrument or the figure is not in the archive (the message lists the figures that are).
+  virtual FigureHistory history(const std::string& instrument, const std::string& figure) = 0;
+
+  // The values of figure across the fleet, from tests on or after since (YYYY-MM-DD) when given.
+  // Throws Error when no campaign archived the figure.
+  virtual FleetFigure fleet(const std::string& figure, const std::optional<std::string>& since) = 0;
+
+  // The figures (PROCEDURE/FIGURE) archived, sorted; only those some plan set limits on when
+  // with_limits_only.
+  virtual std::vector<std::string> figures(bool with_limits_only) = 0;
+
+  // The stored results JSON of a campaign, exactly as added. Throws Error for an unknown id.
+  virtual nlohmann::json results(const std::string& id) = 0;
+
+  // "sqlite" or "postgresql".
+  virtual std::string backend() const = 0;
+};
+
+// The fleet's view of one figure (`inertest archive fleet --json`): each instrument's latest
+// value, ordered by the instrument's first test (the order a batch came off the line),
+// {"figure", "unit", "since", "lower_limit", "upper_limit", "instruments": [{"instrument",
+// "value", "uncertainty", "tested_on", "campaign", "tests"}], "control_chart": {"center", "ucl",
+// "lcl", "moving_range_mean", "sigma", "out_of_control": [{"instrument", "value", "rule"}]} (null
+// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack)}.
+// The chart and indices: numerics/control_chart.h.
+nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since);
+
+// What the archive's report pages show (report/archive_pages.h): {"histories": [{"instrument",
+// "figures": [FigureHistory::to_json() of each of figures the instrument has]}], "fleet":
+// [fleet_summary of each figure]}.
+nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures);
+
+// Opens (creating it when needed, and migrating its schema) the archive at location: a
+// postgresql:// (or postgres://) URL, else a file path for SQLite. Throws Error when it cannot be
+// opened or its schema is newer than this inertest.
+std::unique_ptr<Archive> open_archive(const std::string& location);
+
+// Where the archive is when --db is not given: $INERTEST_DB, else ~/.local/share/inertest/archive.sqlite.
+std::string default_archive_location();
+
+// Checks results as add() does (throws the same Error) without touching any archive.
+void check_results(const nlohmann::json& results, const std::string& source);
+
+// Reads and parses a results.json; a syntax error names the file, line and column.
+nlohmann::json read_results_file(const std::string& path);
+
+}  // namespace inertest::archive

@@ -1,0 +1,502 @@
+// The archive over either back-end: the schema and its migrations, reading a results.json into a
+// campaign row and figure rows, and the queries. Every value reaches the SQL as a parameter.
+#include "inertest/archive/archive.h"
+
+#include <algorithm>
+#include <csignal>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+#include <fast_float/fast_float.h>
+#include <fmt/format.h>
+
+#include "archive/database.h"
+#include "archive/sha256.h"
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+
+namespace inertest::archive {
+
+// ---- Row accessors: SQLite hands back typed values, PostgreSQL text. ----
+
+std::string Row::text(std::size_t i) const {
+  const Value& v = columns.at(i);
+  if (const auto* s = std::get_if<std::string>(&v)) return *s;
+  if (const auto* d = std::get_if<double>(&v)) return fmt::format("{}", *d);
+  if (const auto* n = std::get_if<std::int64_t>(&v)) return std::to_string(*n);
+  return "";
+}
+
+double Row::real(std::size_t i) const {
+  const Value& v = columns.at(i);
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* n = std::get_if<std::int64_t>(&v)) return static_cast<double>(*n);
+  if (const auto* s = std::get_if<std::string>(&v)) {
+    double value = 0.0;
+    const auto [end, error] = fast_float::from_chars(s->data(), s->data() + s->size(), value);
+    if (error == std::errc() && end == s->data() + s->size()) return value;
+    throw Error("archive: '" + *s + "' is not a number");
+  }
+  throw Error("archive: a number is missing");
+}
+
+std::optional<double> Row::optional_real(std::size_t i) const {
+  if (is_null(i)) return std::nullopt;
+  return real(i);
+}
+
+std::int64_t Row::integer(std::size_t i) const {
+  const Value& v = columns.at(i);
+  if (const auto* n = std::get_if<std::int64_t>(&v)) return *n;
+  if (const auto* s = std::get_if<std::string>(&v)) return std::stoll(*s);
+  throw Error("archive: an integer is missing");
+}
+
+namespace {
+
+// ---- The schema. Migration i brings version i to version i + 1; never edit a released one. ----
+
+const std::vector<std::vector<std::string>> migrations = {
+    {
+        // Version 1: campaigns stored whole, one row per figure.
+        "CREATE TABLE campaign ("
+        " id TEXT PRIMARY KEY,"
+        " instrument TEXT NOT NULL,"
+        " title TEXT NOT NULL,"
+        " tested_on TEXT NOT NULL,"
+        " processed_at TEXT NOT NULL,"
+        " operator TEXT,"
+        " station TEXT,"
+        " verdict TEXT NOT NULL,"
+        " inertest_version TEXT NOT NULL,"
+        " results TEXT NOT NULL)",
+        "CREATE INDEX campaign_by_instrument ON campaign (instrument, tested_on)",
+        "CREATE TABLE figure ("
+        " campaign TEXT NOT NULL REFERENCES campaign (id),"
+        " procedure TEXT NOT NULL,"
+        " figure TEXT NOT NULL,"
+        " value DOUBLE PRECISION NOT NULL,"
+        " unit TEXT NOT NULL,"
+        " uncertainty DOUBLE PRECISION,"
+        " verdict TEXT,"
+        " lower_limit DOUBLE PRECISION,"
+        " upper_limit DOUBLE PRECISION,"
+        " PRIMARY KEY (campaign, procedure, figure))",
+        "CREATE INDEX figure_by_name ON figure (procedure, figure)",
+    },
+};
+static_assert(schema_version == 1, "one migration per schema version");
+
+void migrate(Database& db, const std::string& location) {
+  Transaction transaction(db, true);  // one process migrates; the others wait, then find it done
+  db.query("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
+  const auto rows = db.query("SELECT MAX(version) FROM schema_version");
+  const std::int64_t current = rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
+  if (current > schema_version) {
+    throw Error(SourceLocation{location, 0, 0},
+                fmt::format("the archive's schema version is {}, newer than this inertest knows ({}): "
+                            "use a newer inertest",
+                            current, schema_version));
+  }
+  for (std::int64_t version = current; version < schema_version; ++version) {
+    for (const auto& statement : migrations[static_cast<std::size_t>(version)]) db.query(statement);
+  }
+  if (current < schema_version) {
+    db.query("DELETE FROM schema_version");
+    db.query("INSERT INTO schema_version (version) VALUES ($1)", {std::int64_t{schema_version}});
+  }
+  transaction.commit();
+}
+
+// ---- Reading results.json ----
+
+// The results_schema_version this inertest reads (campaign.cc writes it; absent means 1).
+constexpr int results_schema_version = 1;
+
+struct FigureRow {
+  std::string procedure;
+  std::string figure;
+  double value = 0.0;
+  std::string unit;
+  std::optional<double> uncertainty;
+  std::optional<std::string> verdict;
+  std::optional<double> lower_limit;
+  std::optional<double> upper_limit;
+};
+
+struct CampaignRecord {
+  CampaignEntry entry;
+  std::string operator_name;
+  std::string station;
+  std::string inertest_version;
+  std::string results_text;
+  std::vector<FigureRow> figures;
+};
+
+[[noreturn]] void malformed(const std::string& source, const std::string& message) {
+  throw Error(SourceLocation{source, 0, 0}, "not an inertest results file: " + message);
+}
+
+const nlohmann::json& member(const nlohmann::json& object, const char* key, nlohmann::json::value_t type,
+                             const std::string& source, const std::string& where) {
+  const auto it = object.find(key);
+  const bool ok = it != object.end() && (it->type() == type || (type == nlohmann::json::value_t::number_integer &&
+                                                                it->is_number_unsigned()));
+  if (!ok) malformed(source, fmt::format("{}\"{}\" {}", where, key, it == object.end() ? "is missing" : "has the wrong type"));
+  return *it;
+}
+
+std::optional<std::string> optional_string(const nlohmann::json& object, const char* key, const std::string& source) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  if (!it->is_string()) malformed(source, fmt::format("\"{}\" must be a string", key));
+  return it->get<std::string>();
+}
+
+// A test date is YYYY-MM-DD, optionally followed by a time: what sorts and compares as text.
+bool is_iso_date(const std::string& text) {
+  if (text.size() < 10 || text[4] != '-' || text[7] != '-') return false;
+  for (const int i : {0, 1, 2, 3, 5, 6, 8, 9}) {
+    if (text[static_cast<std::size_t>(i)] < '0' || text[static_cast<std::size_t>(i)] > '9') return false;
+  }
+  return true;
+}
+
+// Every {"value": number, "unit": string} object under result, named by its path of keys.
+void collect_figures(const nlohmann::json& node, const std::string& procedure, const std::string& path,
+                     const std::string& source, std::vector<FigureRow>& out) {
+  if (!node.is_object()) return;
+  if (node.contains("value") && node.contains("unit") && node.at("unit").is_string()) {
+    const auto& value = node.at("value");
+    if (value.is_null()) return;  // a figure the procedure could not compute (NaN is written null)
+    if (!value.is_number()) malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
+    FigureRow row;
+    row.procedure = procedure;
+    row.figure = path;
+    row.value = value.get<double>();
+    row.unit = node.at("unit").get<std::string>();
+    if (const auto it = node.find("uncertainty"); it != node.end() && it->is_number()) row.uncertainty = it->get<double>();
+    out.push_back(std::move(row));
+    return;
+  }
+  for (const auto& [key, child] : node.items()) {
+    if (key.find('/') != std::string::npos) continue;  // not nameable as PROCEDURE/FIGURE
+    collect_figures(child, procedure, path.empty() ? key : path + "/" + key, source, out);
+  }
+}
+
+CampaignRecord read_campaign(const nlohmann::json& results, const std::string& source) {
+  using type = nlohmann::json::value_t;
+  if (!results.is_object()) malformed(source, "expected a JSON object");
+  if (const auto it = results.find("results_schema_version"); it != results.end()) {
+    if (!it->is_number_integer() || it->get<std::int64_t>() != results_schema_version) {
+      throw Error(SourceLocation{source, 0, 0},
+                  fmt::format("results_schema_version {} is not one this inertest reads ({})", it->dump(),
+                              results_schema_version));
+    }
+  }
+  CampaignRecord record;
+  record.inertest_version = member(results, "inertest_version", type::string, source, "").get<std::string>();
+  const auto& instrument = member(results, "instrument", type::object, source, "");
+  record.entry.instrument = member(instrument, "id", type::string, source, "instrument: ").get<std::string>();
+  if (record.entry.instrument.empty()) malformed(source, "instrument: \"id\" is empty");
+  record.entry.verdict = member(results, "verdict", type::string, source, "").get<std::string>();
+  if (record.entry.verdict != "PASS" && record.entry.verdict != "FAIL" && record.entry.verdict != "NONE") {
+    malformed(source, "\"verdict\" must be PASS, FAIL or NONE, not '" + record.entry.verdict + "'");
+  }
+  const nlohmann::json plan = results.contains("plan") ? member(results, "plan", type::object, source, "")
+                                                        : nlohmann::json::object();
+  record.entry.title = optional_string(plan, "title", source).value_or("");
+  record.operator_name = optional_string(plan, "operator", source).value_or("");
+  record.station = optional_string(plan, "station", source).value_or("");
+  record.entry.processed_at = optional_string(results, "processed_at", source).value_or("");
+  // When the test was done: results.json "tested_on", else the plan's date, else the day it was
+  // processed (results written before tested_on existed).
+  record.entry.tested_on = optional_string(results, "tested_on", source)
+                               .value_or(optional_string(plan, "date", source)
+                                             .value_or(record.entry.processed_at.substr(0, std::min<std::size_t>(
+                                                                                         10, record.entry.processed_at.size()))));
+  if (!is_iso_date(record.entry.tested_on)) {
+    malformed(source, "the test date '" + record.entry.tested_on + "' is not YYYY-MM-DD (\"tested_on\" or plan \"date\")");
+  }
+
+  // Limits and verdicts, keyed by procedure and figure (a plan names a limit by key or JSON pointer).
+  std::map<std::pair<std::string, std::string>, const nlohmann::json*> verdicts;
+  if (results.contains("verdicts")) {
+    for (const auto& verdict : member(results, "verdicts", type::array, source, "")) {
+      if (!verdict.is_object()) malformed(source, "\"verdicts\": each entry must be an object");
+      std::string figure = member(verdict, "figure", type::string, source, "verdicts: ").get<std::string>();
+      if (!figure.empty() && figure.front() == '/') figure.erase(0, 1);
+      verdicts[{member(verdict, "procedure", type::string, source, "verdicts: ").get<std::string>(), figure}] = &verdict;
+      member(verdict, "pass", type::boolean, source, "verdicts: ");
+    }
+  }
+
+  for (const auto& procedure : member(results, "procedures", type::array, source, "")) {
+    if (!procedure.is_object()) malformed(source, "\"procedures\": each entry must be an object");
+    const std::string name = member(procedure, "name", type::string, source, "procedures: ").get<std::string>();
+    if (name.empty() || name.find('/') != std::string::npos) {
+      malformed(source, "procedure name '" + name + "' is empty or contains '/'");
+    }
+    collect_figures(member(procedure, "result", type::object, source, "procedure '" + name + "': "), name, "", source,
+                    record.figures);
+  }
+  for (auto& row : record.figures) {
+    const auto it = verdicts.find({row.procedure, row.figure});
+    if (it == verdicts.end()) continue;
+    const nlohmann::json& verdict = *it->second;
+    row.verdict = verdict.at("pass").get<bool>() ? "PASS" : "FAIL";
+    // The limits in the figure's unit (the plan may state them in another).
+    const std::string limit_unit = verdict.value("unit", row.unit);
+    try {
+      if (verdict.contains("min") && verdict.at("min").is_number()) {
+        row.lower_limit = convert(verdict.at("min").get<double>(), limit_unit, row.unit);
+      }
+      if (verdict.contains("max") && verdict.at("max").is_number()) {
+        row.upper_limit = convert(verdict.at("max").get<double>(), limit_unit, row.unit);
+      }
+    } catch (const Error& e) {
+      malformed(source, "limit on '" + row.procedure + "/" + row.figure + "': " + e.message());
+    }
+  }
+
+  // The identity is the content, less the moment it was processed: the same file added twice,
+  // or the same records processed again by the same inertest, is one campaign.
+  nlohmann::json content = results;
+  content.erase("processed_at");
+  record.entry.id = sha256_hex(content.dump()).substr(0, 16);
+  record.results_text = results.dump();
+  return record;
+}
+
+// PROCEDURE/FIGURE split at the first '/'.
+std::pair<std::string, std::string> split_figure(const std::string& name) {
+  const auto slash = name.find('/');
+  if (slash == std::string::npos || slash == 0 || slash + 1 == name.size()) {
+    throw Error("figure '" + name + "': name it PROCEDURE/FIGURE as in results.json, e.g. scale_factor/scale_factor");
+  }
+  return {name.substr(0, slash), name.substr(slash + 1)};
+}
+
+// Points converted into unit (the first point's), value and uncertainty alike.
+FigurePoint point_from_row(const Row& row, const std::string& unit) {
+  FigurePoint point;
+  point.tested_on = row.text(0);
+  point.value = row.real(1);
+  point.uncertainty = row.optional_real(2);
+  point.campaign = row.text(3);
+  point.instrument = row.text(5);
+  const std::string row_unit = row.text(4);
+  if (row_unit != unit) {
+    point.value = convert(point.value, row_unit, unit);
+    if (point.uncertainty) point.uncertainty = std::abs(convert(*point.uncertainty, row_unit, unit) - convert(0.0, row_unit, unit));
+  }
+  return point;
+}
+
+// The limits of the latest test that set any, converted into unit (rows ordered by test date
+// within an instrument; across instruments the latest date wins).
+void take_limits(const std::vector<Row>& rows, const std::string& unit, std::optional<double>& lower,
+                 std::optional<double>& upper) {
+  std::string limits_tested_on;
+  for (const auto& row : rows) {
+    if ((row.is_null(6) && row.is_null(7)) || row.text(0) < limits_tested_on) continue;
+    limits_tested_on = row.text(0);
+    const std::string row_unit = row.text(4);
+    const auto in_unit = [&](std::optional<double> v) -> std::optional<double> {
+      return v ? std::optional<double>(convert(*v, row_unit, unit)) : std::nullopt;
+    };
+    lower = in_unit(row.optional_real(6));
+    upper = in_unit(row.optional_real(7));
+  }
+}
+
+constexpr const char* figure_columns =
+    "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit "
+    "FROM figure f JOIN campaign c ON c.id = f.campaign ";
+
+// Fault injection for the kill test (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N
+// makes an add kill its own process (SIGKILL: no clean-up, as a power cut or `kill -9`) after
+// writing N figure rows inside its transaction. -1 (unset) never.
+long fault_injection_kill_after() {
+  const char* value = std::getenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
+  return value == nullptr ? -1 : std::strtol(value, nullptr, 10);
+}
+
+class DatabaseArchive final : public Archive {
+ public:
+  DatabaseArchive(std::unique_ptr<Database> db, const std::string& location) : db_(std::move(db)) {
+    migrate(*db_, location);
+  }
+
+  AddOutcome add(const nlohmann::json& results, const std::string& source) override {
+    const CampaignRecord record = read_campaign(results, source);
+    AddOutcome outcome{record.entry.id, record.entry.instrument, false};
+    Transaction transaction(*db_, true);
+    const auto inserted = db_->query(
+        "INSERT INTO campaign (id, instrument, title, tested_on, processed_at, operator, station, verdict,"
+        " inertest_version, results) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)"
+        " ON CONFLICT (id) DO NOTHING RETURNING id",
+        {record.entry.id, record.entry.instrument, record.entry.title, record.entry.tested_on,
+         record.entry.processed_at, record.operator_name, record.station, record.entry.verdict,
+         record.inertest_version, record.results_text});
+    if (!inserted.empty()) {
+      const long kill_after = fault_injection_kill_after();
+      long written = 0;
+      for (const auto& row : record.figures) {
+        if (++written > kill_after && kill_after >= 0) ::raise(SIGKILL);
+        const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
+        db_->query(
+            "INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
+            " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+            {record.entry.id, row.procedure, row.figure, row.value, row.unit, optional(row.uncertainty),
+             optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
+      }
+      outcome.added = true;
+    }
+    transaction.commit();
+    return outcome;
+  }
+
+  std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) override {
+    const std::string select = "SELECT id, instrument, title, tested_on, processed_at, verdict FROM campaign ";
+    const std::string order = " ORDER BY tested_on, processed_at, id";
+    const auto rows = instrument ? db_->query(select + "WHERE instrument = $1" + order, {*instrument})
+                                 : db_->query(select + order);
+    std::vector<CampaignEntry> entries;
+    for (const auto& row : rows) {
+      entries.push_back({row.text(0), row.text(1), row.text(2), row.text(3), row.text(4), row.text(5)});
+    }
+    return entries;
+  }
+
+  FigureHistory history(const std::string& instrument, const std::string& figure) override {
+    const auto parts = split_figure(figure);  // not a structured binding: the lambda below captures it
+    const std::string& procedure = parts.first;
+    const std::string& name = parts.second;
+    const auto rows = db_->query(std::string(figure_columns) +
+                                     "WHERE c.instrument = $1 AND f.procedure = $2 AND f.figure = $3"
+                                     " ORDER BY c.tested_on, c.processed_at, c.id",
+                                 {instrument, procedure, name});
+    if (rows.empty()) {
+      const auto known = db_->query(
+          "SELECT DISTINCT f.procedure, f.figure FROM figure f JOIN campaign c ON c.id = f.campaign"
+          " WHERE c.instrument = $1 ORDER BY f.procedure, f.figure",
+          {instrument});
+      if (known.empty() && db_->query("SELECT id FROM campaign WHERE instrument = $1", {instrument}).empty()) {
+        throw Error("instrument '" + instrument + "' has no campaign in the archive");
+      }
+      // The procedure's own figures when it is archived, else every figure of the instrument.
+      const bool procedure_known = std::any_of(known.begin(), known.end(),
+                                               [&](const Row& row) { return row.text(0) == procedure; });
+      std::string names;
+      for (const auto& row : known) {
+        if (!procedure_known || row.text(0) == procedure) names += (names.empty() ? "" : ", ") + row.text(0) + "/" + row.text(1);
+      }
+      throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
+    }
+    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
+    for (const auto& row : rows) history.points.push_back(point_from_row(row, history.unit));
+    take_limits(rows, history.unit, history.lower_limit, history.upper_limit);
+    return history;
+  }
+
+  FleetFigure fleet(const std::string& figure, const std::optional<std::string>& since) override {
+    const auto [procedure, name] = split_figure(figure);
+    const std::string where = "WHERE f.procedure = $1 AND f.figure = $2";
+    const std::string order = " ORDER BY c.instrument, c.tested_on, c.processed_at, c.id";
+    if (since && !is_iso_date(*since)) throw Error("--since '" + *since + "': expected YYYY-MM-DD");
+    const auto rows = since ? db_->query(std::string(figure_columns) + where + " AND c.tested_on >= $3" + order,
+                                         {procedure, name, *since})
+                            : db_->query(std::string(figure_columns) + where + order, {procedure, name});
+    if (rows.empty()) {
+      throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
+    }
+    FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
+    for (const auto& row : rows) fleet.points.push_back(point_from_row(row, fleet.unit));
+    take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit);
+    return fleet;
+  }
+
+  std::vector<std::string> figures(bool with_limits_only) override {
+    const auto rows = db_->query(
+        std::string("SELECT DISTINCT procedure, figure FROM figure") +
+        (with_limits_only ? " WHERE lower_limit IS NOT NULL OR upper_limit IS NOT NULL" : "") +
+        " ORDER BY procedure, figure");
+    std::vector<std::string> names;
+    for (const auto& row : rows) names.push_back(row.text(0) + "/" + row.text(1));
+    return names;
+  }
+
+  nlohmann::json results(const std::string& id) override {
+    const auto rows = db_->query("SELECT results FROM campaign WHERE id = $1", {id});
+    if (rows.empty()) throw Error("campaign '" + id + "' is not in the archive");
+    return nlohmann::json::parse(rows.front().text(0));
+  }
+
+  std::string backend() const override { return db_->backend(); }
+
+ private:
+  std::unique_ptr<Database> db_;
+};
+
+}  // namespace
+
+nlohmann::json FigureHistory::to_json() const {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& p : points) {
+    list.push_back({{"tested_on", p.tested_on},
+                    {"value", p.value},
+                    {"uncertainty", p.uncertainty ? nlohmann::json(*p.uncertainty) : nlohmann::json(nullptr)},
+                    {"campaign", p.campaign}});
+  }
+  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"instrument", instrument},         {"figure", figure},
+          {"unit", unit},                     {"points", std::move(list)},
+          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)}};
+}
+
+void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }
+
+std::unique_ptr<Archive> open_archive(const std::string& location) {
+  if (location.empty()) throw Error("archive: no location given (a file path or a postgresql:// URL)");
+  const bool is_url = location.rfind("postgresql://", 0) == 0 || location.rfind("postgres://", 0) == 0;
+  auto db = is_url ? open_postgresql(location) : open_sqlite(location);
+  return std::make_unique<DatabaseArchive>(std::move(db), location);
+}
+
+std::string default_archive_location() {
+  if (const char* db = std::getenv("INERTEST_DB"); db != nullptr && *db != '\0') return db;
+  const char* home = std::getenv("HOME");
+  if (home == nullptr || *home == '\0') throw Error("archive: neither --db, $INERTEST_DB nor $HOME is set");
+  return std::string(home) + "/.local/share/inertest/archive.sqlite";
+}
+
+nlohmann::json read_results_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(SourceLocation{path, 0, 0}, "cannot read the file");
+  const std::string text{std::istreambuf_iterator<char>(file), {}};
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is 1-based: the offending byte. Count lines and columns up to it.
+    const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string message = e.what();
+    if (const auto colon = message.rfind(": "); colon != std::string::npos) message = message.substr(colon + 2);
+    throw Error(SourceLocation{path, line, column}, "not valid JSON: " + message);
+  }
+}
+
+}  // namespace inertest::archive

@@ -1,0 +1,497 @@
+// The archive, the same suite on both back-ends: SQLite in a scratch file, PostgreSQL on a server
+// this test program starts itself (test_util/postgresql_server.h).
+#include "inertest/archive/archive.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <fmt/format.h>
+
+#include "archive/sha256.h"
+#include "inertest/demo/demo.h"
+#include "inertest/core/error.h"
+#include "test_util/postgresql_server.h"
+#include "test_util/test_util.h"
+
+namespace inertest::archive {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// FIPS 180-2 appendix B.1 and B.2: the digests of "abc" and of the 448-bit two-block message.
+TEST(Sha256, PublishedExamples) {
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+}
+
+// A results.json as inertest run writes it: one scale factor procedure with a limit, one bias.
+nlohmann::json campaign(const std::string& instrument, const std::string& tested_on, double scale_factor,
+                        double uncertainty = 0.02, const std::string& processed_at = "2026-01-01T00:00:00Z") {
+  const bool pass = scale_factor <= 36001.0;
+  return {
+      {"results_schema_version", 1},
+      {"inertest_version", "0.1.0"},
+      {"tested_on", tested_on},
+      {"processed_at", processed_at},
+      {"plan", {{"title", "acceptance " + instrument}, {"operator", "Li Wei"}, {"station", "table 2"}}},
+      {"instrument", {{"id", instrument}, {"type", "gyro"}}},
+      {"site", nlohmann::json::object()},
+      {"procedures",
+       {{{"name", "scale_factor"},
+         {"kind", "scale_factor"},
+         {"result",
+          {{"scale_factor", {{"value", scale_factor}, {"unit", "pulse/s/(deg/s)"}, {"uncertainty", uncertainty}}},
+           {"nonlinearity", {{"value", 4.5}, {"unit", "ppm"}}},
+           {"warnings", nlohmann::json::array()}}}},
+        {{"name", "bias_static"},
+         {"kind", "bias"},
+         {"result", {{"bias", {{"value", 0.025}, {"unit", "deg/h"}}}, {"noise", {{"white", {{"value", 1e-3}, {"unit", "deg/h"}}}}}}}}}},
+      {"verdicts",
+       {{{"procedure", "scale_factor"}, {"figure", "scale_factor"}, {"value", scale_factor},
+         {"unit", "pulse/s/(deg/s)"}, {"pass", pass}, {"min", 35999.0}, {"max", 36001.0}}}},
+      {"verdict", pass ? "PASS" : "FAIL"},
+  };
+}
+
+class ArchiveBackend : public ::testing::TestWithParam<const char*> {
+ protected:
+  void SetUp() override {
+    if (std::string(GetParam()) == "postgresql") {
+      auto& server = testing::PostgresqlServer::instance();
+      if (!server.available()) GTEST_SKIP() << server.skip_reason();
+      location_ = server.create_database();
+    } else {
+      location_ = scratch_.path() + "/archive.sqlite";
+    }
+  }
+  std::unique_ptr<Archive> open() const { return open_archive(location_); }
+  std::string error_of_add(Archive& archive, const nlohmann::json& results) const {
+    try {
+      archive.add(results, "bad/results.json");
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+
+  testing::ScratchDirectory scratch_;
+  std::string location_;
+};
+
+TEST_P(ArchiveBackend, AddListHistoryGiveBackExactlyWhatWasStored) {
+  auto archive = open();
+  EXPECT_EQ(archive->backend(), GetParam());
+  // Values that text round trips with too few digits would alter.
+  const double k1 = 36000.23674828574, u1 = 0.027917825813075926, k2 = 36000.1 + 1e-10;
+  const auto first = archive->add(campaign("FOG-0417", "2026-03-02", k2, u1), "b.json");
+  const auto second = archive->add(campaign("FOG-0417", "2026-02-01", k1, u1), "a.json");
+  archive->add(campaign("FOG-0418", "2026-02-15", 36000.5), "c.json");
+  EXPECT_TRUE(first.added);
+  EXPECT_EQ(first.instrument, "FOG-0417");
+  EXPECT_EQ(first.id.size(), 16u);
+
+  const auto all = archive->list(std::nullopt);
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_EQ(all[0].id, second.id);  // oldest test first
+  EXPECT_EQ(all[0].tested_on, "2026-02-01");
+  EXPECT_EQ(all[0].title, "acceptance FOG-0417");
+  EXPECT_EQ(all[0].processed_at, "2026-01-01T00:00:00Z");
+  EXPECT_EQ(all[0].verdict, "PASS");
+  EXPECT_EQ(all[1].instrument, "FOG-0418");
+  EXPECT_EQ(archive->list(std::string("FOG-0417")).size(), 2u);
+  EXPECT_TRUE(archive->list(std::string("FOG-9999")).empty());
+
+  const FigureHistory history = archive->history("FOG-0417", "scale_factor/scale_factor");
+  EXPECT_EQ(history.unit, "pulse/s/(deg/s)");
+  ASSERT_EQ(history.points.size(), 2u);
+  EXPECT_EQ(history.points[0].tested_on, "2026-02-01");
+  EXPECT_EQ(history.points[0].value, k1);  // exactly: no digits lost
+  EXPECT_EQ(history.points[0].uncertainty, u1);
+  EXPECT_EQ(history.points[0].campaign, second.id);
+  EXPECT_EQ(history.points[1].value, k2);
+  EXPECT_EQ(history.lower_limit, 35999.0);  // the plans' limits on the figure
+  EXPECT_EQ(history.upper_limit, 36001.0);
+  EXPECT_EQ(archive->figures(true), std::vector<std::string>{"scale_factor/scale_factor"});
+  EXPECT_EQ(archive->figures(false),
+            (std::vector<std::string>{"bias_static/bias", "bias_static/noise/white", "scale_factor/nonlinearity",
+                                      "scale_factor/scale_factor"}));
+  // A nested figure is named by its path of keys; one without uncertainty has none.
+  const auto nested = archive->history("FOG-0417", "bias_static/noise/white");
+  ASSERT_EQ(nested.points.size(), 2u);
+  EXPECT_EQ(nested.points[0].value, 1e-3);
+  EXPECT_FALSE(nested.points[0].uncertainty);
+  EXPECT_EQ(nested.to_json()["points"][0]["uncertainty"], nullptr);
+  EXPECT_EQ(nested.to_json()["upper_limit"], nullptr);
+
+  // The stored JSON is the file's, whole.
+  EXPECT_EQ(archive->results(first.id), campaign("FOG-0417", "2026-03-02", k2, u1));
+}
+
+TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
+  auto archive = open();
+  const auto once = archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
+  const auto twice = archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
+  // Processed again later, the same content: still the same campaign.
+  const auto reprocessed =
+      archive->add(campaign("FOG-0417", "2026-02-01", 36000.2, 0.02, "2026-05-05T10:00:00Z"), "again.json");
+  EXPECT_TRUE(once.added);
+  EXPECT_FALSE(twice.added);
+  EXPECT_FALSE(reprocessed.added);
+  EXPECT_EQ(twice.id, once.id);
+  EXPECT_EQ(reprocessed.id, once.id);
+  EXPECT_EQ(archive->list(std::nullopt).size(), 1u);
+  EXPECT_EQ(archive->history("FOG-0417", "scale_factor/scale_factor").points.size(), 1u);
+  // Reopened (the migration runs again and finds nothing to do): the same content.
+  EXPECT_EQ(open()->list(std::nullopt).size(), 1u);
+}
+
+TEST_P(ArchiveBackend, HostileResultsAreRefusedAndChangeNothing) {
+  auto archive = open();
+  archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "good.json");
+  auto without = [](nlohmann::json j, const char* key) {
+    j.erase(key);
+    return j;
+  };
+  nlohmann::json wrong_schema = campaign("FOG-1", "2026-02-01", 1.0);
+  wrong_schema["results_schema_version"] = 2;
+  nlohmann::json string_value = campaign("FOG-1", "2026-02-01", 1.0);
+  string_value["procedures"][1]["result"]["bias"]["value"] = "0.025";
+  nlohmann::json bad_date = campaign("FOG-1", "2026-02-01", 1.0);
+  bad_date["tested_on"] = "yesterday";
+  nlohmann::json bad_verdict = campaign("FOG-1", "2026-02-01", 1.0);
+  bad_verdict["verdict"] = "MAYBE";
+  nlohmann::json slash_name = campaign("FOG-1", "2026-02-01", 1.0);
+  slash_name["procedures"][0]["name"] = "a/b";
+
+  EXPECT_EQ(error_of_add(*archive, nlohmann::json::array()),
+            "bad/results.json: not an inertest results file: expected a JSON object");
+  EXPECT_EQ(error_of_add(*archive, without(campaign("FOG-1", "2026-02-01", 1.0), "instrument")),
+            "bad/results.json: not an inertest results file: \"instrument\" is missing");
+  EXPECT_EQ(error_of_add(*archive, without(campaign("FOG-1", "2026-02-01", 1.0), "procedures")),
+            "bad/results.json: not an inertest results file: \"procedures\" is missing");
+  EXPECT_EQ(error_of_add(*archive, wrong_schema),
+            "bad/results.json: results_schema_version 2 is not one this inertest reads (1)");
+  EXPECT_EQ(error_of_add(*archive, string_value),
+            "bad/results.json: not an inertest results file: figure 'bias_static/bias': \"value\" is not a number");
+  EXPECT_THAT(error_of_add(*archive, bad_date), HasSubstr("the test date 'yesterday' is not YYYY-MM-DD"));
+  EXPECT_THAT(error_of_add(*archive, bad_verdict), HasSubstr("\"verdict\" must be PASS, FAIL or NONE, not 'MAYBE'"));
+  EXPECT_THAT(error_of_add(*archive, slash_name), HasSubstr("procedure name 'a/b' is empty or contains '/'"));
+
+  ASSERT_EQ(archive->list(std::nullopt).size(), 1u);
+  EXPECT_EQ(archive->list(std::nullopt)[0].instrument, "FOG-0417");
+}
+
+TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
+  auto archive = open();
+  archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
+  const auto error = [&](auto&& call) {
+    try {
+      call();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error([&] { archive->history("FOG-9", "scale_factor/scale_factor"); }),
+            "instrument 'FOG-9' has no campaign in the archive");
+  EXPECT_EQ(error([&] { archive->history("FOG-0417", "scale_factor/bias"); }),
+            "figure 'scale_factor/bias' is not archived for instrument 'FOG-0417' (archived: "
+            "scale_factor/nonlinearity, scale_factor/scale_factor)");
+  // An unknown procedure: every archived figure of the instrument is listed.
+  EXPECT_EQ(error([&] { archive->history("FOG-0417", "bias/bias"); }),
+            "figure 'bias/bias' is not archived for instrument 'FOG-0417' (archived: bias_static/bias, "
+            "bias_static/noise/white, scale_factor/nonlinearity, scale_factor/scale_factor)");
+  EXPECT_THAT(error([&] { archive->history("FOG-0417", "scale_factor"); }),
+              HasSubstr("name it PROCEDURE/FIGURE as in results.json"));
+  EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }), "figure 'nope/nope' is not archived");
+  EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),
+            "--since '2026-13': expected YYYY-MM-DD");
+  EXPECT_EQ(error([&] { archive->results("0000000000000000"); }), "campaign '0000000000000000' is not in the archive");
+}
+
+TEST_P(ArchiveBackend, FleetCarriesEveryInstrumentAndTheLimits) {
+  auto archive = open();
+  archive->add(campaign("FOG-B", "2026-02-01", 36000.4), "1");
+  archive->add(campaign("FOG-A", "2026-02-03", 36000.2), "2");
+  archive->add(campaign("FOG-A", "2026-01-01", 36000.9), "3");
+  const FleetFigure fleet = archive->fleet("scale_factor/scale_factor", std::nullopt);
+  ASSERT_EQ(fleet.points.size(), 3u);
+  EXPECT_EQ(fleet.points[0].instrument, "FOG-A");  // by instrument, then test date
+  EXPECT_EQ(fleet.points[0].value, 36000.9);
+  EXPECT_EQ(fleet.points[2].instrument, "FOG-B");
+  EXPECT_EQ(fleet.lower_limit, 35999.0);
+  EXPECT_EQ(fleet.upper_limit, 36001.0);
+  EXPECT_EQ(archive->fleet("scale_factor/scale_factor", std::string("2026-02-01")).points.size(), 2u);
+}
+
+// The archive's schema is newer than this inertest: a clear error, and the archive untouched.
+TEST_P(ArchiveBackend, NewerSchemaIsRefused) {
+  open()->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
+  const std::string sql = "UPDATE schema_version SET version = 99";
+  std::string command;
+  if (std::string(GetParam()) == "postgresql") {
+    command = fmt::format("/usr/lib/postgresql/15/bin/psql -q '{}' -c '{}' > /dev/null", location_, sql);
+  } else {
+    command = fmt::format("/usr/bin/python3 -c \"import sqlite3; c = sqlite3.connect('{}'); c.execute('{}'); "
+                          "c.commit()\"",
+                          location_, sql);
+  }
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  try {
+    open();
+    FAIL() << "opened an archive of schema version 99";
+  } catch (const Error& e) {
+    EXPECT_THAT(std::string(e.what()),
+                HasSubstr("the archive's schema version is 99, newer than this inertest knows (1): use a newer inertest"));
+  }
+}
+
+// Several processes add at once: every campaign is there after. Each child process runs
+// `inertest archive add` (run_cli) and reports its exit; all start before any is waited for.
+TEST_P(ArchiveBackend, ConcurrentAddsFromSeveralProcessesLoseNothing) {
+  constexpr int processes = 8;
+  std::vector<std::string> files;
+  for (int i = 0; i < processes; ++i) {
+    files.push_back(scratch_.write(fmt::format("r{}.json", i),
+                                   campaign(fmt::format("FOG-{:02}", i), "2026-02-01", 36000.0 + i).dump()));
+  }
+  // No open() before the race: the processes also race to create the schema (migrations are
+  // serialised: SQLite's write lock, PostgreSQL's advisory lock).
+  std::vector<pid_t> children;
+  for (const auto& file : files) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      const auto run = testing::run_cli({"archive", "add", file, "--db", location_});
+      if (run.exit_code != 0 || !run.err.empty()) std::fprintf(stderr, "%s", run.err.c_str());
+      ::_exit(run.exit_code == 0 && run.err.empty() ? 0 : 1);
+    }
+    children.push_back(pid);
+  }
+  for (const pid_t pid : children) {
+    int status = -1;
+    ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "a station's add failed";
+  }
+  const auto all = open()->list(std::nullopt);
+  ASSERT_EQ(all.size(), static_cast<std::size_t>(processes));
+  for (int i = 0; i < processes; ++i) {
+    EXPECT_EQ(open()->history(fmt::format("FOG-{:02}", i), "scale_factor/scale_factor").points.at(0).value,
+              36000.0 + i);
+  }
+}
+
+// A process killed (SIGKILL, no clean-up) in the middle of an add, after some of its figure rows
+// are written: the archive is as it was, and the same campaign can be added afterwards.
+TEST_P(ArchiveBackend, ProcessKilledMidAddLeavesTheArchiveAsItWas) {
+  open()->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
+  const std::string file = scratch_.write("new.json", campaign("FOG-0418", "2026-02-02", 36000.3).dump());
+  ::setenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES", "2", 1);
+  const auto killed = testing::run_cli({"archive", "add", file, "--db", location_});
+  ::unsetenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
+  EXPECT_EQ(killed.exit_code, 128 + 9) << killed.err;
+  auto archive = open();
+  ASSERT_EQ(archive->list(std::nullopt).size(), 1u);
+  EXPECT_THROW(archive->history("FOG-0418", "scale_factor/scale_factor"), Error);
+  EXPECT_TRUE(archive->add(campaign("FOG-0418", "2026-02-02", 36000.3), "new.json").added);
+  EXPECT_EQ(archive->history("FOG-0418", "scale_factor/nonlinearity").points.size(), 1u);
+}
+
+// The CLI: add (twice), list --json and history --json give back the stored figure exactly.
+TEST_P(ArchiveBackend, CommandLineRoundTrip) {
+  const nlohmann::json results = campaign("FOG-SIM-NAV", "2026-02-01", 36000.23674828574, 0.027917825813075926);
+  const std::string file = scratch_.write("results.json", results.dump(2));
+  const auto added = testing::run_cli({"archive", "add", file, "--db", location_, "--json"});
+  ASSERT_EQ(added.exit_code, 0) << added.err;
+  EXPECT_TRUE(nlohmann::json::parse(added.out)["added"][0]["added"].get<bool>());
+  const auto again = testing::run_cli({"archive", "add", file, "--db", location_, "--json"});
+  EXPECT_FALSE(nlohmann::json::parse(again.out)["added"][0]["added"].get<bool>());
+
+  const auto list = testing::run_cli({"archive", "list", "--db", location_, "--json"});
+  ASSERT_EQ(list.exit_code, 0) << list.err;
+  const auto campaigns = nlohmann::json::parse(list.out).at("campaigns");
+  ASSERT_EQ(campaigns.size(), 1u);
+  EXPECT_EQ(campaigns[0]["instrument"], "FOG-SIM-NAV");
+  EXPECT_EQ(campaigns[0]["tested_on"], "2026-02-01");
+  for (const char* key : {"id", "title", "processed_at", "verdict"}) EXPECT_TRUE(campaigns[0].contains(key)) << key;
+
+  const auto history = testing::run_cli(
+      {"archive", "history", "FOG-SIM-NAV", "--figure", "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(history.exit_code, 0) << history.err;
+  const auto json = nlohmann::json::parse(history.out);
+  EXPECT_EQ(json["instrument"], "FOG-SIM-NAV");
+  EXPECT_EQ(json["figure"], "scale_factor/scale_factor");
+  EXPECT_EQ(json["unit"], "pulse/s/(deg/s)");
+  ASSERT_EQ(json["points"].size(), 1u);
+  EXPECT_EQ(json["points"][0]["value"], results["procedures"][0]["result"]["scale_factor"]["value"]);
+  EXPECT_EQ(json["points"][0]["uncertainty"], results["procedures"][0]["result"]["scale_factor"]["uncertainty"]);
+  EXPECT_EQ(json["points"][0]["campaign"], campaigns[0]["id"]);
+
+  // A malformed file among good ones: nothing is added, the error names the file, line and column.
+  const std::string good = scratch_.write("good.json", campaign("FOG-2", "2026-02-01", 1.0).dump());
+  const std::string broken = scratch_.write("broken.json", "{\n  \"instrument\": {\"id\": \"X\"},\n  oops\n}\n");
+  const auto refused = testing::run_cli({"archive", "add", good, broken, "--db", location_});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr(broken + ":3:3: not valid JSON"));
+  const auto after = testing::run_cli({"archive", "list", "--db", location_, "--json"});
+  EXPECT_EQ(nlohmann::json::parse(after.out).at("campaigns").size(), 1u);
+}
+
+// Day-to-day repeatability of the archived campaigns. Scale factors 36000, 36001, 35999:
+// K̄ = 36000, s = 1, Kr = 1/36000 = 27.78 ppm (GJB 2426A eq. 12). Biases 0.01, 0.02, 0.03 deg/h
+// (in deg/s in the archive, converted): Br = 0.01 deg/h (eq. 21).
+TEST_P(ArchiveBackend, RepeatabilityAcrossArchivedCampaigns) {
+  auto archive = open();
+  const double scale_factors[] = {36000.0, 36001.0, 35999.0};
+  for (int i = 0; i < 3; ++i) {
+    nlohmann::json results = campaign("FOG-0417", fmt::format("2026-02-0{}", i + 1), scale_factors[i]);
+    results["procedures"][1]["result"]["bias"] = {{"value", 0.01 * (i + 1) / 3600.0}, {"unit", "deg/s"}};
+    archive->add(results, "r.json");
+  }
+  const auto scale = testing::run_cli({"archive", "repeatability", "FOG-0417", "--figure",
+                                       "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(scale.exit_code, 0) << scale.err;
+  const auto kr = nlohmann::json::parse(scale.out);
+  EXPECT_EQ(kr["clause"], "GJB 2426A-2004 5.8.4, eq. (12)");
+  EXPECT_EQ(kr["campaigns"].size(), 3u);
+  EXPECT_NEAR_RELATIVE(kr["result"]["scale_factor_repeatability"]["value"].get<double>(), 1e6 / 36000.0, 1e-9);
+  EXPECT_EQ(kr["result"]["scale_factor_repeatability"]["unit"], "ppm");
+
+  const auto bias = testing::run_cli(
+      {"archive", "repeatability", "FOG-0417", "--figure", "bias_static/bias", "--db", location_, "--json"});
+  ASSERT_EQ(bias.exit_code, 0) << bias.err;
+  const auto br = nlohmann::json::parse(bias.out);
+  EXPECT_EQ(br["clause"], "GJB 2426A-2004 5.12.3, eq. (21)");
+  EXPECT_NEAR_RELATIVE(br["result"]["bias_repeatability"]["value"].get<double>(), 0.01, 1e-9);
+
+  const auto neither = testing::run_cli(
+      {"archive", "repeatability", "FOG-0417", "--figure", "scale_factor/nonlinearity", "--db", location_});
+  EXPECT_EQ(neither.exit_code, 2);
+  EXPECT_THAT(neither.err, HasSubstr("repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias"));
+}
+
+// The fleet: each instrument's latest value in the order of first test; A = 36000.0,
+// B = 36000.3, C = 36000.1 (C's earlier 36002 superseded). x̄ = 36000.1333, MR̄ = (0.3 + 0.2)/2,
+// σ = MR̄/1.128379; limits [35999, 36001] from the plans: Cp = 2/6σ, Cpk = (36001 − x̄)/3σ.
+TEST_P(ArchiveBackend, FleetControlChartAndCapability) {
+  auto archive = open();
+  archive->add(campaign("FOG-A", "2026-01-01", 36000.0), "a");
+  archive->add(campaign("FOG-B", "2026-01-02", 36000.3), "b");
+  archive->add(campaign("FOG-C", "2026-01-03", 36002.0), "c1");
+  archive->add(campaign("FOG-C", "2026-01-09", 36000.1), "c2");
+  const auto run = testing::run_cli({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto fleet = nlohmann::json::parse(run.out);
+  ASSERT_EQ(fleet["instruments"].size(), 3u);
+  EXPECT_EQ(fleet["instruments"][2]["instrument"], "FOG-C");
+  EXPECT_EQ(fleet["instruments"][2]["value"], 36000.1);
+  EXPECT_EQ(fleet["instruments"][2]["tests"], 2);
+  const double center = (36000.0 + 36000.3 + 36000.1) / 3.0;
+  const double sigma = ((0.3 + 0.2) / 2.0) / 1.1283791670955126;
+  EXPECT_NEAR(fleet["control_chart"]["center"].get<double>(), center, 1e-9);
+  EXPECT_NEAR(fleet["control_chart"]["ucl"].get<double>(), center + 3 * sigma, 1e-9);
+  EXPECT_NEAR(fleet["control_chart"]["lcl"].get<double>(), center - 3 * sigma, 1e-9);
+  EXPECT_TRUE(fleet["control_chart"]["out_of_control"].empty());
+  EXPECT_NEAR(fleet["capability"]["cp"].get<double>(), 2.0 / (6 * sigma), 1e-6);
+  EXPECT_NEAR(fleet["capability"]["cpk"].get<double>(), (36001.0 - center) / (3 * sigma), 1e-6);
+  // Since 2026-01-02: A drops out, C's earlier test too.
+  const auto since = testing::run_cli({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--since",
+                                       "2026-01-02", "--db", location_, "--json"});
+  EXPECT_EQ(nlohmann::json::parse(since.out)["instruments"].size(), 2u);
+}
+
+// inertest run --archive DB: the campaign's results go straight into the archive.
+TEST_P(ArchiveBackend, RunAddsItsResultsToTheArchive) {
+  const auto run = testing::run_cli({"run", testing::source_path("examples/scale_factor/plan.toml"), "--out",
+                                     scratch_.path() + "/out", "--archive", location_});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto written = read_results_file(scratch_.path() + "/out/results.json");
+  const auto campaigns = open()->list(std::nullopt);
+  ASSERT_EQ(campaigns.size(), 1u);
+  EXPECT_EQ(campaigns[0].instrument, written["instrument"]["id"]);
+  EXPECT_EQ(campaigns[0].processed_at, written["processed_at"]);
+  EXPECT_EQ(open()->results(campaigns[0].id), written);
+}
+
+// inertest archive report: the fleet page and one history page per instrument; by default the
+// figures some plan set limits on; an unknown figure is an error that writes nothing.
+TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
+  auto archive = open();
+  archive->add(campaign("FOG-A", "2026-01-01", 36000.0), "a");
+  archive->add(campaign("FOG-B", "2026-01-02", 36000.3), "b");
+  const auto run = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/pages", "--db", location_, "--lang", "zh"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* page : {"fleet.html", "history-FOG-A.html", "history-FOG-B.html"}) {
+    EXPECT_TRUE(std::filesystem::exists(scratch_.path() + "/pages/" + page)) << page;
+  }
+  std::ifstream fleet(scratch_.path() + "/pages/fleet.html");
+  const std::string text{std::istreambuf_iterator<char>(fleet), {}};
+  EXPECT_THAT(text, HasSubstr("scale_factor/scale_factor"));
+  EXPECT_THAT(text, Not(HasSubstr("scale_factor/nonlinearity")));  // no limits on it
+  const auto unknown = testing::run_cli(
+      {"archive", "report", "--out", scratch_.path() + "/none", "--figure", "x/y", "--db", location_});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("figure 'x/y' is not archived"));
+  EXPECT_FALSE(std::filesystem::exists(scratch_.path() + "/none"));
+}
+
+// The demo's results.json (inertest demo), made once per test program.
+const std::string& demo_results() {
+  static const testing::ScratchDirectory dir;
+  static const std::string path = [] {
+    run_demo(dir.path() + "/demo");
+    return dir.path() + "/demo/results.json";
+  }();
+  return path;
+}
+
+// The issue's acceptance: the demo's results added twice, then list and history give back exactly
+// the scale factor stored in results.json, as one campaign.
+TEST_P(ArchiveBackend, DemoResultsRoundTripExactly) {
+  for (int i = 0; i < 2; ++i) {
+    const auto added = testing::run_cli({"archive", "add", demo_results(), "--db", location_, "--json"});
+    ASSERT_EQ(added.exit_code, 0) << added.err;
+  }
+  const auto list = testing::run_cli({"archive", "list", "--db", location_, "--json"});
+  const auto campaigns = nlohmann::json::parse(list.out).at("campaigns");
+  ASSERT_EQ(campaigns.size(), 1u);
+  EXPECT_EQ(campaigns[0]["instrument"], "FOG-SIM-NAV");
+  const auto history = testing::run_cli(
+      {"archive", "history", "FOG-SIM-NAV", "--figure", "scale_factor/scale_factor", "--db", location_, "--json"});
+  ASSERT_EQ(history.exit_code, 0) << history.err;
+  const auto points = nlohmann::json::parse(history.out).at("points");
+  ASSERT_EQ(points.size(), 1u);
+  const nlohmann::json results = read_results_file(demo_results());
+  int found = 0;
+  for (const auto& procedure : results.at("procedures")) {
+    if (procedure.at("name") != "scale_factor") continue;
+    ++found;
+    EXPECT_EQ(points[0]["value"], procedure.at("result").at("scale_factor").at("value"));
+    EXPECT_EQ(points[0]["uncertainty"], procedure.at("result").at("scale_factor").at("uncertainty"));
+  }
+  EXPECT_EQ(found, 1);
+  EXPECT_EQ(points[0]["campaign"], campaigns[0]["id"]);
+}
+
+INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),
+                         [](const ::testing::TestParamInfo<const char*>& param) { return std::string(param.param); });
+
+TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {
+  const char* saved = std::getenv("INERTEST_DB");
+  const std::string saved_value = saved ? saved : "";
+  ::setenv("INERTEST_DB", "/srv/lab/archive.sqlite", 1);
+  EXPECT_EQ(default_archive_location(), "/srv/lab/archive.sqlite");
+  ::unsetenv("INERTEST_DB");
+  EXPECT_EQ(default_archive_location(), std::string(std::getenv("HOME")) + "/.local/share/inertest/archive.sqlite");
+  if (saved) ::setenv("INERTEST_DB", saved_value.c_str(), 1);
+}
+
+}  // namespace
+}  // namespace inertest::archive

@@ -1,0 +1,98 @@
+// The fleet's view of one figure and the data of the archive's report pages: plain data from the
+// archive's queries plus the control chart of numerics/control_chart.h.
+#include <algorithm>
+#include <map>
+
+#include "inertest/archive/archive.h"
+#include "inertest/core/error.h"
+#include "inertest/numerics/control_chart.h"
+
+namespace inertest::archive {
+namespace {
+
+nlohmann::json optional_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since) {
+  // Each instrument's latest value (points come by instrument, then test date), keyed by the
+  // instrument's first test date then its id: the order the batch came off the line.
+  struct Instrument {
+    std::string first_test;
+    const FigurePoint* latest = nullptr;
+    std::size_t tests = 0;
+  };
+  std::map<std::string, Instrument> by_id;
+  for (const auto& p : fleet.points) {
+    auto [it, inserted] = by_id.try_emplace(p.instrument, Instrument{p.tested_on, &p, 0});
+    it->second.latest = &p;
+    ++it->second.tests;
+  }
+  std::vector<const Instrument*> order;
+  for (const auto& [id, instrument] : by_id) order.push_back(&instrument);
+  std::stable_sort(order.begin(), order.end(),
+                   [](const Instrument* a, const Instrument* b) { return a->first_test < b->first_test; });
+  std::vector<double> values;
+  nlohmann::json instruments = nlohmann::json::array();
+  for (const Instrument* i : order) {
+    const FigurePoint& p = *i->latest;
+    values.push_back(p.value);
+    instruments.push_back({{"instrument", p.instrument}, {"value", p.value}, {"uncertainty", optional_json(p.uncertainty)},
+                           {"tested_on", p.tested_on},   {"campaign", p.campaign}, {"tests", i->tests}});
+  }
+  nlohmann::json json = {{"figure", fleet.figure},
+                         {"unit", fleet.unit},
+                         {"since", since ? nlohmann::json(*since) : nlohmann::json(nullptr)},
+                         {"lower_limit", optional_json(fleet.lower_limit)},
+                         {"upper_limit", optional_json(fleet.upper_limit)},
+                         {"instruments", instruments},
+                         {"control_chart", nullptr},
+                         {"capability", {{"cp", nullptr}, {"cpk", nullptr}}}};
+  if (values.size() < 2) return json;  // one instrument: no moving range
+  const ControlChart chart = individuals_control_chart(values);
+  nlohmann::json flagged = nlohmann::json::array();
+  for (const auto& o : chart.out_of_control) {
+    flagged.push_back({{"instrument", instruments[o.index]["instrument"]}, {"value", values[o.index]}, {"rule", o.rule}});
+  }
+  json["control_chart"] = {{"center", chart.center},
+                           {"ucl", chart.ucl},
+                           {"lcl", chart.lcl},
+                           {"moving_range_mean", chart.moving_range_mean},
+                           {"sigma", chart.sigma},
+                           {"out_of_control", flagged}};
+  if (chart.sigma > 0.0) {
+    const ProcessCapability capability = process_capability(chart.center, chart.sigma, fleet.lower_limit, fleet.upper_limit);
+    json["capability"] = {{"cp", optional_json(capability.cp)}, {"cpk", optional_json(capability.cpk)}};
+  }
+  return json;
+}
+
+nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures) {
+  nlohmann::json histories = nlohmann::json::array();
+  std::vector<std::string> instruments;
+  for (const auto& campaign : archive.list(std::nullopt)) instruments.push_back(campaign.instrument);
+  std::sort(instruments.begin(), instruments.end());
+  instruments.erase(std::unique(instruments.begin(), instruments.end()), instruments.end());
+  const std::vector<std::string> archived = archive.figures(false);
+  for (const auto& instrument : instruments) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& figure : figures) {
+      if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
+      try {
+        list.push_back(archive.history(instrument, figure).to_json());
+      } catch (const Error&) {
+        // this instrument's campaigns do not report the figure: nothing to plot
+      }
+    }
+    histories.push_back({{"instrument", instrument}, {"figures", list}});
+  }
+  nlohmann::json fleet = nlohmann::json::array();
+  for (const auto& figure : figures) {
+    if (std::binary_search(archived.begin(), archived.end(), figure)) {
+      fleet.push_back(fleet_summary(archive.fleet(figure, std::nullopt), std::nullopt));
+    }
+  }
+  return {{"histories", histories}, {"fleet", fleet}};
+}
+
+}  // namespace inertest::archive

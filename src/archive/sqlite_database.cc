@@ -1,0 +1,98 @@
+// The embedded back-end: one SQLite file in WAL mode (readers never block the writer), with a
+// busy timeout so that several stations adding at once wait for the write lock in turn.
+#include <sqlite3.h>
+
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "archive/database.h"
+#include "inertest/core/error.h"
+
+namespace inertest::archive {
+namespace {
+
+// How long a writer waits for another's transaction before giving up, in ms. An add is a few
+// hundred rows; a minute covers dozens of stations adding at once.
+constexpr int busy_timeout_ms = 60000;
+
+class SqliteDatabase final : public Database {
+ public:
+  explicit SqliteDatabase(const std::string& path) : path_(path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    std::error_code ignored;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
+    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
+                        nullptr) != SQLITE_OK) {
+      const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+      sqlite3_close(db_);
+      throw Error(SourceLocation{path, 0, 0}, "cannot open the archive: " + message);
+    }
+    sqlite3_busy_timeout(db_, busy_timeout_ms);
+    sqlite3_extended_result_codes(db_, 1);
+    query("PRAGMA journal_mode=WAL", {});
+    query("PRAGMA foreign_keys=ON", {});
+    query("PRAGMA synchronous=FULL", {});
+  }
+  ~SqliteDatabase() override { sqlite3_close(db_); }
+  SqliteDatabase(const SqliteDatabase&) = delete;
+  SqliteDatabase& operator=(const SqliteDatabase&) = delete;
+
+  std::vector<Row> query(std::string_view sql, const std::vector<Value>& params) override {
+    sqlite3_stmt* statement = nullptr;
+    if (sqlite3_prepare_v2(db_, sql.data(), static_cast<int>(sql.size()), &statement, nullptr) != SQLITE_OK) fail();
+    std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> owner(statement, sqlite3_finalize);
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      // $N is a named parameter to SQLite: look its index up rather than trust the order.
+      const std::string name = fmt::format("${}", i + 1);
+      const int index = sqlite3_bind_parameter_index(statement, name.c_str());
+      if (index == 0) continue;
+      int status = SQLITE_OK;
+      if (const auto* text = std::get_if<std::string>(&params[i])) {
+        status = sqlite3_bind_text(statement, index, text->data(), static_cast<int>(text->size()), SQLITE_TRANSIENT);
+      } else if (const auto* real = std::get_if<double>(&params[i])) {
+        status = sqlite3_bind_double(statement, index, *real);
+      } else if (const auto* integer = std::get_if<std::int64_t>(&params[i])) {
+        status = sqlite3_bind_int64(statement, index, *integer);
+      } else {
+        status = sqlite3_bind_null(statement, index);
+      }
+      if (status != SQLITE_OK) fail();
+    }
+    std::vector<Row> rows;
+    for (;;) {
+      const int status = sqlite3_step(statement);
+      if (status == SQLITE_DONE) break;
+      if (status != SQLITE_ROW) fail();
+      Row row;
+      for (int c = 0; c < sqlite3_column_count(statement); ++c) {
+        switch (sqlite3_column_type(statement, c)) {
+          case SQLITE_INTEGER: row.columns.emplace_back(static_cast<std::int64_t>(sqlite3_column_int64(statement, c))); break;
+          case SQLITE_FLOAT: row.columns.emplace_back(sqlite3_column_double(statement, c)); break;
+          case SQLITE_NULL: row.columns.emplace_back(std::monostate{}); break;
+          default:
+            row.columns.emplace_back(std::string(reinterpret_cast<const char*>(sqlite3_column_text(statement, c)),
+                                                 static_cast<std::size_t>(sqlite3_column_bytes(statement, c))));
+        }
+      }
+      rows.push_back(std::move(row));
+    }
+    return rows;
+  }
+
+  void begin(bool exclusive) override { query(exclusive ? "BEGIN IMMEDIATE" : "BEGIN", {}); }
+  void commit() override { query("COMMIT", {}); }
+  void rollback() noexcept override { sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr); }
+  std::string backend() const override { return "sqlite"; }
+
+ private:
+  [[noreturn]] void fail() const { throw Error(SourceLocation{path_, 0, 0}, std::string("archive: ") + sqlite3_errmsg(db_)); }
+
+  std::string path_;
+  sqlite3* db_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Database> open_sqlite(const std::string& path) { return std::make_unique<SqliteDatabase>(path); }
+
+}  // namespace inertest::archive

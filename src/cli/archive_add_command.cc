@@ -1,0 +1,51 @@
+// inertest archive add RESULTS.json... [--db DB] [--json]
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "archive_command.h"
+
+namespace inertest::cli {
+namespace {
+
+struct Arguments {
+  std::vector<std::string> files;
+  std::string db;
+  bool json = false;
+};
+
+CommandAction setup(CLI::App& archive) {
+  auto arguments = std::make_shared<Arguments>();
+  CLI::App* command = archive.add_subcommand(
+      "add",
+      "Add campaigns' results.json to the archive, each in one transaction. A campaign already there\n"
+      "(the same content, whatever its processing time) is recognised and stored once. All files are\n"
+      "read and checked before any is added: a malformed one adds nothing.");
+  command->add_option("RESULTS", arguments->files, "results.json of inertest run")->required();
+  add_db_option(*command, arguments->db);
+  command->add_flag("--json", arguments->json,
+                    "print {\"added\": [{\"id\", \"instrument\", \"file\", \"added\"}]} on stdout");
+  return [arguments] {
+    std::vector<nlohmann::json> results;
+    for (const auto& file : arguments->files) {
+      results.push_back(archive::read_results_file(file));
+      archive::check_results(results.back(), file);
+    }
+    const auto store = open_archive_option(arguments->db);
+    nlohmann::json added = nlohmann::json::array();
+    std::string report;
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const archive::AddOutcome outcome = store->add(results[i], arguments->files[i]);
+      added.push_back({{"id", outcome.id}, {"instrument", outcome.instrument}, {"file", arguments->files[i]},
+                       {"added", outcome.added}});
+      report += fmt::format("{} {} {} ({})\n", outcome.added ? "added  " : "already", outcome.id, outcome.instrument,
+                            arguments->files[i]);
+    }
+    print_result({{"added", added}}, report, arguments->json);
+    return 0;
+  };
+}
+
+const bool registered = register_archive_command("add", setup);
+
+}  // namespace
+}  // namespace inertest::cli

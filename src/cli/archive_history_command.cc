@@ -1,0 +1,45 @@
+// inertest archive history ID --figure PROCEDURE/FIGURE [--db DB] [--json]
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "archive_command.h"
+
+namespace inertest::cli {
+namespace {
+
+struct Arguments {
+  std::string instrument;
+  std::string figure;
+  std::string db;
+  bool json = false;
+};
+
+CommandAction setup(CLI::App& archive) {
+  auto arguments = std::make_shared<Arguments>();
+  CLI::App* command = archive.add_subcommand(
+      "history", "One figure of one instrument across its archived campaigns, oldest test first.");
+  command->add_option("ID", arguments->instrument, "instrument id (results.json instrument.id)")->required();
+  command->add_option("--figure", arguments->figure,
+                      "PROCEDURE/FIGURE as named in results.json, e.g. scale_factor/scale_factor")
+      ->required();
+  add_db_option(*command, arguments->db);
+  command->add_flag("--json", arguments->json,
+                    "print {\"instrument\", \"figure\", \"unit\", \"points\": [{\"tested_on\", \"value\", "
+                    "\"uncertainty\", \"campaign\"}]}");
+  return [arguments] {
+    const auto store = open_archive_option(arguments->db);
+    const archive::FigureHistory history = store->history(arguments->instrument, arguments->figure);
+    std::string report = fmt::format("{} {} ({})\n", history.instrument, history.figure, history.unit);
+    for (const auto& p : history.points) {
+      report += fmt::format("  {}  {:.10g}{}  {}\n", p.tested_on, p.value,
+                            p.uncertainty ? fmt::format(" ± {:.3g}", *p.uncertainty) : std::string(), p.campaign);
+    }
+    print_result(history.to_json(), report, arguments->json);
+    return 0;
+  };
+}
+
+const bool registered = register_archive_command("history", setup);
+
+}  // namespace
+}  // namespace inertest::cli

@@ -1,0 +1,82 @@
+// inertest archive repeatability ID --figure PROCEDURE/FIGURE [--db DB] [--json]
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "archive_command.h"
+#include "inertest/core/units.h"
+#include "inertest/procedures/bias_repeatability.h"
+#include "inertest/procedures/scale_factor_repeatability.h"
+
+namespace inertest::cli {
+namespace {
+
+struct Arguments {
+  std::string instrument;
+  std::string figure;
+  std::string db;
+  bool json = false;
+};
+
+bool is_rate(const std::string& unit) {
+  try {
+    convert(1.0, unit, "deg/h");
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+CommandAction setup(CLI::App& archive) {
+  auto arguments = std::make_shared<Arguments>();
+  CLI::App* command = archive.add_subcommand(
+      "repeatability",
+      "Day-to-day repeatability of one instrument across its archived campaigns (one value per campaign):\n"
+      "a scale factor by GJB 2426A-2004 5.8.4 eq. (12), Kr = (1/K̄)·[Σ(Ki − K̄)²/(Q − 1)]^½ in ppm; a bias\n"
+      "(any figure in a rate unit) by 5.12.3 eq. (21), Br = [Σ(B0i − B̄0)²/(Q − 1)]^½ in deg/h. The standard\n"
+      "asks for Q >= 6; fewer campaigns give a warning.");
+  command->add_option("ID", arguments->instrument, "instrument id")->required();
+  command->add_option("--figure", arguments->figure,
+                      "PROCEDURE/FIGURE: a scale factor (e.g. scale_factor/scale_factor) or a bias "
+                      "(e.g. bias_static/bias)")
+      ->required();
+  add_db_option(*command, arguments->db);
+  command->add_flag("--json", arguments->json,
+                    "print {\"instrument\", \"figure\", \"clause\", \"campaigns\", \"result\"}");
+  return [arguments] {
+    const auto store = open_archive_option(arguments->db);
+    const archive::FigureHistory history = store->history(arguments->instrument, arguments->figure);
+    std::vector<double> values;
+    nlohmann::json campaigns = nlohmann::json::array();
+    for (const auto& p : history.points) campaigns.push_back(p.campaign);
+    nlohmann::json json = {{"instrument", history.instrument}, {"figure", history.figure}, {"campaigns", campaigns}};
+    std::string report;
+    const std::string name = history.figure.substr(history.figure.rfind('/') + 1);
+    if (is_rate(history.unit)) {
+      for (const auto& p : history.points) values.push_back(convert(p.value, history.unit, "deg/h"));
+      const BiasRepeatabilityResult result = bias_repeatability(values);
+      json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
+      json["result"] = result.to_json();
+      report = result.report();
+    } else if (name.find("scale_factor") != std::string::npos) {
+      for (const auto& p : history.points) values.push_back(p.value);
+      ScaleFactorRepeatabilityOptions options;
+      options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning
+      const ScaleFactorRepeatabilityResult result = scale_factor_repeatability(values, history.unit, options);
+      json["clause"] = "GJB 2426A-2004 5.8.4, eq. (12)";
+      json["result"] = result.to_json();
+      report = result.report();
+    } else {
+      throw Error("figure '" + history.figure + "' (" + history.unit +
+                  "): repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias in a rate unit (5.12.3)");
+    }
+    print_result(json, fmt::format("{} {} across {} campaigns ({}):\n{}", history.instrument, history.figure,
+                                   values.size(), json["clause"].get<std::string>(), report),
+                 arguments->json);
+    return 0;
+  };
+}
+
+const bool registered = register_archive_command("repeatability", setup);
+
+}  // namespace
+}  // namespace inertest::cli

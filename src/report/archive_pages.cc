@@ -1,0 +1,253 @@
+#include "inertest/report/archive_pages.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/io/atomic_write.h"
+#include "inertest/report/svg_plot.h"
+#include "report/labels.h"
+#include "report/report_style.h"
+
+namespace inertest::report {
+namespace {
+
+using nlohmann::json;
+
+// The words of these two pages only (the campaign report's table, labels.cc, is shared with
+// other pages and kept to the campaign's words).
+struct PageWord {
+  const char* key;
+  const char* english;
+  const char* chinese;
+};
+constexpr PageWord page_words[] = {
+    {"history", "Instrument history", "仪表历史记录"},
+    {"fleet", "Fleet", "批次统计"},
+    {"tested_on", "Tested on", "测试日期"},
+    {"days", "days since first test", "距首次测试天数"},
+    {"campaign", "Campaign", "测试记录"},
+    {"tests", "Tests", "测试次数"},
+    {"control_chart", "Control chart (individuals, moving range)", "控制图（单值-移动极差）"},
+    {"capability", "Process capability", "过程能力"},
+    {"center", "center line", "中心线"},
+    {"ucl", "UCL", "上控制限"},
+    {"lcl", "LCL", "下控制限"},
+    {"lower_limit", "lower specification limit", "指标下限"},
+    {"upper_limit", "upper specification limit", "指标上限"},
+    {"out_of_control", "Out of control", "失控点"},
+    {"instrument_number", "instrument, in order of first test", "仪表（按首次测试顺序）"},
+    {"rule.beyond_3_sigma", "beyond 3σ (rule 1)", "超出 3σ 控制限（准则 1）"},
+    {"rule.8_on_one_side", "8 on one side of the center (rule 4)", "连续 8 点位于中心线同侧（准则 4）"},
+    {"method", "Shewhart individuals chart: limits x̄ ± 3·MR̄/1.128 (NIST/SEMATECH e-Handbook 6.3.2.2), Western Electric rules 1 and 4; Cp = (USL − LSL)/6σ, Cpk = min(USL − x̄, x̄ − LSL)/3σ with σ = MR̄/1.128 (6.1.6); each instrument's latest value.",
+     "休哈特单值控制图：控制限 x̄ ± 3·MR̄/1.128（NIST/SEMATECH 统计方法手册 6.3.2.2），西方电气准则 1 与 4；Cp = (USL − LSL)/6σ，Cpk = min(USL − x̄, x̄ − LSL)/3σ，σ = MR̄/1.128（6.1.6）；每台仪表取最近一次测试值。"},
+};
+
+class Page {
+ public:
+  explicit Page(const ReportOptions& options) : options_(options), labels_(options.language) {}
+
+  std::string word(const std::string& key) const {
+    for (const auto& w : page_words) {
+      if (key == w.key) return options_.language == Language::chinese ? w.chinese : w.english;
+    }
+    return labels_(key);
+  }
+  // The figure's last key in the report's words, e.g. "Scale factor".
+  std::string figure_label(const std::string& figure) const { return labels_(figure.substr(figure.rfind('/') + 1)); }
+  // A figure PROCEDURE/FIGURE as a heading: "Scale factor (scale_factor/scale_factor)".
+  std::string figure_title(const std::string& figure) const { return figure_label(figure) + " (" + figure + ")"; }
+  const Labels& labels() const { return labels_; }
+
+  void open(const std::string& kicker, const std::string& title) {
+    out_ += fmt::format(
+        "<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+        "<title>{}</title>\n<style>\n{}</style>\n</head>\n<body>\n<header class=\"cover\">\n"
+        "<p class=\"kicker\">{}</p>\n<h1>{}</h1>\n</header>\n",
+        options_.language == Language::chinese ? "zh-CN" : "en", escape_xml(title), report_css(), escape_xml(kicker),
+        escape_xml(title));
+  }
+  std::string close() {
+    out_ += fmt::format("<footer>{}{}</footer>\n</body>\n</html>\n", escape_xml(labels_("ui.generated")),
+                        options_.run_date.empty() ? "" : " · " + escape_xml(options_.run_date));
+    return std::move(out_);
+  }
+  std::string& out() { return out_; }
+
+ private:
+  const ReportOptions& options_;
+  Labels labels_;
+  std::string out_;
+};
+
+std::string number(const json& value) { return value.is_number() ? fmt::format("{:.10g}", value.get<double>()) : "—"; }
+
+// Days from 1970-01-01 of a YYYY-MM-DD date (the archive checked the form).
+double days(const std::string& date) {
+  const int y = std::stoi(date.substr(0, 4));
+  const unsigned m = static_cast<unsigned>(std::stoi(date.substr(5, 2)));
+  const unsigned d = static_cast<unsigned>(std::stoi(date.substr(8, 2)));
+  const std::chrono::sys_days day{std::chrono::year{y} / std::chrono::month{m} / std::chrono::day{d}};
+  return static_cast<double>(day.time_since_epoch().count());
+}
+
+void add_limits(Panel& panel, const json& figure, const Page& page) {
+  for (const char* key : {"lower_limit", "upper_limit"}) {
+    if (figure.contains(key) && figure.at(key).is_number()) {
+      panel.references.push_back({ReferenceLine::Direction::horizontal, figure.at(key).get<double>(), page.word(key), "#b3261e"});
+    }
+  }
+}
+
+}  // namespace
+
+std::string render_history_page(const json& history, const ReportOptions& options) {
+  Page page(options);
+  const std::string instrument = history.at("instrument").get<std::string>();
+  page.open(page.word("history"), instrument);
+  for (const auto& figure : history.at("figures")) {
+    const auto& points = figure.at("points");
+    if (points.empty()) continue;
+    const std::string first = points.front().at("tested_on").get<std::string>().substr(0, 10);
+    Series series;
+    series.name = instrument;
+    series.line = LineStyle::solid;
+    series.marker = Marker::circle;
+    for (const auto& p : points) {
+      const double value = p.at("value").get<double>();
+      const double u = p.at("uncertainty").is_number() ? p.at("uncertainty").get<double>() : 0.0;
+      series.x.push_back(days(p.at("tested_on").get<std::string>()) - days(first));
+      series.y.push_back(value);
+      series.y_low.push_back(value - u);
+      series.y_high.push_back(value + u);
+    }
+    Panel panel;
+    panel.title = page.figure_title(figure.at("figure").get<std::string>());
+    panel.x = make_axis(page.word("days") + " (" + first + ")", "");
+    panel.y = make_axis(page.figure_label(figure.at("figure").get<std::string>()),
+                        figure.at("unit").get<std::string>());
+    panel.series.push_back(std::move(series));
+    add_limits(panel, figure, page);
+    page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
+                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}}));
+    page.out() += fmt::format("<table><tr><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
+                              escape_xml(page.word("tested_on")), escape_xml(page.labels()("ui.value")),
+                              escape_xml(page.labels()("ui.uncertainty")), escape_xml(page.word("campaign")));
+    for (const auto& p : points) {
+      page.out() += fmt::format("<tr><td>{}</td><td>{} {}</td><td>{}</td><td><code>{}</code></td></tr>\n",
+                                escape_xml(p.at("tested_on").get<std::string>()), number(p.at("value")),
+                                escape_xml(figure.at("unit").get<std::string>()), number(p.at("uncertainty")),
+                                escape_xml(p.at("campaign").get<std::string>()));
+    }
+    page.out() += "</table>\n</section>\n";
+  }
+  return page.close();
+}
+
+std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
+  Page page(options);
+  page.open(page.word("fleet"), page.word("control_chart"));
+  page.out() += fmt::format("<p>{}</p>\n", escape_xml(page.word("method")));
+  // The capability table first: one row per figure.
+  page.out() += fmt::format(
+      "<section><h2>{}</h2>\n<table><tr><th>{}</th><th>{}</th><th>n</th><th>x̄</th><th>σ</th><th>{}</th><th>{}</th>"
+      "<th>{}</th><th>{}</th><th>Cp</th><th>Cpk</th><th>{}</th></tr>\n",
+      escape_xml(page.word("capability")), escape_xml(page.labels()("ui.figure")), escape_xml(page.labels()("ui.unit")),
+      escape_xml(page.word("lower_limit")), escape_xml(page.word("upper_limit")), escape_xml(page.word("lcl")),
+      escape_xml(page.word("ucl")), escape_xml(page.word("out_of_control")));
+  for (const auto& f : fleet) {
+    const json& chart = f.at("control_chart");
+    const json none = nullptr;
+    page.out() += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+        "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        escape_xml(f.at("figure").get<std::string>()), escape_xml(f.at("unit").get<std::string>()),
+        f.at("instruments").size(), number(chart.is_null() ? none : chart.at("center")),
+        number(chart.is_null() ? none : chart.at("sigma")), number(f.at("lower_limit")), number(f.at("upper_limit")),
+        number(chart.is_null() ? none : chart.at("lcl")), number(chart.is_null() ? none : chart.at("ucl")),
+        number(f.at("capability").at("cp")), number(f.at("capability").at("cpk")),
+        chart.is_null() ? 0 : chart.at("out_of_control").size());
+  }
+  page.out() += "</table>\n</section>\n";
+
+  for (const auto& f : fleet) {
+    const json& chart = f.at("control_chart");
+    Series values;
+    values.name = page.labels()("ui.value");
+    values.line = LineStyle::solid;
+    values.marker = Marker::circle;
+    Series flagged;
+    flagged.name = page.word("out_of_control");
+    flagged.line = LineStyle::none;
+    flagged.marker = Marker::diamond;
+    flagged.color = "#b3261e";
+    std::size_t index = 0;
+    for (const auto& i : f.at("instruments")) {
+      ++index;
+      values.x.push_back(static_cast<double>(index));
+      values.y.push_back(i.at("value").get<double>());
+      if (chart.is_null()) continue;
+      for (const auto& o : chart.at("out_of_control")) {
+        if (o.at("instrument") == i.at("instrument")) {
+          flagged.x.push_back(static_cast<double>(index));
+          flagged.y.push_back(i.at("value").get<double>());
+        }
+      }
+    }
+    Panel panel;
+    panel.title = page.figure_title(f.at("figure").get<std::string>());
+    panel.x = make_axis(page.word("instrument_number"), "");
+    panel.y = make_axis(page.figure_label(f.at("figure").get<std::string>()),
+                        f.at("unit").get<std::string>());
+    panel.series.push_back(std::move(values));
+    if (!flagged.x.empty()) panel.series.push_back(std::move(flagged));
+    if (!chart.is_null()) {
+      panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("center").get<double>(), page.word("center"), "#555555"});
+      panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("ucl").get<double>(), page.word("ucl"), "#1f6feb"});
+      panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("lcl").get<double>(), page.word("lcl"), "#1f6feb"});
+    }
+    add_limits(panel, f, page);
+    page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
+                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}}));
+    page.out() += fmt::format("<table><tr><th>#</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
+                              escape_xml(page.labels()("ui.instrument")), escape_xml(page.word("tested_on")),
+                              escape_xml(page.labels()("ui.value")), escape_xml(page.word("tests")),
+                              escape_xml(page.word("out_of_control")));
+    index = 0;
+    for (const auto& i : f.at("instruments")) {
+      std::string rule;
+      if (!chart.is_null()) {
+        for (const auto& o : chart.at("out_of_control")) {
+          if (o.at("instrument") == i.at("instrument")) rule = page.word("rule." + o.at("rule").get<std::string>());
+        }
+      }
+      page.out() += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} {}</td><td>{}</td><td>{}</td></tr>\n", ++index,
+                                escape_xml(i.at("instrument").get<std::string>()),
+                                escape_xml(i.at("tested_on").get<std::string>()), number(i.at("value")),
+                                escape_xml(f.at("unit").get<std::string>()), i.at("tests").get<std::size_t>(),
+                                escape_xml(rule));
+    }
+    page.out() += "</table>\n</section>\n";
+  }
+  return page.close();
+}
+
+std::vector<std::string> write_archive_pages(const json& data, const std::string& out_dir, const ReportOptions& options) {
+  std::filesystem::create_directories(out_dir);
+  std::vector<std::string> written;
+  const std::string fleet_path = (std::filesystem::path(out_dir) / "fleet.html").string();
+  write_file_atomically(fleet_path, render_fleet_page(data.at("fleet"), options));
+  written.push_back(fleet_path);
+  for (const auto& history : data.at("histories")) {
+    const std::string path =
+        (std::filesystem::path(out_dir) / ("history-" + history.at("instrument").get<std::string>() + ".html")).string();
+    write_file_atomically(path, render_history_page(history, options));
+    written.push_back(path);
+  }
+  return written;
+}
+
+}  // namespace inertest::report

@@ -1,0 +1,71 @@
+#include "inertest/report/archive_pages.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+namespace inertest::report {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+nlohmann::json history() {
+  return {{"instrument", "FOG-0417"},
+          {"figures",
+           {{{"instrument", "FOG-0417"},
+             {"figure", "scale_factor/scale_factor"},
+             {"unit", "pulse/s/(deg/s)"},
+             {"lower_limit", 35999.0},
+             {"upper_limit", 36001.0},
+             {"points",
+              {{{"tested_on", "2026-02-01"}, {"value", 36000.25}, {"uncertainty", 0.5}, {"campaign", "aaaa"}},
+               {{"tested_on", "2026-02-08"}, {"value", 36000.75}, {"uncertainty", nullptr}, {"campaign", "bbbb"}}}}}}}};
+}
+
+nlohmann::json fleet() {
+  return nlohmann::json::array(
+      {{{"figure", "bias/bias"},
+        {"unit", "deg/h"},
+        {"since", nullptr},
+        {"lower_limit", nullptr},
+        {"upper_limit", 0.05},
+        {"instruments",
+         {{{"instrument", "FOG-1"}, {"value", 0.02}, {"uncertainty", nullptr}, {"tested_on", "2026-02-01"}, {"campaign", "c1"}, {"tests", 2}},
+          {{"instrument", "FOG-<2>"}, {"value", 0.09}, {"uncertainty", nullptr}, {"tested_on", "2026-02-02"}, {"campaign", "c2"}, {"tests", 1}}}},
+        {"control_chart",
+         {{"center", 0.055}, {"ucl", 0.24}, {"lcl", -0.13}, {"moving_range_mean", 0.07}, {"sigma", 0.062},
+          {"out_of_control", {{{"instrument", "FOG-<2>"}, {"value", 0.09}, {"rule", "beyond_3_sigma"}}}}}},
+        {"capability", {{"cp", nullptr}, {"cpk", -0.0268}}}}});
+}
+
+TEST(ArchivePages, HistoryShowsEveryPointWithItsUncertaintyAndTheLimits) {
+  const std::string page = render_history_page(history(), {Language::english, "2026-03-01"});
+  EXPECT_THAT(page, HasSubstr("<h1>FOG-0417</h1>"));
+  EXPECT_THAT(page, HasSubstr("<svg"));
+  EXPECT_THAT(page, HasSubstr("36000.25 pulse/s/(deg/s)"));
+  EXPECT_THAT(page, HasSubstr("<td>0.5</td>"));  // the 1-sigma uncertainty
+  EXPECT_THAT(page, HasSubstr("<td>—</td>"));    // none known
+  EXPECT_THAT(page, HasSubstr("upper specification limit"));
+  EXPECT_THAT(page, HasSubstr("days since first test (2026-02-01)"));
+  const std::string zh = render_history_page(history(), {Language::chinese, ""});
+  EXPECT_THAT(zh, HasSubstr("仪表历史记录"));
+  EXPECT_THAT(zh, HasSubstr("指标上限"));
+}
+
+TEST(ArchivePages, FleetShowsTheChartTheFlaggedPointAndTheCapability) {
+  const std::string page = render_fleet_page(fleet(), {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("<svg"));
+  EXPECT_THAT(page, HasSubstr("FOG-&lt;2&gt;"));  // escaped
+  EXPECT_THAT(page, Not(HasSubstr("FOG-<2>")));
+  EXPECT_THAT(page, HasSubstr("beyond 3σ (rule 1)"));
+  EXPECT_THAT(page, HasSubstr("<td>-0.0268</td>"));  // Cpk
+  EXPECT_THAT(page, HasSubstr("NIST/SEMATECH e-Handbook 6.3.2.2"));
+  const std::string zh = render_fleet_page(fleet(), {Language::chinese, ""});
+  EXPECT_THAT(zh, HasSubstr("超出 3σ 控制限（准则 1）"));
+  EXPECT_THAT(zh, HasSubstr("过程能力"));
+}
+
+}  // namespace
+}  // namespace inertest::report

@@ -327,10 +327,12 @@ struct AllanEngine::State {
     average(f, k0, k1, store);
   }
 
-  // The averages ȳ_j = (X_{jm} - X_{(j-1)m}) / m at the anchors k = jm in [k0, k1), j >= 1.
+  // The averages ȳ_j = (X_{jm} - X_{(j-1)m}) / m at the anchors k = jm in [k0, k1), 1 <= j <=
+  // AveragedFrequencySeries::kMaximumAverages (its bounded prefix).
   void average(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store) {
     const std::size_t m = f.m;
     const std::size_t k = (std::max(k0, m) + m - 1) / m * m;
+    k1 = std::min(k1, AveragedFrequencySeries::kMaximumAverages * m + 1);
     if (k >= k1) return;
     const double inverse = 1.0 / static_cast<double>(m);
     for_each_run<2>(store, {lagged(0), lagged(m)}, k, k1, m, [&](const auto& p, std::size_t n) {

@@ -80,6 +80,25 @@ TEST(AveragedFrequencySeries, EngineAveragesAreTheBlockMeans) {
   }
 }
 
+// The bounded prefix: at m = 1 of 2^20 + 5000 samples the engine stops at 2^20 averages, whose
+// sums are those of the first 2^20 samples.
+TEST(AveragedFrequencySeries, EngineKeepsABoundedPrefix) {
+  const std::size_t cap = AveragedFrequencySeries::kMaximumAverages;
+  const std::vector<double> y = testing::uniform_noise(0.0, cap + 5000);
+  AllanEngineOptions options;
+  options.averaging_factors = {1, 64};
+  options.estimators = EstimatorSet::parse("oadev");
+  AllanEngine engine(y.size(), 0.0, options);
+  engine.push(y);
+  const auto sums = engine.finish();
+  EXPECT_EQ(sums[0].averages.series(0).count(), cap);
+  EXPECT_EQ(sums[1].averages.series(0).count(), y.size() / 64);
+  AveragedFrequencySeries prefix;
+  for (std::size_t i = 0; i < cap + 1; ++i) prefix.add(y[i]);
+  EXPECT_EQ(prefix.series(0).count(), cap);
+  EXPECT_NEAR_RELATIVE(sums[0].averages.series(0).sample_variance(), prefix.series(0).sample_variance(), 1e-12);
+}
+
 TEST(B1Ratio, ExpectationsAndTheirBoundaries) {
   // Howe et al. (2000) Table 3 at N = 16.
   EXPECT_DOUBLE_EQ(b1_expected(16, 2), 16.0 * 17.0 / 6.0);

@@ -255,7 +255,9 @@ nlohmann::json AllanResult::to_json() const {
   json["alpha"] = noise_alphas(noise_types);
   for (const auto& [estimator, curve] : curves) {
     nlohmann::json methods = nlohmann::json::array();
-    for (NoiseIdentificationMethod method : curve.noise_methods) methods.push_back(noise_identification_method_name(method));
+    for (NoiseIdentificationMethod method : curve.noise_methods) {
+      methods.push_back(noise_identification_method_name(method));
+    }
     json[std::string(estimator_name(estimator))] = {{"unit", curve.unit},
                                                     {"values", curve.values},
                                                     {"lower", curve.lower},

@@ -250,9 +250,12 @@ class AllanResult(Result):
     confidence_level: float
     tau: FloatArray  # s
     averaging_factor: IntArray
-    noise_type: list[str]  # per tau, used for the edf
-    # One Record per estimator asked for (adev, oadev, mdev, hdev, ohdev, totdev): unit, and the numpy
-    # arrays values, lower, upper (confidence bounds), edf, terms.
+    noise_type: list[str]  # per tau, dominant noise identified for the Allan variance (NIST SP 1065 5.6)
+    alpha: IntArray  # the same as S_y(f) ~ f^alpha: 2 white PM, 1 flicker PM, 0 white FM, -1 flicker FM, -2 random walk FM
+    # One Record per estimator asked for (adev, oadev, mdev, hdev, ohdev, totdev): unit, the numpy
+    # arrays values, lower, upper (confidence bounds), edf, terms, alpha (per tau, the noise its edf
+    # assumes), and the lists noise_type and noise_identification ("lag1_autocorrelation", "b1_ratio",
+    # "b1_ratio_and_rn" or "not_identified").
     adev: Record
     oadev: Record
     mdev: Record

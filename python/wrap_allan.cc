@@ -93,7 +93,8 @@ void wrap_allan(py::module_& module) {
       module, "AllanResult",
       "Allan analysis (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C, NIST SP 1065). Members as in\n"
       "the JSON: tau (s) and averaging_factor (numpy arrays), one Record per estimator (adev, oadev, mdev,\n"
-      "hdev, ohdev, totdev: unit and the numpy arrays values, lower, upper, edf, terms), noise (quantization,\n"
+      "hdev, ohdev, totdev: unit, the numpy arrays values, lower, upper, edf, terms, alpha, the lists\n"
+      "noise_type and noise_identification), alpha and noise_type per tau, noise (quantization,\n"
       "angle_random_walk, bias_instability, rate_random_walk, rate_ramp as Figures; GJB eq. (30) fit;\n"
       "slope_method), mean, sample_count, warnings, ...");
   const char* options_doc =

@@ -84,3 +84,20 @@ def test_fit_range_keyword_and_unidentified_terms():
     assert direct.angle_random_walk.value == pytest.approx(result.noise.angle_random_walk.value, rel=1e-12)
     with pytest.raises(inertest.Error, match="fit range"):
         inertest.allan_variance(samples, sample_rate_hz=SAMPLE_RATE_HZ, fit_range=(5.0, 1.0))
+
+
+def test_noise_type_per_tau_and_estimator():
+    # White rate noise is white FM (alpha = 0); where 30 averages or more remain the lag-1
+    # autocorrelation is the method, and with 300 or more (r1 scattering by 0.06) it names white FM
+    # for every estimator.
+    result = inertest.allan_variance(white_noise_deg_h(), sample_rate_hz=SAMPLE_RATE_HZ)
+    assert isinstance(result.alpha, np.ndarray) and len(result.alpha) == len(result.tau)
+    assert result.noise_type[0] == "white_fm" and result.alpha[0] == 0
+    for name in ("adev", "oadev", "mdev", "hdev", "ohdev", "totdev"):
+        curve = getattr(result, name)
+        averages = result.sample_count // result.averaging_factor
+        lag1 = [method == "lag1_autocorrelation" for method in curve.noise_identification]
+        assert lag1 == list(averages >= 30)
+        many = averages >= 300
+        assert many.sum() >= 8
+        assert all(curve.alpha[many] == 0) and all(np.array(curve.noise_type)[many] == "white_fm")

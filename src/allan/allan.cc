@@ -34,15 +34,6 @@ std::vector<std::size_t> averaging_factors_for(std::size_t sample_count, const A
   return factors;
 }
 
-NoiseType noise_type_of_power(int power) {
-  switch (power) {
-    case -2: return NoiseType::kWhitePhase;
-    case -1: return NoiseType::kWhiteFrequency;
-    case 0: return NoiseType::kFlickerFrequency;
-    default: return NoiseType::kRandomWalkFrequency;
-  }
-}
-
 void compute_bounds(AllanResult& result) {
   for (auto& [estimator, curve] : result.curves) {
     curve.edf.resize(curve.values.size());
@@ -50,7 +41,7 @@ void compute_bounds(AllanResult& result) {
     curve.upper.resize(curve.values.size());
     for (std::size_t i = 0; i < curve.values.size(); ++i) {
       curve.edf[i] = equivalent_degrees_of_freedom(estimator, result.sample_count, result.averaging_factors[i],
-                                                   curve.terms[i], result.noise_types[i]);
+                                                   curve.noise_types[i]);
       const DeviationInterval interval = chi_squared_interval(curve.values[i], curve.edf[i], result.confidence);
       curve.lower[i] = interval.lower;
       curve.upper[i] = interval.upper;
@@ -89,9 +80,6 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
   fit_options.fit_range = fit_range;
   fit_options.sample_count = result.sample_count;
   fit_options.sample_interval_s = 1.0 / result.sample_rate_hz;
-  NoiseTerms first = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
-  for (std::size_t i = 0; i < result.tau_s.size(); ++i) result.noise_types[i] = noise_type_of_power(first.dominant_power[i]);
-  compute_bounds(result);
   result.noise = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
   result.warnings.insert(result.warnings.end(), result.noise->warnings.begin(), result.noise->warnings.end());
   result.slopes = read_noise_slopes(result.tau_s, basis->values, basis->edf, result.input_unit);
@@ -111,13 +99,16 @@ AllanResult assemble(std::size_t sample_count, double mean, const std::vector<Al
     result.averaging_factors.push_back(s.averaging_factor);
     result.tau_s.push_back(static_cast<double>(s.averaging_factor) / options.sample_rate_hz);
   }
-  result.noise_types.assign(sums.size(), NoiseType::kWhiteFrequency);
+  for (const AllanSums& s : sums) result.noise_types.push_back(identify_power_law_noise(Estimator::kAdev, s).type);
   for (Estimator e : options.estimators.members()) {
     DeviationCurve& curve = result.curves[e];
     curve.unit = options.input_unit;
     for (const AllanSums& s : sums) {
       curve.values.push_back(std::abs(options.scale) * std::sqrt(std::max(0.0, s.variance(e))));
       curve.terms.push_back(s.terms(e));
+      const NoiseIdentification noise = identify_power_law_noise(e, s);
+      curve.noise_types.push_back(noise.type);
+      curve.noise_methods.push_back(noise.method);
     }
   }
   compute_bounds(result);
@@ -176,6 +167,19 @@ SampleReader binary_sample_reader(const RateRecordSource& source) {
       }
     }
   };
+}
+
+nlohmann::json noise_type_names(const std::vector<NoiseType>& types) {
+  nlohmann::json names = nlohmann::json::array();
+  for (NoiseType type : types) names.push_back(noise_type_name(type));
+  return names;
+}
+
+// alpha, the exponent of S_y(f) ~ f^alpha: 2 white PM .. -2 random walk FM.
+nlohmann::json noise_alphas(const std::vector<NoiseType>& types) {
+  nlohmann::json alphas = nlohmann::json::array();
+  for (NoiseType type : types) alphas.push_back(static_cast<int>(type));
+  return alphas;
 }
 
 }  // namespace
@@ -255,14 +259,23 @@ nlohmann::json AllanResult::to_json() const {
                          {"confidence_level", confidence},
                          {"tau", tau_s},
                          {"averaging_factor", averaging_factors}};
-  nlohmann::json types = nlohmann::json::array();
-  for (NoiseType type : noise_types) types.push_back(noise_type_name(type));
-  json["noise_type"] = types;
+  json["noise_type"] = noise_type_names(noise_types);
+  json["alpha"] = noise_alphas(noise_types);
   for (const auto& [estimator, curve] : curves) {
-    json[std::string(estimator_name(estimator))] = {{"unit", curve.unit},     {"values", curve.values},
-                                                    {"lower", curve.lower},   {"upper", curve.upper},
-                                                    {"edf", curve.edf},       {"terms", curve.terms},
-                                                    {"edf_method", std::string(edf_method(estimator))}};
+    nlohmann::json methods = nlohmann::json::array();
+    for (NoiseIdentificationMethod method : curve.noise_methods) {
+      methods.push_back(noise_identification_method_name(method));
+    }
+    json[std::string(estimator_name(estimator))] = {{"unit", curve.unit},
+                                                    {"values", curve.values},
+                                                    {"lower", curve.lower},
+                                                    {"upper", curve.upper},
+                                                    {"edf", curve.edf},
+                                                    {"terms", curve.terms},
+                                                    {"edf_method", std::string(edf_method(estimator))},
+                                                    {"noise_type", noise_type_names(curve.noise_types)},
+                                                    {"alpha", noise_alphas(curve.noise_types)},
+                                                    {"noise_identification", methods}};
   }
   if (noise) {
     json["noise"] = noise->to_json(input_unit);
@@ -278,14 +291,15 @@ std::string AllanResult::report() const {
   std::string text = fmt::format("Allan variance (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C)\n"
                                  "  {} samples at {} Hz, mean {:.6g} {}, deviations in {}\n",
                                  sample_count, sample_rate_hz, mean.value, input_unit, input_unit);
-  text += fmt::format("  {:>12}", "tau (s)");
+  text += fmt::format("  {:>12} {:>5}", "tau (s)", "alpha");
   for (const auto& [estimator, curve] : curves) text += fmt::format(" {:>12}", estimator_name(estimator));
   text += "\n";
   for (std::size_t i = 0; i < tau_s.size(); ++i) {
-    text += fmt::format("  {:>12.6g}", tau_s[i]);
+    text += fmt::format("  {:>12.6g} {:>5}", tau_s[i], static_cast<int>(noise_types[i]));
     for (const auto& [estimator, curve] : curves) text += fmt::format(" {:>12.5g}", curve.values[i]);
     text += "\n";
   }
+  text += "  alpha: dominant noise S_y ~ f^alpha (2 white PM, 1 flicker PM, 0 white FM, -1 flicker FM, -2 random walk FM)\n";
   const auto line = [](const std::string& name, const Figure& f) {
     return fmt::format("  {:<24} {:.5g} ± {:.2g} {}\n", name, f.value, f.uncertainty.value_or(0.0), f.unit);
   };

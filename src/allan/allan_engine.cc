@@ -93,6 +93,7 @@ struct FactorState {
   double window = 0.0;  // w_k of MDEV, updated w_k = w_{k-1} + a_k - a_{k-m}
   std::array<CompensatedSum, 6> sums;
   CompensatedSum reflected;  // TOTDEV terms whose centre lies within m of an end
+  AveragedFrequencySeries averages;  // ȳ_j at the anchors k = jm, in order
 };
 
 constexpr std::size_t kLanes = 4;
@@ -323,6 +324,20 @@ struct AllanEngine::State {
     }
     if (adev) strided(f, Estimator::kAdev, 2 * m, k0, k1, store);
     if (hdev) strided(f, Estimator::kHdev, 3 * m, k0, k1, store);
+    average(f, k0, k1, store);
+  }
+
+  // The averages ȳ_j = (X_{jm} - X_{(j-1)m}) / m at the anchors k = jm in [k0, k1), 1 <= j <=
+  // AveragedFrequencySeries::kMaximumAverages (its bounded prefix).
+  void average(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store) {
+    const std::size_t m = f.m;
+    const std::size_t k = (std::max(k0, m) + m - 1) / m * m;
+    k1 = std::min(k1, AveragedFrequencySeries::kMaximumAverages * m + 1);
+    if (k >= k1) return;
+    const double inverse = 1.0 / static_cast<double>(m);
+    for_each_run<2>(store, {lagged(0), lagged(m)}, k, k1, m, [&](const auto& p, std::size_t n) {
+      for (std::size_t i = 0; i < n; ++i) f.averages.add((p[0][i * m] - p[1][i * m]) * inverse);
+    });
   }
 
   // OADEV (and TOTDEV interior) terms a_k for k >= 2m when no third differences are needed.
@@ -500,8 +515,7 @@ struct AllanEngine::State {
     };
     for (FactorState& f : deferred) {
       const std::size_t m = f.m;
-      const std::size_t first = totdev ? m + 1 : 2 * m;
-      for (std::size_t ka = first; ka <= n; ka += segment) {
+      for (std::size_t ka = m; ka <= n; ka += segment) {  // the first average is anchored at k = m
         const std::size_t kb = std::min(n + 1, ka + segment);
         windows.clear();
         for (std::size_t s = 0; s <= (third ? 3u : 2u); ++s) {
@@ -684,6 +698,9 @@ std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
     AllanSums sums;
     const std::size_t m = f.m;
     sums.averaging_factor = m;
+    sums.averages = f.averages;
+    sums.term_count[index_of(Estimator::kOadev)] = n + 1 - 2 * m;
+    sums.sum_of_squares[index_of(Estimator::kOadev)] = f.sums[index_of(Estimator::kOadev)].value();
     for (Estimator e : s.options.estimators.members()) {
       const std::size_t i = index_of(e);
       switch (e) {

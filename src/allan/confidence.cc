@@ -110,15 +110,15 @@ double edf_overlapping_allan(double n, double m, NoiseType type) {
   return n - 1.0;
 }
 
-double edf_total(double sample_count, double m, NoiseType type) {
+double edf_total(double phase_count, double m, NoiseType type) {
   switch (type) {
-    case NoiseType::kWhiteFrequency: return 1.50 * sample_count / m;
-    case NoiseType::kFlickerFrequency: return 1.17 * sample_count / m - 0.22;
-    case NoiseType::kRandomWalkFrequency: return 0.93 * sample_count / m - 0.36;
+    case NoiseType::kWhiteFrequency: return 1.50 * phase_count / m;
+    case NoiseType::kFlickerFrequency: return 1.17 * phase_count / m - 0.22;
+    case NoiseType::kRandomWalkFrequency: return 0.93 * phase_count / m - 0.36;
     case NoiseType::kWhitePhase:
     case NoiseType::kFlickerPhase: break;
   }
-  return edf_overlapping_allan(sample_count + 1.0, m, type);
+  return edf_overlapping_allan(phase_count, m, type);
 }
 
 double edf_greenhall(NoiseType type, int d, double m, double phase_count, bool overlapping, bool modified) {
@@ -181,33 +181,30 @@ double edf_greenhall(NoiseType type, int d, double m, double phase_count, bool o
   return 1.0 / inverse;
 }
 
-double equivalent_degrees_of_freedom(Estimator estimator, std::size_t sample_count, std::size_t m,
-                                     std::size_t term_count, NoiseType type) {
-  const double n = static_cast<double>(sample_count);
+double equivalent_degrees_of_freedom(Estimator estimator, std::size_t sample_count, std::size_t m, NoiseType type) {
+  const double phase_count = static_cast<double>(sample_count) + 1.0;
   const double factor = static_cast<double>(m);
-  const double decimated = static_cast<double>(sample_count / m) + 1.0;
   double edf = 0.0;
   switch (estimator) {
-    case Estimator::kAdev: edf = edf_overlapping_allan(decimated, 1.0, type); break;
-    case Estimator::kOadev: edf = edf_overlapping_allan(n + 1.0, factor, type); break;
-    case Estimator::kMdev: edf = edf_greenhall(type, 2, factor, n + 1.0, true, true); break;
-    case Estimator::kHdev: edf = edf_greenhall(type, 3, factor, n + 1.0, false, false); break;
-    case Estimator::kOhdev: edf = edf_greenhall(type, 3, factor, n + 1.0, true, false); break;
-    case Estimator::kTotdev: edf = edf_total(n, factor, type); break;
+    case Estimator::kAdev: edf = edf_greenhall(type, 2, factor, phase_count, false, false); break;
+    case Estimator::kOadev: edf = edf_greenhall(type, 2, factor, phase_count, true, false); break;
+    case Estimator::kMdev: edf = edf_greenhall(type, 2, factor, phase_count, true, true); break;
+    case Estimator::kHdev: edf = edf_greenhall(type, 3, factor, phase_count, false, false); break;
+    case Estimator::kOhdev: edf = edf_greenhall(type, 3, factor, phase_count, true, false); break;
+    case Estimator::kTotdev: edf = edf_total(phase_count, factor, type); break;
   }
-  // The simple formulae leave their range at the largest factors (few terms): keep 1 <= edf <= terms.
-  if (!(edf >= 1.0)) edf = 1.0;
-  return std::max(1.0, std::min(edf, static_cast<double>(term_count)));
+  // The simple formulae of Tables 5 and 7 leave their range at the largest factors.
+  return edf >= 1.0 ? edf : 1.0;
 }
 
 std::string_view edf_method(Estimator estimator) {
   switch (estimator) {
-    case Estimator::kAdev: return "NIST SP 1065 Table 5 (simple formulae) on the decimated phase";
-    case Estimator::kOadev: return "NIST SP 1065 Table 5 (simple formulae)";
+    case Estimator::kAdev:
+    case Estimator::kOadev:
     case Estimator::kMdev:
     case Estimator::kHdev:
     case Estimator::kOhdev: return "Greenhall & Riley 2003 combined algorithm (NIST SP 1065 5.3)";
-    case Estimator::kTotdev: return "NIST SP 1065 Table 7";
+    case Estimator::kTotdev: return "NIST SP 1065 Table 7 (Table 5 for PM noise)";
   }
   return "";
 }

@@ -107,10 +107,22 @@ TEST(GreenhallEdf, RejectsPointsOutsideTheAlgorithm) {
 
 TEST(EquivalentDegreesOfFreedom, EveryEstimatorNamesItsMethod) {
   for (Estimator e : kAllEstimators) EXPECT_FALSE(edf_method(e).empty());
-  // MDEV, HDEV and OHDEV now use Greenhall, not the OADEV formula.
-  const double greenhall = edf_greenhall(NoiseType::kWhiteFrequency, 2, 16, 1001, true, true);
-  EXPECT_DOUBLE_EQ(equivalent_degrees_of_freedom(Estimator::kMdev, 1000, 16, 953, NoiseType::kWhiteFrequency),
-                   greenhall);
+  // Every Allan and Hadamard variance uses Greenhall's algorithm with N + 1 phase points; ADEV and
+  // OADEV used the simple formulae of Table 5 before, which differ (here by 3 %).
+  const NoiseType white = NoiseType::kWhiteFrequency;
+  EXPECT_DOUBLE_EQ(equivalent_degrees_of_freedom(Estimator::kMdev, 1000, 16, white),
+                   edf_greenhall(white, 2, 16, 1001, true, true));
+  EXPECT_DOUBLE_EQ(equivalent_degrees_of_freedom(Estimator::kOadev, 1000, 16, white),
+                   edf_greenhall(white, 2, 16, 1001, true, false));
+  EXPECT_DOUBLE_EQ(equivalent_degrees_of_freedom(Estimator::kAdev, 1000, 16, white),
+                   edf_greenhall(white, 2, 16, 1001, false, false));
+  EXPECT_GT(std::abs(equivalent_degrees_of_freedom(Estimator::kOadev, 1000, 16, white) /
+                         edf_overlapping_allan(1001, 16, white) - 1.0),
+            0.01);
+  // TOTDEV: Table 7 with T/tau = N_x / m; white PM takes Table 5.
+  EXPECT_DOUBLE_EQ(equivalent_degrees_of_freedom(Estimator::kTotdev, 1000, 16, white), 1.5 * 1001.0 / 16.0);
+  EXPECT_DOUBLE_EQ(equivalent_degrees_of_freedom(Estimator::kTotdev, 1000, 16, NoiseType::kWhitePhase),
+                   edf_overlapping_allan(1001, 16, NoiseType::kWhitePhase));
 }
 
 }  // namespace

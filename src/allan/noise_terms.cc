@@ -634,19 +634,6 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
     figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
     terms.upper_bounds[k] = figure_of(bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
   }
-  const auto& a = terms.coefficients;
-  for (double tau : tau_s) {
-    int best = -2;
-    double largest = -1.0;
-    for (int p = -2; p <= 2; ++p) {
-      const double contribution = a[static_cast<std::size_t>(p + 2)] * std::pow(tau, p);
-      if (contribution > largest) {
-        largest = contribution;
-        best = p;
-      }
-    }
-    terms.dominant_power.push_back(best);
-  }
   return terms;
 }
 

@@ -4,10 +4,11 @@
 // the slope read-off.
 //
 // The mean of the record is removed (computed with compensated sums in a first pass) before the
-// rate is integrated, so that a constant bias changes no deviation. Noise types for the edf: a first
-// fit with white FM edf names, at each tau, the dominant term of eq. (30) (A_-2: white PM, A_-1:
-// white FM, A_0: flicker FM, A_1 and A_2: random walk FM); the edf and the fit are then redone with
-// those types.
+// rate is integrated, so that a constant bias changes no deviation. Noise types for the edf: at each
+// tau and for each estimator, the dominant power-law noise identified as Stable32 does (lag-1
+// autocorrelation, else B1 ratio and R(n); noise_identification.h), from sums the engine gathers
+// while it streams the record; the edf follow from it (confidence.h), and the eq. (30) fit is
+// weighted by them.
 #pragma once
 
 #include <cstddef>
@@ -21,6 +22,7 @@
 
 #include "inertest/allan/allan_engine.h"
 #include "inertest/allan/confidence.h"
+#include "inertest/allan/noise_identification.h"
 #include "inertest/allan/noise_terms.h"
 #include "inertest/io/rate_record.h"
 #include "inertest/core/figure.h"
@@ -56,6 +58,8 @@ struct DeviationCurve {
   std::vector<double> upper;
   std::vector<double> edf;
   std::vector<std::size_t> terms;  // number of terms of the sum
+  std::vector<NoiseType> noise_types;  // per tau, identified for this estimator, used for its edf
+  std::vector<NoiseIdentificationMethod> noise_methods;  // per tau, how noise_types was found
 };
 
 struct AllanResult {
@@ -67,7 +71,7 @@ struct AllanResult {
   Figure mean;
   std::vector<double> tau_s;
   std::vector<std::size_t> averaging_factors;
-  std::vector<NoiseType> noise_types;  // per tau, used for the edf
+  std::vector<NoiseType> noise_types;  // per tau, identified for the Allan variance (as for ADEV)
   std::map<Estimator, DeviationCurve> curves;
   std::optional<NoiseTerms> noise;
   std::optional<SlopeReadOff> slopes;

@@ -10,6 +10,10 @@
 //   MDEV   eq. (14): w_k = sum_{t=k-m+1}^{k} a_t,                k = 3m-1..N        (N+2-3m terms)
 //   TOTDEV eq. (25): a at every centre c = 1..N-1 of the record reflected about both ends,
 //                    X*_{-j} = 2X_0 - X_j, X*_{N+j} = 2X_N - X_{N-j}                     (N-1 terms)
+// and, for the noise identification (noise_identification.h), the lag-1 sums of the
+// non-overlapping averages of the rate ȳ_j = (X_{jm} - X_{(j-1)m}) / m, j = 1..floor(N/m), and of
+// their first and second differences (AveragedFrequencySeries, over its bounded prefix of 2^20
+// averages): a few values per m-th anchor, so the averaged series is never stored, whatever N and m.
 // The IEEE Std 952-1997 Annex C / IEEE Std 1139 overlapping Allan variance of the reference
 // (section 3) is OADEV. The engine uses worker threads (std::thread) for the factors and runs the
 // caller's reading of the next chunk in parallel with the work on the last one.
@@ -42,6 +46,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "inertest/allan/lag1_sums.h"
 
 namespace inertest {
 
@@ -77,11 +83,15 @@ class EstimatorSet {
 // term each): N/2 for ADEV, OADEV and TOTDEV (tau <= T/2), N/3 for HDEV, OHDEV and MDEV.
 std::size_t largest_averaging_factor(std::size_t sample_count, const EstimatorSet& estimators);
 
-// Raw sums of one averaging factor, in (input unit * samples)^2, and their numbers of terms.
+// Raw sums of one averaging factor, in (input unit * samples)^2, and their numbers of terms. The
+// OADEV sums are always there (every estimator set computes them), the others for the estimators
+// asked for (0 terms otherwise).
 struct AllanSums {
   std::size_t averaging_factor = 0;  // m
   std::array<double, 6> sum_of_squares{};      // indexed by Estimator
   std::array<std::size_t, 6> term_count{};     // indexed by Estimator
+  // The averages of the rate over m samples (offset removed, input unit) and their differences.
+  AveragedFrequencySeries averages;
   double sum(Estimator e) const { return sum_of_squares[static_cast<std::size_t>(e)]; }
   std::size_t terms(Estimator e) const { return term_count[static_cast<std::size_t>(e)]; }
   // The variance of the estimator in the input unit squared (NIST SP 1065 normalisations: the

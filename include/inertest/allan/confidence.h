@@ -20,8 +20,10 @@ std::string_view noise_type_name(NoiseType type);
 double edf_overlapping_allan(double phase_count, double m, NoiseType type);
 
 // NIST SP 1065 Table 7: edf of the total variance, b (T/tau) - c, for white, flicker and random
-// walk FM; phase noises fall back to Table 5.
-double edf_total(double sample_count, double m, NoiseType type);
+// walk FM, with T/tau = N_x / m for N_x phase points (as Stable32 takes it: its published bounds
+// match this to 0.03 %, and (N_x - 1) / m to 0.17 % only); phase noises, which Table 7 does not
+// cover, take Table 5 (edf_overlapping_allan), as Stable32 does.
+double edf_total(double phase_count, double m, NoiseType type);
 
 // Greenhall's combined edf algorithm for the variances of d-th differences of the phase, which
 // NIST SP 1065 (2008) 5.3 names for AVAR, MVAR and HVAR: C. A. Greenhall and W. J. Riley,
@@ -35,15 +37,13 @@ double edf_total(double sample_count, double m, NoiseType type);
 // Throws Error outside that domain or when the record holds no term.
 double edf_greenhall(NoiseType type, int d, double m, double phase_count, bool overlapping, bool modified);
 
-// The edf used for each estimator on N rate samples at averaging factor m:
-//   OADEV  Table 5 with N + 1 phase points;
-//   ADEV   Table 5 on the decimated record (floor(N/m) + 1 phase points, factor 1), which is exact
-//          because ADEV at m is the OADEV at 1 of the decimated phase;
-//   MDEV, HDEV, OHDEV  Greenhall's algorithm (edf_greenhall) with N + 1 phase points;
-//   TOTDEV Table 7.
-// The result is at least 1 and at most the number of terms of the estimator.
-double equivalent_degrees_of_freedom(Estimator estimator, std::size_t sample_count, std::size_t m,
-                                     std::size_t term_count, NoiseType type);
+// The edf used for each estimator on N rate samples (N + 1 phase points) at averaging factor m, as
+// NIST SP 1065 (2008) 5.3 and Stable32 compute it:
+//   ADEV, OADEV, MDEV, HDEV, OHDEV  Greenhall's algorithm (edf_greenhall);
+//   TOTDEV                          Table 7 (edf_total).
+// The result is at least 1; it may exceed the number of terms (TOTDEV's reflected record, the
+// correlation of overlapping terms counted by Greenhall's sums), as in Stable32.
+double equivalent_degrees_of_freedom(Estimator estimator, std::size_t sample_count, std::size_t m, NoiseType type);
 
 // Where the edf of an estimator comes from, for the JSON: "NIST SP 1065 Table 5", ...
 std::string_view edf_method(Estimator estimator);

@@ -95,8 +95,6 @@ struct NoiseTerms {
   std::string fit_range_chosen_by;  // "automatic" or "user"
   std::string fit_range_reason;
   std::vector<std::string> warnings;
-  // For each tau, the power p of the largest term A_p tau^p of the fitted model.
-  std::vector<int> dominant_power;
 
   nlohmann::json to_json(const std::string& input_unit) const;
 };

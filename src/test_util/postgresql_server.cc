@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <fmt/format.h>
 
 namespace inertest::testing {
@@ -32,18 +33,28 @@ int free_port() {
   return port;
 }
 
-// Stops the server when the test program ends (after every test, before static destruction).
+// The server once a test has asked for it; null in a test program that never did.
+std::unique_ptr<PostgresqlServer>& started_server() {
+  static std::unique_ptr<PostgresqlServer> server;
+  return server;
+}
+
+// Stops the server, if one was started, when the test program ends (after every test, before
+// static destruction). It must not start one: every test process would pay an initdb.
 class StopServer : public ::testing::Environment {
  public:
-  void TearDown() override { PostgresqlServer::instance().stop(); }
+  void TearDown() override {
+    if (started_server()) started_server()->stop();
+  }
 };
 [[maybe_unused]] ::testing::Environment* const stop_server = ::testing::AddGlobalTestEnvironment(new StopServer);
 
 }  // namespace
 
 PostgresqlServer& PostgresqlServer::instance() {
-  static PostgresqlServer server;
-  return server;
+  std::unique_ptr<PostgresqlServer>& server = started_server();
+  if (!server) server.reset(new PostgresqlServer);
+  return *server;
 }
 
 PostgresqlServer::PostgresqlServer() {

@@ -49,11 +49,35 @@ void compute_bounds(AllanResult& result) {
   }
 }
 
+// The power-law noise whose term A_p tau^p of the fitted model (GJB 2426A eq. 30) is the largest at
+// tau: p = -2 quantisation (white PM), -1 angle random walk (white FM), 0 bias instability
+// (flicker FM), 1 and 2 rate random walk and rate ramp (random walk FM, the reddest type the edf
+// formulae know).
+NoiseType dominant_noise(const NoiseTerms& fit, double tau) {
+  int dominant = -2;
+  double largest = -1.0;
+  for (int p = -2; p <= 2; ++p) {
+    const double term = fit.coefficients[static_cast<std::size_t>(p + 2)] * std::pow(tau, p);
+    if (term > largest) {
+      largest = term;
+      dominant = p;
+    }
+  }
+  switch (dominant) {
+    case -2: return NoiseType::kWhitePhase;
+    case -1: return NoiseType::kWhiteFrequency;
+    case 0: return NoiseType::kFlickerFrequency;
+    default: return NoiseType::kRandomWalkFrequency;
+  }
+}
+
 void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_range) {
   const DeviationCurve* basis = nullptr;
+  Estimator basis_estimator = Estimator::kOadev;
   for (Estimator e : {Estimator::kOadev, Estimator::kAdev, Estimator::kTotdev}) {
     if (result.curves.contains(e)) {
       basis = &result.curves.at(e);
+      basis_estimator = e;
       break;
     }
   }
@@ -80,7 +104,18 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
   fit_options.fit_range = fit_range;
   fit_options.sample_count = result.sample_count;
   fit_options.sample_interval_s = 1.0 / result.sample_rate_hz;
-  result.noise = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
+  // The fit weighs each point by its covariance under the model (noise_terms.h), so the edf of a
+  // point is that of the noise the model says dominates there: a first fit on the edf of the noise
+  // identified from the data (lag-1 autocorrelation, SP 1065 section 5.6, which also sets the
+  // reported bounds) finds the model, the second fit uses the model's edf. Identification from the
+  // data scatters where few terms remain (B1, R(n)) and would weigh those points by the scatter.
+  const NoiseTerms first = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
+  std::vector<double> model_edf;
+  for (std::size_t i = 0; i < result.tau_s.size(); ++i) {
+    model_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count, result.averaging_factors[i],
+                                                      dominant_noise(first, result.tau_s[i])));
+  }
+  result.noise = fit_noise_terms(result.tau_s, variances(), model_edf, result.input_unit, fit_options);
   result.warnings.insert(result.warnings.end(), result.noise->warnings.begin(), result.noise->warnings.end());
   result.slopes = read_noise_slopes(result.tau_s, basis->values, basis->edf, result.input_unit);
   result.warnings.insert(result.warnings.end(), result.slopes->warnings.begin(), result.slopes->warnings.end());

@@ -431,8 +431,8 @@ void read_floor(SlopeReadOff& result, std::span<const double> tau_s, std::span<c
   }
   const std::size_t i = *floor;
   std::optional<double> flattest;
-  for (std::size_t pair : {i - 1, i}) {  // i - 1 wraps for i = 0 and is skipped
-    if (pair + 1 >= tau_s.size()) continue;
+  // The pairs (i - 1, i) and (i, i + 1), those that exist.
+  for (std::size_t pair = i > 0 ? i - 1 : i; pair <= i && pair + 1 < tau_s.size(); ++pair) {
     const PairSlope s = pair_slope(tau_s, deviation, edf, pair);
     if (s.resolved() && (!flattest || std::abs(s.slope) < std::abs(*flattest))) flattest = s.slope;
   }

@@ -142,6 +142,26 @@ TEST(SlopeReadOff, BiasInstabilityIsReadAtTheFloorNotAtAShortTauPlateau) {
   EXPECT_THAT(declined.warnings, ::testing::Contains(::testing::HasSubstr("the curve is still falling")));
 }
 
+// A floor at the first tau has only the pair after it: a rising curve (rate random walk alone) is
+// declined as not flat; a curve flat at its start and rising after is read at the first tau.
+TEST(SlopeReadOff, FloorAtTheFirstTauUsesTheOnePairBesideIt) {
+  std::vector<double> tau, rising, flat_then_rising, edf;
+  for (double t = 1.0; t < 3000.0; t *= 2.0) {
+    tau.push_back(t);
+    rising.push_back(1e-3 * std::sqrt(t));
+    flat_then_rising.push_back(t < 3.0 ? 0.01 : 0.01 * std::sqrt(t / 2.0));
+    edf.push_back(1e5);
+  }
+  const SlopeReadOff declined = read_noise_slopes(tau, rising, edf, "deg/s");
+  EXPECT_FALSE(declined.bias_instability.figure.has_value());
+  EXPECT_THAT(declined.warnings, ::testing::Contains(::testing::HasSubstr("is not flat (slope beside it +0.50")));
+  const SlopeReadOff read = read_noise_slopes(tau, flat_then_rising, edf, "deg/s");
+  ASSERT_TRUE(read.bias_instability.figure.has_value());
+  EXPECT_EQ(read.bias_instability.tau_s, 1.0);
+  EXPECT_EQ(read.bias_instability.slope, 0.0);
+  EXPECT_NEAR_RELATIVE(read.bias_instability.figure->value, 0.01 / kBiasInstabilityFactor * 3600.0, 1e-12);
+}
+
 TEST(NoiseTerms, FitRangeParsesTminColonTmax) {
   const FitRange range = parse_fit_range("0.5:1e3");
   EXPECT_DOUBLE_EQ(range.tau_min_s, 0.5);

@@ -217,6 +217,7 @@ TEST(NoiseTerms, OneSigmaIntervalsCoverTheTruthInAboutTwoThirdsOfTheSeeds) {
   }
   for (std::size_t k = 0; k < 3; ++k) {
     const double coverage = static_cast<double>(covered[k]) / kSeeds;
+    RecordProperty(std::array{"coverage_N", "coverage_B", "coverage_K"}[k], std::to_string(coverage));
     EXPECT_GE(coverage, 0.60) << "term " << k;
     EXPECT_LE(coverage, 0.76) << "term " << k;
   }

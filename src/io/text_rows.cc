@@ -292,37 +292,107 @@ void require_rows(const std::string& source, std::size_t rows, std::size_t minim
   }
 }
 
+// Which value slot each field fills (-1: none), or empty when a field is asked for twice and the
+// plain path cannot serve the layout.
+std::vector<int> plain_slots(const RowLayout& layout) {
+  std::vector<int> slots(layout.width, -1);
+  for (std::size_t k = 0; k < layout.positions.size(); ++k) {
+    int& slot = slots[layout.positions[k]];
+    if (slot >= 0) return {};
+    slot = static_cast<int>(k);
+  }
+  return slots;
+}
+
+// The plain path of a data row: unquoted fields, each selected one exactly one finite number, the
+// row as wide as the layout. It reads from `p` to the row's '\n' (or the chunk's end) once, with no
+// line search and no field list, and returns where it stopped. It accepts exactly the rows that
+// the general path (split, then parse_number) accepts, with the same values, and declines
+// (nullptr) every other, blank and comment lines included: the general path then reads that line
+// again to skip it or to name its error.
+const char* parse_plain_row(const char* p, const char* end, const RowLayout& layout, const std::vector<int>& slots,
+                            double* values) {
+  const char delimiter = layout.delimiter;
+  const bool blank_separated = delimiter == ' ';
+  for (std::size_t field = 0; field < layout.width; ++field) {
+    while (p < end && is_blank(*p)) ++p;
+    if (p < end && *p == '"') return nullptr;
+    if (slots[field] >= 0) {
+      if (p < end && *p == '+') ++p;  // as parse_number: fast_float rejects a leading '+'
+      double value = 0.0;
+      const auto parsed = fast_float::from_chars(p, end, value);
+      if (parsed.ec != std::errc() || !std::isfinite(value)) return nullptr;
+      p = parsed.ptr;
+      values[slots[field]] = value;
+    } else {
+      while (p < end && *p != '\n' && (blank_separated ? !is_blank(*p) : *p != delimiter)) {
+        if (*p == '"') return nullptr;
+        ++p;
+      }
+    }
+    const bool last = field + 1 == layout.width;
+    if (blank_separated) {
+      if (p < end && *p != '\n' && !is_blank(*p)) return nullptr;  // text after the number
+      while (p < end && is_blank(*p)) ++p;
+      const bool line_ends = p == end || *p == '\n';
+      if (last != line_ends) return nullptr;  // too few or too many fields
+    } else {
+      while (p < end && is_blank(*p)) ++p;
+      if (last) return p == end || *p == '\n' ? p : nullptr;
+      if (p == end || *p != delimiter) return nullptr;
+      ++p;
+    }
+  }
+  return p;
+}
+
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result) {
   result.columns.resize(layout.positions.size());
   const std::size_t estimate = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
   for (auto& c : result.columns) c.reserve(estimate);
   if (layout.record_row_lines) result.row_lines.reserve(estimate);
-  LineCursor cursor(chunk, first_line - 1);
   Line row{};
   std::vector<Field> fields;
+  const std::vector<int> slots = plain_slots(layout);
+  std::vector<double> values(layout.positions.size());
+  const char* const chunk_end = chunk.data() + chunk.size();
+  std::size_t line_number = first_line - 1;
   try {
-    while (cursor.next(row)) {
-      if (is_skipped(row.text, layout.comment)) continue;
-      split(row.text, layout.delimiter, fields, layout.source, row.number);
-      if (fields.size() != layout.width) fail_width(layout, row, fields, chunk);
-      for (std::size_t k = 0; k < layout.positions.size(); ++k) {
-        const Field& field = fields[layout.positions[k]];
-        const auto value = parse_number(field.text);
-        if (!value) {
-          if (is_header_again(layout, fields)) {
-            throw Error(SourceLocation{layout.source, row.number, 1},
-                        "a second header row in the data (records joined together?)");
+    for (const char* p = chunk.data(); p < chunk_end;) {
+      ++line_number;
+      const char* stop = slots.empty() ? nullptr : parse_plain_row(p, chunk_end, layout, slots, values.data());
+      if (stop == nullptr) {
+        const void* newline = std::memchr(p, '\n', static_cast<std::size_t>(chunk_end - p));
+        stop = newline != nullptr ? static_cast<const char*>(newline) : chunk_end;
+        std::size_t length = static_cast<std::size_t>(stop - p);
+        if (length > 0 && p[length - 1] == '\r') --length;
+        row = {std::string_view(p, length), line_number};
+        p = stop == chunk_end ? chunk_end : stop + 1;
+        if (is_skipped(row.text, layout.comment)) continue;
+        split(row.text, layout.delimiter, fields, layout.source, row.number);
+        if (fields.size() != layout.width) fail_width(layout, row, fields, chunk);
+        for (std::size_t k = 0; k < layout.positions.size(); ++k) {
+          const Field& field = fields[layout.positions[k]];
+          const auto value = parse_number(field.text);
+          if (!value) {
+            if (is_header_again(layout, fields)) {
+              throw Error(SourceLocation{layout.source, row.number, 1},
+                          "a second header row in the data (records joined together?)");
+            }
+            fail_cell(layout.source, row, field, layout.header_names[layout.positions[k]]);
           }
-          fail_cell(layout.source, row, field, layout.header_names[layout.positions[k]]);
+          if (!std::isfinite(*value)) {
+            throw Error(SourceLocation{layout.source, row.number, field.column},
+                        "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
+          }
+          values[k] = *value;
         }
-        if (!std::isfinite(*value)) {
-          throw Error(SourceLocation{layout.source, row.number, field.column},
-                      "'" + printable(field.text) + "' is not a finite number (NaN and Inf are not accepted)");
-        }
-        result.columns[k].push_back(*value);
+      } else {
+        p = stop == chunk_end ? chunk_end : stop + 1;  // past the '\n'
       }
-      if (layout.record_row_lines) result.row_lines.push_back(row.number);
-      if (result.row_count++ == 0) result.first_line = row.number;
+      for (std::size_t k = 0; k < values.size(); ++k) result.columns[k].push_back(values[k]);
+      if (layout.record_row_lines) result.row_lines.push_back(line_number);
+      if (result.row_count++ == 0) result.first_line = line_number;
     }
   } catch (...) {
     result.error = std::current_exception();

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "inertest/core/error.h"
 #include "test_util/test_util.h"
 
@@ -216,6 +218,61 @@ TEST(TextTable, ParallelChunksKeepOrderAndLineNumbers) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr("long.csv:" + std::to_string(kRows + 4) + ":3: expected a number"));
   }
 }
+
+}  // namespace
+}  // namespace inertest
+
+namespace inertest {
+namespace {
+
+// Plain data rows are read by a one-pass path (io_detail::parse_plain_row) and every other row by
+// the general one (split, then parse_number); a layout that selects a field twice is always read by
+// the general one. On rows at the edge of "plain", both must give the same values or the same
+// error: columns 1 and 2 selected as {1, 2}, then as {1, 2, 1}.
+void expect_plain_as_general(const std::string& text) {
+  TextTableOptions plain;
+  plain.columns = {ColumnSelector::parse("1"), ColumnSelector::parse("2")};
+  TextTableOptions general = plain;
+  general.columns.push_back(ColumnSelector::parse("1"));
+  const auto read = [&](const TextTableOptions& options, TextTable& table) {
+    try {
+      table = parse(text, options);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  TextTable plain_table;
+  TextTable general_table;
+  const std::string plain_error = read(plain, plain_table);
+  EXPECT_EQ(plain_error, read(general, general_table)) << text;
+  if (plain_error.empty()) {
+    ASSERT_EQ(general_table.columns.size(), 3u);
+    EXPECT_EQ(plain_table.columns[0], general_table.columns[0]) << text;
+    EXPECT_EQ(plain_table.columns[1], general_table.columns[1]) << text;
+    EXPECT_EQ(plain_table.row_lines, general_table.row_lines) << text;
+  }
+}
+
+class PlainAndGeneralRows : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PlainAndGeneralRows, GiveTheSameValuesOrTheSameError) {
+  expect_plain_as_general(std::string("a,b\n") + GetParam());
+  // The same row blank-separated: each ',' a space, then a tab.
+  for (char blank : {' ', '\t'}) {
+    std::string row = GetParam();
+    std::replace(row.begin(), row.end(), ',', blank);
+    expect_plain_as_general(std::string("a b\n") + row);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EdgeRows, PlainAndGeneralRows,
+    ::testing::Values("1,2\n", "+1,+2\n", "+-1,2\n", " 1 , 2 \n", "\t1\t,\t2\t\r\n", "1,2", "1,2\r\n3,4\n",
+                      "1e5,-2.5E-3\n", ".5,5.\n", "1,,\n", "1,\n", ",2\n", "1,2,\n", "1,2,3\n", "1.5x,2\n",
+                      "1 2,3\n", "nan,1\n", "1,inf\n", "0x10,1\n", "\"1\",2\n", "1,\"2\"\n", "1,2\"\n",
+                      "1,2\n\n# note\n3,4\n", "1,2\n   \n3,4\n", "a,b\n1,2\n", "1;2\n", "1,2\n3\n", "1,2\n3,4,5\n",
+                      "1,0,5\n", "1e400,1\n", "1,-0\n", "--1,2\n", "1 ,2 #\n", "1,2\r\r\n"));
 
 }  // namespace
 }  // namespace inertest

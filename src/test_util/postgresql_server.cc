@@ -66,20 +66,20 @@ PostgresqlServer::PostgresqlServer() {
     }
   }
   if (bin_.empty()) {
-    skip_reason_ = "PostgreSQL server binaries (initdb, pg_ctl under /usr/lib/postgresql/*/bin) are not installed: "
+    why_unavailable_ = "PostgreSQL server binaries (initdb, pg_ctl under /usr/lib/postgresql/*/bin) are not installed: "
                    "run scripts/install-deps.sh";
     return;
   }
   char pattern[] = "/tmp/inertest-pg-XXXXXX";
   if (::mkdtemp(pattern) == nullptr) {
-    skip_reason_ = "cannot create a temporary directory for the PostgreSQL server";
+    why_unavailable_ = "cannot create a temporary directory for the PostgreSQL server";
     return;
   }
   directory_ = pattern;
   if (::geteuid() == 0) {
     const passwd* user = ::getpwnam("postgres");
     if (user == nullptr || ::chown(directory_.c_str(), user->pw_uid, user->pw_gid) != 0) {
-      skip_reason_ = "running as root without a `postgres` user to run the PostgreSQL server as";
+      why_unavailable_ = "running as root without a `postgres` user to run the PostgreSQL server as";
       return;
     }
     as_user_ = "runuser -u postgres -- ";
@@ -93,9 +93,9 @@ PostgresqlServer::PostgresqlServer() {
       "start > /dev/null 2>&1",
       as_user_, bin_, data, directory_, port_, directory_);
   if (std::system(init.c_str()) != 0 || std::system(start.c_str()) != 0) {
-    skip_reason_ = "the PostgreSQL server did not start; see the logs in " + directory_;
+    why_unavailable_ = "the PostgreSQL server did not start; see the logs in " + directory_;
     directory_.clear();  // keep the logs for whoever reads the message
-    ADD_FAILURE() << skip_reason_;
+    ADD_FAILURE() << why_unavailable_;
     return;
   }
   available_ = true;
@@ -115,7 +115,7 @@ void PostgresqlServer::stop() {
         fmt::format("{}{}/pg_ctl -D {}/data -m fast -w stop > /dev/null 2>&1", as_user_, bin_, directory_);
     [[maybe_unused]] const int status = std::system(command.c_str());
     available_ = false;
-    skip_reason_ = "the PostgreSQL server was stopped";
+    why_unavailable_ = "the PostgreSQL server was stopped";
   }
   if (!directory_.empty()) {
     std::error_code ignored;

@@ -13,9 +13,9 @@ class PostgresqlServer {
   // The one server of this test program, started on first use; stopped at exit.
   static PostgresqlServer& instance();
 
-  // Whether the server runs; when not, why (skip_reason).
+  // Whether the server runs; when not, why (why_unavailable).
   bool available() const { return available_; }
-  const std::string& skip_reason() const { return skip_reason_; }
+  const std::string& why_unavailable() const { return why_unavailable_; }
 
   // A new, empty database on the server; returns its postgresql:// URL.
   std::string create_database();
@@ -26,7 +26,7 @@ class PostgresqlServer {
  private:
   PostgresqlServer();
   bool available_ = false;
-  std::string skip_reason_;
+  std::string why_unavailable_;
   std::string bin_;
   std::string directory_;
   std::string as_user_;  // "runuser -u postgres -- " as root, else ""

@@ -126,11 +126,11 @@ struct FactorState {
   AveragedFrequencySeries averages;  // ȳ_j at the anchors k = jm, in order
 };
 
-// The engine's inner loops (the kernels marked INERTEST_VECTOR_CLONES). Each is compiled for the baseline x86-64 and for
-// AVX2 (without FMA), and the loader picks the one the CPU runs (GCC/Clang function multi-versioning):
-// the wider registers carry the same kLanes lanes and the same operations in the same order (no
-// contraction to FMA: ISO C++ mode compiles with -ffp-contract=off), so the sums are bit for bit
-// those of the baseline build.
+// The engine's inner loops (marked INERTEST_VECTOR_CLONES) are compiled for the baseline x86-64
+// and for AVX2, and the loader picks the one the CPU runs (GCC function multi-versioning; other
+// compilers build the baseline only). The wider registers carry the same kLanes lanes and the same
+// operations in the same order (AVX2 without FMA: nothing is contracted), so the sums are bit for
+// bit those of the baseline build.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define INERTEST_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else

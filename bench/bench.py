@@ -94,6 +94,7 @@ def main():
     parser.add_argument("--runs", type=int, default=3, help="runs of each program, fastest kept")
     parser.add_argument("--huge", action="store_true", help="also 1e9 f32 samples (4 GB on disk, deleted after)")
     parser.add_argument("--huge-dir", default=None, help="where the 4 GB file goes (default: the temp dir)")
+    parser.add_argument("--huge-samples", type=int, default=10**9, help="f32 samples of the --huge record")
     args = parser.parse_args()
     inertest = os.path.join(args.build_dir, "bin", "inertest")
     if not os.path.exists(inertest):
@@ -111,7 +112,7 @@ def main():
     if args.huge:
         with tempfile.TemporaryDirectory(dir=args.huge_dir) as tmp:
             path = os.path.join(tmp, "huge.f32")
-            subprocess.run([sys.executable, "-c", WRITE_F32, path, str(10**9)], check=True)
+            subprocess.run([sys.executable, "-c", WRITE_F32, path, str(args.huge_samples)], check=True)
             try:
                 seconds, peak_mb, _ = allan_compare.run_child(
                     [inertest, "allan", path, "--rate", "100", "--format", "f32", "--taus", "octave", "--json"])
@@ -135,8 +136,9 @@ def main():
         rows.append((f"CSV ingestion, {args.csv_rows:.0e} rows ({csv_mb:.0f} MB)", base, reader, csv[reader][0],
                      f"{csv[reader][0] / base:.1f}x faster", "", csv_mb / 1e3 / base))
     if huge:
-        rows.append(("all six + bounds + fit, 1e9 f32 samples (4 GB)", huge[0], f"peak RSS {huge[1] / 1024:.1f} GiB",
-                     None, "", "within 24 GiB", 4.0 / huge[0]))
+        huge_gb = 4 * args.huge_samples / 1e9
+        rows.append((f"all six + bounds + fit, {args.huge_samples:.0e} f32 ({huge_gb:.2g} GB)", huge[0],
+                     f"peak RSS {huge[1] / 1024:.1f} GiB", None, "", "within 24 GiB", huge_gb / huge[0]))
 
     print(f"inertest bench, {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, {machine()}")
     print(f"load average {load_before[0]:.2f} before, {load_after[0]:.2f} after (a shared machine slows every column)")

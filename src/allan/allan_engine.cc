@@ -53,18 +53,18 @@ class PhaseStore {
   };
 
   PhaseStore(const double* ring, std::size_t capacity) : ring_(ring), capacity_(capacity) {}
-  explicit PhaseStore(const std::vector<Window>& windows) : windows_(&windows) {}
+  explicit PhaseStore(std::span<const Window> windows) : windows_(windows), windowed_(true) {}
 
   // A pointer to X_index; `forward` values X_index, X_index+1, ... and `backward` values X_index,
   // X_index-1, ... are contiguous from it.
   const double* locate(std::size_t index, std::size_t& forward, std::size_t& backward) const {
-    if (windows_ == nullptr) {
+    if (!windowed_) {
       const std::size_t slot = index % capacity_;
       forward = capacity_ - slot;
       backward = slot + 1;
       return ring_ + slot;
     }
-    for (const Window& w : *windows_) {
+    for (const Window& w : windows_) {
       if (index >= w.start && index < w.start + w.values.size()) {
         forward = w.start + w.values.size() - index;
         backward = index - w.start + 1;
@@ -83,7 +83,8 @@ class PhaseStore {
  private:
   const double* ring_ = nullptr;
   std::size_t capacity_ = 0;
-  const std::vector<Window>* windows_ = nullptr;
+  std::span<const Window> windows_;
+  bool windowed_ = false;
 };
 
 // One stream of phase values along the anchors k: X_{k - lag}, or mirrored X_{base - k}.
@@ -548,7 +549,7 @@ struct AllanEngine::State {
 
   // Fills each window with X_j, j in [start, start + size), integrating the samples again from the
   // checkpoint at or before its start with the very operations of push(): the same values.
-  void fill_windows(std::vector<PhaseStore::Window>& windows, const SampleReader& reader,
+  void fill_windows(std::span<PhaseStore::Window> windows, const SampleReader& reader,
                     std::vector<double>& samples) const {
     for (PhaseStore::Window& w : windows) {
       auto checkpoint = std::upper_bound(checkpoints.begin(), checkpoints.end(), w.start,
@@ -586,38 +587,43 @@ struct AllanEngine::State {
     const std::size_t segment = std::max<std::size_t>(options.block_size, capacity / 6);
     std::vector<double> samples(std::min<std::size_t>(segment, 1u << 16));
     std::vector<double> h_buffer(options.block_size);
+    // The windows of one segment are windows[0, used): their buffers are kept from segment to
+    // segment (segments are up to a sixth of the ring each: allocating them afresh would have the
+    // kernel map and zero gigabytes per segment of a 10^9-sample record).
     std::vector<PhaseStore::Window> windows;
+    std::size_t used = 0;
     const auto add_window = [&](std::size_t first, std::size_t end) {  // [first, end) clipped to [0, N]
       end = std::min(end, n + 1);
       if (first >= end) return;
-      PhaseStore::Window w;
+      if (used == windows.size()) windows.emplace_back();
+      PhaseStore::Window& w = windows[used++];
       w.start = first;
       w.values.resize(end - first);
-      windows.push_back(std::move(w));
     };
+    const auto segment_windows = [&] { return std::span<PhaseStore::Window>(windows.data(), used); };
     for (FactorState& f : deferred) {
       const std::size_t m = f.m;
       for (std::size_t ka = m; ka <= n; ka += segment) {  // the first average is anchored at k = m
         const std::size_t kb = std::min(n + 1, ka + segment);
-        windows.clear();
+        used = 0;
         for (std::size_t s = 0; s <= (third ? 3u : 2u); ++s) {
           const std::size_t lag = s * m;
           if (kb > lag) add_window(ka > lag ? ka - lag : 0, kb - lag);
         }
         if (totdev && ka < 2 * m) add_window(2 * m - std::min(kb, 2 * m) + 1, 2 * m - ka + 1);
-        fill_windows(windows, reader, samples);
-        process_block(f, ka, kb, PhaseStore(windows), h_buffer);
+        fill_windows(segment_windows(), reader, samples);
+        process_block(f, ka, kb, PhaseStore(segment_windows()), h_buffer);
       }
       if (totdev && m >= 2) {
         for (std::size_t ca = n + 1 - m; ca < n; ca += segment) {
           const std::size_t cb = std::min(n, ca + segment);
-          windows.clear();
+          used = 0;
           add_window(ca - m, cb - m);
           add_window(ca, cb);
           add_window(2 * n - m - cb + 1, 2 * n - m - ca + 1);
           add_window(n, n + 1);
-          fill_windows(windows, reader, samples);
-          process_end(f, ca, cb, PhaseStore(windows));
+          fill_windows(segment_windows(), reader, samples);
+          process_end(f, ca, cb, PhaseStore(segment_windows()));
         }
       }
     }

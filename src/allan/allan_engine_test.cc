@@ -333,7 +333,7 @@ TEST(AllanEngine, LongRunsAgreeWithTheDefinitions) {
     v = 1e4 + white(random) + walk;
   }
   const Reference reference(y);
-  const std::vector<std::size_t> factors = {1, 2, 4, 17, 256, 1000, 4096, 10003};
+  const std::vector<std::size_t> factors = {1, 2, 4, 17, 256, 1000, 2500};
   for (std::size_t block : {4093u, 1u << 15}) {
     for (const AllanSums& s : run_engine(y, factors, 2, block, 30011)) {
       for (Estimator e : kAllEstimators) {

@@ -5,6 +5,8 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PYTHON ?= /usr/bin/python3
 CMAKE_FLAGS ?=
+# make bench BENCH_FLAGS=--huge adds the 1e9-sample f32 record (4 GB written to the temp dir, deleted after).
+BENCH_FLAGS ?=
 # The sanitizer suite and the fuzz targets share one clang build with ASan + UBSan (+ libFuzzer).
 SANITIZE_DIR ?= build-sanitize
 FUZZ_SECONDS ?= 600
@@ -73,7 +75,7 @@ demo: build
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
-	@for script in bench/*_compare.py; do $(PYTHON) $$script --build-dir $(BUILD_DIR) || exit 1; done
+	@$(PYTHON) bench/bench.py --build-dir $(BUILD_DIR) $(BENCH_FLAGS)
 
 clean:
 	@rm -rf $(BUILD_DIR) $(SANITIZE_DIR) demo

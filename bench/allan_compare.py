@@ -121,6 +121,28 @@ def worst_difference(ours, theirs, names):
     return worst
 
 
+def measure(inertest, samples, runs, path):
+    """Writes the record to `path` and times inertest and the allantools algorithm on it (the file is
+    left for the caller, who deletes it). Returns a dict of times (s), peak RSS (MB) and agreement."""
+    five = ["adev", "oadev", "mdev", "hdev", "ohdev"]
+    subprocess.run([sys.executable, "-c", WRITE_RECORD, path, str(samples)], check=True)
+    base = [inertest, "allan", path, "--rate", "100", "--format", "f64", "--taus", "octave", "--json"]
+    numpy = [sys.executable, "-c", ALLANTOOLS, path, "100"]
+    t_oadev, m_oadev, out_oadev = best_of(runs, base + ["--estimators", "oadev"])
+    t_py1, m_py1, out_py1 = best_of(runs, numpy + ["oadev"])
+    t_all, m_all, out_all = best_of(runs, base)
+    t_py5, m_py5, out_py5 = best_of(runs, numpy + [",".join(five)])
+    ours = json.loads(out_all)
+    return {
+        "size_mb": os.path.getsize(path) / 1e6,
+        "taus": len(json.loads(out_py1)["tau"]),
+        "oadev": (t_oadev, m_oadev), "numpy_oadev": (t_py1, m_py1),
+        "all": (t_all, m_all), "numpy_five": (t_py5, m_py5),
+        "worst_oadev": worst_difference(json.loads(out_oadev), json.loads(out_py1), ["oadev"]),
+        "worst_five": worst_difference(ours, json.loads(out_py5), five),
+    }
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--samples", type=int, default=100_000_000)
@@ -130,26 +152,16 @@ def main():
     inertest = os.path.join(args.build_dir, "bin", "inertest")
     if not os.path.exists(inertest):
         sys.exit(f"{inertest} not found: build first (make build)")
-    five = ["adev", "oadev", "mdev", "hdev", "ohdev"]
 
     with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "record.f64")
-        subprocess.run([sys.executable, "-c", WRITE_RECORD, path, str(args.samples)], check=True)
-        size_mb = os.path.getsize(path) / 1e6
-        print(f"record: {args.samples:.3g} samples, {size_mb:.0f} MB raw f64, white 1 deg/h + rate random walk, 100 Hz")
-        print(f"each program run {args.runs} times back to back, fastest kept, peak RSS the largest")
-
-        base = [inertest, "allan", path, "--rate", "100", "--format", "f64", "--taus", "octave", "--json"]
-        numpy = [sys.executable, "-c", ALLANTOOLS, path, "100"]
-        t_oadev, m_oadev, out_oadev = best_of(args.runs, base + ["--estimators", "oadev"])
-        t_py1, m_py1, out_py1 = best_of(args.runs, numpy + ["oadev"])
-        t_all, m_all, out_all = best_of(args.runs, base)
-        t_py5, m_py5, out_py5 = best_of(args.runs, numpy + [",".join(five)])
-
-    ours = json.loads(out_all)
-    print(f"agreement over {len(json.loads(out_py1)['tau'])} octave taus, max relative difference: "
-          f"OADEV {worst_difference(json.loads(out_oadev), json.loads(out_py1), ['oadev']):.1e}, "
-          f"ADEV..OHDEV {worst_difference(ours, json.loads(out_py5), five):.1e}")
+        r = measure(inertest, args.samples, args.runs, os.path.join(tmp, "record.f64"))
+    size_mb = r["size_mb"]
+    print(f"record: {args.samples:.3g} samples, {size_mb:.0f} MB raw f64, white 1 deg/h + rate random walk, 100 Hz")
+    print(f"each program run {args.runs} times back to back, fastest kept, peak RSS the largest")
+    (t_oadev, m_oadev), (t_py1, m_py1) = r["oadev"], r["numpy_oadev"]
+    (t_all, m_all), (t_py5, m_py5) = r["all"], r["numpy_five"]
+    print(f"agreement over {r['taus']} octave taus, max relative difference: "
+          f"OADEV {r['worst_oadev']:.1e}, ADEV..OHDEV {r['worst_five']:.1e}")
     print()
     print(f"{'run':<64} {'time (s)':>9} {'peak RSS (MB)':>14}")
     print(f"{'inertest, OADEV only':<64} {t_oadev:9.2f} {m_oadev:14.0f}")

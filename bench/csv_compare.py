@@ -41,6 +41,21 @@ def best(command, repeat):
     return min(r[0] for r in runs), max(r[1] for r in runs)
 
 
+def measure(inertest, rows, repeat, with_loadtxt, path):
+    """Writes the CSV record to `path` (left for the caller to delete) and times each reader on it.
+    Returns ({reader: (best seconds, peak MiB)}, megabytes of the file)."""
+    write_record(path, rows)
+    megabytes = os.path.getsize(path) / 1e6
+    python = sys.executable
+    readers = {
+        "inertest": [inertest, "inspect", path, "--json"],
+        "pandas.read_csv": [python, "-c", f"import pandas; pandas.read_csv({path!r})"],
+    }
+    if with_loadtxt:
+        readers["numpy.loadtxt"] = [python, "-c", f"import numpy; numpy.loadtxt({path!r}, delimiter=',', skiprows=1)"]
+    return {name: best(command, repeat) for name, command in readers.items()}, megabytes
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default="build")
@@ -51,17 +66,8 @@ def main():
 
     inertest = os.path.join(args.build_dir, "bin", "inertest")
     with tempfile.TemporaryDirectory() as scratch:
-        path = os.path.join(scratch, "record.csv")
-        write_record(path, args.rows)
-        megabytes = os.path.getsize(path) / 1e6
-        python = sys.executable
-        readers = {
-            "inertest": [inertest, "inspect", path, "--json"],
-            "pandas.read_csv": [python, "-c", f"import pandas; pandas.read_csv({path!r})"],
-        }
-        if not args.skip_loadtxt:
-            readers["numpy.loadtxt"] = [python, "-c", f"import numpy; numpy.loadtxt({path!r}, delimiter=',', skiprows=1)"]
-        results = {name: best(command, args.repeat) for name, command in readers.items()}
+        results, megabytes = measure(inertest, args.rows, args.repeat, not args.skip_loadtxt,
+                                     os.path.join(scratch, "record.csv"))
 
     print(f"CSV ingestion: {args.rows} rows x 2 columns, {megabytes:.0f} MB, best of {args.repeat}")
     print(f"{'reader':<18}{'time s':>10}{'MB/s':>10}{'peak MiB':>10}{'inertest faster':>17}")

@@ -1,6 +1,8 @@
 #include "inertest/allan/allan_engine.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -8,10 +10,39 @@
 #include "inertest/core/error.h"
 #include "inertest/numerics/compensated_sum.h"
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace inertest {
 namespace {
 
 constexpr std::size_t index_of(Estimator e) { return static_cast<std::size_t>(e); }
+
+// The ring's storage: uninitialised doubles on 2 MiB boundaries, offered to the kernel as
+// transparent huge pages where it has them. The factors of large m stream from lags megabytes
+// apart: with 4 KiB pages every stream runs through the TLB, and filling 8 bytes per sample would
+// fault a page every 512 samples.
+class PhaseBuffer {
+ public:
+  void reset(std::size_t count) {
+    constexpr std::size_t kHugePage = std::size_t{2} << 20;
+    const std::size_t bytes = (count * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
+    data_.reset(bytes == 0 ? nullptr : static_cast<double*>(std::aligned_alloc(kHugePage, bytes)));
+    if (bytes != 0 && !data_) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (bytes != 0) madvise(data_.get(), bytes, MADV_HUGEPAGE);  // advice only: no huge pages is fine
+#endif
+  }
+  double* data() { return data_.get(); }
+  const double* data() const { return data_.get(); }
+
+ private:
+  struct Free {
+    void operator()(double* p) const { std::free(p); }
+  };
+  std::unique_ptr<double[], Free> data_;
+};
 
 // Where the phase values X_j live: the ring of the streaming pass (X_j at slot j mod capacity) or,
 // for the factors of the second pass, a few windows [start, start + values.size()) of the phase.
@@ -23,18 +54,18 @@ class PhaseStore {
   };
 
   PhaseStore(const double* ring, std::size_t capacity) : ring_(ring), capacity_(capacity) {}
-  explicit PhaseStore(const std::vector<Window>& windows) : windows_(&windows) {}
+  explicit PhaseStore(std::span<const Window> windows) : windows_(windows), windowed_(true) {}
 
   // A pointer to X_index; `forward` values X_index, X_index+1, ... and `backward` values X_index,
   // X_index-1, ... are contiguous from it.
   const double* locate(std::size_t index, std::size_t& forward, std::size_t& backward) const {
-    if (windows_ == nullptr) {
+    if (!windowed_) {
       const std::size_t slot = index % capacity_;
       forward = capacity_ - slot;
       backward = slot + 1;
       return ring_ + slot;
     }
-    for (const Window& w : *windows_) {
+    for (const Window& w : windows_) {
       if (index >= w.start && index < w.start + w.values.size()) {
         forward = w.start + w.values.size() - index;
         backward = index - w.start + 1;
@@ -53,7 +84,8 @@ class PhaseStore {
  private:
   const double* ring_ = nullptr;
   std::size_t capacity_ = 0;
-  const std::vector<Window>* windows_ = nullptr;
+  std::span<const Window> windows_;
+  bool windowed_ = false;
 };
 
 // One stream of phase values along the anchors k: X_{k - lag}, or mirrored X_{base - k}.
@@ -96,9 +128,30 @@ struct FactorState {
   AveragedFrequencySeries averages;  // ȳ_j at the anchors k = jm, in order
 };
 
-constexpr std::size_t kLanes = 4;
+// The engine's inner loops (marked INERTEST_VECTOR_CLONES) are compiled for the baseline x86-64
+// and for AVX2, and the loader picks the one the CPU runs (GCC function multi-versioning; other
+// compilers build the baseline only). The wider registers carry the same kLanes lanes and the same
+// operations in the same order (AVX2 without FMA: nothing is contracted), so the sums are bit for
+// bit those of the baseline build.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define INERTEST_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define INERTEST_VECTOR_CLONES
+#endif
 
-double lane_total(const double (&lanes)[kLanes]) { return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]); }
+// Independent partial sums per loop: four AVX2 accumulators, so that the loop runs at the rate of
+// its loads instead of one FP-add latency per vector (a single accumulator held a factor to about
+// one term per cycle). The partial sums are added pairwise, which is also the more accurate order.
+constexpr std::size_t kLanes = 16;
+
+double lane_total(const double (&lanes)[kLanes]) {
+  double level[kLanes];
+  std::copy(std::begin(lanes), std::end(lanes), level);
+  for (std::size_t width = kLanes / 2; width > 0; width /= 2) {
+    for (std::size_t l = 0; l < width; ++l) level[l] = level[2 * l] + level[2 * l + 1];
+  }
+  return level[0];
+}
 
 // Sum of values[0..n) in kLanes independent lanes (vectorisable).
 double lane_sum(const double* __restrict values, std::size_t n) {
@@ -111,14 +164,26 @@ double lane_sum(const double* __restrict values, std::size_t n) {
   return lane_total(lanes);
 }
 
+// Chains of the MDEV window recurrence run side by side (kChains add latencies overlap).
+constexpr std::size_t kChains = 8;
+
+double chain_total(const double (&chains)[kChains]) {
+  return ((chains[0] + chains[1]) + (chains[2] + chains[3])) + ((chains[4] + chains[5]) + (chains[6] + chains[7]));
+}
+
 // The MDEV window over a run: w_k = w_{k-1} + h_k for k in the run, returns sum w_k^2 and leaves
 // the last w in `window`. The recurrence is a chain of dependent additions (one FP-add latency per
-// term); the run is cut into kLanes chunks whose starting windows come from the chunk sums, so the
-// chains advance side by side. Each w is still a sum of the same h: the rounding differs from the
-// single chain by a few ulp of w, far inside the 1e-9 the estimators are held to.
+// term); the run is cut into kChains chunks whose starting windows come from the chunk sums, and
+// each chain advances four terms at a time: the prefix sums of four h in a register (two shifted
+// adds), plus the chain's last window. Each w is still a sum of the same h: the rounding differs
+// from the single chain by a few ulp of w, far inside the 1e-9 the estimators are held to.
+INERTEST_VECTOR_CLONES
 double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  // Four doubles in a register where the target has 256-bit ones (GCC/Clang vector extension;
+  // element-wise operations are exactly those of four scalars).
+  using Quad = double __attribute__((vector_size(4 * sizeof(double))));
   constexpr std::size_t kMinimumChunk = 64;
-  const std::size_t chunk = length / kLanes;
+  const std::size_t chunk = length / kChains / 4 * 4;
   if (chunk < kMinimumChunk) {
     double total = 0.0;
     double w = window;
@@ -129,23 +194,97 @@ double mdev_window_squares(const double* __restrict h, std::size_t length, doubl
     window = w;
     return total;
   }
-  double w[kLanes];
-  w[0] = window;
-  for (std::size_t c = 1; c < kLanes; ++c) w[c] = w[c - 1] + lane_sum(h + (c - 1) * chunk, chunk);
-  double squares[kLanes] = {};
-  for (std::size_t i = 0; i < chunk; ++i) {
-    for (std::size_t c = 0; c < kLanes; ++c) {
-      w[c] += h[c * chunk + i];
-      squares[c] += w[c] * w[c];
+  Quad carry[kChains];  // every lane: the window before the chain's next four terms
+  double start = window;
+  for (std::size_t c = 0; c < kChains; ++c) {
+    carry[c] = Quad{} + start;
+    start += lane_sum(h + c * chunk, chunk);
+  }
+  const Quad zero{};
+  Quad squares[kChains] = {};
+  for (std::size_t i = 0; i < chunk; i += 4) {
+    for (std::size_t c = 0; c < kChains; ++c) {
+      Quad x;
+      std::memcpy(&x, h + c * chunk + i, sizeof x);
+      x += __builtin_shufflevector(zero, x, 0, 4, 5, 6);  // h0, h0+h1, h1+h2, h2+h3
+      x += __builtin_shufflevector(zero, x, 0, 1, 4, 5);  // the prefix sums of the four
+      const Quad w = carry[c] + x;
+      squares[c] += w * w;
+      carry[c] = __builtin_shufflevector(w, w, 3, 3, 3, 3);
     }
   }
-  double last = w[kLanes - 1];
-  for (std::size_t i = kLanes * chunk; i < length; ++i) {
+  double last = carry[kChains - 1][3];
+  double tail = 0.0;
+  for (std::size_t i = kChains * chunk; i < length; ++i) {
     last += h[i];
-    squares[kLanes - 1] += last * last;
+    tail += last * last;
   }
   window = last;
-  return lane_total(squares);
+  double chains[kChains];
+  for (std::size_t c = 0; c < kChains; ++c) chains[c] = (squares[c][0] + squares[c][1]) + (squares[c][2] + squares[c][3]);
+  return chain_total(chains) + tail;
+}
+
+// sum a_k^2 over a run, a_k = p0[i] - 2 p1[i] + p2[i] (NIST SP 1065 eq. 11), in kLanes lanes.
+INERTEST_VECTOR_CLONES
+double second_difference_squares(const double* __restrict p0, const double* __restrict p1,
+                                 const double* __restrict p2, std::size_t length) {
+  double lanes[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= length; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
+      lanes[l] += a * a;
+    }
+  }
+  for (; i < length; ++i) {
+    const double a = p0[i] - 2.0 * p1[i] + p2[i];
+    lanes[0] += a * a;
+  }
+  return lane_total(lanes);
+}
+
+struct ThirdDifferenceSquares {
+  double second = 0.0;  // sum a_k^2
+  double third = 0.0;   // sum h_k^2
+};
+
+// Over a run: a_k = p0 - 2 p1 + p2 and h_k = a_k - (p1 - 2 p2 + p3) = a_k - a_{k-m} (NIST SP 1065
+// eqs. 11 and 17); with kStoreH the h_k go to `h` (MDEV needs them, OHDEV alone does not). Inlined
+// into the clones of third_difference_squares, so that each is compiled for their targets.
+template <bool kStoreH>
+[[gnu::always_inline]] inline ThirdDifferenceSquares third_difference_loop(
+    const double* __restrict p0, const double* __restrict p1, const double* __restrict p2,
+    const double* __restrict p3, std::size_t length, double* __restrict h) {
+  double lanes_a[kLanes] = {};
+  double lanes_h[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= length; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
+      const double hk = a - (p1[i + l] - 2.0 * p2[i + l] + p3[i + l]);
+      if constexpr (kStoreH) h[i + l] = hk;
+      lanes_a[l] += a * a;
+      lanes_h[l] += hk * hk;
+    }
+  }
+  for (; i < length; ++i) {
+    const double a = p0[i] - 2.0 * p1[i] + p2[i];
+    const double hk = a - (p1[i] - 2.0 * p2[i] + p3[i]);
+    if constexpr (kStoreH) h[i] = hk;
+    lanes_a[0] += a * a;
+    lanes_h[0] += hk * hk;
+  }
+  return {lane_total(lanes_a), lane_total(lanes_h)};
+}
+
+// third_difference_loop, storing the h_k unless `h` is null.
+INERTEST_VECTOR_CLONES
+ThirdDifferenceSquares third_difference_squares(const double* __restrict p0, const double* __restrict p1,
+                                                const double* __restrict p2, const double* __restrict p3,
+                                                std::size_t length, double* __restrict h) {
+  if (h == nullptr) return third_difference_loop<false>(p0, p1, p2, p3, length, h);
+  return third_difference_loop<true>(p0, p1, p2, p3, length, h);
 }
 
 }  // namespace
@@ -241,7 +380,7 @@ struct AllanEngine::State {
   bool totdev = false;
 
   std::size_t capacity = 0;
-  std::vector<double> ring;
+  PhaseBuffer ring;
   std::size_t written = 0;     // phase values written: X_0 .. X_{written-1}
   std::size_t dispatched = 0;  // phase indices below this were handed to the workers
   double phase_sum = 0.0;      // Neumaier running sum of (y - offset): X = phase_sum + phase_compensation
@@ -264,7 +403,7 @@ struct AllanEngine::State {
   std::size_t span_of(std::size_t m) const { return (third ? 3 : 2) * m; }
 
   void write_phase(double value) {
-    ring[written % capacity] = value;
+    ring.data()[written % capacity] = value;
     ++written;
   }
 
@@ -345,22 +484,7 @@ struct AllanEngine::State {
     if (k0 >= k1) return;
     const std::size_t m = f.m;
     for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, k0, k1, 1, [&](const auto& p, std::size_t length) {
-      const double* __restrict p0 = p[0];
-      const double* __restrict p1 = p[1];
-      const double* __restrict p2 = p[2];
-      double lanes[kLanes] = {};
-      std::size_t i = 0;
-      for (; i + kLanes <= length; i += kLanes) {
-        for (std::size_t l = 0; l < kLanes; ++l) {
-          const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
-          lanes[l] += a * a;
-        }
-      }
-      for (; i < length; ++i) {
-        const double a = p0[i] - 2.0 * p1[i] + p2[i];
-        lanes[0] += a * a;
-      }
-      f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes));
+      f.sums[index_of(Estimator::kOadev)].add(second_difference_squares(p[0], p[1], p[2], length));
     });
   }
 
@@ -387,33 +511,10 @@ struct AllanEngine::State {
 
   // Without MDEV the h_k are not stored: one stream less through the cache.
   template <bool kWithMdev>
-  void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t length, double* __restrict h) {
-    double lanes_a[kLanes] = {};
-    double lanes_h[kLanes] = {};
-    // Restrict-qualified copies let the compiler vectorise across the lanes.
-    const double* __restrict p0 = p[0];
-    const double* __restrict p1 = p[1];
-    const double* __restrict p2 = p[2];
-    const double* __restrict p3 = p[3];
-    std::size_t i = 0;
-    for (; i + kLanes <= length; i += kLanes) {
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
-        const double hk = a - (p1[i + l] - 2.0 * p2[i + l] + p3[i + l]);
-        if constexpr (kWithMdev) h[i + l] = hk;
-        lanes_a[l] += a * a;
-        lanes_h[l] += hk * hk;
-      }
-    }
-    for (; i < length; ++i) {
-      const double a = p0[i] - 2.0 * p1[i] + p2[i];
-      const double hk = a - (p1[i] - 2.0 * p2[i] + p3[i]);
-      if constexpr (kWithMdev) h[i] = hk;
-      lanes_a[0] += a * a;
-      lanes_h[0] += hk * hk;
-    }
-    f.sums[index_of(Estimator::kOadev)].add(lane_total(lanes_a));
-    f.sums[index_of(Estimator::kOhdev)].add(lane_total(lanes_h));
+  void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t length, double* h) {
+    const ThirdDifferenceSquares squares = third_difference_squares(p[0], p[1], p[2], p[3], length, kWithMdev ? h : nullptr);
+    f.sums[index_of(Estimator::kOadev)].add(squares.second);
+    f.sums[index_of(Estimator::kOhdev)].add(squares.third);
     if constexpr (kWithMdev) f.sums[index_of(Estimator::kMdev)].add(mdev_window_squares(h, length, f.window));
   }
 
@@ -465,7 +566,7 @@ struct AllanEngine::State {
 
   // Fills each window with X_j, j in [start, start + size), integrating the samples again from the
   // checkpoint at or before its start with the very operations of push(): the same values.
-  void fill_windows(std::vector<PhaseStore::Window>& windows, const SampleReader& reader,
+  void fill_windows(std::span<PhaseStore::Window> windows, const SampleReader& reader,
                     std::vector<double>& samples) const {
     for (PhaseStore::Window& w : windows) {
       auto checkpoint = std::upper_bound(checkpoints.begin(), checkpoints.end(), w.start,
@@ -499,43 +600,47 @@ struct AllanEngine::State {
     if (deferred.empty()) return;
     if (!reader) throw Error("internal: the Allan engine needs a second pass over the record and has no reader");
     const std::size_t n = sample_count;
-    ring.clear();
-    ring.shrink_to_fit();  // the windows take its place
+    ring.reset(0);  // the windows take its place
     const std::size_t segment = std::max<std::size_t>(options.block_size, capacity / 6);
     std::vector<double> samples(std::min<std::size_t>(segment, 1u << 16));
     std::vector<double> h_buffer(options.block_size);
+    // The windows of one segment are windows[0, used): their buffers are kept from segment to
+    // segment (segments are up to a sixth of the ring each: allocating them afresh would have the
+    // kernel map and zero gigabytes per segment of a 10^9-sample record).
     std::vector<PhaseStore::Window> windows;
+    std::size_t used = 0;
     const auto add_window = [&](std::size_t first, std::size_t end) {  // [first, end) clipped to [0, N]
       end = std::min(end, n + 1);
       if (first >= end) return;
-      PhaseStore::Window w;
+      if (used == windows.size()) windows.emplace_back();
+      PhaseStore::Window& w = windows[used++];
       w.start = first;
       w.values.resize(end - first);
-      windows.push_back(std::move(w));
     };
+    const auto segment_windows = [&] { return std::span<PhaseStore::Window>(windows.data(), used); };
     for (FactorState& f : deferred) {
       const std::size_t m = f.m;
       for (std::size_t ka = m; ka <= n; ka += segment) {  // the first average is anchored at k = m
         const std::size_t kb = std::min(n + 1, ka + segment);
-        windows.clear();
+        used = 0;
         for (std::size_t s = 0; s <= (third ? 3u : 2u); ++s) {
           const std::size_t lag = s * m;
           if (kb > lag) add_window(ka > lag ? ka - lag : 0, kb - lag);
         }
         if (totdev && ka < 2 * m) add_window(2 * m - std::min(kb, 2 * m) + 1, 2 * m - ka + 1);
-        fill_windows(windows, reader, samples);
-        process_block(f, ka, kb, PhaseStore(windows), h_buffer);
+        fill_windows(segment_windows(), reader, samples);
+        process_block(f, ka, kb, PhaseStore(segment_windows()), h_buffer);
       }
       if (totdev && m >= 2) {
         for (std::size_t ca = n + 1 - m; ca < n; ca += segment) {
           const std::size_t cb = std::min(n, ca + segment);
-          windows.clear();
+          used = 0;
           add_window(ca - m, cb - m);
           add_window(ca, cb);
           add_window(2 * n - m - cb + 1, 2 * n - m - ca + 1);
           add_window(n, n + 1);
-          fill_windows(windows, reader, samples);
-          process_end(f, ca, cb, PhaseStore(windows));
+          fill_windows(segment_windows(), reader, samples);
+          process_end(f, ca, cb, PhaseStore(segment_windows()));
         }
       }
     }
@@ -622,7 +727,7 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
     }
   }
   s.capacity = std::min(sample_count + 1, ring_span + 2 * options.block_size);
-  s.ring.assign(s.capacity, 0.0);
+  s.ring.reset(s.capacity);
   options.worker_count = std::max<std::size_t>(1, std::min(options.worker_count, s.factors.size()));
   s.scratch.assign(options.worker_count, std::vector<double>(options.block_size));
   s.options = std::move(options);
@@ -653,18 +758,22 @@ void AllanEngine::push(std::span<const double> samples) {
   const std::size_t block = s.options.block_size;
   std::size_t i = 0;
   while (i < samples.size()) {
-    const std::size_t room = s.dispatched + block - s.written;
+    // The piece ends at the block's end, the samples' end or the ring's end, whichever is first.
+    const std::size_t slot = s.written % s.capacity;
+    const std::size_t room = std::min(s.dispatched + block - s.written, s.capacity - slot);
     const std::size_t piece = std::min(room, samples.size() - i);
     double sum = s.phase_sum;
     double compensation = s.phase_compensation;
-    for (std::size_t j = i; j < i + piece; ++j) {
+    double* phase = s.ring.data() + slot;
+    for (std::size_t j = 0; j < piece; ++j) {
       // Neumaier summation of the mean-removed rate: the phase keeps full precision over 1e9 samples.
-      const double y = samples[j] - s.offset;
+      const double y = samples[i + j] - s.offset;
       const double t = sum + y;
       compensation += std::abs(sum) >= std::abs(y) ? (sum - t) + y : (y - t) + sum;
       sum = t;
-      s.write_phase(sum + compensation);
+      phase[j] = sum + compensation;
     }
+    s.written += piece;
     s.phase_sum = sum;
     s.phase_compensation = compensation;
     i += piece;

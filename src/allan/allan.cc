@@ -252,6 +252,12 @@ AllanResult allan_variance(std::span<const double> rate, const AllanOptions& opt
 AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
                                    const ProgressCallback& progress) {
   options.validate();
+  if (source.format == RateRecordFormat::kCsv) {
+    // Text is parsed once, in parallel, into memory and analysed there: a second parse would cost
+    // more than the 8 bytes a sample. Binary records stream twice (the mean, then the engine).
+    if (progress) progress("reading " + source.path, 0.0);
+    return allan_variance(read_text_rate_record(source), options);
+  }
   CompensatedSum sum;
   const std::size_t count = read_rate_record(source, [&](std::span<const double> samples) {
     for (double v : samples) sum.add(v);

@@ -79,7 +79,7 @@ TEST(RateRecord, BinaryRecords) {
   EXPECT_THROW(read_all({nan, RateRecordFormat::kFloat64, std::nullopt}), Error);
 }
 
-// Every text file of the bad-input corpus, read as a stream and as a whole table: the same values,
+// Every text file of the bad-input corpus, read as a rate record and as a table: the same values,
 // or the same error (message, file, line and column) from both.
 class CorpusRecord : public ::testing::TestWithParam<std::string> {};
 
@@ -121,8 +121,8 @@ INSTANTIATE_TEST_SUITE_P(BadInputCorpus, CorpusRecord, ::testing::ValuesIn(corpu
                            return name;
                          });
 
-// A record several buffers long (the reader takes 4 MB at a time): every value arrives once, in
-// order, and an error far into the file names its exact line and column.
+// A record long enough to be parsed in several chunks at once: every value arrives once, in order,
+// and an error on its last lines names its exact line and column.
 TEST(RateRecord, LongTextRecordAcrossBuffers) {
   testing::ScratchDirectory dir;
   testing::UniformSequence uniform;

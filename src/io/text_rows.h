@@ -1,8 +1,9 @@
 // The row parser behind every text record reader: the layout the first line fixes (delimiter,
 // header, chosen columns) and the parse of a run of whole lines against it, RFC 4180 quoted fields
 // included, with the messages of the bad-input corpus (file:line:column, decimal commas, mixed
-// delimiters, a second header, NaN/Inf, a truncated last line, a quote left open or misplaced). parse_text_table (text_table.cc) runs it on chunks in parallel;
-// read_rate_record (rate_record.cc) on consecutive buffers of a stream. Private to io.
+// delimiters, a second header, NaN/Inf, a truncated last line, a quote left open or misplaced).
+// parse_text_table (text_table.cc) runs it on chunks in parallel; every text reader goes through
+// it. Private to io.
 #pragma once
 
 #include <cstddef>

@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "inertest/io/text_table.h"
 
@@ -31,9 +32,15 @@ struct RateRecordSource {
 using SampleSink = std::function<void(std::span<const double> samples)>;
 
 // Reads the record from the start and hands consecutive chunks of samples to `sink`; returns the
-// number of samples. Throws Error with file:line:column for text that is not a number, a missing
-// column, a NaN or infinite sample, a binary size that is not a whole number of samples, or an
-// unreadable file.
+// number of samples. A binary record streams in buffers; a text record is parsed once, whole (see
+// read_text_rate_record), and handed over as one chunk. Throws Error with file:line:column for text
+// that is not a number, a missing column, a NaN or infinite sample, a binary size that is not a
+// whole number of samples, or an unreadable file.
 std::size_t read_rate_record(const RateRecordSource& source, const SampleSink& sink);
+
+// The samples of a text record (source.format csv): the file mapped and parsed once, in parallel
+// chunks at line boundaries (read_text_table), into memory: 8 bytes a sample, beside the mapped
+// text. Without source.column the record must have one column.
+std::vector<double> read_text_rate_record(const RateRecordSource& source);
 
 }  // namespace inertest

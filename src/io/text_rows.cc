@@ -347,10 +347,14 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
 }
 
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result) {
-  result.columns.resize(layout.positions.size());
-  const std::size_t estimate = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
-  for (auto& c : result.columns) c.reserve(estimate);
-  if (layout.record_row_lines) result.row_lines.reserve(estimate);
+  // Every row is a line: the columns are sized for all lines and cut to the rows at the end, so
+  // that a row is stored by index, not by push_back.
+  const std::size_t lines = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
+  result.columns.assign(layout.positions.size(), std::vector<double>(lines));
+  std::vector<double*> column_data;
+  for (auto& c : result.columns) column_data.push_back(c.data());
+  if (layout.record_row_lines) result.row_lines.reserve(lines);
+  std::size_t row_count = 0;
   Line row{};
   std::vector<Field> fields;
   const std::vector<int> slots = plain_slots(layout);
@@ -390,13 +394,15 @@ void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout&
       } else {
         p = stop == chunk_end ? chunk_end : stop + 1;  // past the '\n'
       }
-      for (std::size_t k = 0; k < values.size(); ++k) result.columns[k].push_back(values[k]);
+      for (std::size_t k = 0; k < values.size(); ++k) column_data[k][row_count] = values[k];
       if (layout.record_row_lines) result.row_lines.push_back(line_number);
-      if (result.row_count++ == 0) result.first_line = line_number;
+      if (row_count++ == 0) result.first_line = line_number;
     }
   } catch (...) {
     result.error = std::current_exception();
   }
+  result.row_count = row_count;
+  for (auto& c : result.columns) c.resize(row_count);
 }
 
 }  // namespace inertest::io_detail

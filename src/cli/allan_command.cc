@@ -28,7 +28,7 @@ CommandAction setup(CLI::App& root) {
       "Allan variance of a rate record (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C, NIST SP 1065):\n"
       "ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV with chi-squared bounds, and the noise terms Q, N (ARW),\n"
       "B (bias instability), K (RRW), R (rate ramp) by the fit of GJB eq. (30) and by slope read-off.\n"
-      "FILE: one channel of rate samples, text (csv) or raw little-endian f64/f32. Streams the file twice.");
+      "FILE: one channel of rate samples, text (csv) or raw little-endian f64/f32. Text is parsed once, into memory; binary streams twice.");
   command->add_option("FILE", arguments->source.path, "rate record")->required()->check(CLI::ExistingFile);
   command->add_option("--rate", arguments->options.sample_rate_hz, "sample rate in Hz")->required();
   command->add_option("--format", arguments->format, "csv, f64 or f32 (raw little-endian)")->capture_default_str();

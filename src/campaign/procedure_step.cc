@@ -20,8 +20,13 @@ std::string choice_list(const std::vector<std::string>& choices) {
   return text;
 }
 
+// The [instrument] value a parameter defaults to; null when the plan does not give it.
 nlohmann::json instrument_value(const PlanContext& context, const std::string& key) {
   if (key == "output_unit") return context.instrument.output_unit;
+  if (key == "nominal_scale_factor" && context.instrument.nominal_scale_factor) {
+    return *context.instrument.nominal_scale_factor;
+  }
+  if (key == "nominal_scale_factor") return nullptr;
   throw Error("procedure spec: unknown instrument key '" + key + "'");
 }
 
@@ -32,24 +37,35 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
   for (const ParameterSpec& parameter : spec.parameters) {
     if (!parameter.instrument_default.empty()) {
-      call.parameters[parameter.name] = instrument_value(context, parameter.instrument_default);
-      continue;
+      const nlohmann::json value = instrument_value(context, parameter.instrument_default);
+      if (!value.is_null()) call.parameters[parameter.name] = value;
+      if (parameter.instrument_only) continue;
     }
     if (parameter.type == ParameterType::number) {
       if (const auto value = step.optional_number(parameter.name)) call.parameters[parameter.name] = *value;
-      continue;
+    } else if (const auto value = step.optional_string(parameter.name)) {
+      if (!parameter.choices.empty() &&
+          std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
+        step.fail_at(parameter.name, "must be " + choice_list(parameter.choices));
+      }
+      call.parameters[parameter.name] = *value;
     }
-    const auto value = step.optional_string(parameter.name);
-    if (!value) continue;
-    if (!parameter.choices.empty() &&
-        std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
-      step.fail_at(parameter.name, "must be " + choice_list(parameter.choices));
+    if (parameter.required && !call.parameters.contains(parameter.name)) {
+      step.fail(fmt::format("missing '{}'{}", parameter.name,
+                            parameter.instrument_default.empty()
+                                ? std::string()
+                                : " (give it here or as [instrument] " + parameter.instrument_default + ")"));
     }
-    call.parameters[parameter.name] = *value;
   }
   // Each input from exactly one source; records read when the step runs.
   std::map<std::string, std::string> files;
+  bool reads_records = false;
   for (const InputSpec& input : spec.inputs) {
+    if (input.kind == InputKind::file) {
+      call.files[input.name] = step.file(input.plan_key);
+      continue;
+    }
+    reads_records = true;
     const auto file = step.optional_file(input.name + "_file");
     const auto value = step.optional_number(input.name + "_output");
     if (file.has_value() == value.has_value()) {
@@ -58,7 +74,8 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (value) call.inputs[input.name] = *value;
     if (file) files[input.name] = *file;
   }
-  const OutputRecordSource source = spec.inputs.empty() ? OutputRecordSource{} : read_record_keys(step, "");
+  check_in_plan(step, [&] { spec.check(call); });
+  const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
   return [&spec, call, files, source](const StepRunContext&) {
     ProcedureCall run_call = call;
     for (const auto& [name, file] : files) {

@@ -79,5 +79,13 @@ TEST(ProcedureStep, LimitOnAnUndeclaredFigureIsAPlanErrorBeforeAnythingRuns) {
                     "limit on '/wobble/value': procedure 'pol' reports no such figure");
 }
 
+// A required parameter with an instrument default: the step's key, else [instrument], else an error.
+TEST(ProcedureStep, RequiredParameterFromTheStepOrTheInstrument) {
+  expect_plan_error("[[procedure]]\nkind = \"resolution\"\nfile = \"plan.toml\"\n",
+                    "missing 'scale_factor' (give it here or as [instrument] nominal_scale_factor)");
+  expect_plan_error("[[procedure]]\nkind = \"resolution\"\nfile = \"plan.toml\"\nscale_factor = 0\n",
+                    "the scale factor K must be a nonzero number");
+}
+
 }  // namespace
 }  // namespace inertest

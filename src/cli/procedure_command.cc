@@ -25,6 +25,7 @@ struct Arguments {
   std::map<std::string, std::optional<double>> numbers;     // by parameter name
   std::map<std::string, std::optional<std::string>> texts;  // by parameter name
   std::map<std::string, InputArguments> inputs;             // by input name
+  std::map<std::string, std::string> files;                 // by input name
   OutputRecordSource source;
   bool json = false;
 };
@@ -66,7 +67,13 @@ double input_value(const ProcedureSpec& spec, const InputSpec& input, const Inpu
 CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = root.add_subcommand(kebab_case(spec.kind), help_text(spec));
+  bool reads_records = false;
   for (const InputSpec& input : spec.inputs) {
+    if (input.kind == InputKind::file) {
+      command->add_option(input.cli_name, arguments->files[input.name], input.doc)->required()->check(CLI::ExistingFile);
+      continue;
+    }
+    reads_records = true;
     InputArguments& given = arguments->inputs[input.name];
     const std::string flag = "--" + kebab_case(input.name);
     command->add_option(flag + "-file", given.file, "record of " + input.doc);
@@ -78,8 +85,9 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
                               ? command->add_option(flag, arguments->numbers[parameter.name], parameter_help(spec, parameter))
                               : command->add_option(flag, arguments->texts[parameter.name], parameter_help(spec, parameter));
     if (!parameter.choices.empty()) option->check(CLI::IsMember(parameter.choices));
+    if (parameter.required) option->required();
   }
-  if (!spec.inputs.empty()) add_record_options(*command, arguments->source);
+  if (reads_records) add_record_options(*command, arguments->source);
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments, &spec] {
     ProcedureCall call;
@@ -90,10 +98,18 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     for (const auto& [name, value] : arguments->texts) {
       if (value) call.parameters[name] = *value;
     }
+    spec.check(call);
     for (const InputSpec& input : spec.inputs) {
-      call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
+      if (input.kind == InputKind::file) {
+        call.files[input.name] = arguments->files.at(input.name);
+      } else {
+        call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
+      }
     }
-    const nlohmann::json fields = spec.run(call);
+    // A procedure's complaint about the data of its one file names that file.
+    const nlohmann::json fields = call.files.size() == 1
+                                      ? with_file_context(call.files.begin()->second, [&] { return spec.run(call); })
+                                      : spec.run(call);
     print_result(procedure_json(spec, fields), procedure_text(spec, fields), arguments->json);
     return 0;
   };

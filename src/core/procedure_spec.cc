@@ -63,7 +63,7 @@ std::string value_text(const nlohmann::json& value) {
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields) {
   std::string text = fmt::format("{} ({})\n", spec.title, spec.clause);
   for (const FieldSpec& field : spec.fields) {
-    if (field.role == FieldRole::hidden || !fields.contains(field.name) || fields.at(field.name).is_null()) continue;
+    if (field.role == FieldRole::hidden || field.role == FieldRole::table || !fields.contains(field.name) || fields.at(field.name).is_null()) continue;
     text += fmt::format("  {:<32} {}\n", field.label_en, value_text(fields.at(field.name)));
   }
   if (fields.contains("warnings")) {

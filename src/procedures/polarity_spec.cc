@@ -12,10 +12,10 @@ ProcedureSpec polarity_spec() {
              "records (their means) or mean outputs at +rate and -rate.")
       .input({"positive", "the output at the positive rate"})
       .input({"negative", "the output at the negative rate"})
-      .parameter({"output_unit", ParameterType::text, "", "instrument output unit", {}, "output_unit"},
+      .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
                  &PolarityOptions::output_unit)
-      .parameter({"expected", ParameterType::text, "", "the specified polarity: positive or negative",
-                  {"positive", "negative"}, ""},
+      .parameter(ParameterSpec("expected", "the specified polarity: positive or negative")
+                     .one_of({"positive", "negative"}),
                  [](PolarityOptions& options, const nlohmann::json& value) {
                    options.expected = value.get<std::string>() == "positive" ? 1 : -1;
                  })
@@ -35,8 +35,8 @@ ProcedureSpec polarity_spec() {
       .field_from({"pass", FieldRole::detail, "as specified", "符合规定", ""},
                   [](const PolarityResult& r) { return r.pass ? nlohmann::json(*r.pass) : nlohmann::json(); })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &PolarityResult::warnings)
-      .compute([](const auto& inputs, const PolarityOptions& options) {
-        return inertest::polarity(inputs.at("positive"), inputs.at("negative"), options);
+      .compute([](const ProcedureCall& call, const PolarityOptions& options) {
+        return inertest::polarity(call.inputs.at("positive"), call.inputs.at("negative"), options);
       });
 }
 

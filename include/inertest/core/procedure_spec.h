@@ -27,30 +27,70 @@ namespace inertest {
 
 enum class ParameterType { number, text };
 
-// A parameter of the procedure's Options.
+// A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
+// setters below, e.g. .unit_is("deg/s").required_on_command_line().
 struct ParameterSpec {
+  ParameterSpec(std::string parameter_name, std::string documentation)
+      : name(std::move(parameter_name)), doc(std::move(documentation)) {}
+  ParameterSpec& unit_is(std::string value) { unit = std::move(value); return *this; }
+  // A text parameter that takes one of `values`.
+  ParameterSpec& one_of(std::vector<std::string> values) {
+    type = ParameterType::text;
+    choices = std::move(values);
+    return *this;
+  }
+  ParameterSpec& required_on_command_line() { required = true; return *this; }
+  // Plans default to the [instrument] key; with only = true they have no key of their own for it.
+  ParameterSpec& instrument_gives(std::string key, bool only = false) {
+    instrument_default = std::move(key);
+    instrument_only = only;
+    return *this;
+  }
+
   std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
   ParameterType type = ParameterType::number;
   std::string unit;  // the unit of a number, "" when dimensionless or text
   std::string doc;
   std::vector<std::string> choices;  // the accepted values of a text parameter, empty when free
-  // In a plan, the [instrument] key that gives the value when the step does not
-  // (e.g. "output_unit"); such a parameter is not a plan key of its own.
+  bool required = false;             // no default: the command line must give it
+  // In a plan, the [instrument] key ("output_unit", "nominal_scale_factor") that gives the value
+  // when the step does not; with `instrument_only` the step has no key for it at all.
   std::string instrument_default;
+  bool instrument_only = false;
 };
 
-// An input value that comes from exactly one source: the mean of a record file
-// (--NAME-file / NAME_file, read with --column/--format) or the value itself
-// (--NAME-output / NAME_output).
+enum class InputKind {
+  // A value from exactly one source: the mean of a record file (--NAME-file / NAME_file, read
+  // with --column/--format) or the value itself (--NAME-output / NAME_output).
+  value_or_record,
+  // A file the procedure's reader reads (call.files): the positional argument `cli_name` on the
+  // command line, the key `plan_key` in a plan (a path relative to the plan, checked to exist).
+  file,
+};
+
+// InputSpec("positive", "the output at the positive rate"), or a file with .read_from_file(...).
 struct InputSpec {
+  InputSpec(std::string input_name, std::string documentation)
+      : name(std::move(input_name)), doc(std::move(documentation)) {}
+  InputSpec& read_from_file(std::string positional_name, std::string key) {
+    kind = InputKind::file;
+    cli_name = std::move(positional_name);
+    plan_key = std::move(key);
+    return *this;
+  }
+
   std::string name;
-  std::string doc;  // what the record or value is, e.g. "the output at the positive rate"
+  std::string doc;  // what the record, value or file is, e.g. "the output at the positive rate"
+  InputKind kind = InputKind::value_or_record;
+  std::string cli_name;  // InputKind::file: the positional argument, e.g. "STEPS"
+  std::string plan_key;  // InputKind::file: the plan key, e.g. "file"
 };
 
 // What a result field is in a report.
 enum class FieldRole {
   headline,  // a figure the procedure exists for (tables, limits)
   detail,    // a supporting figure or value
+  table,     // rows (e.g. every test point): in the JSON and the report's tables, not in the text
   hidden,    // in the JSON only
 };
 
@@ -63,10 +103,11 @@ struct FieldSpec {
   std::string equation;  // the source clause or equation, "" when the field is bookkeeping
 };
 
-// Parameter values by name (defaults already applied) and input values by name.
+// Parameter values by name (defaults already applied), input values and input files by name.
 struct ProcedureCall {
   nlohmann::json parameters = nlohmann::json::object();
   std::map<std::string, double> inputs;
+  std::map<std::string, std::string> files;
 };
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
@@ -79,6 +120,8 @@ struct ProcedureSpec {
   std::map<std::string, nlohmann::json> defaults;  // by parameter name; absent: optional, no default
   std::vector<InputSpec> inputs;
   std::vector<FieldSpec> fields;
+  // Checks the parameters (Options::validate) before any input is read; throws Error.
+  std::function<void(const ProcedureCall&)> check;
   // Runs the procedure; returns the result's fields by name (a null field is left out).
   std::function<nlohmann::json(const ProcedureCall&)> run;
 
@@ -106,7 +149,6 @@ template <typename Options, typename Result>
 class ProcedureDefinition {
  public:
   using Binder = std::function<void(Options&, const nlohmann::json&)>;
-  using Inputs = std::map<std::string, double>;
 
   ProcedureDefinition(std::string kind, std::string title, std::string clause, std::string doc) {
     spec_.kind = std::move(kind);
@@ -115,11 +157,12 @@ class ProcedureDefinition {
     spec_.doc = std::move(doc);
   }
 
-  // A parameter stored in an Options member; its default is the member's default value.
+  // A parameter stored in an Options member; its default is the member's default value unless the
+  // parameter is required.
   template <typename T>
   ProcedureDefinition& parameter(ParameterSpec parameter, T Options::*member) {
     static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string>, "number or text parameters");
-    spec_.defaults[parameter.name] = Options{}.*member;
+    if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*member;
     parameter.type = std::is_same_v<T, double> ? ParameterType::number : ParameterType::text;
     binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
       options.*member = value.get<T>();
@@ -128,7 +171,7 @@ class ProcedureDefinition {
     return *this;
   }
 
-  // An optional parameter (no default) stored through `bind`.
+  // A parameter without a default (optional, or required on the command line) stored through `bind`.
   ProcedureDefinition& parameter(ParameterSpec parameter, Binder bind) {
     binders_.emplace_back(parameter.name, std::move(bind));
     spec_.parameters.push_back(std::move(parameter));
@@ -153,14 +196,19 @@ class ProcedureDefinition {
     return *this;
   }
 
-  ProcedureSpec compute(std::function<Result(const Inputs&, const Options&)> procedure) const {
+  // The computation: the call's inputs and files, and the Options made from its parameters.
+  ProcedureSpec compute(std::function<Result(const ProcedureCall&, const Options&)> procedure) const {
     ProcedureSpec spec = spec_;
-    spec.run = [binders = binders_, getters = getters_, procedure](const ProcedureCall& call) {
+    auto options_of = [binders = binders_](const ProcedureCall& call) {
       Options options;
       for (const auto& [name, bind] : binders) {
         if (call.parameters.contains(name)) bind(options, call.parameters.at(name));
       }
-      const Result result = procedure(call.inputs, options);
+      return options;
+    };
+    spec.check = [options_of](const ProcedureCall& call) { options_of(call).validate(); };
+    spec.run = [options_of, getters = getters_, procedure](const ProcedureCall& call) {
+      const Result result = procedure(call, options_of(call));
       nlohmann::json fields = nlohmann::json::object();
       for (const auto& [name, get] : getters) fields[name] = get(result);
       return fields;

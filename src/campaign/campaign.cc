@@ -12,6 +12,7 @@
 #include "campaign/step_registry.h"
 #include "inertest/core/error.h"
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/version.h"
@@ -97,6 +98,22 @@ std::vector<Limit> read_limits(PlanTable& step) {
   return limits;
 }
 
+// A declared procedure's limits are checked against its declared fields before anything runs: a
+// limit on a key (or a JSON pointer's first key) it never reports is a plan error at the limit.
+void check_declared_figures(const ProcedureSpec& spec, const PreparedStep& step) {
+  for (const Limit& limit : step.limits) {
+    const std::string key = limit.figure.front() == '/' ? limit.figure.substr(1, limit.figure.find('/', 1) - 1)
+                                                        : limit.figure;
+    const bool declared = std::any_of(spec.fields.begin(), spec.fields.end(),
+                                      [&](const FieldSpec& field) { return field.name == key; });
+    if (declared) continue;
+    std::string known;
+    for (const FieldSpec& field : spec.fields) known += (known.empty() ? "" : ", ") + field.name;
+    throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name +
+                                 "' reports no such figure (it reports: " + known + ")");
+  }
+}
+
 Plan load_plan(const std::string& path) {
   const toml::table root = parse_toml(path);
   const std::string directory = std::filesystem::path(path).parent_path().string();
@@ -159,6 +176,7 @@ Plan load_plan(const std::string& path) {
     const auto& begin = step.raw().source().begin;
     prepared.where = {path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     prepared.limits = read_limits(step);
+    if (const ProcedureSpec* spec = find_procedure_spec(prepared.kind)) check_declared_figures(*spec, prepared);
     prepared.action = (*preparer)(step, plan.context);
     step.require_all_used();
     plan.steps.push_back(std::move(prepared));

@@ -1,6 +1,10 @@
 #include "campaign/step_registry.h"
 
+#include <algorithm>
+#include <array>
 #include <map>
+
+#include "campaign/procedure_step.h"
 
 namespace inertest::campaign {
 namespace {
@@ -10,6 +14,23 @@ std::map<std::string, StepPreparer>& steps() {
   return registry;
 }
 
+// The declared procedures' steps (core/procedure_spec.h), built on first use.
+const std::map<std::string, StepPreparer>& declared_steps() {
+  static const std::map<std::string, StepPreparer> declared = [] {
+    std::map<std::string, StepPreparer> made;
+    for (const ProcedureSpec& spec : procedure_specs()) {
+      made.emplace(spec.kind, [&spec](PlanTable& step, const PlanContext& context) {
+        return prepare_procedure_step(spec, step, context);
+      });
+    }
+    return made;
+  }();
+  return declared;
+}
+
+// The hand-registered steps, then the declared procedures'.
+std::array<const std::map<std::string, StepPreparer>*, 2> all_steps() { return {&steps(), &declared_steps()}; }
+
 }  // namespace
 
 bool register_step(const std::string& kind, StepPreparer preparer) {
@@ -18,13 +39,19 @@ bool register_step(const std::string& kind, StepPreparer preparer) {
 }
 
 const StepPreparer* find_step(const std::string& kind) {
-  const auto it = steps().find(kind);
-  return it == steps().end() ? nullptr : &it->second;
+  for (const auto* registry : all_steps()) {
+    const auto it = registry->find(kind);
+    if (it != registry->end()) return &it->second;
+  }
+  return nullptr;
 }
 
 std::vector<std::string> registered_step_kinds() {
   std::vector<std::string> kinds;
-  for (const auto& [kind, preparer] : steps()) kinds.push_back(kind);
+  for (const auto* registry : all_steps()) {
+    for (const auto& [kind, preparer] : *registry) kinds.push_back(kind);
+  }
+  std::sort(kinds.begin(), kinds.end());
   return kinds;
 }
 

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "procedure_command.h"
+
 namespace inertest::cli {
 namespace {
 
@@ -23,8 +25,14 @@ bool register_command(const std::string& name, CommandSetup setup) {
 }
 
 std::vector<std::pair<CLI::App*, CommandAction>> add_registered_commands(CLI::App& root) {
+  std::map<std::string, CommandSetup> commands = registry();
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    const auto [at, added] = commands.emplace(
+        kebab_case(spec.kind), [&spec](CLI::App& app) { return add_procedure_command(app, spec); });
+    if (!added) throw Error("two commands named '" + at->first + "'");
+  }
   std::vector<std::pair<CLI::App*, CommandAction>> added;
-  for (const auto& [name, setup] : registry()) {
+  for (const auto& [name, setup] : commands) {
     CommandAction action = setup(root);
     added.emplace_back(root.get_subcommand(name), std::move(action));
   }

@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/io/text_table.h"
 #include "procedures/fifty_percent_criterion.h"
 
 namespace inertest {
@@ -66,40 +66,17 @@ ResolutionResult resolution(std::span<const ResolutionStep> steps, const Resolut
   return result;
 }
 
-nlohmann::json ResolutionResult::to_json() const {
-  nlohmann::json branch_json = nlohmann::json::array();
-  for (const auto& b : branches) {
-    nlohmann::json points_json = nlohmann::json::array();
-    for (const auto& p : b.points) {
-      points_json.push_back({{"increment", Figure{p.increment_deg_h, "deg/h", std::nullopt}},
-                             {"expected_output_increment", p.expected_increment},
-                             {"output_increment", p.output_increment},
-                             {"relative_error", p.relative_error},
-                             {"satisfies", p.satisfies}});
-    }
-    branch_json.push_back({{"name", b.name},
-                           {"candidate", Figure{b.candidate_deg_h, "deg/h", std::nullopt}},
-                           {"bounded", b.bounded},
-                           {"points", points_json}});
+std::vector<ResolutionStep> read_resolution_steps(const std::string& path) {
+  TextTableOptions read;
+  read.header = TextTableOptions::Header::kPresent;
+  read.columns = {ColumnSelector{"base_rate"}, ColumnSelector{"base_output"}, ColumnSelector{"rate"},
+                  ColumnSelector{"output"}};
+  const TextTable table = read_text_table(path, read);
+  std::vector<ResolutionStep> steps;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    steps.push_back({table.columns[0][i], table.columns[1][i], table.columns[2][i], table.columns[3][i]});
   }
-  return {
-      {"procedure", "resolution"},
-      {"clause", "GJB 2426A-2004 5.11.4, eq. (18)"},
-      {"resolution", resolution},
-      {"branches", branch_json},
-      {"warnings", warnings},
-  };
-}
-
-std::string ResolutionResult::report() const {
-  std::string text = "Resolution (GJB 2426A-2004 5.11)\n";
-  for (const auto& b : branches) {
-    text += fmt::format("  {:<32} {:.6g} deg/h{}\n", "candidate, " + b.name, b.candidate_deg_h,
-                        b.bounded ? "" : " (smallest increment tested)");
-  }
-  text += fmt::format("  {:<32} {:.6g} deg/h\n", "resolution", resolution.value);
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
+  return steps;
 }
 
 }  // namespace inertest

@@ -12,9 +12,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -31,12 +30,15 @@ struct PolarityResult {
   bool signs_opposite = true;
   std::optional<bool> pass;         // against PolarityOptions::expected
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error when F(+) = F(−) (the output does not respond) or a value is not finite.
 PolarityResult polarity(double output_positive_rate, double output_negative_rate, const PolarityOptions& options = {});
+
+// "positive", "negative" or "zero": the sign of an output as GJB 2426A-2004 5.7 records it.
+const char* output_sign_name(double output);
+
+// The procedure's spec (src/procedures/polarity_spec.cc): CLI, plan step, JSON and text.
+ProcedureSpec polarity_spec();
 
 }  // namespace inertest

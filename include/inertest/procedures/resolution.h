@@ -15,9 +15,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -53,13 +52,16 @@ struct ResolutionResult {
   Figure resolution;  // deg/h
   std::vector<ResolutionBranch> branches;
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error when a direction has no step, a base rate is zero, an increment is zero, or the
 // largest increment of a direction already fails eq. (18).
 ResolutionResult resolution(std::span<const ResolutionStep> steps, const ResolutionOptions& options);
+
+// The increments of a CSV with the header 'base_rate,base_output,rate,output', one row each.
+std::vector<ResolutionStep> read_resolution_steps(const std::string& path);
+
+// The procedure's spec (src/procedures/resolution_spec.cc): CLI, plan step, JSON and text.
+ProcedureSpec resolution_spec();
 
 }  // namespace inertest

@@ -1,0 +1,225 @@
+// One description per procedure (issue 22): a procedure declares its parameters, inputs and result
+// fields once, in its own source file (src/procedures/<kind>_spec.cc), and generic code makes the
+// CLI command (`inertest <kind-in-kebab-case>`), the plan step (kind = "<kind>"), the JSON object
+// and the text report from it.
+//
+// Names are one set: a parameter `nonlinearity_limit` is the plan key `nonlinearity_limit`, the
+// flag `--nonlinearity-limit` and (later) the Python keyword `nonlinearity_limit`. An input
+// `positive` read from exactly one source is `--positive-file`/`--positive-output` on the command
+// line and `positive_file`/`positive_output` in a plan.
+//
+// Registration is guaranteed by the build, not by static initialisation: CMake lists every
+// src/procedures/<kind>_spec.cc, each defines `ProcedureSpec inertest::<kind>_spec()`, and the
+// generated procedure_spec_list.cc calls them all (procedure_specs() below).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace inertest {
+
+enum class ParameterType { number, text };
+
+// A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
+// setters below, e.g. .unit_is("deg/s").required_on_command_line().
+struct ParameterSpec {
+  ParameterSpec(std::string parameter_name, std::string documentation)
+      : name(std::move(parameter_name)), doc(std::move(documentation)) {}
+  ParameterSpec& unit_is(std::string value) { unit = std::move(value); return *this; }
+  // A text parameter that takes one of `values`.
+  ParameterSpec& one_of(std::vector<std::string> values) {
+    type = ParameterType::text;
+    choices = std::move(values);
+    return *this;
+  }
+  ParameterSpec& required_on_command_line() { required = true; return *this; }
+  // Plans default to the [instrument] key; with only = true they have no key of their own for it.
+  ParameterSpec& instrument_gives(std::string key, bool only = false) {
+    instrument_default = std::move(key);
+    instrument_only = only;
+    return *this;
+  }
+
+  std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
+  ParameterType type = ParameterType::number;
+  std::string unit;  // the unit of a number, "" when dimensionless or text
+  std::string doc;
+  std::vector<std::string> choices;  // the accepted values of a text parameter, empty when free
+  bool required = false;             // no default: the command line must give it
+  // In a plan, the [instrument] key ("output_unit", "nominal_scale_factor") that gives the value
+  // when the step does not; with `instrument_only` the step has no key for it at all.
+  std::string instrument_default;
+  bool instrument_only = false;
+};
+
+enum class InputKind {
+  // A value from exactly one source: the mean of a record file (--NAME-file / NAME_file, read
+  // with --column/--format) or the value itself (--NAME-output / NAME_output).
+  value_or_record,
+  // A file the procedure's reader reads (call.files): the positional argument `cli_name` on the
+  // command line, the key `plan_key` in a plan (a path relative to the plan, checked to exist).
+  file,
+};
+
+// InputSpec("positive", "the output at the positive rate"), or a file with .read_from_file(...).
+struct InputSpec {
+  InputSpec(std::string input_name, std::string documentation)
+      : name(std::move(input_name)), doc(std::move(documentation)) {}
+  InputSpec& read_from_file(std::string positional_name, std::string key) {
+    kind = InputKind::file;
+    cli_name = std::move(positional_name);
+    plan_key = std::move(key);
+    return *this;
+  }
+
+  std::string name;
+  std::string doc;  // what the record, value or file is, e.g. "the output at the positive rate"
+  InputKind kind = InputKind::value_or_record;
+  std::string cli_name;  // InputKind::file: the positional argument, e.g. "STEPS"
+  std::string plan_key;  // InputKind::file: the plan key, e.g. "file"
+};
+
+// What a result field is in a report.
+enum class FieldRole {
+  headline,  // a figure the procedure exists for (tables, limits)
+  detail,    // a supporting figure or value
+  table,     // rows (e.g. every test point): in the JSON and the report's tables, not in the text
+  hidden,    // in the JSON only
+};
+
+// One key of the result's JSON object.
+struct FieldSpec {
+  std::string name;  // the JSON key (a contract: README, docs, closed issues)
+  FieldRole role = FieldRole::detail;
+  std::string label_en;
+  std::string label_zh;  // GJB 2426A terms
+  std::string equation;  // the source clause or equation, "" when the field is bookkeeping
+};
+
+// Parameter values by name (defaults already applied), input values and input files by name.
+struct ProcedureCall {
+  nlohmann::json parameters = nlohmann::json::object();
+  std::map<std::string, double> inputs;
+  std::map<std::string, std::string> files;
+};
+
+// The whole description of one procedure. Built with ProcedureDefinition below.
+struct ProcedureSpec {
+  std::string kind;    // snake_case plan kind; the CLI command is its kebab-case form
+  std::string title;   // e.g. "Polarity"
+  std::string clause;  // e.g. "GJB 2426A-2004 5.7"
+  std::string doc;     // the method in a few lines, for --help
+  std::vector<ParameterSpec> parameters;
+  std::map<std::string, nlohmann::json> defaults;  // by parameter name; absent: optional, no default
+  std::vector<InputSpec> inputs;
+  std::vector<FieldSpec> fields;
+  // Checks the parameters (Options::validate) before any input is read; throws Error.
+  std::function<void(const ProcedureCall&)> check;
+  // Runs the procedure; returns the result's fields by name (a null field is left out).
+  std::function<nlohmann::json(const ProcedureCall&)> run;
+
+  const ParameterSpec* find_parameter(const std::string& name) const;
+};
+
+// Every declared procedure, sorted by kind (generated list, see above).
+const std::vector<ProcedureSpec>& procedure_specs();
+const ProcedureSpec* find_procedure_spec(const std::string& kind);
+
+// "nonlinearity_limit" -> "nonlinearity-limit".
+std::string kebab_case(const std::string& name);
+
+// The JSON object of a result: "procedure", "clause", the fields (nulls left out) and "warnings".
+nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields);
+
+// The text report of a result, the same shape for every procedure: a title line with the clause,
+// then one line per headline and detail field, "label  value ± uncertainty unit" for a figure,
+// then the warnings.
+std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields);
+
+// Typed construction of a ProcedureSpec: parameters bound to Options members, fields read from
+// Result members, and the computation.
+template <typename Options, typename Result>
+class ProcedureDefinition {
+ public:
+  using Binder = std::function<void(Options&, const nlohmann::json&)>;
+
+  ProcedureDefinition(std::string kind, std::string title, std::string clause, std::string doc) {
+    spec_.kind = std::move(kind);
+    spec_.title = std::move(title);
+    spec_.clause = std::move(clause);
+    spec_.doc = std::move(doc);
+  }
+
+  // A parameter stored in an Options member; its default is the member's default value unless the
+  // parameter is required.
+  template <typename T>
+  ProcedureDefinition& parameter(ParameterSpec parameter, T Options::*member) {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string>, "number or text parameters");
+    if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*member;
+    parameter.type = std::is_same_v<T, double> ? ParameterType::number : ParameterType::text;
+    binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
+      options.*member = value.get<T>();
+    });
+    spec_.parameters.push_back(std::move(parameter));
+    return *this;
+  }
+
+  // A parameter without a default (optional, or required on the command line) stored through `bind`.
+  ProcedureDefinition& parameter(ParameterSpec parameter, Binder bind) {
+    binders_.emplace_back(parameter.name, std::move(bind));
+    spec_.parameters.push_back(std::move(parameter));
+    return *this;
+  }
+
+  ProcedureDefinition& input(InputSpec input) {
+    spec_.inputs.push_back(std::move(input));
+    return *this;
+  }
+
+  // A field read from a Result member (anything nlohmann::json converts, e.g. Figure).
+  template <typename T>
+  ProcedureDefinition& field(FieldSpec field, T Result::*member) {
+    return field_from(std::move(field), [member](const Result& result) { return nlohmann::json(result.*member); });
+  }
+
+  // A field computed from the Result (e.g. a sign spelled out); null leaves it out.
+  ProcedureDefinition& field_from(FieldSpec field, std::function<nlohmann::json(const Result&)> value) {
+    getters_.emplace_back(field.name, std::move(value));
+    spec_.fields.push_back(std::move(field));
+    return *this;
+  }
+
+  // The computation: the call's inputs and files, and the Options made from its parameters.
+  ProcedureSpec compute(std::function<Result(const ProcedureCall&, const Options&)> procedure) const {
+    ProcedureSpec spec = spec_;
+    auto options_of = [binders = binders_](const ProcedureCall& call) {
+      Options options;
+      for (const auto& [name, bind] : binders) {
+        if (call.parameters.contains(name)) bind(options, call.parameters.at(name));
+      }
+      return options;
+    };
+    spec.check = [options_of](const ProcedureCall& call) { options_of(call).validate(); };
+    spec.run = [options_of, getters = getters_, procedure](const ProcedureCall& call) {
+      const Result result = procedure(call, options_of(call));
+      nlohmann::json fields = nlohmann::json::object();
+      for (const auto& [name, get] : getters) fields[name] = get(result);
+      return fields;
+    };
+    return spec;
+  }
+
+ private:
+  ProcedureSpec spec_;
+  std::vector<std::pair<std::string, Binder>> binders_;
+  std::vector<std::pair<std::string, std::function<nlohmann::json(const Result&)>>> getters_;
+};
+
+}  // namespace inertest

@@ -1,0 +1,90 @@
+// The generic plan step of a declared procedure (issue 22): the TOML keys are the spec's parameter
+// names, NAME_file or NAME_output per input (exactly one), and format/column for the records.
+#include "campaign/procedure_step.h"
+
+#include <fmt/format.h>
+
+#include "campaign/steps/record_keys.h"
+#include "inertest/numerics/statistics.h"
+
+namespace inertest::campaign {
+namespace {
+
+// "\"a\"", "\"a\" or \"b\"", "\"a\", \"b\" or \"c\"".
+std::string choice_list(const std::vector<std::string>& choices) {
+  std::string text;
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    if (i > 0) text += i + 1 == choices.size() ? " or " : ", ";
+    text += "\"" + choices[i] + "\"";
+  }
+  return text;
+}
+
+// The [instrument] value a parameter defaults to; null when the plan does not give it.
+nlohmann::json instrument_value(const PlanContext& context, const std::string& key) {
+  if (key == "output_unit") return context.instrument.output_unit;
+  if (key == "nominal_scale_factor" && context.instrument.nominal_scale_factor) {
+    return *context.instrument.nominal_scale_factor;
+  }
+  if (key == "nominal_scale_factor") return nullptr;
+  throw Error("procedure spec: unknown instrument key '" + key + "'");
+}
+
+}  // namespace
+
+StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context) {
+  ProcedureCall call;
+  for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
+  for (const ParameterSpec& parameter : spec.parameters) {
+    if (!parameter.instrument_default.empty()) {
+      const nlohmann::json value = instrument_value(context, parameter.instrument_default);
+      if (!value.is_null()) call.parameters[parameter.name] = value;
+      if (parameter.instrument_only) continue;
+    }
+    if (parameter.type == ParameterType::number) {
+      if (const auto value = step.optional_number(parameter.name)) call.parameters[parameter.name] = *value;
+    } else if (const auto value = step.optional_string(parameter.name)) {
+      if (!parameter.choices.empty() &&
+          std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
+        step.fail_at(parameter.name, "must be " + choice_list(parameter.choices));
+      }
+      call.parameters[parameter.name] = *value;
+    }
+    if (parameter.required && !call.parameters.contains(parameter.name)) {
+      step.fail(fmt::format("missing '{}'{}", parameter.name,
+                            parameter.instrument_default.empty()
+                                ? std::string()
+                                : " (give it here or as [instrument] " + parameter.instrument_default + ")"));
+    }
+  }
+  // Each input from exactly one source; records read when the step runs.
+  std::map<std::string, std::string> files;
+  bool reads_records = false;
+  for (const InputSpec& input : spec.inputs) {
+    if (input.kind == InputKind::file) {
+      call.files[input.name] = step.file(input.plan_key);
+      continue;
+    }
+    reads_records = true;
+    const auto file = step.optional_file(input.name + "_file");
+    const auto value = step.optional_number(input.name + "_output");
+    if (file.has_value() == value.has_value()) {
+      step.fail(fmt::format("needs exactly one of '{}_file' and '{}_output'", input.name, input.name));
+    }
+    if (value) call.inputs[input.name] = *value;
+    if (file) files[input.name] = *file;
+  }
+  check_in_plan(step, [&] { spec.check(call); });
+  const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
+  return [&spec, call, files, source](const StepRunContext&) {
+    ProcedureCall run_call = call;
+    for (const auto& [name, file] : files) {
+      OutputRecordSource record = source;
+      record.path = file;
+      run_call.inputs[name] = mean(read_output_record(record));
+    }
+    return procedure_json(spec, spec.run(run_call));
+  };
+}
+
+}  // namespace inertest::campaign

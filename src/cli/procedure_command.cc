@@ -1,0 +1,118 @@
+// The generic command of a declared procedure (issue 22): `inertest <kind-in-kebab-case>` with one
+// flag per parameter, --NAME-file/--NAME-output per input, --column/--format for the records, and
+// --json; the procedure's spec (core/procedure_spec.h) says which.
+#include "procedure_command.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/numerics/statistics.h"
+#include "record_options.h"
+
+namespace inertest::cli {
+namespace {
+
+struct InputArguments {
+  std::string file;
+  std::optional<double> value;
+};
+
+struct Arguments {
+  std::map<std::string, std::optional<double>> numbers;     // by parameter name
+  std::map<std::string, std::optional<std::string>> texts;  // by parameter name
+  std::map<std::string, InputArguments> inputs;             // by input name
+  std::map<std::string, std::string> files;                 // by input name
+  OutputRecordSource source;
+  bool json = false;
+};
+
+std::string help_text(const ProcedureSpec& spec) {
+  std::string text = fmt::format("{} ({}): {}\nJSON:", spec.title, spec.clause, spec.doc);
+  for (const FieldSpec& field : spec.fields) text += " " + field.name;
+  return text;
+}
+
+std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& parameter) {
+  std::string text = parameter.doc;
+  if (!parameter.unit.empty()) text += ", " + parameter.unit;
+  const auto found = spec.defaults.find(parameter.name);
+  if (found != spec.defaults.end()) {
+    text += " (default: " + (found->second.is_string() ? found->second.get<std::string>() : found->second.dump()) + ")";
+  }
+  return text;
+}
+
+// The value of one input from its one source: the mean of the record file, or the value given.
+double input_value(const ProcedureSpec& spec, const InputSpec& input, const InputArguments& given,
+                   const OutputRecordSource& base) {
+  if (!given.file.empty() && given.value) {
+    throw Error(fmt::format("{}: give a {} file or a {} output, not both", spec.kind, input.name, input.name));
+  }
+  if (given.value) return *given.value;
+  if (given.file.empty()) {
+    throw Error(fmt::format("{}: missing {} (--{}-file or --{}-output)", spec.kind, input.doc, kebab_case(input.name),
+                            kebab_case(input.name)));
+  }
+  OutputRecordSource source = base;
+  source.path = given.file;
+  return with_file_context(given.file, [&] { return mean(read_output_record(source)); });
+}
+
+}  // namespace
+
+CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
+  auto arguments = std::make_shared<Arguments>();
+  CLI::App* command = root.add_subcommand(kebab_case(spec.kind), help_text(spec));
+  bool reads_records = false;
+  for (const InputSpec& input : spec.inputs) {
+    if (input.kind == InputKind::file) {
+      command->add_option(input.cli_name, arguments->files[input.name], input.doc)->required()->check(CLI::ExistingFile);
+      continue;
+    }
+    reads_records = true;
+    InputArguments& given = arguments->inputs[input.name];
+    const std::string flag = "--" + kebab_case(input.name);
+    command->add_option(flag + "-file", given.file, "record of " + input.doc);
+    command->add_option(flag + "-output", given.value, "mean of " + input.doc);
+  }
+  for (const ParameterSpec& parameter : spec.parameters) {
+    const std::string flag = "--" + kebab_case(parameter.name);
+    CLI::Option* option = parameter.type == ParameterType::number
+                              ? command->add_option(flag, arguments->numbers[parameter.name], parameter_help(spec, parameter))
+                              : command->add_option(flag, arguments->texts[parameter.name], parameter_help(spec, parameter));
+    if (!parameter.choices.empty()) option->check(CLI::IsMember(parameter.choices));
+    if (parameter.required) option->required();
+  }
+  if (reads_records) add_record_options(*command, arguments->source);
+  command->add_flag("--json", arguments->json, "print one JSON object on stdout");
+  return [arguments, &spec] {
+    ProcedureCall call;
+    for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
+    for (const auto& [name, value] : arguments->numbers) {
+      if (value) call.parameters[name] = *value;
+    }
+    for (const auto& [name, value] : arguments->texts) {
+      if (value) call.parameters[name] = *value;
+    }
+    spec.check(call);
+    for (const InputSpec& input : spec.inputs) {
+      if (input.kind == InputKind::file) {
+        call.files[input.name] = arguments->files.at(input.name);
+      } else {
+        call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
+      }
+    }
+    // A procedure's complaint about the data of its one file names that file.
+    const nlohmann::json fields = call.files.size() == 1
+                                      ? with_file_context(call.files.begin()->second, [&] { return spec.run(call); })
+                                      : spec.run(call);
+    print_result(procedure_json(spec, fields), procedure_text(spec, fields), arguments->json);
+    return 0;
+  };
+}
+
+}  // namespace inertest::cli

@@ -1,0 +1,75 @@
+#include "inertest/core/procedure_spec.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+namespace inertest {
+
+// Defined in the generated procedure_spec_list.cc: every spec of src/procedures/*_spec.cc.
+std::vector<ProcedureSpec> declared_procedure_specs();
+
+const ParameterSpec* ProcedureSpec::find_parameter(const std::string& name) const {
+  const auto found = std::find_if(parameters.begin(), parameters.end(), [&](const auto& p) { return p.name == name; });
+  return found == parameters.end() ? nullptr : &*found;
+}
+
+const std::vector<ProcedureSpec>& procedure_specs() {
+  static const std::vector<ProcedureSpec> specs = [] {
+    std::vector<ProcedureSpec> all = declared_procedure_specs();
+    std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.kind < b.kind; });
+    return all;
+  }();
+  return specs;
+}
+
+const ProcedureSpec* find_procedure_spec(const std::string& kind) {
+  const auto& specs = procedure_specs();
+  const auto found = std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.kind == kind; });
+  return found == specs.end() ? nullptr : &*found;
+}
+
+std::string kebab_case(const std::string& name) {
+  std::string flag = name;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields) {
+  nlohmann::json json = {{"procedure", spec.kind}, {"clause", spec.clause}};
+  for (const auto& [name, value] : fields.items()) {
+    if (!value.is_null()) json[name] = value;
+  }
+  return json;
+}
+
+namespace {
+
+// A figure ({"value", "unit", "uncertainty"}) as "v ± u unit"; other values as they read.
+std::string value_text(const nlohmann::json& value) {
+  if (value.is_object() && value.contains("value") && value.contains("unit")) {
+    std::string text = fmt::format("{:.9g}", value.at("value").get<double>());
+    if (value.contains("uncertainty")) text += fmt::format(" ± {:.3g}", value.at("uncertainty").get<double>());
+    const auto unit = value.at("unit").get<std::string>();
+    if (unit != "1") text += " " + unit;
+    return text;
+  }
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_boolean()) return value.get<bool>() ? "yes" : "no";
+  return value.dump();
+}
+
+}  // namespace
+
+std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields) {
+  std::string text = fmt::format("{} ({})\n", spec.title, spec.clause);
+  for (const FieldSpec& field : spec.fields) {
+    if (field.role == FieldRole::hidden || field.role == FieldRole::table || !fields.contains(field.name) || fields.at(field.name).is_null()) continue;
+    text += fmt::format("  {:<32} {}\n", field.label_en, value_text(fields.at(field.name)));
+  }
+  if (fields.contains("warnings")) {
+    for (const auto& warning : fields.at("warnings")) text += "  warning: " + warning.get<std::string>() + "\n";
+  }
+  return text;
+}
+
+}  // namespace inertest

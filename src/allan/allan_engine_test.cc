@@ -14,6 +14,19 @@ namespace {
 
 using Real = long double;
 
+// offset + white noise (sigma 1) + a random walk of steps walk_step * N(0, 1), seeded.
+std::vector<double> white_and_random_walk(std::size_t count, double offset, double walk_step, std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(count);
+  double walk = 0.0;
+  for (double& v : y) {
+    walk += walk_step * white(random);
+    v = offset + white(random) + walk;
+  }
+  return y;
+}
+
 // NIST SP 1065 definitions on rate data y (frequency form where it is the plainer one).
 struct Reference {
   explicit Reference(const std::vector<double>& y) : rate(y.begin(), y.end()), phase(y.size() + 1, 0.0L) {
@@ -161,14 +174,7 @@ TEST(AllanEngine, HandComputedFourSamples) {
 }
 
 TEST(AllanEngine, AgreesWithDefinitionsToOnePartInTenToTheNine) {
-  std::mt19937_64 random(7);
-  std::normal_distribution<double> white(0.0, 1.0);
-  std::vector<double> y(3001);
-  double walk = 0.0;
-  for (double& v : y) {
-    walk += 0.05 * white(random);
-    v = 5.0 + white(random) + walk;
-  }
+  const std::vector<double> y = white_and_random_walk(3001, 5.0, 0.05, 7);
   const Reference reference(y);
   const std::vector<std::size_t> factors = {1, 2, 3, 5, 16, 100, 333, 640, 1000};
   // Small blocks and odd chunks make the ring wrap and the pieces split; 1 and 2 workers.
@@ -190,14 +196,7 @@ TEST(AllanEngine, AgreesWithDefinitionsToOnePartInTenToTheNine) {
 // A ring limit sends the large factors to the second pass, which re-reads the samples into windows
 // of the phase: the sums are those of the definitions, for every estimator and both end regions.
 TEST(AllanEngine, SecondPassForFactorsBeyondTheRingLimit) {
-  std::mt19937_64 random(13);
-  std::normal_distribution<double> white(0.0, 1.0);
-  std::vector<double> y(2000);
-  double walk = 0.0;
-  for (double& v : y) {
-    walk += 0.05 * white(random);
-    v = -3.0 + white(random) + walk;
-  }
+  const std::vector<double> y = white_and_random_walk(2000, -3.0, 0.05, 13);
   const Reference reference(y);
   const std::vector<std::size_t> factors = {1, 3, 50, 200, 333, 500, 640, 666};
   for (std::size_t workers : {1u, 2u}) {
@@ -288,14 +287,7 @@ TEST(AllanEngine, LargestFactorsOfEachEstimator) {
 // streaming pass and in the second pass alike (a record of 10^9 samples gives the same curve on
 // any machine's thread count).
 TEST(AllanEngine, SameBitsOnEveryThreadCount) {
-  std::mt19937_64 random(31);
-  std::normal_distribution<double> white(0.0, 1.0);
-  std::vector<double> y(60000);
-  double walk = 0.0;
-  for (double& v : y) {
-    walk += 0.01 * white(random);
-    v = 250.0 + white(random) + walk;
-  }
+  const std::vector<double> y = white_and_random_walk(60000, 250.0, 0.01, 31);
   std::vector<std::size_t> factors;
   for (std::size_t m = 1; m <= y.size() / 3; m *= 2) factors.push_back(m);
   factors.push_back(y.size() / 3);
@@ -324,14 +316,7 @@ TEST(AllanEngine, SameBitsOnEveryThreadCount) {
 // Long runs (the 16 lanes, the 8 MDEV chains and the vector kernels) on a record with a large
 // offset and a rate random walk: every estimator still within 1e-9 of the long-double definitions.
 TEST(AllanEngine, LongRunsAgreeWithTheDefinitions) {
-  std::mt19937_64 random(37);
-  std::normal_distribution<double> white(0.0, 1.0);
-  std::vector<double> y(30011);
-  double walk = 0.0;
-  for (double& v : y) {
-    walk += 0.02 * white(random);
-    v = 1e4 + white(random) + walk;
-  }
+  const std::vector<double> y = white_and_random_walk(30011, 1e4, 0.02, 37);
   const Reference reference(y);
   const std::vector<std::size_t> factors = {1, 2, 4, 17, 256, 1000, 2500};
   for (std::size_t block : {4093u, 1u << 15}) {

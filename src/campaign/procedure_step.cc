@@ -41,17 +41,18 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
       if (!value.is_null()) call.parameters[parameter.name] = value;
       if (parameter.instrument_only) continue;
     }
+    const std::string& key = parameter.plan_name();
     if (parameter.type == ParameterType::number) {
-      if (const auto value = step.optional_number(parameter.name)) call.parameters[parameter.name] = *value;
-    } else if (const auto value = step.optional_string(parameter.name)) {
+      if (const auto value = step.optional_number(key)) call.parameters[parameter.name] = *value;
+    } else if (const auto value = step.optional_string(key)) {
       if (!parameter.choices.empty() &&
           std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
-        step.fail_at(parameter.name, "must be " + choice_list(parameter.choices));
+        step.fail_at(key, "must be " + choice_list(parameter.choices));
       }
       call.parameters[parameter.name] = *value;
     }
     if (parameter.required && !call.parameters.contains(parameter.name)) {
-      step.fail(fmt::format("missing '{}'{}", parameter.name,
+      step.fail(fmt::format("missing '{}'{}", key,
                             parameter.instrument_default.empty()
                                 ? std::string()
                                 : " (give it here or as [instrument] " + parameter.instrument_default + ")"));

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 
@@ -94,38 +93,6 @@ MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> poin
                                           chosen.rate, result.rate_unit));
   }
   return result;
-}
-
-nlohmann::json MaximumInputRateResult::to_json() const {
-  nlohmann::json ranges_json = nlohmann::json::array();
-  for (const auto& r : ranges) {
-    ranges_json.push_back({{"rate", Figure{r.rate, rate_unit, std::nullopt}},
-                           {"nonlinearity", Figure{r.nonlinearity, "ppm", std::nullopt}},
-                           {"meets_requirement", r.meets_requirement}});
-  }
-  return {
-      {"procedure", "maximum_input_rate"},
-      {"clause", "GJB 2426A-2004 5.9 (with 5.8.1-5.8.2, eqs. 1-9)"},
-      {"maximum_input_rate", maximum_input_rate},
-      {"nonlinearity", nonlinearity},
-      {"nonlinearity_limit", nonlinearity_limit},
-      {"scale_factor", scale_factor},
-      {"ranges", ranges_json},
-      {"warnings", warnings},
-  };
-}
-
-std::string MaximumInputRateResult::report() const {
-  std::string text = "Maximum input rate (GJB 2426A-2004 5.9)\n";
-  text += fmt::format("  {:<28} {:.9g} {}\n", "maximum input rate", maximum_input_rate.value, maximum_input_rate.unit);
-  text += fmt::format("  {:<28} {:.6g} ppm (requirement {:.6g} ppm)\n", "nonlinearity there", nonlinearity.value,
-                      nonlinearity_limit.value);
-  for (const auto& r : ranges) {
-    text += fmt::format("  |rate| <= {:>10.6g} {}  Kn = {:>10.4f} ppm  {}\n", r.rate, rate_unit, r.nonlinearity,
-                        r.meets_requirement ? "meets" : "fails");
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

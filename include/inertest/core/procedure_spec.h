@@ -46,6 +46,9 @@ struct ParameterSpec {
     instrument_only = only;
     return *this;
   }
+  // The plan key when it is a contract that differs from the name (e.g. "nonlinearity_limit_ppm").
+  ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
+  const std::string& plan_name() const { return plan_key.empty() ? name : plan_key; }
 
   std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
   ParameterType type = ParameterType::number;
@@ -57,6 +60,7 @@ struct ParameterSpec {
   // when the step does not; with `instrument_only` the step has no key for it at all.
   std::string instrument_default;
   bool instrument_only = false;
+  std::string plan_key;  // "" : the plan key is `name`
 };
 
 enum class InputKind {
@@ -166,6 +170,20 @@ class ProcedureDefinition {
     parameter.type = std::is_same_v<T, double> ? ParameterType::number : ParameterType::text;
     binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
       options.*member = value.get<T>();
+    });
+    spec_.parameters.push_back(std::move(parameter));
+    return *this;
+  }
+
+  // A parameter stored in a member of an Options member (e.g. &Options::scale_factor,
+  // &ScaleFactorOptions::rate_unit); its default is that member's default value unless required.
+  template <typename Part, typename T>
+  ProcedureDefinition& parameter(ParameterSpec parameter, Part Options::*part, T Part::*member) {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string>, "number or text parameters");
+    if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*part.*member;
+    parameter.type = std::is_same_v<T, double> ? ParameterType::number : ParameterType::text;
+    binders_.emplace_back(parameter.name, [part, member](Options& options, const nlohmann::json& value) {
+      options.*part.*member = value.get<T>();
     });
     spec_.parameters.push_back(std::move(parameter));
     return *this;

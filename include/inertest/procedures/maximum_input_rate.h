@@ -12,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
 #include "inertest/procedures/scale_factor.h"
 
@@ -40,9 +38,6 @@ struct MaximumInputRateResult {
   std::vector<RangeNonlinearity> ranges;  // every R tried, ascending
   std::string rate_unit;
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error when the points cannot be processed by scale_factor() (missing static runs, rates

@@ -3,7 +3,6 @@
 // are all generated from it.
 #include <nlohmann/json.hpp>
 
-#include "inertest/core/procedure_spec.h"
 #include "inertest/io/procedure_inputs.h"
 #include "inertest/procedures/maximum_input_rate.h"
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/scale_factor.h"
 
 namespace inertest {
@@ -45,5 +46,8 @@ struct MaximumInputRateResult {
 // rates each way).
 MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> points,
                                           const MaximumInputRateOptions& options);
+
+// The procedure's spec (src/procedures/maximum_input_rate_spec.cc): CLI, plan step, JSON and text.
+ProcedureSpec maximum_input_rate_spec();
 
 }  // namespace inertest

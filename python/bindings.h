@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest::python {
 
@@ -86,6 +87,14 @@ void bind_result(py::module_& module, const char* name, const char* doc) {
 template <typename Tag, typename CppResult>
 ResultOf<Tag> make_result(const CppResult& result) {
   return ResultOf<Tag>(result.to_json(), result.report());
+}
+
+// Wraps the result of a declared procedure (core/procedure_spec.h) as the Python class of Tag: its
+// JSON and its report made by the spec's writers, as the CLI and plans make them.
+template <typename Tag, typename CppResult>
+ResultOf<Tag> make_spec_result(const ProcedureSpec& spec, const CppResult& result) {
+  const nlohmann::json fields = spec.fields_of(&result);
+  return ResultOf<Tag>(procedure_json(spec, fields), procedure_text(spec, fields));
 }
 
 // Runs work; an Error without a location gets `source` (when given) as its location, as the CLI

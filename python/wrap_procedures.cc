@@ -72,7 +72,8 @@ ResultOf<MaximumInputRateTag> maximum_input_rate_of(const DoubleArray& rate, con
   options.nonlinearity_limit_ppm = nonlinearity_limit_ppm;
   options.scale_factor.rate_unit = rate_unit;
   options.scale_factor.output_unit = output_unit;
-  return make_result<MaximumInputRateTag>(maximum_input_rate(points_of(rate, output), options));
+  return make_spec_result<MaximumInputRateTag>(maximum_input_rate_spec(),
+                                               maximum_input_rate(points_of(rate, output), options));
 }
 
 struct ScaleFactorRepeatabilityTag {};

@@ -93,6 +93,19 @@ def test_bias_temperature_sensitivity_by_hand():
     assert result.bias_temperature_sensitivity.value == pytest.approx(0.01, rel=1e-12)
 
 
+def test_maximum_input_rate_of_a_saturating_gyro():
+    # F = 10 * rate exactly up to 10 deg/s, 1 % short at 20 deg/s: Kn = 0 for |rate| <= 10 and far
+    # above 100 ppm with 20, so the maximum input rate is 10 deg/s (GJB 2426A-2004 5.9). The result
+    # is written by the procedure's spec: the same keys and report as the CLI.
+    rates = np.array([0, 1, -1, 2, -2, 5, -5, 10, -10, 20, -20, 0], dtype=float)
+    outputs = np.where(np.abs(rates) == 20, 0.99, 1.0) * 10.0 * rates
+    result = inertest.maximum_input_rate(rates, outputs, nonlinearity_limit_ppm=100)
+    assert result.maximum_input_rate.value == 10.0
+    assert result.maximum_input_rate.unit == "deg/s"
+    assert [r["meets_requirement"] for r in result.ranges] == [True, True, True, False]
+    assert result.report().startswith("Maximum input rate (GJB 2426A-2004 5.9")
+
+
 def test_input_axis_misalignment_two_positions_by_hand():
     # delta = (F+ - F-) / (2 K rate): 2e-4 and -1e-4 rad -> alpha = asin(sqrt(5e-8)) in arcsec.
     k, rate = 1000.0, 10.0

@@ -13,6 +13,7 @@
 // generated procedure_spec_list.cc calls them all (procedure_specs() below).
 #pragma once
 
+#include <any>
 #include <functional>
 #include <map>
 #include <optional>
@@ -128,6 +129,9 @@ struct ProcedureSpec {
   std::function<void(const ProcedureCall&)> check;
   // Runs the procedure; returns the result's fields by name (a null field is left out).
   std::function<nlohmann::json(const ProcedureCall&)> run;
+  // The fields of a Result computed elsewhere (e.g. Python on arrays): `result` holds a
+  // `const Result*` of the procedure's Result type (std::bad_any_cast otherwise).
+  std::function<nlohmann::json(const std::any& result)> fields_of;
 
   const ParameterSpec* find_parameter(const std::string& name) const;
 };
@@ -225,11 +229,14 @@ class ProcedureDefinition {
       return options;
     };
     spec.check = [options_of](const ProcedureCall& call) { options_of(call).validate(); };
-    spec.run = [options_of, getters = getters_, procedure](const ProcedureCall& call) {
-      const Result result = procedure(call, options_of(call));
+    spec.fields_of = [getters = getters_](const std::any& result) {
       nlohmann::json fields = nlohmann::json::object();
-      for (const auto& [name, get] : getters) fields[name] = get(result);
+      for (const auto& [name, get] : getters) fields[name] = get(*std::any_cast<const Result*>(result));
       return fields;
+    };
+    spec.run = [options_of, fields_of = spec.fields_of, procedure](const ProcedureCall& call) {
+      const Result result = procedure(call, options_of(call));
+      return fields_of(&result);
     };
     return spec;
   }

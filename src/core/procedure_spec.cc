@@ -58,13 +58,33 @@ std::string value_text(const nlohmann::json& value) {
   return value.dump();
 }
 
+// A table field: its label, then a row a line, each cell "key value" (keys in JSON order).
+std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
+  std::string text = fmt::format("  {}\n", field.label_en);
+  for (const auto& row : rows) {
+    std::string line;
+    if (row.is_object()) {
+      for (const auto& [key, cell] : row.items()) line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
+    } else {
+      line = value_text(row);
+    }
+    text += "    " + line + "\n";
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields) {
   std::string text = fmt::format("{} ({})\n", spec.title, spec.clause);
   for (const FieldSpec& field : spec.fields) {
-    if (field.role == FieldRole::hidden || field.role == FieldRole::table || !fields.contains(field.name) || fields.at(field.name).is_null()) continue;
-    text += fmt::format("  {:<32} {}\n", field.label_en, value_text(fields.at(field.name)));
+    if (field.role == FieldRole::hidden || !fields.contains(field.name) || fields.at(field.name).is_null()) continue;
+    const nlohmann::json& value = fields.at(field.name);
+    if (field.role == FieldRole::table && value.is_array()) {
+      text += table_text(field, value);
+    } else {
+      text += fmt::format("  {:<32} {}\n", field.label_en, value_text(value));
+    }
   }
   if (fields.contains("warnings")) {
     for (const auto& warning : fields.at("warnings")) text += "  warning: " + warning.get<std::string>() + "\n";

@@ -47,6 +47,7 @@ ProcedureSpec example_spec() {
                  {"flag", FieldRole::detail, "flag", "标志", ""},
                  {"missing", FieldRole::detail, "missing", "缺", ""},
                  {"hidden", FieldRole::hidden, "hidden", "隐", ""},
+                 {"rows", FieldRole::table, "rows", "表", ""},
                  {"warnings", FieldRole::hidden, "warnings", "警告", ""}};
   return spec;
 }
@@ -64,11 +65,15 @@ TEST(ProcedureSpec, TextPrintsEveryShownFieldTheSameWay) {
   const nlohmann::json fields = {{"figure", {{"value", 1.5}, {"unit", "ppm"}, {"uncertainty", 0.25}}},
                                  {"flag", false},
                                  {"hidden", "x"},
+                                 {"rows", {{{"rate", 100.0}, {"meets", true}}, {{"rate", 200.0}, {"meets", false}}}},
                                  {"warnings", {"only 2 runs"}}};
   EXPECT_EQ(procedure_text(example_spec(), fields),
             "Example (GJB 2426A-2004 5.0)\n"
             "  figure                           1.5 ± 0.25 ppm\n"
             "  flag                             no\n"
+            "  rows\n"
+            "    meets yes, rate 100.0\n"
+            "    meets no, rate 200.0\n"
             "  warning: only 2 runs\n");
 }
 

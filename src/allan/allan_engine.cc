@@ -126,6 +126,10 @@ struct FactorState {
   std::array<CompensatedSum, 6> sums;
   CompensatedSum reflected;  // TOTDEV terms whose centre lies within m of an end
   AveragedFrequencySeries averages;  // ȳ_j at the anchors k = jm, in order
+  // Sums of d_k = X_k - X_{k-m}, k = m .. N, where the B1 ratio will need them (overlapping_average_variance).
+  bool overlapping_averages = false;
+  CompensatedSum overlapping_sum;
+  CompensatedSum overlapping_squares;
 };
 
 // The engine's inner loops (marked INERTEST_VECTOR_CLONES) are compiled for the baseline x86-64
@@ -464,6 +468,23 @@ struct AllanEngine::State {
     if (adev) strided(f, Estimator::kAdev, 2 * m, k0, k1, store);
     if (hdev) strided(f, Estimator::kHdev, 3 * m, k0, k1, store);
     average(f, k0, k1, store);
+    if (f.overlapping_averages) overlapping_average(f, k0, k1, store);
+  }
+
+  // d_k = X_k - X_{k-m} at every anchor k in [max(k0, m), k1): m times the overlapping averages.
+  void overlapping_average(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store) {
+    const std::size_t m = f.m;
+    for_each_run<2>(store, {lagged(0), lagged(m)}, std::max(k0, m), k1, 1, [&](const auto& p, std::size_t n) {
+      double sums[kLanes] = {};
+      double squares[kLanes] = {};
+      for (std::size_t i = 0; i < n; ++i) {
+        const double d = p[0][i] - p[1][i];
+        sums[i % kLanes] += d;
+        squares[i % kLanes] += d * d;
+      }
+      f.overlapping_sum.add(lane_total(sums));
+      f.overlapping_squares.add(lane_total(squares));
+    });
   }
 
   // The averages ȳ_j = (X_{jm} - X_{(j-1)m}) / m at the anchors k = jm in [k0, k1), 1 <= j <=
@@ -718,6 +739,7 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
   for (std::size_t m : options.averaging_factors) {
     FactorState f;
     f.m = m;
+    f.overlapping_averages = sample_count / m < kLag1MinimumAverages;
     const std::size_t needed = std::min(sample_count + 1, s.span_of(m) + 2 * options.block_size);
     if (needed <= limit || m == options.averaging_factors.front()) {
       ring_span = std::max(ring_span, s.span_of(m));
@@ -808,6 +830,14 @@ std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
     const std::size_t m = f.m;
     sums.averaging_factor = m;
     sums.averages = f.averages;
+    if (f.overlapping_averages) {
+      // Sample variance of the d_k / m; the record's mean is removed, so the d_k are centred near 0
+      // and the two sums do not cancel.
+      const auto count = static_cast<double>(n + 1 - m);
+      const double total = f.overlapping_sum.value();
+      sums.overlapping_average_variance = (f.overlapping_squares.value() - total * total / count) /
+                                          ((count - 1.0) * static_cast<double>(m) * static_cast<double>(m));
+    }
     sums.term_count[index_of(Estimator::kOadev)] = n + 1 - 2 * m;
     sums.sum_of_squares[index_of(Estimator::kOadev)] = f.sums[index_of(Estimator::kOadev)].value();
     for (Estimator e : s.options.estimators.members()) {

@@ -99,8 +99,12 @@ NoiseIdentification identify_power_law_noise(Estimator estimator, const AllanSum
     if (!p) return {};
     return {clamped_noise_type(std::lround(*p)), NoiseIdentificationMethod::kLag1Autocorrelation};
   }
+  // The standard variance of the tau-averages the estimator is built from: the non-overlapping ones
+  // for ADEV and HDEV, every overlapping one for the others (identify_power_law_noise in the header).
+  const bool non_overlapping = estimator == Estimator::kAdev || estimator == Estimator::kHdev;
+  const double standard_variance = non_overlapping ? averages.sample_variance() : sums.overlapping_average_variance;
   const double allan_variance = sums.variance(Estimator::kOadev);
-  const double b1 = averages.sample_variance() / allan_variance;
+  const double b1 = standard_variance / allan_variance;
   const auto terms = static_cast<double>(b1_term_count(estimator, sums));
   if (!std::isfinite(b1) || !(terms >= 2.0)) return {};
   const int mu = b1_mu(b1, terms);

@@ -41,6 +41,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -92,6 +93,10 @@ struct AllanSums {
   std::array<std::size_t, 6> term_count{};     // indexed by Estimator
   // The averages of the rate over m samples (offset removed, input unit) and their differences.
   AveragedFrequencySeries averages;
+  // The sample variance of the N - m + 1 overlapping averages (X_k - X_{k-m}) / m, k = m .. N, in
+  // the input unit squared: the B1 ratio of the overlapping estimators needs it, so it is summed
+  // only where fewer than kLag1MinimumAverages non-overlapping averages remain (NaN elsewhere).
+  double overlapping_average_variance = std::numeric_limits<double>::quiet_NaN();
   double sum(Estimator e) const { return sum_of_squares[static_cast<std::size_t>(e)]; }
   std::size_t terms(Estimator e) const { return term_count[static_cast<std::size_t>(e)]; }
   // The variance of the estimator in the input unit squared (NIST SP 1065 normalisations: the

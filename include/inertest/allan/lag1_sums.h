@@ -12,6 +12,10 @@
 
 namespace inertest {
 
+// Fewest non-overlapping averages for the lag-1 autocorrelation method (Riley & Greenhall 2004;
+// Stable32 uses the B1 ratio below it, noise_identification.h).
+inline constexpr std::size_t kLag1MinimumAverages = 30;
+
 // Sums of the series w_1 .. w_n: each value is stored relative to w_1 (the autocorrelation and the
 // variance do not depend on a shift, and the shifted values keep the sums of squares small). The
 // engine adds one value per sample at m = 1: plain partial sums over kFoldEvery values are folded

@@ -21,10 +21,6 @@
 
 namespace inertest {
 
-// Fewest averages for the lag-1 autocorrelation method (Riley & Greenhall 2004; Stable32 uses the
-// B1 ratio below it).
-inline constexpr std::size_t kLag1MinimumAverages = 30;
-
 enum class NoiseIdentificationMethod { kLag1Autocorrelation, kB1Ratio, kB1RatioAndRn, kNotIdentified };
 
 // "lag1_autocorrelation", "b1_ratio", "b1_ratio_and_rn", "not_identified" (white FM assumed).
@@ -53,9 +49,11 @@ int b1_mu(double b1, double n);
 
 // The noise of one estimator at one averaging factor from the engine's sums (the OADEV sums are
 // always there). At least kLag1MinimumAverages averages: lag1_alpha, rounded (max_differences 2
-// for HDEV and OHDEV, else 1). Fewer: B1 = the sample variance of the averages over the OADEV
-// variance, compared with b1_expected for N = the estimator's number of terms (what Stable32 passes,
-// found by comparing with its published outputs, data/stable32/README.md), mu = 1, 0, -1 giving
+// for HDEV and OHDEV, else 1). Fewer: B1 = the sample variance of the tau-averages the estimator is
+// built from (the non-overlapping ones for ADEV and HDEV, all N - m + 1 overlapping ones for OADEV,
+// MDEV, OHDEV and TOTDEV) over the OADEV variance, compared with b1_expected for N = the
+// estimator's number of terms (the choices that reproduce Stable32's published alphas, 31 of 33
+// taus, data/stable32/README.md), mu = 1, 0, -1 giving
 // alpha = -2, -1, 0 (mu = 2 is clamped to random walk FM). B1 cannot tell white from flicker PM
 // (both mu = -2): for MDEV, R(n) = MVAR/AVAR picks white PM, flicker PM or, above their
 // boundary with white FM, white FM; the unmodified estimators take white FM, as Stable32 reports.

@@ -117,5 +117,7 @@ void wrap_centrifuge(py::module_& module);
 void wrap_allan(py::module_& module);
 void wrap_sim(py::module_& module);
 void wrap_campaign(py::module_& module);
+// After the others: a declared procedure without a function of its own gets a generic one.
+void wrap_specs(py::module_& module);
 
 }  // namespace inertest::python

@@ -469,6 +469,16 @@ def simulate(plan_path: str, out_dir: str) -> Record:
 
 class CampaignResult(Result): ...
 
+def plan_kinds() -> list[str]:
+    """Every procedure kind a test plan may name, sorted."""
 def validate_plan(plan_path: str) -> dict[str, Any]: ...
 def run_campaign(plan_path: str, out_dir: str) -> CampaignResult:
     """Runs a test plan as `inertest run` and writes out_dir/results.json."""
+
+# specs: every declared procedure ----------------------------------------------------------------
+
+class ProcedureResult(Result):
+    """The result of a declared procedure: members as in the CLI's --json object."""
+
+def procedure_specs() -> list[dict[str, Any]]:
+    """Every declared procedure: kind, title, clause, parameters, inputs, fields, generic_function."""

@@ -17,4 +17,5 @@ PYBIND11_MODULE(inertest, module) {
   wrap_allan(module);
   wrap_sim(module);
   wrap_campaign(module);
+  wrap_specs(module);
 }

@@ -12,6 +12,7 @@ struct CampaignTag {};
 
 void wrap_campaign(py::module_& module) {
   using namespace pybind11::literals;
+  module.def("plan_kinds", &plan_kinds, "Every procedure kind a test plan may name, sorted.");
   module.def(
       "validate_plan", [](const std::string& plan_path) { return to_plain_python(validate_plan(plan_path)); },
       "plan_path"_a,

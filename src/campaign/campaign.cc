@@ -324,4 +324,6 @@ std::string CampaignSummary::report() const {
   return text;
 }
 
+std::vector<std::string> plan_kinds() { return campaign::registered_step_kinds(); }
+
 }  // namespace inertest

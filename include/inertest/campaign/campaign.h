@@ -28,6 +28,9 @@ struct CampaignSummary {
 // Returns the validated plan as JSON (instrument, site, procedures) without running anything.
 nlohmann::json validate_plan(const std::string& plan_path);
 
+// Every procedure kind a plan may name (sorted): the declared procedures and the hand-written steps.
+std::vector<std::string> plan_kinds();
+
 // Runs the plan and writes out_dir/results.json (created whole or not at all).
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir,
                              const CampaignOptions& options = {});

@@ -1,0 +1,92 @@
+"""The registry seen from Python (issue 22): every plan kind has a function, and the functions made
+from the procedure specs give what the CLI gives."""
+
+import json
+
+import numpy
+import pytest
+
+import inertest
+from conftest import cli_json
+
+# Plan kinds whose function has another name: contracts of the Python module since issue 10.
+PYTHON_NAMES = {
+    "allan": "allan_variance",
+    "bandwidth": "bandwidth_and_delay",
+    "bias_temperature": "bias_temperature_sensitivity",
+    "centrifuge": "calibrate_drift_coefficients",
+    "threshold": "threshold_rate_table",
+}
+
+# Hand-written plan steps not yet declared as specs nor wrapped: they get their function when they
+# are declared (issue 22). Listed so that the test fails when one is exposed and the list is stale.
+AWAITING_SPEC = {"hand_checks", "scale_factor_temperature", "turn_on_time", "warm_up_time"}
+
+
+def test_every_plan_kind_has_a_function():
+    kinds = inertest.plan_kinds()
+    assert "polarity" in kinds and "scale_factor" in kinds
+    for kind in kinds:
+        name = PYTHON_NAMES.get(kind, kind)
+        if kind in AWAITING_SPEC:
+            assert not hasattr(inertest, name), f"{kind} is exposed now: remove it from AWAITING_SPEC"
+        else:
+            assert callable(getattr(inertest, name, None)), f"plan kind {kind} has no inertest.{name}"
+
+
+def test_every_declared_procedure_has_a_function_and_stubs():
+    for spec in inertest.procedure_specs():
+        function = getattr(inertest, spec["kind"])
+        assert callable(function)
+        if spec["generic_function"]:
+            assert spec["title"] in function.__doc__ and spec["clause"] in function.__doc__
+
+
+def test_polarity_from_numbers_and_arrays_is_the_cli_json():
+    expected = cli_json("polarity", "--positive-output", "-3", "--negative-output", "3")
+    result = inertest.polarity(positive=-3, negative=3.0)
+    assert result.to_dict() == expected
+    assert result.polarity == "negative"
+    # An array of samples counts by its mean, as a record file does.
+    samples = inertest.polarity(positive=numpy.array([-2.0, -4.0]), negative=numpy.array([3.0]))
+    assert samples.to_dict() == expected
+    assert "Polarity" in result.report()
+
+
+def test_resolution_from_a_file_is_the_cli_json(tmp_path):
+    # The hand case of src/procedures/resolution_test.cc (resolution 4 deg/h), K = 3600 per deg/s.
+    steps = tmp_path / "steps.csv"
+    b, f0 = 10.0, 36007.0
+    rows = [(b, f0, b + 10 / 3600, f0 + 10), (b, f0, b + 5 / 3600, f0 + 5.5), (b, f0, b + 2 / 3600, f0 + 1.2),
+            (-b, -f0, -b - 10 / 3600, -f0 - 10), (-b, -f0, -b - 4 / 3600, -f0 - 2.5), (-b, -f0, -b - 3 / 3600, -f0 - 1)]
+    steps.write_text("base_rate,base_output,rate,output\n" + "".join(f"{r[0]!r},{r[1]!r},{r[2]!r},{r[3]!r}\n" for r in rows))
+    expected = cli_json("resolution", steps, "--scale-factor", "3600")
+    result = inertest.resolution(file=str(steps), scale_factor=3600)
+    assert result.to_dict() == expected
+    assert result.resolution.value == pytest.approx(4.0, rel=1e-9)
+    assert result.resolution.unit == "deg/h"
+
+
+@pytest.mark.parametrize(
+    "keywords, message",
+    [
+        ({"positive": 1.0}, "polarity() needs negative"),
+        ({"positive": 1.0, "negative": -1.0, "expected": "up"}, "expected must be one of positive, negative"),
+        ({"positive": 1.0, "negative": -1.0, "sign": 1}, "unknown keyword 'sign'"),
+        ({"positive": numpy.array([]), "negative": -1.0}, "positive has no samples"),
+        ({"positive": "1", "negative": -1.0}, "positive must be a number or an array of samples"),
+    ],
+)
+def test_bad_keywords_raise_inertest_error(keywords, message):
+    with pytest.raises(inertest.Error) as raised:
+        inertest.polarity(**keywords)
+    assert message in str(raised.value)
+
+
+def test_specs_describe_parameters_as_the_plan_names_them():
+    specs = {spec["kind"]: spec for spec in inertest.procedure_specs()}
+    maximum = specs["maximum_input_rate"]
+    assert not maximum["generic_function"]  # its array-based function (issue 10) stays
+    names = [parameter["name"] for parameter in maximum["parameters"]]
+    assert "nonlinearity_limit" in names
+    json.dumps(specs)  # plain data

@@ -1,0 +1,169 @@
+// specs: every declared procedure (core/procedure_spec.h) that has no array-based function of its
+// own in this module becomes `inertest.<kind>(**keywords)`, made from its spec as the CLI command
+// and the plan step are: the keywords are the spec's parameter names (the plan keys), each
+// value-or-record input `NAME` takes a number or an array of samples (their mean, as NAME_file
+// takes a record's mean in a plan), and each file input takes its plan key (a path). The type stubs
+// of these functions are generated from procedure_specs() at build time (generate_stubs.py).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+#include "bindings.h"
+#include "inertest/numerics/statistics.h"
+
+namespace inertest::python {
+namespace {
+
+struct SpecTag {};
+
+// The Python keywords of a spec, in declaration order: parameters, then inputs.
+std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
+  std::vector<std::string> keywords;
+  for (const ParameterSpec& parameter : spec.parameters) keywords.push_back(parameter.name);
+  for (const InputSpec& input : spec.inputs) {
+    keywords.push_back(input.kind == InputKind::file ? input.plan_key : input.name);
+  }
+  return keywords;
+}
+
+nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle& value) {
+  if (parameter.type == ParameterType::number) {
+    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) {
+      throw Error(fmt::format("{} must be a number", parameter.name));
+    }
+    return value.cast<double>();
+  }
+  if (!py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a string", parameter.name));
+  const auto text = value.cast<std::string>();
+  if (!parameter.choices.empty() &&
+      std::find(parameter.choices.begin(), parameter.choices.end(), text) == parameter.choices.end()) {
+    throw Error(fmt::format("{} must be one of {}", parameter.name, fmt::join(parameter.choices, ", ")));
+  }
+  return text;
+}
+
+// A number, or the mean of an array of samples (compensated, as a record's mean).
+double input_value(const InputSpec& input, const py::handle& value) {
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) {
+    throw Error(fmt::format("{} must be a number or an array of samples", input.name));
+  }
+  const auto samples = py::cast<DoubleArray>(value);
+  const std::span<const double> span = as_span(samples, input.name.c_str());
+  if (span.empty()) throw Error(fmt::format("{} has no samples", input.name));
+  return mean(span);
+}
+
+ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
+  const std::vector<std::string> accepted = keywords_of(spec);
+  for (const auto& [key, value] : keywords) {
+    const auto name = key.cast<std::string>();
+    if (std::find(accepted.begin(), accepted.end(), name) == accepted.end()) {
+      throw Error(fmt::format("{}() got an unknown keyword '{}'; it takes {}", spec.kind, name, fmt::join(accepted, ", ")));
+    }
+  }
+  ProcedureCall call;
+  for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
+  for (const ParameterSpec& parameter : spec.parameters) {
+    if (keywords.contains(parameter.name)) {
+      call.parameters[parameter.name] = parameter_value(parameter, keywords[parameter.name.c_str()]);
+    } else if (parameter.required) {
+      throw Error(fmt::format("{}() needs {} ({})", spec.kind, parameter.name, parameter.doc));
+    }
+  }
+  for (const InputSpec& input : spec.inputs) {
+    const std::string& key = input.kind == InputKind::file ? input.plan_key : input.name;
+    if (!keywords.contains(key)) throw Error(fmt::format("{}() needs {} ({})", spec.kind, key, input.doc));
+    const py::handle value = keywords[key.c_str()];
+    if (input.kind == InputKind::file) {
+      call.files[input.name] = py::str(value).cast<std::string>();
+    } else {
+      call.inputs[input.name] = input_value(input, value);
+    }
+  }
+  return call;
+}
+
+std::string docstring_of(const ProcedureSpec& spec) {
+  std::string text = fmt::format("{} ({}).\n{}\nKeywords:\n", spec.title, spec.clause, spec.doc);
+  for (const ParameterSpec& parameter : spec.parameters) {
+    text += fmt::format("  {}: {}{}", parameter.name, parameter.doc, parameter.unit.empty() ? "" : " (" + parameter.unit + ")");
+    if (const auto found = spec.defaults.find(parameter.name); found != spec.defaults.end()) {
+      text += fmt::format(", default {}", found->second.dump());
+    } else if (parameter.required) {
+      text += ", required";
+    }
+    text += "\n";
+  }
+  for (const InputSpec& input : spec.inputs) {
+    text += input.kind == InputKind::file
+                ? fmt::format("  {}: path of {}\n", input.plan_key, input.doc)
+                : fmt::format("  {}: {}, a number or an array of samples (their mean)\n", input.name, input.doc);
+  }
+  return text + "Returns a ProcedureResult (members as in the CLI's --json); raises inertest.Error.";
+}
+
+// The spec as plain data, for the stub generator and for users who script around the registry.
+nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) {
+  nlohmann::json parameters = nlohmann::json::array();
+  for (const ParameterSpec& parameter : spec.parameters) {
+    const auto found = spec.defaults.find(parameter.name);
+    parameters.push_back({{"name", parameter.name},
+                          {"type", parameter.type == ParameterType::number ? "number" : "text"},
+                          {"unit", parameter.unit},
+                          {"doc", parameter.doc},
+                          {"choices", parameter.choices},
+                          {"required", parameter.required},
+                          {"default", found == spec.defaults.end() ? nlohmann::json() : found->second}});
+  }
+  nlohmann::json inputs = nlohmann::json::array();
+  for (const InputSpec& input : spec.inputs) {
+    inputs.push_back({{"name", input.kind == InputKind::file ? input.plan_key : input.name},
+                      {"kind", input.kind == InputKind::file ? "file" : "value_or_record"},
+                      {"doc", input.doc}});
+  }
+  nlohmann::json fields = nlohmann::json::array();
+  for (const FieldSpec& field : spec.fields) fields.push_back(field.name);
+  return {{"kind", spec.kind},          {"title", spec.title},   {"clause", spec.clause},
+          {"parameters", parameters},   {"inputs", inputs},      {"fields", fields},
+          {"generic_function", generic_function}};
+}
+
+}  // namespace
+
+void wrap_specs(py::module_& module) {
+  bind_result<SpecTag>(module, "ProcedureResult",
+                       "The result of a declared procedure: members as in the CLI's --json object (figures with\n"
+                       "value, unit and uncertainty); report() is the CLI's text.");
+  std::set<std::string> generic;
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    if (py::hasattr(module, spec.kind.c_str())) continue;  // it has an array-based function of its own
+    generic.insert(spec.kind);
+    module.def(
+        spec.kind.c_str(),
+        [&spec](const py::kwargs& keywords) {
+          const ProcedureCall call = call_of(spec, keywords);
+          spec.check(call);
+          nlohmann::json fields;
+          {
+            py::gil_scoped_release release;
+            fields = spec.run(call);
+          }
+          return ResultOf<SpecTag>(procedure_json(spec, fields), procedure_text(spec, fields));
+        },
+        docstring_of(spec).c_str());
+  }
+  module.def(
+      "procedure_specs",
+      [generic] {
+        nlohmann::json list = nlohmann::json::array();
+        for (const ProcedureSpec& spec : procedure_specs()) list.push_back(description_of(spec, generic.contains(spec.kind)));
+        return to_plain_python(list);
+      },
+      "Every declared procedure as a dict: kind, title, clause, parameters (name, type, unit, doc,\n"
+      "choices, required, default), inputs (name, kind, doc), fields (the JSON keys) and\n"
+      "generic_function (True when inertest.<kind> is made from the spec).");
+}
+
+}  // namespace inertest::python

@@ -155,7 +155,7 @@ ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray&
   options.rate = rate;
   options.rate_unit = rate_unit;
   options.output_unit = output_unit;
-  return make_result<InputAxisMisalignmentTag>(input_axis_misalignment(positions, options));
+  return make_spec_result<InputAxisMisalignmentTag>(input_axis_misalignment_spec(), input_axis_misalignment(positions, options));
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <set>
+
 #include "campaign/steps/record_keys.h"
 #include "inertest/numerics/statistics.h"
 
@@ -35,12 +37,9 @@ nlohmann::json instrument_value(const PlanContext& context, const std::string& k
 StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context) {
   ProcedureCall call;
   for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
+  std::set<std::string> given;  // by the step itself
   for (const ParameterSpec& parameter : spec.parameters) {
-    if (!parameter.instrument_default.empty()) {
-      const nlohmann::json value = instrument_value(context, parameter.instrument_default);
-      if (!value.is_null()) call.parameters[parameter.name] = value;
-      if (parameter.instrument_only) continue;
-    }
+    if (parameter.instrument_only) continue;
     const std::string& key = parameter.plan_name();
     if (parameter.type == ParameterType::number) {
       if (const auto value = step.optional_number(key)) call.parameters[parameter.name] = *value;
@@ -51,11 +50,27 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
       }
       call.parameters[parameter.name] = *value;
     }
+    if (step.contains(key)) given.insert(parameter.name);
+  }
+  // [instrument] defaults where the step gives none (and their condition holds), then what is missing.
+  for (const ParameterSpec& parameter : spec.parameters) {
+    if (!parameter.instrument_default.empty() && !given.contains(parameter.name)) {
+      const auto& condition = parameter.instrument_condition;
+      if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
+        const nlohmann::json value = instrument_value(context, parameter.instrument_default);
+        if (!value.is_null()) call.parameters[parameter.name] = value;
+      }
+    }
     if (parameter.required && !call.parameters.contains(parameter.name)) {
-      step.fail(fmt::format("missing '{}'{}", key,
-                            parameter.instrument_default.empty()
-                                ? std::string()
-                                : " (give it here or as [instrument] " + parameter.instrument_default + ")"));
+      std::string where;
+      if (!parameter.instrument_default.empty()) {
+        where = " (give it here or as [instrument] " + parameter.instrument_default;
+        if (parameter.instrument_condition) {
+          where += " with " + parameter.instrument_condition->first + " = \"" + parameter.instrument_condition->second + "\"";
+        }
+        where += ")";
+      }
+      step.fail(fmt::format("missing '{}'{}", parameter.plan_name(), where));
     }
   }
   // Each input from exactly one source; records read when the step runs.

@@ -87,5 +87,17 @@ TEST(ProcedureStep, RequiredParameterFromTheStepOrTheInstrument) {
                     "the scale factor K must be a nonzero number");
 }
 
+TEST(ProcedureStep, InstrumentDefaultOnlyWhereItsConditionHolds) {
+  // The nominal scale factor is per deg/s: input_axis_misalignment's K is per rate_unit.
+  const std::string body = "nominal_scale_factor = 36000\n[[procedure]]\nkind = \"input_axis_misalignment\"\n"
+                           "file = \"plan.toml\"\nrate = 1\n";
+  expect_plan_error(body + "rate_unit = \"rad/s\"\n",
+                    "missing 'scale_factor' (give it here or as [instrument] nominal_scale_factor with rate_unit = "
+                    "\"deg/s\")");
+  ScratchDirectory scratch;
+  const std::string plan = scratch.write("plan.toml", std::string(kHeader) + body);
+  EXPECT_NO_THROW(validate_plan(plan));
+}
+
 }  // namespace
 }  // namespace inertest

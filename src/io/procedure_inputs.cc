@@ -189,21 +189,4 @@ std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<con
   return records;
 }
 
-std::vector<MisalignmentPosition> read_misalignment_positions(const std::string& path) {
-  TextTableOptions read;
-  read.columns = {ColumnSelector{"position"}, ColumnSelector{"output_positive"}, ColumnSelector{"output_negative"}};
-  read.header = TextTableOptions::Header::kPresent;
-  const TextTable table = read_text_table(path, read);
-  std::vector<MisalignmentPosition> positions;
-  for (std::size_t i = 0; i < table.rows(); ++i) {
-    if (table.columns[0][i] != static_cast<double>(i + 1)) {
-      throw Error(SourceLocation{path, table.row_lines.empty() ? 0 : table.row_lines[i], 0},
-                  fmt::format("expected position {} (positions 1, 2[, 3, 4] in order), found {}", i + 1,
-                              table.columns[0][i]));
-    }
-    positions.push_back({table.columns[1][i], table.columns[2][i]});
-  }
-  return positions;
-}
-
 }  // namespace inertest

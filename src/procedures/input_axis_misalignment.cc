@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/io/text_table.h"
 
 namespace inertest {
 namespace {
@@ -77,35 +77,21 @@ InputAxisMisalignmentResult input_axis_misalignment(std::span<const Misalignment
   return result;
 }
 
-nlohmann::json InputAxisMisalignmentResult::to_json() const {
-  nlohmann::json json = {
-      {"procedure", "input_axis_misalignment"},
-      {"clause", "GJB 2426A-2004 5.15, eqs. (47)-(50)"},
-      {"misalignment", misalignment},
-      {"misalignment_deg", misalignment_deg},
-      {"deltas", deltas},
-      {"warnings", warnings},
-  };
-  if (misalignment_about_ox) json["misalignment_about_ox"] = *misalignment_about_ox;
-  if (misalignment_about_oy) json["misalignment_about_oy"] = *misalignment_about_oy;
-  if (mounting_error) json["mounting_error"] = *mounting_error;
-  if (misalignment_eq50_as_printed) json["misalignment_eq50_as_printed"] = *misalignment_eq50_as_printed;
-  return json;
-}
-
-std::string InputAxisMisalignmentResult::report() const {
-  std::string text = "Input-axis misalignment (GJB 2426A-2004 5.15)\n";
-  text += fmt::format("  {:<28} {:.4f} arcsec = {:.6g} deg\n", "misalignment alpha", misalignment.value,
-                      misalignment_deg.value);
-  for (std::size_t j = 0; j < deltas.size(); ++j) {
-    text += fmt::format("  delta{:<23} {:.4f} arcsec\n", j + 1, deltas[j].value);
+std::vector<MisalignmentPosition> read_misalignment_positions(const std::string& path) {
+  TextTableOptions read;
+  read.columns = {ColumnSelector{"position"}, ColumnSelector{"output_positive"}, ColumnSelector{"output_negative"}};
+  read.header = TextTableOptions::Header::kPresent;
+  const TextTable table = read_text_table(path, read);
+  std::vector<MisalignmentPosition> positions;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    if (table.columns[0][i] != static_cast<double>(i + 1)) {
+      throw Error(SourceLocation{path, table.row_lines.empty() ? 0 : table.row_lines[i], 0},
+                  fmt::format("expected position {} (positions 1, 2[, 3, 4] in order), found {}", i + 1,
+                              table.columns[0][i]));
+    }
+    positions.push_back({table.columns[1][i], table.columns[2][i]});
   }
-  if (mounting_error) text += fmt::format("  {:<28} {:.4f} arcsec\n", "mounting error", mounting_error->value);
-  if (misalignment_eq50_as_printed) {
-    text += fmt::format("  {:<28} {:.4f} arcsec\n", "eq. (50) as printed", misalignment_eq50_as_printed->value);
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
+  return positions;
 }
 
 }  // namespace inertest

@@ -62,7 +62,11 @@ TEST(InputAxisMisalignment, FourPositionsCancelTheMountingError) {
   // Eq. (50) as printed: asin(√(2δx² + 2δy² + 4ε²)).
   EXPECT_NEAR_RELATIVE(result.misalignment_eq50_as_printed->value,
                        std::asin(std::sqrt(2 * dx * dx + 2 * dy * dy + 4 * eps * eps)) / kArcsecond, 1e-9);
-  EXPECT_TRUE(result.to_json().contains("mounting_error"));
+  const ProcedureSpec spec = input_axis_misalignment_spec();
+  EXPECT_TRUE(procedure_json(spec, spec.fields_of(&result)).contains("mounting_error"));
+  // Two positions: the four-position figures are left out of the JSON.
+  const auto two = input_axis_misalignment(std::span(positions).first(2), options());
+  EXPECT_FALSE(procedure_json(spec, spec.fields_of(&two)).contains("mounting_error"));
 }
 
 TEST(InputAxisMisalignment, BadInputIsAnError) {

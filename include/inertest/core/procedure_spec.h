@@ -47,6 +47,12 @@ struct ParameterSpec {
     instrument_only = only;
     return *this;
   }
+  // The [instrument] default applies only while the parameter `name` has `value` (e.g. the nominal
+  // scale factor, per deg/s, only with rate_unit = "deg/s").
+  ParameterSpec& instrument_gives_when(std::string parameter, std::string value) {
+    instrument_condition = {std::move(parameter), std::move(value)};
+    return *this;
+  }
   // The plan key when it is a contract that differs from the name (e.g. "nonlinearity_limit_ppm").
   ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
   const std::string& plan_name() const { return plan_key.empty() ? name : plan_key; }
@@ -61,6 +67,7 @@ struct ParameterSpec {
   // when the step does not; with `instrument_only` the step has no key for it at all.
   std::string instrument_default;
   bool instrument_only = false;
+  std::optional<std::pair<std::string, std::string>> instrument_condition;  // parameter, value
   std::string plan_key;  // "" : the plan key is `name`
 };
 

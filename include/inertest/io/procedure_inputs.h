@@ -1,5 +1,5 @@
-// Readers for the input files of the scale-factor series, bandwidth/delay and input-axis
-// misalignment procedures, shared by their CLI commands and plan steps. Each checks what can be
+// Readers for the input files of the scale-factor series and bandwidth/delay procedures, shared by
+// their CLI commands and plan steps. Each checks what can be
 // pinned to a place in a file (a frequency out of order, a file that does not exist) and throws
 // Error with that file, line and column; everything else is left to the procedure.
 #pragma once
@@ -10,7 +10,6 @@
 
 #include "inertest/core/error.h"
 #include "inertest/procedures/bandwidth_and_delay.h"
-#include "inertest/procedures/input_axis_misalignment.h"
 #include "inertest/procedures/rate_segments.h"
 #include "inertest/procedures/scale_factor.h"
 
@@ -54,8 +53,5 @@ std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<con
                                                                    const std::string& time_column,
                                                                    const std::string& output_column,
                                                                    const std::string& angle_column);
-
-// A table position,output_positive,output_negative with the positions 1..n in order.
-std::vector<MisalignmentPosition> read_misalignment_positions(const std::string& path);
 
 }  // namespace inertest

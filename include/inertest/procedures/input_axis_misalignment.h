@@ -19,11 +19,11 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -51,13 +51,17 @@ struct InputAxisMisalignmentResult {
   std::optional<Figure> mounting_error;         // ε, arcsec
   std::optional<Figure> misalignment_eq50_as_printed;  // arcsec
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error unless 2 or 4 positions are given, K is nonzero, Ω positive, and √(Σδ²) <= 1.
 InputAxisMisalignmentResult input_axis_misalignment(std::span<const MisalignmentPosition> positions,
                                                     const InputAxisMisalignmentOptions& options);
+
+// The positions of a CSV with the header 'position,output_positive,output_negative', positions
+// 1, 2[, 3, 4] in order.
+std::vector<MisalignmentPosition> read_misalignment_positions(const std::string& path);
+
+// The procedure's spec (src/procedures/input_axis_misalignment_spec.cc): CLI, plan step, JSON and text.
+ProcedureSpec input_axis_misalignment_spec();
 
 }  // namespace inertest

@@ -90,7 +90,8 @@ ResultOf<ScaleFactorRepeatabilityTag> scale_factor_repeatability_of(const Double
 struct BiasRepeatabilityTag {};
 
 ResultOf<BiasRepeatabilityTag> bias_repeatability_of(const DoubleArray& biases_deg_h) {
-  return make_result<BiasRepeatabilityTag>(bias_repeatability(as_span(biases_deg_h, "biases_deg_h")));
+  return make_spec_result<BiasRepeatabilityTag>(bias_repeatability_spec(),
+                                                bias_repeatability(as_span(biases_deg_h, "biases_deg_h")));
 }
 
 struct BiasTemperatureTag {};

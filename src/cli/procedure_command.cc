@@ -107,7 +107,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       reads_records = reads_records || input.records;
       std::vector<std::string>& given = arguments->runs[input.name];
       if (input.number_key.empty()) {
-        command->add_option(input.cli_name, given, input.doc + ", one file per run")->required()->check(CLI::ExistingFile);
+        command->add_option(input.cli_name, given, input.doc)->required()->check(CLI::ExistingFile);
       } else {
         command->add_option(input.cli_name, given, fmt::format("{}, once per run: NUMBER:FILE (e.g. {}), NUMBER the {}",
                                                                input.doc, input.number_example, input.number_key))
@@ -124,7 +124,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   for (const ParameterSpec& parameter : spec.parameters) {
     if (!parameter.cli_flag.empty()) {
       command->add_flag("--" + parameter.cli_flag, arguments->flags[parameter.name],
-                        fmt::format("{}: {}", parameter.doc, parameter.cli_flag_value));
+                        fmt::format("{} (this flag: {})", parameter.doc, parameter.cli_flag_value));
       continue;
     }
     const std::string flag = "--" + kebab_case(parameter.name);

@@ -44,9 +44,13 @@ nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& f
 
 namespace {
 
+bool is_figure(const nlohmann::json& value) {
+  return value.is_object() && value.contains("value") && value.contains("unit");
+}
+
 // A figure ({"value", "unit", "uncertainty"}) as "v ± u unit"; other values as they read.
 std::string value_text(const nlohmann::json& value) {
-  if (value.is_object() && value.contains("value") && value.contains("unit")) {
+  if (is_figure(value)) {
     std::string text = fmt::format("{:.9g}", value.at("value").get<double>());
     if (value.contains("uncertainty")) text += fmt::format(" ± {:.3g}", value.at("uncertainty").get<double>());
     const auto unit = value.at("unit").get<std::string>();
@@ -63,7 +67,7 @@ std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
   std::string text = fmt::format("  {}\n", field.label_en);
   for (const auto& row : rows) {
     std::string line;
-    if (row.is_object()) {
+    if (row.is_object() && !is_figure(row)) {
       for (const auto& [key, cell] : row.items()) line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
     } else {
       line = value_text(row);

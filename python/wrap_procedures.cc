@@ -83,8 +83,8 @@ ResultOf<ScaleFactorRepeatabilityTag> scale_factor_repeatability_of(const Double
                                                                     std::size_t minimum_runs) {
   ScaleFactorRepeatabilityOptions options;
   options.minimum_runs = minimum_runs;
-  return make_result<ScaleFactorRepeatabilityTag>(
-      scale_factor_repeatability(as_span(scale_factors, "scale_factors"), unit, options));
+  return make_spec_result<ScaleFactorRepeatabilityTag>(
+      scale_factor_repeatability_spec(), scale_factor_repeatability(as_span(scale_factors, "scale_factors"), unit, options));
 }
 
 struct BiasRepeatabilityTag {};

@@ -67,10 +67,9 @@ CommandAction setup(CLI::App& archive) {
       for (const auto& p : history.points) values.push_back(p.value);
       ScaleFactorRepeatabilityOptions options;
       options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning
-      const ScaleFactorRepeatabilityResult result = scale_factor_repeatability(values, history.unit, options);
       json["clause"] = "GJB 2426A-2004 5.8.4, eq. (12)";
-      json["result"] = result.to_json();
-      report = result.report();
+      report = write_result(*find_procedure_spec("scale_factor_repeatability"),
+                            scale_factor_repeatability(values, history.unit, options), json);
     } else {
       throw Error("figure '" + history.figure + "' (" + history.unit +
                   "): repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias in a rate unit (5.12.3)");

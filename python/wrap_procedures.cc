@@ -83,14 +83,15 @@ ResultOf<ScaleFactorRepeatabilityTag> scale_factor_repeatability_of(const Double
                                                                     std::size_t minimum_runs) {
   ScaleFactorRepeatabilityOptions options;
   options.minimum_runs = minimum_runs;
-  return make_result<ScaleFactorRepeatabilityTag>(
-      scale_factor_repeatability(as_span(scale_factors, "scale_factors"), unit, options));
+  return make_spec_result<ScaleFactorRepeatabilityTag>(
+      scale_factor_repeatability_spec(), scale_factor_repeatability(as_span(scale_factors, "scale_factors"), unit, options));
 }
 
 struct BiasRepeatabilityTag {};
 
 ResultOf<BiasRepeatabilityTag> bias_repeatability_of(const DoubleArray& biases_deg_h) {
-  return make_result<BiasRepeatabilityTag>(bias_repeatability(as_span(biases_deg_h, "biases_deg_h")));
+  return make_spec_result<BiasRepeatabilityTag>(bias_repeatability_spec(),
+                                                bias_repeatability(as_span(biases_deg_h, "biases_deg_h")));
 }
 
 struct BiasTemperatureTag {};

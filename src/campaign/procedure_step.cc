@@ -1,6 +1,9 @@
 // The generic plan step of a declared procedure (issue 22): the TOML keys are the spec's parameter
-// names, NAME_file or NAME_output per input (exactly one), and format/column for the records.
+// names, NAME_file or NAME_output per input (exactly one), an array of files or [[procedure.run]]
+// tables per runs input, and format/column for the records.
 #include "campaign/procedure_step.h"
+
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -32,6 +35,30 @@ nlohmann::json instrument_value(const PlanContext& context, const std::string& k
   throw Error("procedure spec: unknown instrument key '" + key + "'");
 }
 
+// The runs of a runs input: the array of files `plan_key` (numbered 1, 2, ...) or one
+// [[procedure.run]] table per run (file and the number key); at least the minimum.
+std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
+  std::vector<RunInput> runs;
+  if (input.number_key.empty()) {
+    for (std::string& file : step.files(input.plan_key)) runs.push_back({static_cast<double>(runs.size() + 1), file});
+    if (runs.size() < input.minimum_runs) {
+      step.fail_at(input.plan_key, fmt::format("needs at least {} runs ({})", input.minimum_runs, input.minimum_why));
+    }
+    return runs;
+  }
+  for (PlanTable& run : step.tables(input.plan_key)) {
+    const double number = input.number_default ? run.number_or(input.number_key, *input.number_default)
+                                               : run.number(input.number_key);
+    runs.push_back({number, run.file("file")});
+    run.require_all_used();
+  }
+  if (runs.size() < input.minimum_runs) {
+    step.fail(fmt::format("needs at least {} [[procedure.{}]] tables with file and {} ({})", input.minimum_runs,
+                          input.plan_key, input.number_key, input.minimum_why));
+  }
+  return runs;
+}
+
 }  // namespace
 
 StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context) {
@@ -42,7 +69,10 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (parameter.instrument_only) continue;
     const std::string& key = parameter.plan_name();
     if (parameter.type == ParameterType::number) {
-      if (const auto value = step.optional_number(key)) call.parameters[parameter.name] = *value;
+      if (const auto value = step.optional_number(key)) {
+        if (parameter.whole && !(*value >= 0.0 && *value == std::floor(*value))) step.fail_at(key, "must be a whole number");
+        call.parameters[parameter.name] = *value;
+      }
     } else if (const auto value = step.optional_string(key)) {
       if (!parameter.choices.empty() &&
           std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
@@ -81,6 +111,11 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
       call.files[input.name] = step.file(input.plan_key);
       continue;
     }
+    if (input.kind == InputKind::runs) {
+      call.runs[input.name] = read_runs(input, step);
+      reads_records = reads_records || input.records;
+      continue;
+    }
     reads_records = true;
     const auto file = step.optional_file(input.name + "_file");
     const auto value = step.optional_number(input.name + "_output");
@@ -90,15 +125,16 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (value) call.inputs[input.name] = *value;
     if (file) files[input.name] = *file;
   }
-  check_in_plan(step, [&] { spec.check(call); });
   const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
-  return [&spec, call, files, source](const StepRunContext&) {
+  call.read_record = [source](const std::string& file) {
+    OutputRecordSource record = source;
+    record.path = file;
+    return read_output_record(record);
+  };
+  check_in_plan(step, [&] { spec.check(call); });
+  return [&spec, call, files](const StepRunContext&) {
     ProcedureCall run_call = call;
-    for (const auto& [name, file] : files) {
-      OutputRecordSource record = source;
-      record.path = file;
-      run_call.inputs[name] = mean(read_output_record(record));
-    }
+    for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
     return procedure_json(spec, spec.run(run_call));
   };
 }

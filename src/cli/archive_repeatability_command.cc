@@ -17,6 +17,14 @@ struct Arguments {
   bool json = false;
 };
 
+// Writes a declared procedure's result (core/procedure_spec.h) into json["result"] and its text.
+template <typename Result>
+std::string write_result(const ProcedureSpec& spec, const Result& result, nlohmann::json& json) {
+  const nlohmann::json fields = spec.fields_of(&result);
+  json["result"] = procedure_json(spec, fields);
+  return procedure_text(spec, fields);
+}
+
 bool is_rate(const std::string& unit) {
   try {
     convert(1.0, unit, "deg/h");
@@ -53,18 +61,15 @@ CommandAction setup(CLI::App& archive) {
     const std::string name = history.figure.substr(history.figure.rfind('/') + 1);
     if (is_rate(history.unit)) {
       for (const auto& p : history.points) values.push_back(convert(p.value, history.unit, "deg/h"));
-      const BiasRepeatabilityResult result = bias_repeatability(values);
       json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
-      json["result"] = result.to_json();
-      report = result.report();
+      report = write_result(*find_procedure_spec("bias_repeatability"), bias_repeatability(values), json);
     } else if (name.find("scale_factor") != std::string::npos) {
       for (const auto& p : history.points) values.push_back(p.value);
       ScaleFactorRepeatabilityOptions options;
       options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning
-      const ScaleFactorRepeatabilityResult result = scale_factor_repeatability(values, history.unit, options);
       json["clause"] = "GJB 2426A-2004 5.8.4, eq. (12)";
-      json["result"] = result.to_json();
-      report = result.report();
+      report = write_result(*find_procedure_spec("scale_factor_repeatability"),
+                            scale_factor_repeatability(values, history.unit, options), json);
     } else {
       throw Error("figure '" + history.figure + "' (" + history.unit +
                   "): repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias in a rate unit (5.12.3)");

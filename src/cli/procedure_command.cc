@@ -1,8 +1,10 @@
 // The generic command of a declared procedure (issue 22): `inertest <kind-in-kebab-case>` with one
-// flag per parameter, --NAME-file/--NAME-output per input, --column/--format for the records, and
-// --json; the procedure's spec (core/procedure_spec.h) says which.
+// flag per parameter, --NAME-file/--NAME-output per input, a positional FILE... or --run NUMBER:FILE
+// per runs input, --column/--format for the records, and --json; the procedure's spec
+// (core/procedure_spec.h) says which.
 #include "procedure_command.h"
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
@@ -24,8 +26,10 @@ struct InputArguments {
 struct Arguments {
   std::map<std::string, std::optional<double>> numbers;     // by parameter name
   std::map<std::string, std::optional<std::string>> texts;  // by parameter name
+  std::map<std::string, bool> flags;                        // by parameter name (ParameterSpec::cli_flag)
   std::map<std::string, InputArguments> inputs;             // by input name
   std::map<std::string, std::string> files;                 // by input name
+  std::map<std::string, std::vector<std::string>> runs;     // by input name: FILE or NUMBER:FILE each
   OutputRecordSource source;
   bool json = false;
 };
@@ -62,6 +66,32 @@ double input_value(const ProcedureSpec& spec, const InputSpec& input, const Inpu
   return with_file_context(given.file, [&] { return mean(read_output_record(source)); });
 }
 
+// The runs of a runs input: files numbered 1, 2, ... or NUMBER:FILE each; at least the minimum.
+std::vector<RunInput> runs_given(const ProcedureSpec& spec, const InputSpec& input,
+                                 const std::vector<std::string>& given) {
+  std::vector<RunInput> runs;
+  for (const std::string& text : given) {
+    if (input.number_key.empty()) {
+      runs.push_back({static_cast<double>(runs.size() + 1), text});
+    } else {
+      auto [number, file] = parse_number_and_file(text, input.cli_name, input.number_example);
+      runs.push_back({number, std::move(file)});
+    }
+  }
+  if (runs.size() < input.minimum_runs) {
+    throw Error(fmt::format("{}: needs at least {} runs ({}), got {}", spec.kind, input.minimum_runs, input.minimum_why,
+                            runs.size()));
+  }
+  return runs;
+}
+
+// "--number" for a whole-number parameter given 2.5 or -1.
+void check_whole(const ParameterSpec& parameter, double value) {
+  if (parameter.whole && !(value >= 0.0 && value == std::floor(value))) {
+    throw Error(fmt::format("--{} must be a whole number, got {}", kebab_case(parameter.name), value));
+  }
+}
+
 }  // namespace
 
 CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
@@ -73,6 +103,18 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       command->add_option(input.cli_name, arguments->files[input.name], input.doc)->required()->check(CLI::ExistingFile);
       continue;
     }
+    if (input.kind == InputKind::runs) {
+      reads_records = reads_records || input.records;
+      std::vector<std::string>& given = arguments->runs[input.name];
+      if (input.number_key.empty()) {
+        command->add_option(input.cli_name, given, input.doc)->required()->check(CLI::ExistingFile);
+      } else {
+        command->add_option(input.cli_name, given, fmt::format("{}, once per run: NUMBER:FILE (e.g. {}), NUMBER the {}",
+                                                               input.doc, input.number_example, input.number_key))
+            ->required();
+      }
+      continue;
+    }
     reads_records = true;
     InputArguments& given = arguments->inputs[input.name];
     const std::string flag = "--" + kebab_case(input.name);
@@ -80,6 +122,11 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     command->add_option(flag + "-output", given.value, "mean of " + input.doc);
   }
   for (const ParameterSpec& parameter : spec.parameters) {
+    if (!parameter.cli_flag.empty()) {
+      command->add_flag("--" + parameter.cli_flag, arguments->flags[parameter.name],
+                        fmt::format("{} (this flag: {})", parameter.doc, parameter.cli_flag_value));
+      continue;
+    }
     const std::string flag = "--" + kebab_case(parameter.name);
     CLI::Option* option = parameter.type == ParameterType::number
                               ? command->add_option(flag, arguments->numbers[parameter.name], parameter_help(spec, parameter))
@@ -93,16 +140,29 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     ProcedureCall call;
     for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
     for (const auto& [name, value] : arguments->numbers) {
-      if (value) call.parameters[name] = *value;
+      if (!value) continue;
+      check_whole(*spec.find_parameter(name), *value);
+      call.parameters[name] = *value;
+    }
+    for (const auto& [name, given] : arguments->flags) {
+      if (given) call.parameters[name] = spec.find_parameter(name)->cli_flag_value;
     }
     for (const auto& [name, value] : arguments->texts) {
       if (value) call.parameters[name] = *value;
     }
+    for (const InputSpec& input : spec.inputs) {
+      if (input.kind == InputKind::runs) call.runs[input.name] = runs_given(spec, input, arguments->runs.at(input.name));
+    }
+    call.read_record = [source = arguments->source](const std::string& file) {
+      OutputRecordSource record = source;
+      record.path = file;
+      return with_file_context(file, [&] { return read_output_record(record); });
+    };
     spec.check(call);
     for (const InputSpec& input : spec.inputs) {
       if (input.kind == InputKind::file) {
         call.files[input.name] = arguments->files.at(input.name);
-      } else {
+      } else if (input.kind == InputKind::value_or_record) {
         call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
       }
     }

@@ -2,6 +2,9 @@
 // checked before any file is read, and a procedure's complaint about a file's data naming the file.
 #include <gmock/gmock.h>
 
+#include <cmath>
+#include <nlohmann/json.hpp>
+
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -31,6 +34,25 @@ TEST(ProcedureCommand, ParametersAreCheckedAndErrorsNameTheFile) {
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_TRUE(run.out.empty());
   EXPECT_THAT(run.err, HasSubstr("inertest: error: " + steps + ": resolution:"));
+}
+
+TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
+  testing::ScratchDirectory scratch;
+  const std::string first = scratch.write("run1.txt", "0.1\n0.1\n");
+  const std::string second = scratch.write("run2.txt", "0.4\n0.4\n");
+  // Records in deg/h already (--input-deg-h gives input = "deg/h"): biases 0.1 and 0.4, Br = 0.3/sqrt(2).
+  auto run = run_cli({"bias-repeatability", first, second, "--input-deg-h", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_NEAR(json.at("bias_repeatability").at("value").get<double>(), 0.3 / std::sqrt(2.0), 1e-15);
+  EXPECT_EQ(json.at("runs"), 2);
+  run = run_cli({"bias-repeatability", first, second});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("missing the scale factor K"));
+  const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
+  run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr(bad + ":2:1: expected a number"));
 }
 
 }  // namespace

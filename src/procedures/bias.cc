@@ -16,32 +16,31 @@ constexpr double kSecondsPerHour = 3600.0;
 
 double to_deg_h(double rad_s) { return rad_s / constants::kDegree * kSecondsPerHour; }
 
-// What eq. (19) alone needs: a usable scale factor and orientation (no sample rate).
-void validate_conversion(const BiasOptions& options) {
-  if (!options.input_in_deg_h && (options.scale_factor == 0.0 || !std::isfinite(options.scale_factor))) {
-    throw Error(fmt::format("bias: the scale factor K must be a nonzero number (output units per deg/s), got {}",
-                            options.scale_factor));
-  }
-  if (options.remove_earth_rate) options.remove_earth_rate->validate();
-}
-
 }  // namespace
 
 void BiasOptions::validate() const {
   if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
     throw Error(fmt::format("bias: the sample rate must be positive, got {} Hz", sample_rate_hz));
   }
-  validate_conversion(*this);
+  validate_conversion();
   if (smoothing_s.empty()) throw Error("bias: no smoothing time given for the bias stability");
   for (double s : smoothing_s) {
     if (!(s > 0.0) || !std::isfinite(s)) throw Error(fmt::format("bias: a smoothing time must be positive, got {} s", s));
   }
 }
 
+void BiasOptions::validate_conversion() const {
+  if (!input_in_deg_h && (scale_factor == 0.0 || !std::isfinite(scale_factor))) {
+    throw Error(fmt::format("bias: the scale factor K must be a nonzero number (output units per deg/s), got {}",
+                            scale_factor));
+  }
+  if (remove_earth_rate) remove_earth_rate->validate();
+}
+
 double BiasOptions::deg_h_per_output() const { return input_in_deg_h ? 1.0 : kSecondsPerHour / scale_factor; }
 
 double bias_deg_h(std::span<const double> output, const BiasOptions& options) {
-  validate_conversion(options);
+  options.validate_conversion();
   if (output.empty()) throw Error("bias: the record is empty");
   double value = mean(output) * options.deg_h_per_output();  // eq. (19): F̄/K, deg/s -> deg/h
   if (options.remove_earth_rate) value -= to_deg_h(earth_rate_on_axis(*options.remove_earth_rate));

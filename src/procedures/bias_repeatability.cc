@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/numerics/statistics.h"
@@ -32,31 +31,6 @@ BiasRepeatabilityResult bias_repeatability(std::span<const double> run_biases_de
                                           run_biases_deg_h.size(), kRecommendedRuns));
   }
   return result;
-}
-
-nlohmann::json BiasRepeatabilityResult::to_json() const {
-  nlohmann::json runs = nlohmann::json::array();
-  for (double b : run_biases) runs.push_back(Figure{b, "deg/h", std::nullopt});
-  return {
-      {"procedure", "bias_repeatability"},
-      {"clause", "GJB 2426A-2004 5.12.3, eq. (21)"},
-      {"bias_repeatability", bias_repeatability},
-      {"mean_bias", mean_bias},
-      {"runs", run_biases.size()},
-      {"run_biases", runs},
-      {"warnings", warnings},
-  };
-}
-
-std::string BiasRepeatabilityResult::report() const {
-  std::string text = "Bias repeatability (GJB 2426A-2004 5.12.3)\n";
-  for (std::size_t i = 0; i < run_biases.size(); ++i) {
-    text += fmt::format("  {:<32} {:.9g} deg/h\n", fmt::format("bias of run {}", i + 1), run_biases[i]);
-  }
-  text += fmt::format("  {:<32} {:.9g} deg/h\n", "mean bias", mean_bias.value);
-  text += fmt::format("  {:<32} {:.6g} deg/h\n", "bias repeatability Br", bias_repeatability.value);
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

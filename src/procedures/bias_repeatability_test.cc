@@ -17,7 +17,7 @@ TEST(BiasRepeatabilityTest, HandComputed) {
   EXPECT_NEAR(result.bias_repeatability.value, std::sqrt(17.5 / 5.0), 1e-14);  // eq. (21)
   EXPECT_DOUBLE_EQ(result.mean_bias.value, 3.5);
   EXPECT_TRUE(result.warnings.empty());
-  EXPECT_EQ(result.to_json().at("bias_repeatability").at("unit"), "deg/h");
+  EXPECT_EQ(find_procedure_spec("bias_repeatability")->fields_of(&result).at("bias_repeatability").at("unit"), "deg/h");
 }
 
 TEST(BiasRepeatabilityTest, FewerThanSixRunsWarnsFewerThanTwoFails) {

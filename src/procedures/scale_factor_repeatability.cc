@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/numerics/statistics.h"
@@ -14,15 +13,19 @@ void ScaleFactorRepeatabilityOptions::validate() const {
   if (minimum_runs < 2) throw Error("scale factor repeatability: eq. (12) needs at least 2 runs");
 }
 
+void ScaleFactorRepeatabilityOptions::check_run_count(std::size_t runs) const {
+  if (runs < minimum_runs) {
+    throw Error(fmt::format("scale factor repeatability: {} run(s); GJB 2426A 5.8.4.3 asks for Q >= {} runs", runs,
+                            minimum_runs));
+  }
+}
+
 ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const double> scale_factors,
                                                           const std::string& unit,
                                                           const ScaleFactorRepeatabilityOptions& options) {
   options.validate();
   const std::size_t q = scale_factors.size();
-  if (q < options.minimum_runs) {
-    throw Error(fmt::format("scale factor repeatability: {} run(s); GJB 2426A 5.8.4.3 asks for Q >= {} runs", q,
-                            options.minimum_runs));
-  }
+  options.check_run_count(q);
   const double k_mean = mean(scale_factors);
   if (k_mean == 0.0) throw Error("scale factor repeatability: the mean scale factor is zero");
   const double kr = sample_standard_deviation(scale_factors) / std::abs(k_mean);  // eq. (12)
@@ -55,30 +58,6 @@ ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const std::v
   ScaleFactorRepeatabilityResult result = scale_factor_repeatability(values, unit, options);
   result.run_scale_factors = figures;
   return result;
-}
-
-nlohmann::json ScaleFactorRepeatabilityResult::to_json() const {
-  return {
-      {"procedure", "scale_factor_repeatability"},
-      {"clause", "GJB 2426A-2004 5.8.4, eq. (12)"},
-      {"scale_factor_repeatability", scale_factor_repeatability},
-      {"mean_scale_factor", mean_scale_factor},
-      {"run_scale_factors", run_scale_factors},
-      {"runs", run_scale_factors.size()},
-      {"warnings", warnings},
-  };
-}
-
-std::string ScaleFactorRepeatabilityResult::report() const {
-  std::string text = "Scale factor repeatability (GJB 2426A-2004 5.8.4)\n";
-  text += fmt::format("  {:<28} {:.6g} {}\n", "repeatability Kr", scale_factor_repeatability.value,
-                      scale_factor_repeatability.unit);
-  text += fmt::format("  {:<28} {:.9g} {}\n", "mean scale factor", mean_scale_factor.value, mean_scale_factor.unit);
-  for (std::size_t i = 0; i < run_scale_factors.size(); ++i) {
-    text += fmt::format("  run {:<24} {:.9g} {}\n", i + 1, run_scale_factors[i].value, run_scale_factors[i].unit);
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

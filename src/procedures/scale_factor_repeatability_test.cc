@@ -35,7 +35,9 @@ TEST(ScaleFactorRepeatability, FromTheTestPointsOfEachRun) {
   EXPECT_NEAR_RELATIVE(result.scale_factor_repeatability.value, std::sqrt(ss / 5.0) / mean * 1e6, 1e-9);
   ASSERT_EQ(result.run_scale_factors.size(), 6u);
   EXPECT_NEAR_RELATIVE(result.run_scale_factors[1].value, 5001.5, 1e-12);
-  EXPECT_EQ(result.to_json().at("scale_factor_repeatability").at("unit"), "ppm");
+  const auto fields = find_procedure_spec("scale_factor_repeatability")->fields_of(&result);
+  EXPECT_EQ(fields.at("scale_factor_repeatability").at("unit"), "ppm");
+  EXPECT_EQ(fields.at("runs"), 6);
 }
 
 TEST(ScaleFactorRepeatability, FewerThanSixRunsIsAnErrorUnlessAllowed) {

@@ -55,6 +55,13 @@ struct ParameterSpec {
   }
   // The plan key when it is a contract that differs from the name (e.g. "nonlinearity_limit_ppm").
   ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
+  // On the command line a flag without a value, `--flag`, that gives the text `value` (e.g.
+  // --input-deg-h for input = "deg/h", a contract); without it the parameter has its default.
+  ParameterSpec& command_line_flag(std::string flag, std::string value) {
+    cli_flag = std::move(flag);
+    cli_flag_value = std::move(value);
+    return *this;
+  }
   const std::string& plan_name() const { return plan_key.empty() ? name : plan_key; }
 
   std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
@@ -69,6 +76,9 @@ struct ParameterSpec {
   bool instrument_only = false;
   std::optional<std::pair<std::string, std::string>> instrument_condition;  // parameter, value
   std::string plan_key;  // "" : the plan key is `name`
+  bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
+  std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
+  std::string cli_flag_value;
 };
 
 enum class InputKind {
@@ -78,6 +88,10 @@ enum class InputKind {
   // A file the procedure's reader reads (call.files): the positional argument `cli_name` on the
   // command line, the key `plan_key` in a plan (a path relative to the plan, checked to exist).
   file,
+  // Several runs, each a file (call.runs): repeated runs numbered 1, 2, ... in the order given, or
+  // runs each with a number of its own (a temperature, an input rate). See InputSpec::runs_in_files
+  // and InputSpec::numbered_runs.
+  runs,
 };
 
 // InputSpec("positive", "the output at the positive rate"), or a file with .read_from_file(...).
@@ -90,12 +104,50 @@ struct InputSpec {
     plan_key = std::move(key);
     return *this;
   }
+  // Repeated runs, one file each, numbered 1, 2, ... in the order given: the positional arguments
+  // `positional_name`... on the command line, the array of paths `key` in a plan.
+  InputSpec& runs_in_files(std::string positional_name, std::string key) {
+    kind = InputKind::runs;
+    cli_name = std::move(positional_name);
+    plan_key = std::move(key);
+    return *this;
+  }
+  // Runs each with a number (`key`, e.g. "temperature_degC") and a file: `--run NUMBER:FILE` once per
+  // run on the command line (`example` shows one, e.g. "25:run_25C.txt"), one [[procedure.run]]
+  // table per run in a plan with the keys `file` and `key`.
+  InputSpec& numbered_runs(std::string key, std::string example) {
+    kind = InputKind::runs;
+    cli_name = "--run";
+    plan_key = "run";
+    number_key = std::move(key);
+    number_example = std::move(example);
+    return *this;
+  }
+  // A [[procedure.run]] table without the number key has this number (e.g. 0: a run at rest).
+  InputSpec& number_defaults_to(double value) { number_default = value; return *this; }
+  // Each run's file is an instrument-output record (call.read_record): read with --column/--format
+  // on the command line and the keys column/format in a plan.
+  InputSpec& output_records() { records = true; return *this; }
+  // Fewer runs than `count` is an error given before any file is read; `why` says where the count
+  // comes from (e.g. "GJB 2426A 5.12.3 asks for 6 or more").
+  InputSpec& at_least(std::size_t count, std::string why) {
+    minimum_runs = count;
+    minimum_why = std::move(why);
+    return *this;
+  }
 
   std::string name;
   std::string doc;  // what the record, value or file is, e.g. "the output at the positive rate"
   InputKind kind = InputKind::value_or_record;
-  std::string cli_name;  // InputKind::file: the positional argument, e.g. "STEPS"
-  std::string plan_key;  // InputKind::file: the plan key, e.g. "file"
+  std::string cli_name;  // file, runs: the positional argument ("STEPS", "FILE") or the option "--run"
+  std::string plan_key;  // file, runs: the plan key ("file", "files") or the table array "run"
+  // InputKind::runs with numbers: the number's plan key, an example of --run, and its default.
+  std::string number_key;
+  std::string number_example;
+  std::optional<double> number_default;
+  bool records = false;  // InputKind::runs: the files are output records, read by call.read_record
+  std::size_t minimum_runs = 1;
+  std::string minimum_why;
 };
 
 // What a result field is in a report.
@@ -115,11 +167,22 @@ struct FieldSpec {
   std::string equation;  // the source clause or equation, "" when the field is bookkeeping
 };
 
-// Parameter values by name (defaults already applied), input values and input files by name.
+// One run of an InputKind::runs input: its number (the temperature, the input rate; its place
+// 1, 2, ... when the runs have no numbers of their own) and its file.
+struct RunInput {
+  double number = 0.0;
+  std::string file;
+};
+
+// Parameter values by name (defaults already applied), input values, input files and runs by name.
 struct ProcedureCall {
   nlohmann::json parameters = nlohmann::json::object();
   std::map<std::string, double> inputs;
   std::map<std::string, std::string> files;
+  std::map<std::string, std::vector<RunInput>> runs;
+  // An instrument-output record as the command line (--column/--format) or the plan (column/format)
+  // says it is stored; set when a runs input has output_records(). Errors name the file.
+  std::function<std::vector<double>(const std::string& file)> read_record;
 };
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
@@ -132,7 +195,7 @@ struct ProcedureSpec {
   std::map<std::string, nlohmann::json> defaults;  // by parameter name; absent: optional, no default
   std::vector<InputSpec> inputs;
   std::vector<FieldSpec> fields;
-  // Checks the parameters (Options::validate) before any input is read; throws Error.
+  // Checks the parameters (Options::validate) and the runs given before any input is read; throws Error.
   std::function<void(const ProcedureCall&)> check;
   // Runs the procedure; returns the result's fields by name (a null field is left out).
   std::function<nlohmann::json(const ProcedureCall&)> run;
@@ -174,13 +237,20 @@ class ProcedureDefinition {
 
   // A parameter stored in an Options member; its default is the member's default value unless the
   // parameter is required.
+  // A std::size_t member is a whole number (checked by the command line and plans).
   template <typename T>
   ProcedureDefinition& parameter(ParameterSpec parameter, T Options::*member) {
-    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string>, "number or text parameters");
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t>,
+                  "number, whole number or text parameters");
     if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*member;
-    parameter.type = std::is_same_v<T, double> ? ParameterType::number : ParameterType::text;
+    parameter.type = std::is_same_v<T, std::string> ? ParameterType::text : ParameterType::number;
+    parameter.whole = std::is_same_v<T, std::size_t>;
     binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
-      options.*member = value.get<T>();
+      if constexpr (std::is_same_v<T, std::size_t>) {
+        options.*member = static_cast<std::size_t>(value.get<double>());
+      } else {
+        options.*member = value.get<T>();
+      }
     });
     spec_.parameters.push_back(std::move(parameter));
     return *this;
@@ -204,6 +274,20 @@ class ProcedureDefinition {
   ProcedureDefinition& parameter(ParameterSpec parameter, Binder bind) {
     binders_.emplace_back(parameter.name, std::move(bind));
     spec_.parameters.push_back(std::move(parameter));
+    return *this;
+  }
+
+  // A parameter with the default `default_value` stored through `bind` (e.g. a text choice that
+  // sets a flag of the Options).
+  ProcedureDefinition& parameter(ParameterSpec parameter, nlohmann::json default_value, Binder bind) {
+    spec_.defaults[parameter.name] = std::move(default_value);
+    return this->parameter(std::move(parameter), std::move(bind));
+  }
+
+  // Replaces the check before any input is read (Options::validate by default), e.g. to check
+  // only what the procedure uses of a shared Options or the number of runs an option asks for.
+  ProcedureDefinition& checked_by(std::function<void(const ProcedureCall&, const Options&)> check) {
+    check_ = std::move(check);
     return *this;
   }
 
@@ -235,7 +319,13 @@ class ProcedureDefinition {
       }
       return options;
     };
-    spec.check = [options_of](const ProcedureCall& call) { options_of(call).validate(); };
+    spec.check = [options_of, check = check_](const ProcedureCall& call) {
+      if (check) {
+        check(call, options_of(call));
+      } else {
+        options_of(call).validate();
+      }
+    };
     spec.fields_of = [getters = getters_](const std::any& result) {
       nlohmann::json fields = nlohmann::json::object();
       for (const auto& [name, get] : getters) fields[name] = get(*std::any_cast<const Result*>(result));
@@ -252,6 +342,7 @@ class ProcedureDefinition {
   ProcedureSpec spec_;
   std::vector<std::pair<std::string, Binder>> binders_;
   std::vector<std::pair<std::string, std::function<nlohmann::json(const Result&)>>> getters_;
+  std::function<void(const ProcedureCall&, const Options&)> check_;
 };
 
 }  // namespace inertest

@@ -46,6 +46,9 @@ struct BiasOptions {
   // Throws Error for a non-positive rate, a zero or non-finite scale factor, an empty or
   // non-positive smoothing time, or an invalid orientation.
   void validate() const;
+  // What eq. (19) alone needs (bias_deg_h): a nonzero, finite scale factor unless input_in_deg_h,
+  // and a valid orientation; no sample rate. Throws Error.
+  void validate_conversion() const;
   // deg/h per output unit: 3600 / K (or 1 with input_in_deg_h).
   double deg_h_per_output() const;
 };

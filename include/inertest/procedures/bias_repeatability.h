@@ -9,9 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -20,13 +19,14 @@ struct BiasRepeatabilityResult {
   Figure mean_bias;               // B̄0, deg/h
   std::vector<double> run_biases; // B0i, deg/h, in the order given
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // 5.12.3.3 d) asks for Q >= 6 runs; fewer gives a warning. Throws Error for fewer than 2 runs
 // (eq. 21 has no value) or a non-finite bias.
 BiasRepeatabilityResult bias_repeatability(std::span<const double> run_biases_deg_h);
+
+// The procedure's spec (src/procedures/bias_repeatability_spec.cc): CLI, plan step, JSON and text,
+// each run's bias by eq. (19) from its output record (bias_deg_h).
+ProcedureSpec bias_repeatability_spec();
 
 }  // namespace inertest

@@ -9,9 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/scale_factor.h"
 
 namespace inertest {
@@ -23,6 +22,8 @@ struct ScaleFactorRepeatabilityOptions {
   std::size_t minimum_runs = 6;
 
   void validate() const;
+  // Throws Error when `runs` is fewer than minimum_runs.
+  void check_run_count(std::size_t runs) const;
 };
 
 struct ScaleFactorRepeatabilityResult {
@@ -30,9 +31,6 @@ struct ScaleFactorRepeatabilityResult {
   Figure mean_scale_factor;           // K̄
   std::vector<Figure> run_scale_factors;  // Ki, one per run, in the order given
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // From the scale factors of the runs (output unit per rate unit, given by unit). Throws Error when
@@ -44,5 +42,9 @@ ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const double
 // From the test points of each run: K of each by eqs. (1)-(6), then eq. (12). Errors in a run name it.
 ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const std::vector<ScaleFactorPoint>> runs,
                                                           const ScaleFactorRepeatabilityOptions& options = {});
+
+// The procedure's spec (src/procedures/scale_factor_repeatability_spec.cc): CLI, plan step, JSON
+// and text, each run's test points read from its file.
+ProcedureSpec scale_factor_repeatability_spec();
 
 }  // namespace inertest

@@ -13,7 +13,7 @@ PYTHON_TYPES = {"number": "float", "text": "str"}
 
 
 def parameter_line(parameter):
-    annotation = PYTHON_TYPES[parameter["type"]]
+    annotation = "int" if parameter["whole"] else PYTHON_TYPES[parameter["type"]]
     if parameter["required"]:
         return f"    {parameter['name']}: {annotation},"
     default = parameter["default"]
@@ -25,6 +25,9 @@ def parameter_line(parameter):
 def input_line(spec_input):
     if spec_input["kind"] == "file":
         return f"    {spec_input['name']}: str,"
+    if spec_input["kind"] == "runs":
+        run = "str" if not spec_input["number_key"] else "tuple[float, str]"
+        return f"    {spec_input['name']}: Sequence[{run}],"
     return f"    {spec_input['name']}: Union[float, ArrayLike],"
 
 
@@ -33,6 +36,8 @@ def function_stub(spec):
     lines += [input_line(i) for i in spec["inputs"]]
     lines += [parameter_line(p) for p in spec["parameters"] if p["required"]]
     lines += [parameter_line(p) for p in spec["parameters"] if not p["required"]]
+    if spec["reads_records"]:
+        lines += ['    column: str = "",', '    format: str = "",']
     lines.append(") -> ProcedureResult:")
     lines.append(f'    """{spec["title"]} ({spec["clause"]}). Members: {", ".join(spec["fields"])}."""')
     return "\n".join(lines)

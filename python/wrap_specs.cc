@@ -2,14 +2,18 @@
 // own in this module becomes `inertest.<kind>(**keywords)`, made from its spec as the CLI command
 // and the plan step are: the keywords are the spec's parameter names (the plan keys), each
 // value-or-record input `NAME` takes a number or an array of samples (their mean, as NAME_file
-// takes a record's mean in a plan), and each file input takes its plan key (a path). The type stubs
-// of these functions are generated from procedure_specs() at build time (generate_stubs.py).
+// takes a record's mean in a plan), each file input takes its plan key (a path), and each runs input
+// its plan key: a list of paths (runs 1, 2, ...) or of (number, path) pairs; output records are read
+// as a plan reads them, with the keywords `column` and `format`. The type stubs of these functions
+// are generated from procedure_specs() at build time (generate_stubs.py).
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "bindings.h"
+#include "inertest/io/output_record.h"
 #include "inertest/numerics/statistics.h"
 
 namespace inertest::python {
@@ -17,13 +21,22 @@ namespace {
 
 struct SpecTag {};
 
-// The Python keywords of a spec, in declaration order: parameters, then inputs.
+// The keyword of an input: its name for a value, its plan key for a file or runs.
+const std::string& keyword_of(const InputSpec& input) {
+  return input.kind == InputKind::value_or_record ? input.name : input.plan_key;
+}
+
+bool reads_records(const ProcedureSpec& spec) {
+  return std::any_of(spec.inputs.begin(), spec.inputs.end(), [](const InputSpec& input) { return input.records; });
+}
+
+// The Python keywords of a spec, in declaration order: parameters, inputs, then column and format
+// when it reads output records.
 std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
   std::vector<std::string> keywords;
   for (const ParameterSpec& parameter : spec.parameters) keywords.push_back(parameter.name);
-  for (const InputSpec& input : spec.inputs) {
-    keywords.push_back(input.kind == InputKind::file ? input.plan_key : input.name);
-  }
+  for (const InputSpec& input : spec.inputs) keywords.push_back(keyword_of(input));
+  if (reads_records(spec)) keywords.insert(keywords.end(), {"column", "format"});
   return keywords;
 }
 
@@ -32,7 +45,11 @@ nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle&
     if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) {
       throw Error(fmt::format("{} must be a number", parameter.name));
     }
-    return value.cast<double>();
+    const auto number = value.cast<double>();
+    if (parameter.whole && !(number >= 0.0 && number == std::floor(number))) {
+      throw Error(fmt::format("{} must be a whole number, got {}", parameter.name, number));
+    }
+    return number;
   }
   if (!py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a string", parameter.name));
   const auto text = value.cast<std::string>();
@@ -55,6 +72,29 @@ double input_value(const InputSpec& input, const py::handle& value) {
   return mean(span);
 }
 
+// A list of paths (numbered 1, 2, ...) or of (number, path) pairs; at least the input's minimum.
+std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input, const py::handle& value) {
+  if (py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a list of runs, not one path", input.plan_key));
+  std::vector<RunInput> runs;
+  for (const py::handle item : value) {
+    if (py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item)) {
+      const auto pair = item.cast<py::sequence>();
+      if (pair.size() != 2) throw Error(fmt::format("{}: a run is (number, path)", input.plan_key));
+      runs.push_back({pair[0].cast<double>(), py::str(pair[1]).cast<std::string>()});
+    } else {
+      if (!input.number_key.empty()) {
+        throw Error(fmt::format("{}: each run is ({}, path)", input.plan_key, input.number_key));
+      }
+      runs.push_back({static_cast<double>(runs.size() + 1), py::str(item).cast<std::string>()});
+    }
+  }
+  if (runs.size() < input.minimum_runs) {
+    throw Error(fmt::format("{}: needs at least {} runs ({}), got {}", spec.kind, input.minimum_runs, input.minimum_why,
+                            runs.size()));
+  }
+  return runs;
+}
+
 ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
   const std::vector<std::string> accepted = keywords_of(spec);
   for (const auto& [key, value] : keywords) {
@@ -73,15 +113,23 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
     }
   }
   for (const InputSpec& input : spec.inputs) {
-    const std::string& key = input.kind == InputKind::file ? input.plan_key : input.name;
+    const std::string& key = keyword_of(input);
     if (!keywords.contains(key)) throw Error(fmt::format("{}() needs {} ({})", spec.kind, key, input.doc));
     const py::handle value = keywords[key.c_str()];
-    if (input.kind == InputKind::file) {
-      call.files[input.name] = py::str(value).cast<std::string>();
-    } else {
-      call.inputs[input.name] = input_value(input, value);
+    switch (input.kind) {
+      case InputKind::file: call.files[input.name] = py::str(value).cast<std::string>(); break;
+      case InputKind::runs: call.runs[input.name] = runs_of(spec, input, value); break;
+      case InputKind::value_or_record: call.inputs[input.name] = input_value(input, value); break;
     }
   }
+  OutputRecordSource source;
+  if (keywords.contains("column")) source.column = py::str(keywords["column"]).cast<std::string>();
+  if (keywords.contains("format")) source.format = py::str(keywords["format"]).cast<std::string>();
+  call.read_record = [source](const std::string& file) {
+    OutputRecordSource record = source;
+    record.path = file;
+    return read_output_record(record);
+  };
   return call;
 }
 
@@ -97,10 +145,19 @@ std::string docstring_of(const ProcedureSpec& spec) {
     text += "\n";
   }
   for (const InputSpec& input : spec.inputs) {
-    text += input.kind == InputKind::file
-                ? fmt::format("  {}: path of {}\n", input.plan_key, input.doc)
-                : fmt::format("  {}: {}, a number or an array of samples (their mean)\n", input.name, input.doc);
+    switch (input.kind) {
+      case InputKind::file: text += fmt::format("  {}: path of {}\n", input.plan_key, input.doc); break;
+      case InputKind::runs:
+        text += input.number_key.empty()
+                    ? fmt::format("  {}: {}, a list of paths\n", input.plan_key, input.doc)
+                    : fmt::format("  {}: {}, a list of ({}, path)\n", input.plan_key, input.doc, input.number_key);
+        break;
+      case InputKind::value_or_record:
+        text += fmt::format("  {}: {}, a number or an array of samples (their mean)\n", input.name, input.doc);
+        break;
+    }
   }
+  if (reads_records(spec)) text += "  column, format: how the records are stored, as in a plan\n";
   return text + "Returns a ProcedureResult (members as in the CLI's --json); raises inertest.Error.";
 }
 
@@ -115,19 +172,19 @@ nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) 
                           {"doc", parameter.doc},
                           {"choices", parameter.choices},
                           {"required", parameter.required},
+                          {"whole", parameter.whole},
                           {"default", found == spec.defaults.end() ? nlohmann::json() : found->second}});
   }
   nlohmann::json inputs = nlohmann::json::array();
   for (const InputSpec& input : spec.inputs) {
-    inputs.push_back({{"name", input.kind == InputKind::file ? input.plan_key : input.name},
-                      {"kind", input.kind == InputKind::file ? "file" : "value_or_record"},
-                      {"doc", input.doc}});
+    const char* kind = input.kind == InputKind::file ? "file" : input.kind == InputKind::runs ? "runs" : "value_or_record";
+    inputs.push_back({{"name", keyword_of(input)}, {"kind", kind}, {"number_key", input.number_key}, {"doc", input.doc}});
   }
   nlohmann::json fields = nlohmann::json::array();
   for (const FieldSpec& field : spec.fields) fields.push_back(field.name);
   return {{"kind", spec.kind},          {"title", spec.title},   {"clause", spec.clause},
           {"parameters", parameters},   {"inputs", inputs},      {"fields", fields},
-          {"generic_function", generic_function}};
+          {"reads_records", reads_records(spec)}, {"generic_function", generic_function}};
 }
 
 }  // namespace

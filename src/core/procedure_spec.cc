@@ -87,6 +87,8 @@ std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fiel
     const nlohmann::json& value = fields.at(field.name);
     if (field.role == FieldRole::table && value.is_array()) {
       text += table_text(field, value);
+    } else if (field.role == FieldRole::curve && value.is_array()) {
+      text += fmt::format("  {:<32} {} points (plotted in the report)\n", field.label_en, value.size());
     } else {
       text += fmt::format("  {:<32} {}\n", field.label_en, value_text(value));
     }

@@ -15,6 +15,7 @@ ProcedureSpec bias_repeatability_spec() {
              "the standard deviation (Q-1) of the biases of Q runs (Q >= 6 asked\n"
              "for; at least 2 needed), each bias = mean output / K in deg/h (eq. 19).\n"
              "Each FILE is one run's output record (one column, or --column; or binary with --format).")
+      .chinese_title("零偏重复性")
       .input(InputSpec("runs", "one output record per run")
                  .runs_in_files("FILE", "files")
                  .output_records()

@@ -23,6 +23,7 @@ ProcedureSpec input_axis_misalignment_spec() {
              "delta_j = (F(j+) - F(j-))/(2 K rate), K in output per rate unit; two positions:\n"
              "alpha = asin(sqrt(delta1^2 + delta2^2)); four: the mounting error cancels,\n"
              "alpha = asin(sqrt(((delta1 - delta3)/2)^2 + ((delta2 - delta4)/2)^2)).")
+      .chinese_title("输入轴失准角")
       .input(InputSpec("positions", "the mean outputs at +rate and -rate per position (position,output_positive,output_negative)")
                  .read_from_file("POSITIONS", "file"))
       .parameter(ParameterSpec("scale_factor", "K, output unit per rate unit")

@@ -29,6 +29,7 @@ ProcedureSpec maximum_input_rate_spec() {
              "over the points with |rate| <= R meets --nonlinearity-limit, for that R and every smaller one.\n"
              "POINTS has the header 'rate,output', as for 'inertest scale-factor', tested beyond the expected\n"
              "maximum.")
+      .chinese_title("最大输入角速度")
       .input(InputSpec("points", "CSV of test points (rate,output)").read_from_file("POINTS", "file"))
       .parameter(ParameterSpec("nonlinearity_limit", "the nonlinearity requirement")
                      .unit_is("ppm")

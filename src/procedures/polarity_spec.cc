@@ -10,6 +10,7 @@ ProcedureSpec polarity_spec() {
              "polarity", "Polarity", "GJB 2426A-2004 5.7",
              "The sign of the output change for a positive input about the IRA, sign(F(+) - F(-)), from\n"
              "records (their means) or mean outputs at +rate and -rate.")
+      .chinese_title("极性")
       .input({"positive", "the output at the positive rate"})
       .input({"negative", "the output at the negative rate"})
       .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),

@@ -36,6 +36,7 @@ ProcedureSpec resolution_spec() {
              "STEPS has the header 'base_rate,base_output,rate,output': one row per increment, the base rate\n"
              "(its sign gives the direction) and its mean output measured before the increment, then the\n"
              "rate with the increment and its mean output; rates in --rate-unit (default deg/s).")
+      .chinese_title("分辨率")
       .input(InputSpec("steps", "CSV of increments").read_from_file("STEPS", "file"))
       .parameter(ParameterSpec("scale_factor", "K")
                      .unit_is("output units per deg/s")

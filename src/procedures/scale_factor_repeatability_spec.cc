@@ -15,6 +15,7 @@ ProcedureSpec scale_factor_repeatability_spec() {
              "Each FILE is one run's test points, header 'rate,output', as for 'inertest scale-factor'.\n"
              "GJB 2426A 5.8.4.3 asks for Q >= 6 runs: fewer is an error unless --minimum-runs is lowered\n"
              "(to no less than 2), and the result then carries a warning.")
+      .chinese_title("标度因数重复性")
       .input(InputSpec("runs", "one CSV of test points (rate,output) per run").runs_in_files("FILE", "files"))
       .parameter(ParameterSpec("minimum_runs", "fewest runs accepted (5.8.4.3 asks for 6)"),
                  &ScaleFactorRepeatabilityOptions::minimum_runs)

@@ -56,7 +56,11 @@ class Page {
     return labels_(key);
   }
   // The figure's last key in the report's words, e.g. "Scale factor".
-  std::string figure_label(const std::string& figure) const { return labels_(figure.substr(figure.rfind('/') + 1)); }
+  // "scale_factor/nonlinearity": the label of the figure in that procedure's declaration, else the table's.
+  std::string figure_label(const std::string& figure) const {
+    const std::size_t slash = figure.rfind('/');
+    return slash == std::string::npos ? labels_(figure) : labels_.field_of(figure.substr(0, slash), figure.substr(slash + 1));
+  }
   // A figure PROCEDURE/FIGURE as a heading: "Scale factor (scale_factor/scale_factor)".
   std::string figure_title(const std::string& figure) const { return figure_label(figure) + " (" + figure + ")"; }
   const Labels& labels() const { return labels_; }

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <unordered_map>
 
+#include "inertest/core/procedure_spec.h"
+
 namespace inertest::report {
 namespace {
 
@@ -83,21 +85,15 @@ constexpr Translation kTable[] = {
 
     // Procedures (plan kinds).
     {"kind.scale_factor", "Scale factor", "标度因数"},
-    {"kind.scale_factor_repeatability", "Scale factor repeatability", "标度因数重复性"},
     {"kind.scale_factor_temperature", "Scale factor temperature sensitivity", "标度因数温度灵敏度"},
     {"kind.bias", "Bias and bias stability", "零偏与零偏稳定性"},
-    {"kind.bias_repeatability", "Bias repeatability", "零偏重复性"},
     {"kind.bias_temperature", "Bias temperature sensitivity", "零偏温度灵敏度"},
     {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
-    {"kind.maximum_input_rate", "Maximum input rate", "最大输入角速度"},
     {"kind.turn_on_time", "Turn-on time", "启动时间"},
     {"kind.warm_up_time", "Warm-up time", "预热时间"},
-    {"kind.polarity", "Polarity", "极性"},
     {"kind.threshold", "Threshold", "阈值"},
-    {"kind.resolution", "Resolution", "分辨率"},
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
     {"kind.bandwidth", "Bandwidth and output delay", "频带宽度与输出延迟时间"},
-    {"kind.input_axis_misalignment", "Input axis misalignment", "输入轴失准角"},
     {"kind.gyro_misalignment", "Gyro misalignment separation (rate table)", "陀螺失准角分离（速率转台）"},
     {"kind.accelerometer_misalignment", "Accelerometer misalignment (four-position test)",
      "加速度计失准角（四位置试验）"},
@@ -233,10 +229,6 @@ constexpr Translation kTable[] = {
     {"worst_temperature", "Temperature of the largest change", "最大变化温度"},
     {"reference_temperature", "Reference temperature", "参考温度"},
     {"reference_scale_factor", "Scale factor at the reference temperature", "参考温度标度因数"},
-    {"mean_bias", "Mean bias", "零偏均值"},
-    {"run_biases", "Bias of run", "各次零偏"},
-    {"mean_scale_factor", "Mean scale factor", "标度因数均值"},
-    {"run_scale_factors", "Scale factor of run", "各次标度因数"},
     {"longest_run", "Longest run", "最长一次"},
     {"earth_rate_removed", "Earth rate removed", "扣除的地速分量"},
     {"sensitivity", "Sensitivity", "灵敏度"},
@@ -290,6 +282,32 @@ std::string Labels::operator()(std::string_view key) const {
   const Translation& t = *found->second;
   if (language_ == Language::chinese && !t.chinese.empty()) return std::string(t.chinese);
   return std::string(t.english);
+}
+
+std::string Labels::title_of(const std::string& kind) const {
+  const ProcedureSpec* spec = find_procedure_spec(kind);
+  if (spec == nullptr) return (*this)("kind." + kind);
+  return language_ == Language::chinese && !spec->title_zh.empty() ? spec->title_zh : spec->title;
+}
+
+std::string Labels::field_of(const std::string& kind, std::string_view key) const {
+  if (const ProcedureSpec* spec = find_procedure_spec(kind)) {
+    for (const FieldSpec& field : spec->fields) {
+      if (field.name != key) continue;
+      if (language_ == Language::chinese && !field.label_zh.empty()) return field.label_zh;
+      std::string label = field.label_en;  // a table's row heading: "Bias repeatability Br"
+      if (!label.empty()) label[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(label[0])));
+      return label;
+    }
+  }
+  return (*this)(key);
+}
+
+std::string Labels::method_of(const std::string& kind) const {
+  if (const ProcedureSpec* spec = find_procedure_spec(kind); spec != nullptr && !spec->method_en.empty()) {
+    return language_ == Language::chinese && !spec->method_zh.empty() ? spec->method_zh : spec->method_en;
+  }
+  return known("method." + kind) ? (*this)("method." + kind) : "";
 }
 
 bool Labels::known(std::string_view key) { return index().contains(key); }

@@ -19,6 +19,12 @@ class Labels {
   Language language() const { return language_; }
   // The label for the key in this language.
   std::string operator()(std::string_view key) const;
+  // A procedure's title: its spec's (procedure_spec.h), else the table's "kind.<kind>".
+  std::string title_of(const std::string& kind) const;
+  // A figure's label in a procedure's result: the spec's field label (capitalised), else the table's.
+  std::string field_of(const std::string& kind, std::string_view key) const;
+  // A procedure's method in one paragraph: its spec's, else the table's "method.<kind>"; "" for none.
+  std::string method_of(const std::string& kind) const;
   // Whether the table holds the key (in any language).
   static bool known(std::string_view key);
   // The key's place in the table (figures are listed in this order); keys not in it come last.

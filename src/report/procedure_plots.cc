@@ -5,6 +5,8 @@
 #include <limits>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
 #include "report/result_access.h"
@@ -38,6 +40,42 @@ std::vector<std::string> numeric_members(const nlohmann::json& element) {
   return keys;
 }
 
+// A plot of the curve `key`: the member `keys[0]` of each point on the abscissa, the others as
+// ordinates (those sharing a unit share a panel, at most three panels). Log abscissa when it is
+// positive and spans more than two decades.
+ReportPlot curve_plot(const PlotContext& context, const std::string& key, const nlohmann::json& curve,
+                      const std::vector<std::string>& keys) {
+  const Column x = column(curve, keys.front());
+  std::map<std::string, std::vector<std::string>> by_unit;
+  std::vector<std::string> unit_order;
+  for (std::size_t i = 1; i < keys.size(); ++i) {
+    const std::string unit = column(curve, keys[i]).unit;
+    if (!by_unit.contains(unit)) unit_order.push_back(unit);
+    by_unit[unit].push_back(keys[i]);
+  }
+  ReportPlot plot;
+  plot.caption = context.spec != nullptr ? context.labels.field_of(context.spec->kind, key) : context.labels(key);
+  for (std::size_t u = 0; u < unit_order.size() && u < 3; ++u) {
+    Panel panel;
+    panel.height = 280.0;
+    panel.x = make_axis(context.labels(keys.front()), pretty_unit(x.unit),
+                        spans_decades(x.values, 2.0) ? AxisScale::log : AxisScale::linear);
+    const auto& members = by_unit[unit_order[u]];
+    panel.y = make_axis(members.size() == 1 ? context.labels(members.front()) : "", pretty_unit(unit_order[u]));
+    for (const auto& name : members) {
+      const Column y = column(curve, name);
+      Series series;
+      series.name = members.size() == 1 ? "" : context.labels(name);
+      series.x = x.values;
+      series.y = y.values;
+      series.marker = Marker::circle;
+      panel.series.push_back(std::move(series));
+    }
+    plot.plot.panels.push_back(std::move(panel));
+  }
+  return plot;
+}
+
 }  // namespace
 
 bool register_plots(const std::string& kind, PlotBuilder builder) {
@@ -69,37 +107,22 @@ std::vector<ReportPlot> generic_plots(const PlotContext& context) {
         break;
       }
     }
-    const Column x = column(curve, keys.front());
-    std::map<std::string, std::vector<std::string>> by_unit;  // ordinates sharing a unit share a panel
-    std::vector<std::string> unit_order;
-    for (std::size_t i = 1; i < keys.size(); ++i) {
-      const std::string unit = column(curve, keys[i]).unit;
-      if (!by_unit.contains(unit)) unit_order.push_back(unit);
-      by_unit[unit].push_back(keys[i]);
-    }
-    ReportPlot plot;
-    plot.caption = context.labels(key);
-    for (std::size_t u = 0; u < unit_order.size() && u < 3; ++u) {
-      Panel panel;
-      panel.height = 280.0;
-      panel.x = make_axis(context.labels(keys.front()), pretty_unit(x.unit),
-                          spans_decades(x.values, 2.0) ? AxisScale::log : AxisScale::linear);
-      const auto& members = by_unit[unit_order[u]];
-      panel.y = make_axis(members.size() == 1 ? context.labels(members.front()) : "", pretty_unit(unit_order[u]));
-      for (const auto& name : members) {
-        const Column y = column(curve, name);
-        Series series;
-        series.name = members.size() == 1 ? "" : context.labels(name);
-        series.x = x.values;
-        series.y = y.values;
-        series.marker = Marker::circle;
-        panel.series.push_back(std::move(series));
-      }
-      plot.plot.panels.push_back(std::move(panel));
-    }
-    plots.push_back(std::move(plot));
+    plots.push_back(curve_plot(context, key, curve, keys));
   }
   return plots;
+}
+
+const nlohmann::json* curve_of(const PlotContext& context, const std::string& field) {
+  if (context.spec != nullptr) {
+    const auto& fields = context.spec->fields;
+    const bool declared = std::any_of(fields.begin(), fields.end(), [&](const FieldSpec& f) {
+      return f.name == field && (f.role == FieldRole::curve || f.role == FieldRole::table);
+    });
+    if (!declared) {
+      throw Error(fmt::format("report: procedure '{}' declares no curve or table field '{}'", context.spec->kind, field));
+    }
+  }
+  return member(context.result, field);
 }
 
 std::vector<double> log_spaced(double lo, double hi, std::size_t count) {
@@ -184,8 +207,23 @@ std::vector<ReferenceLine> limit_lines(const PlotContext& context, const std::st
 }
 
 std::vector<ReportPlot> procedure_plots(const std::string& kind, const PlotContext& context) {
-  if (const auto* builder = find_plots(kind)) return (*builder)(context);
-  return generic_plots(context);
+  const PlotBuilder* builder = find_plots(kind);
+  if (context.spec == nullptr) return builder != nullptr ? (*builder)(context) : generic_plots(context);
+  std::vector<ReportPlot> plots;
+  if (builder != nullptr) plots = (*builder)(context);
+  for (const FieldSpec& field : context.spec->fields) {
+    if (field.role != FieldRole::curve) continue;
+    const bool drawn = std::any_of(plots.begin(), plots.end(), [&](const ReportPlot& p) { return p.field == field.name; });
+    const nlohmann::json* curve = member(context.result, field.name);
+    if (drawn || curve == nullptr || !curve->is_array() || curve->empty()) continue;
+    if (field.axes.size() < 2) {
+      throw Error(fmt::format("report: the curve '{}' of '{}' declares no axes", field.name, context.spec->kind));
+    }
+    ReportPlot plot = curve_plot(context, field.name, *curve, field.axes);
+    plot.field = field.name;
+    plots.push_back(std::move(plot));
+  }
+  return plots;
 }
 
 }  // namespace inertest::report

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "inertest/core/procedure_spec.h"
 #include "inertest/report/svg_plot.h"
 #include "report/labels.h"
 
@@ -17,12 +18,14 @@ namespace inertest::report {
 struct ReportPlot {
   std::string caption;  // what the plot shows, with the clause and equation it illustrates
   Plot plot;
+  std::string field;  // the declared curve field it draws (FieldRole::curve), "" for another plot
 };
 
 struct PlotContext {
   const nlohmann::json& result;  // the procedure's to_json()
   const Labels& labels;
   const nlohmann::json& verdicts;  // the campaign's verdicts on this procedure (array)
+  const ProcedureSpec* spec;       // the procedure's declaration, null for a kind not declared yet
 };
 
 using PlotBuilder = std::function<std::vector<ReportPlot>(const PlotContext&)>;
@@ -35,6 +38,11 @@ const PlotBuilder* find_plots(const std::string& kind);
 // curve, its first numeric member the abscissa and its other members the ordinates (one panel
 // per unit). Log abscissa when it is positive and spans more than two decades.
 std::vector<ReportPlot> generic_plots(const PlotContext& context);
+
+// The curve or table `field` of the result that a builder plots (null when the result has none).
+// For a declared procedure the field must be declared with FieldRole::curve or FieldRole::table,
+// else an Error: a renamed key fails loudly instead of making its plot vanish.
+const nlohmann::json* curve_of(const PlotContext& context, const std::string& field);
 
 // Helpers for builders.
 // count values from lo to hi evenly spaced in log10 (lo, hi > 0; count >= 2).
@@ -55,7 +63,9 @@ std::vector<ReferenceLine> limit_lines(const PlotContext& context, const std::st
                                        ReferenceLine::Direction direction, const std::string& unit,
                                        const std::string& label);
 
-// The plots of one procedure: its builder's, else the generic ones.
+// The plots of one procedure. A declared procedure: its builder's, then a plot of each declared
+// curve that no plot of the builder draws (FieldSpec::axes). Otherwise its builder's, else the
+// generic ones.
 std::vector<ReportPlot> procedure_plots(const std::string& kind, const PlotContext& context);
 
 }  // namespace inertest::report

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
 #include "report/labels.h"
 #include "report/procedure_plots.h"
@@ -23,8 +24,15 @@ using nlohmann::json;
 
 std::string html(const std::string& text) { return escape_xml(text); }
 
+// An array too long to list figure by figure (a record or a curve): plotted, not listed.
+bool is_long_array(const json& value) {
+  constexpr std::size_t kMaxListed = 12;
+  return value.is_array() && value.size() > kMaxListed;
+}
+
 // Members of a result that describe it rather than measure it, and members that hold curves and
-// records (plotted, not listed): a key naming a curve, or an array longer than kMaxListed.
+// records (plotted, not listed): a key naming a curve, or a long array. (A declared procedure
+// says which are which: FieldSpec::role.)
 bool is_listed_member(const std::string& key, const json& value) {
   static const char* kMeta[] = {"procedure", "clause", "warnings", "method"};
   for (const char* meta : kMeta) {
@@ -36,8 +44,7 @@ bool is_listed_member(const std::string& key, const json& value) {
       return false;
     }
   }
-  constexpr std::size_t kMaxListed = 12;
-  return !(value.is_array() && value.size() > kMaxListed);
+  return !is_long_array(value);
 }
 
 std::string escape_pointer_token(const std::string& token) {
@@ -320,7 +327,7 @@ class ReportWriter {
 
   std::string procedure_title(const json& procedure) const {
     const std::string name = procedure.value("name", "");
-    const std::string kind_label = labels_("kind." + procedure.value("kind", ""));
+    const std::string kind_label = labels_.title_of(procedure.value("kind", ""));
     return name == procedure.value("kind", "") || name.empty() ? kind_label : name;
   }
 
@@ -341,9 +348,26 @@ class ReportWriter {
     out_ += "</ol></nav>\n";
   }
 
+  // The figures of a procedure's result: for a declared procedure its headline, detail and table
+  // fields in their declared order, under the spec's labels; otherwise every member that holds
+  // figures, in the label table's order.
   std::vector<FigureRow> figures_of(const json& procedure) const {
     std::vector<FigureRow> rows;
-    if (const auto* result = member(procedure, "result")) collect_figures(*result, "", "", labels_, 0, true, rows);
+    const auto* result = member(procedure, "result");
+    if (result == nullptr) return rows;
+    const std::string kind = procedure.value("kind", "");
+    const ProcedureSpec* spec = find_procedure_spec(kind);
+    if (spec == nullptr) {
+      collect_figures(*result, "", "", labels_, 0, true, rows);
+      return rows;
+    }
+    for (const FieldSpec& field : spec->fields) {
+      const auto* value = member(*result, field.name);
+      if (value == nullptr || field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
+      if (is_long_array(*value)) continue;
+      collect_figures(*value, "/" + escape_pointer_token(field.name), labels_.field_of(kind, field.name), labels_, 1,
+                      field.role == FieldRole::headline, rows);
+    }
     return rows;
   }
 
@@ -504,7 +528,7 @@ class ReportWriter {
     const json& result = procedure.contains("result") ? procedure.at("result") : json::object();
     out_ += fmt::format("<section class=\"procedure\" id=\"procedure-{}\" data-kind=\"{}\">\n", index + 1, html(kind));
     out_ += fmt::format("<h2>{} {}</h2>\n<p class=\"kind\">{} · <code>{}</code></p>\n", number,
-                        html(procedure_title(procedure)), html(labels_("kind." + kind)), html(kind));
+                        html(procedure_title(procedure)), html(labels_.title_of(kind)), html(kind));
 
     out_ += fmt::format("<div class=\"method\"><h3>{}</h3>\n", html(labels_("ui.method")));
     // Procedures cite their source as "clause" (standards), "standard" or "source" (papers).
@@ -514,7 +538,9 @@ class ReportWriter {
         break;
       }
     }
-    if (Labels::known("method." + kind)) out_ += fmt::format("<p>{}</p>\n", html(labels_("method." + kind)));
+    if (const std::string method = labels_.method_of(kind); !method.empty()) {
+      out_ += fmt::format("<p>{}</p>\n", html(method));
+    }
     out_ += "</div>\n";
 
     out_ += fmt::format("<h3>{}</h3>\n<table class=\"figures\">\n", html(labels_("ui.results")));
@@ -541,12 +567,13 @@ class ReportWriter {
     for (const auto& v : verdicts()) {
       if (v.value("procedure", "") == procedure.value("name", "")) procedure_verdicts.push_back(v);
     }
-    const PlotContext context{result, labels_, procedure_verdicts};
+    const PlotContext context{result, labels_, procedure_verdicts, find_procedure_spec(kind)};
     for (const auto& plot : procedure_plots(kind, context)) {
       if (plot.plot.panels.empty()) continue;
       ++figure_number_;
-      out_ += fmt::format("<figure>\n{}<figcaption>{} {}. {}</figcaption>\n</figure>\n", render_svg(plot.plot),
-                          html(labels_("ui.plot")), figure_number_, html(plot.caption));
+      out_ += fmt::format("<figure{}>\n{}<figcaption>{} {}. {}</figcaption>\n</figure>\n",
+                          plot.field.empty() ? "" : fmt::format(" data-curve=\"{}\"", html(plot.field)),
+                          render_svg(plot.plot), html(labels_("ui.plot")), figure_number_, html(plot.caption));
     }
     out_ += "</section>\n";
   }

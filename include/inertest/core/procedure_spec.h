@@ -155,6 +155,7 @@ enum class FieldRole {
   headline,  // a figure the procedure exists for (tables, limits)
   detail,    // a supporting figure or value
   table,     // rows (e.g. every test point): in the JSON and the report's tables, not in the text
+  curve,     // points drawn as a plot in the report (FieldSpec::axes); in the text as their count
   hidden,    // in the JSON only
 };
 
@@ -165,6 +166,9 @@ struct FieldSpec {
   std::string label_en;
   std::string label_zh;  // GJB 2426A terms
   std::string equation;  // the source clause or equation, "" when the field is bookkeeping
+  // FieldRole::curve: the members of each point that the report plots, the abscissa first, then the
+  // ordinates (e.g. {"rate", "deviation"}).
+  std::vector<std::string> axes = {};
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
@@ -191,6 +195,10 @@ struct ProcedureSpec {
   std::string title;   // e.g. "Polarity"
   std::string clause;  // e.g. "GJB 2426A-2004 5.7"
   std::string doc;     // the method in a few lines, for --help
+  std::string title_zh;  // the title in GJB 2426A's Chinese terms, for the report
+  // The method in one paragraph, for the report, in English and Chinese ("" when doc says enough).
+  std::string method_en;
+  std::string method_zh;
   std::vector<ParameterSpec> parameters;
   std::map<std::string, nlohmann::json> defaults;  // by parameter name; absent: optional, no default
   std::vector<InputSpec> inputs;
@@ -282,6 +290,19 @@ class ProcedureDefinition {
   ProcedureDefinition& parameter(ParameterSpec parameter, nlohmann::json default_value, Binder bind) {
     spec_.defaults[parameter.name] = std::move(default_value);
     return this->parameter(std::move(parameter), std::move(bind));
+  }
+
+  // The title in GJB 2426A's Chinese terms (the report in Chinese).
+  ProcedureDefinition& chinese_title(std::string title) {
+    spec_.title_zh = std::move(title);
+    return *this;
+  }
+
+  // The method in one paragraph for the report, in English and in Chinese.
+  ProcedureDefinition& report_method(std::string english, std::string chinese) {
+    spec_.method_en = std::move(english);
+    spec_.method_zh = std::move(chinese);
+    return *this;
   }
 
   // Replaces the check before any input is read (Options::validate by default), e.g. to check

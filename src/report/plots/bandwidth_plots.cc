@@ -20,7 +20,7 @@ std::optional<double> figure_in(const nlohmann::json& result, const char* key, c
 }
 
 std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
-  const auto* bode = member(context.result, "bode");
+  const auto* bode = curve_of(context, "bode");
   if (bode == nullptr || !bode->is_array() || bode->size() < 2) return {};
   const Column frequency = column(*bode, "frequency_hz");
   const Column gain = column(*bode, "gain");
@@ -100,6 +100,7 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
   phase_panel.legend = LegendPosition::bottom_left;
 
   ReportPlot plot;
+  plot.field = "bode";
   plot.caption = context.labels("bandwidth") + " — GJB 2426A-2004 5.13-5.14, eqs. (32)-(46)";
   plot.plot.panels = {std::move(magnitude), std::move(phase_panel)};
   return {std::move(plot)};

@@ -13,7 +13,7 @@ namespace {
 constexpr std::size_t kEnvelopeBuckets = 700;
 
 std::optional<ReportPlot> smoothed_record_plot(const PlotContext& context) {
-  const auto* records = member(context.result, "smoothed_record");
+  const auto* records = curve_of(context, "smoothed_record");
   if (records == nullptr || !records->is_array() || records->empty()) return std::nullopt;
   Panel panel;
   panel.height = 340.0;
@@ -46,13 +46,14 @@ std::optional<ReportPlot> smoothed_record_plot(const PlotContext& context) {
                                 "#444444"});
   }
   ReportPlot plot;
+  plot.field = "smoothed_record";
   plot.caption = context.labels("bias_stability") + " — GJB 2426A-2004 5.12.1-5.12.2, eqs. (19)-(20)";
   plot.plot.panels.push_back(std::move(panel));
   return plot;
 }
 
 std::optional<ReportPlot> normalised_stability_plot(const PlotContext& context) {
-  const auto* curve = member(context.result, "normalised_stability_curve");
+  const auto* curve = curve_of(context, "normalised_stability_curve");
   if (curve == nullptr || !curve->is_array() || curve->size() < 2) return std::nullopt;
   const Column tau = column(*curve, "tau_s");
   const Column stability = column(*curve, "value");
@@ -79,6 +80,7 @@ std::optional<ReportPlot> normalised_stability_plot(const PlotContext& context) 
     panel.series.push_back(std::move(line));
   }
   ReportPlot plot;
+  plot.field = "normalised_stability_curve";
   plot.caption = context.labels("random_walk_coefficient") + " — GJB 2426A-2004 5.12.5.4.1, eqs. (23)-(24)";
   plot.plot.panels.push_back(std::move(panel));
   return plot;

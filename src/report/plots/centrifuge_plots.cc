@@ -60,13 +60,15 @@ Panel harmonic_panel(const nlohmann::json& runs, const char* member_name, const 
 }
 
 std::vector<ReportPlot> centrifuge_plots(const PlotContext& context) {
-  const auto* runs = member(context.result, "runs");
+  const auto* runs = curve_of(context, "runs");
   if (runs == nullptr || !runs->is_array() || runs->empty()) return {};
   std::vector<ReportPlot> plots;
   ReportPlot harmonics;
+  harmonics.field = "runs";
   harmonics.caption = context.labels("axis.harmonic") + " — eq. (11), Table 3 of the centrifuge paper";
   harmonics.plot.panels.push_back(harmonic_panel(*runs, "amplitudes", context.labels("axis.harmonic")));
   ReportPlot residuals;
+  residuals.field = "runs";
   residuals.caption = context.labels("axis.residual") + " — eqs. (13)-(16) of the centrifuge paper";
   residuals.plot.panels.push_back(harmonic_panel(*runs, "residuals", context.labels("axis.residual")));
   if (!harmonics.plot.panels.back().series.empty()) plots.push_back(std::move(harmonics));

@@ -18,7 +18,7 @@ constexpr const char* kAccelerometerAngles[] = {"delta_theta_y2", "delta_theta_z
 
 // The residual at each position: β along x, one series per α, one marker shape per table rate.
 std::optional<ReportPlot> position_plot(const PlotContext& context) {
-  const auto* residuals = member(context.result, "residuals");
+  const auto* residuals = curve_of(context, "residuals");
   if (residuals == nullptr || !residuals->is_array() || residuals->empty()) return std::nullopt;
   const Column alpha = column(*residuals, "alpha_deg");
   const Column beta = column(*residuals, "beta_deg");
@@ -48,6 +48,7 @@ std::optional<ReportPlot> position_plot(const PlotContext& context) {
   }
   panel.references.push_back({ReferenceLine::Direction::horizontal, 0.0, "", "#999999"});
   ReportPlot plot;
+  plot.field = "residuals";
   plot.caption = context.labels("ui.positions") + " (α, β) — " + context.labels("axis.residual");
   plot.plot.panels.push_back(std::move(panel));
   return plot;
@@ -56,7 +57,7 @@ std::optional<ReportPlot> position_plot(const PlotContext& context) {
 // The angles of each sub-solution (per rate or per run) against its abscissa, with 1σ bars.
 std::optional<ReportPlot> angles_plot(const PlotContext& context, const char* table, const char* abscissa,
                                       const Axis& x_axis, std::span<const char* const> angles) {
-  const auto* rows = member(context.result, table);
+  const auto* rows = curve_of(context, table);
   if (rows == nullptr || !rows->is_array() || rows->empty()) return std::nullopt;
   const Column x = column(*rows, abscissa);
   Panel panel;
@@ -83,6 +84,7 @@ std::optional<ReportPlot> angles_plot(const PlotContext& context, const char* ta
   panel.y.include_zero = true;
   panel.legend = LegendPosition::automatic;
   ReportPlot plot;
+  plot.field = table;
   plot.caption = context.labels("misalignment");
   plot.plot.panels.push_back(std::move(panel));
   return plot;

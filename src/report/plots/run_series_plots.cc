@@ -7,9 +7,10 @@
 namespace inertest::report {
 namespace {
 
-std::vector<ReportPlot> runs_plot(const PlotContext& context, const char* runs_key, const char* mean_key,
-                                  const char* kind, const char* clause) {
-  const auto* runs = member(context.result, runs_key);
+// The declared procedure's `runs_key` table around its `mean_key` figure.
+std::vector<ReportPlot> runs_plot(const PlotContext& context, const char* runs_key, const char* mean_key) {
+  const std::string& kind = context.spec->kind;
+  const auto* runs = curve_of(context, runs_key);
   if (runs == nullptr || !runs->is_array() || runs->empty()) return {};
   const Column values = number_array(*runs);
   std::vector<double> run_number;
@@ -19,20 +20,21 @@ std::vector<ReportPlot> runs_plot(const PlotContext& context, const char* runs_k
   panel.x = make_axis(context.labels("ui.run"), "");
   panel.x.min = 0.5;
   panel.x.max = static_cast<double>(values.values.size()) + 0.5;
-  panel.y = make_axis(context.labels(runs_key), pretty_unit(values.unit));
+  panel.y = make_axis(context.labels.field_of(kind, runs_key), pretty_unit(values.unit));
   panel.series.push_back(make_series("", run_number, values.values, LineStyle::none, Marker::circle));
   if (const auto* mean = member(context.result, mean_key); mean != nullptr && number_of(*mean)) {
     panel.references.push_back(
-        {ReferenceLine::Direction::horizontal, *number_of(*mean), context.labels(mean_key), "#555555"});
+        {ReferenceLine::Direction::horizontal, *number_of(*mean), context.labels.field_of(kind, mean_key), "#555555"});
   }
   ReportPlot plot;
-  plot.caption = context.labels(std::string("kind.") + kind) + " — " + clause;
+  plot.field = runs_key;
+  plot.caption = context.labels.title_of(kind) + " — " + context.spec->clause;
   plot.plot.panels.push_back(std::move(panel));
   return {std::move(plot)};
 }
 
 std::vector<ReportPlot> maximum_input_rate_plots(const PlotContext& context) {
-  const auto* ranges = member(context.result, "ranges");
+  const auto* ranges = curve_of(context, "ranges");
   if (ranges == nullptr || !ranges->is_array() || ranges->empty()) return {};
   const Column rate = column(*ranges, "rate");
   const Column nonlinearity = column(*ranges, "nonlinearity");
@@ -57,17 +59,17 @@ std::vector<ReportPlot> maximum_input_rate_plots(const PlotContext& context) {
         {ReferenceLine::Direction::horizontal, *number_of(*limit), context.labels("ui.specification"), "#c62828"});
   }
   ReportPlot plot;
-  plot.caption = context.labels("kind.maximum_input_rate") + " — GJB 2426A-2004 5.9";
+  plot.field = "ranges";
+  plot.caption = context.labels.title_of(context.spec->kind) + " — " + context.spec->clause;
   plot.plot.panels.push_back(std::move(panel));
   return {std::move(plot)};
 }
 
 const bool bias_registered = register_plots("bias_repeatability", [](const PlotContext& context) {
-  return runs_plot(context, "run_biases", "mean_bias", "bias_repeatability", "GJB 2426A-2004 5.12.3, eq. (21)");
+  return runs_plot(context, "run_biases", "mean_bias");
 });
 const bool scale_factor_registered = register_plots("scale_factor_repeatability", [](const PlotContext& context) {
-  return runs_plot(context, "run_scale_factors", "mean_scale_factor", "scale_factor_repeatability",
-                   "GJB 2426A-2004 5.8.4, eq. (12)");
+  return runs_plot(context, "run_scale_factors", "mean_scale_factor");
 });
 const bool maximum_rate_registered = register_plots("maximum_input_rate", maximum_input_rate_plots);
 

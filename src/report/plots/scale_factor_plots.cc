@@ -11,7 +11,7 @@ namespace {
 
 std::vector<ReportPlot> scale_factor_plots(const PlotContext& context) {
   std::vector<ReportPlot> plots;
-  const nlohmann::json* curve = member(context.result, "nonlinearity_curve");
+  const nlohmann::json* curve = curve_of(context, "nonlinearity_curve");
   if (curve == nullptr || !curve->is_array() || curve->empty()) return plots;
   const Column rate = column(*curve, "rate");
   const Column deviation = column(*curve, "deviation");
@@ -50,6 +50,7 @@ std::vector<ReportPlot> scale_factor_plots(const PlotContext& context) {
   }
 
   ReportPlot plot;
+  plot.field = "nonlinearity_curve";
   plot.caption = context.labels("nonlinearity_curve") + " — GJB 2426A-2004 5.8.2.4, eqs. (7)-(9)";
   plot.plot.panels.push_back(std::move(panel));
   plots.push_back(std::move(plot));

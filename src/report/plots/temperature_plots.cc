@@ -34,7 +34,7 @@ std::vector<double> pick(const std::vector<double>& values, const std::vector<st
 }
 
 std::vector<ReportPlot> temperature_plots(const PlotContext& context, const TemperaturePlotSpec& spec) {
-  const auto* table = member(context.result, spec.table);
+  const auto* table = curve_of(context, spec.table);
   if (table == nullptr || !table->is_array() || table->empty()) return {};
   const Column temperature = column(*table, "temperature");
   const Column quantity = column(*table, spec.quantity);
@@ -52,7 +52,8 @@ std::vector<ReportPlot> temperature_plots(const PlotContext& context, const Temp
                                context.labels(spec.reference_label), "#555555"});
   }
   ReportPlot plot;
-  plot.caption = context.labels(std::string("kind.") + spec.kind) + " — " + spec.clause;
+  plot.field = spec.table;
+  plot.caption = context.labels.title_of(spec.kind) + " — " + spec.clause;
   plot.plot.panels.push_back(std::move(main));
 
   if (!sensitivity.empty() && !sensitivity.unit.empty()) {

@@ -9,7 +9,7 @@ namespace {
 
 std::vector<ReportPlot> criterion_plots(const PlotContext& context, const char* input_key, const char* kind,
                                         const char* clause) {
-  const auto* branches = member(context.result, "branches");
+  const auto* branches = curve_of(context, "branches");
   if (branches == nullptr || !branches->is_array() || branches->empty()) return {};
   Panel panel;
   panel.height = 300.0;
@@ -37,7 +37,8 @@ std::vector<ReportPlot> criterion_plots(const PlotContext& context, const char* 
   panel.y.include_zero = true;
   panel.references.push_back({ReferenceLine::Direction::horizontal, 50.0, "50 %", "#c62828"});
   ReportPlot plot;
-  plot.caption = context.labels(std::string("kind.") + kind) + " — " + clause;
+  plot.field = "branches";
+  plot.caption = context.labels.title_of(kind) + " — " + clause;
   plot.plot.panels.push_back(std::move(panel));
   return {std::move(plot)};
 }

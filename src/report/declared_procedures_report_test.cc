@@ -1,0 +1,88 @@
+// The report of every declared procedure is made from its declaration (issue 22): the test walks
+// the registry (procedure_specs()) over the golden campaign's results (tests/golden/
+// demo_results.json, every plan kind) and checks, per declared kind, its section's title in both
+// languages, a row for every headline and detail figure it reports, and a plot of every curve it
+// reports (and of every table its plot builder draws).
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
+#include "inertest/report/report.h"
+#include "report/procedure_plots.h"
+#include "report/result_access.h"
+#include "test_util/test_util.h"
+
+namespace inertest::report {
+namespace {
+
+using ::testing::HasSubstr;
+
+nlohmann::json golden_results() {
+  std::ifstream in(testing::source_path("tests/golden/demo_results.json"));
+  return nlohmann::json::parse(in);
+}
+
+// The HTML of the section of the procedure with this kind.
+std::string section_of(const std::string& page, const std::string& kind) {
+  const std::size_t begin = page.find("data-kind=\"" + kind + "\"");
+  if (begin == std::string::npos) return "";
+  return page.substr(begin, page.find("</section>", begin) - begin);
+}
+
+bool is_reported_figure(const nlohmann::json& value) { return is_figure(value) || value.contains("upper_bound"); }
+
+TEST(DeclaredProceduresReport, EverySectionShowsItsTitleFiguresAndCurves) {
+  const nlohmann::json results = golden_results();
+  const std::string english = render_report(results, ReportOptions{});
+  ReportOptions chinese_options;
+  chinese_options.language = Language::chinese;
+  const std::string chinese = render_report(results, chinese_options);
+  std::size_t curves = 0;
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    const nlohmann::json* procedure = nullptr;
+    for (const auto& p : results.at("procedures")) {
+      if (p.at("kind") == spec.kind) procedure = &p;
+    }
+    ASSERT_NE(procedure, nullptr) << spec.kind << " is missing from tests/golden/simulation.toml";
+    const nlohmann::json& result = procedure->at("result");
+    const std::string section = section_of(english, spec.kind);
+    ASSERT_FALSE(section.empty()) << spec.kind;
+    EXPECT_THAT(section, HasSubstr(spec.title)) << spec.kind;
+    ASSERT_FALSE(spec.title_zh.empty()) << spec.kind << " has no Chinese title";
+    EXPECT_THAT(section_of(chinese, spec.kind), HasSubstr(spec.title_zh)) << spec.kind;
+    for (const FieldSpec& field : spec.fields) {
+      if (!result.contains(field.name)) continue;
+      const nlohmann::json& value = result.at(field.name);
+      const bool listed = field.role == FieldRole::headline || field.role == FieldRole::detail;
+      if (listed && is_reported_figure(value)) {
+        EXPECT_THAT(section, HasSubstr("data-figure=\"/" + field.name + "\"")) << spec.kind << " " << field.name;
+        EXPECT_THAT(section, HasSubstr(Labels(Language::english).field_of(spec.kind, field.name))) << spec.kind << " " << field.name;
+      }
+      if (field.role == FieldRole::curve) {
+        ++curves;
+        EXPECT_THAT(section, HasSubstr("data-curve=\"" + field.name + "\"")) << spec.kind << " " << field.name;
+      }
+      if (field.role == FieldRole::table && find_plots(spec.kind) != nullptr &&
+          section.find("data-curve=\"" + field.name + "\"") != std::string::npos) {
+        ++curves;
+      }
+    }
+  }
+  RecordProperty("declared_curves_plotted", static_cast<int>(curves));
+}
+
+TEST(DeclaredProceduresReport, APlotOfAnUndeclaredCurveIsAnError) {
+  const ProcedureSpec* spec = find_procedure_spec("polarity");
+  ASSERT_NE(spec, nullptr);
+  const nlohmann::json result = {{"renamed_curve", nlohmann::json::array()}};
+  const Labels labels(Language::english);
+  const nlohmann::json verdicts = nlohmann::json::array();
+  const PlotContext context{result, labels, verdicts, spec};
+  EXPECT_THROW(curve_of(context, "renamed_curve"), Error);
+}
+
+}  // namespace
+}  // namespace inertest::report

@@ -24,17 +24,21 @@ def parameter_line(parameter):
 
 def input_line(spec_input):
     if spec_input["kind"] == "file":
-        return f"    {spec_input['name']}: str,"
-    if spec_input["kind"] == "runs":
-        run = "str" if not spec_input["number_key"] else "tuple[float, str]"
-        return f"    {spec_input['name']}: Sequence[{run}],"
-    return f"    {spec_input['name']}: Union[float, ArrayLike],"
+        annotation = "str"
+    elif spec_input["kind"] == "runs":
+        annotation = "Sequence[str]" if not spec_input["number_key"] else "Sequence[tuple[float, str]]"
+    else:
+        annotation = "Union[float, ArrayLike]"
+    if spec_input["alternative"]:
+        return f"    {spec_input['name']}: Optional[{annotation}] = None,"
+    return f"    {spec_input['name']}: {annotation},"
 
 
 def function_stub(spec):
     lines = [f"def {spec['kind']}(", "    *,"]
-    lines += [input_line(i) for i in spec["inputs"]]
+    lines += [input_line(i) for i in spec["inputs"] if not i["alternative"]]
     lines += [parameter_line(p) for p in spec["parameters"] if p["required"]]
+    lines += [input_line(i) for i in spec["inputs"] if i["alternative"]]
     lines += [parameter_line(p) for p in spec["parameters"] if not p["required"]]
     if spec["reads_records"]:
         lines += ['    column: str = "",', '    format: str = "",']

@@ -37,7 +37,7 @@ ResultOf<ScaleFactorTag> scale_factor_of(const DoubleArray& rate, const DoubleAr
   options.rate_unit = rate_unit;
   options.output_unit = output_unit;
   options.recommended_rates_per_direction = recommended_rates_per_direction;
-  return make_result<ScaleFactorTag>(with_source(source, [&] { return scale_factor(points, options); }));
+  return make_spec_result<ScaleFactorTag>(scale_factor_spec(), with_source(source, [&] { return scale_factor(points, options); }));
 }
 
 struct BiasTag {};
@@ -134,7 +134,7 @@ ResultOf<ThresholdTag> threshold_rate_table_of(const DoubleArray& rate, const Do
   options.rate_unit = rate_unit;
   options.zero_output = zero_output;
   options.criterion_denominator = parse_criterion_denominator(criterion_denominator);
-  return make_result<ThresholdTag>(threshold_rate_table(points_of<RateTablePoint>(rate, output), options));
+  return make_spec_result<ThresholdTag>(threshold_spec(), threshold_rate_table(points_of<RateTablePoint>(rate, output), options));
 }
 
 struct InputAxisMisalignmentTag {};

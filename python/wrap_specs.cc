@@ -112,8 +112,11 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
       throw Error(fmt::format("{}() needs {} ({})", spec.kind, parameter.name, parameter.doc));
     }
   }
+  check_alternatives(spec, spec.kind + "(): ", [&](const InputSpec& input) { return keywords.contains(keyword_of(input)); },
+                     keyword_of);
   for (const InputSpec& input : spec.inputs) {
     const std::string& key = keyword_of(input);
+    if (!keywords.contains(key) && !input.alternatives.empty()) continue;
     if (!keywords.contains(key)) throw Error(fmt::format("{}() needs {} ({})", spec.kind, key, input.doc));
     const py::handle value = keywords[key.c_str()];
     switch (input.kind) {
@@ -178,7 +181,8 @@ nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) 
   nlohmann::json inputs = nlohmann::json::array();
   for (const InputSpec& input : spec.inputs) {
     const char* kind = input.kind == InputKind::file ? "file" : input.kind == InputKind::runs ? "runs" : "value_or_record";
-    inputs.push_back({{"name", keyword_of(input)}, {"kind", kind}, {"number_key", input.number_key}, {"doc", input.doc}});
+    inputs.push_back({{"name", keyword_of(input)}, {"kind", kind}, {"number_key", input.number_key}, {"doc", input.doc},
+                      {"alternative", !input.alternatives.empty()}});
   }
   nlohmann::json fields = nlohmann::json::array();
   for (const FieldSpec& field : spec.fields) fields.push_back(field.name);

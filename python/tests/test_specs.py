@@ -20,7 +20,7 @@ PYTHON_NAMES = {
 
 # Hand-written plan steps not yet declared as specs nor wrapped: they get their function when they
 # are declared (issue 22). Listed so that the test fails when one is exposed and the list is stale.
-AWAITING_SPEC = {"hand_checks", "scale_factor_temperature", "turn_on_time", "warm_up_time"}
+AWAITING_SPEC = {"hand_checks", "turn_on_time", "warm_up_time"}
 
 
 def test_every_plan_kind_has_a_function():
@@ -90,3 +90,22 @@ def test_specs_describe_parameters_as_the_plan_names_them():
     names = [parameter["name"] for parameter in maximum["parameters"]]
     assert "nonlinearity_limit" in names
     json.dumps(specs)  # plain data
+
+
+def test_scale_factor_temperature_from_runs_is_the_cli_json(tmp_path):
+    # K = 100, 100.1, 99.7 at 20, 40, -20 degC: Kt = 75 ppm/degC (the CLI test's case).
+    rates = [0, 1, -1, 2, -2, 5, -5, 10, -10, 0]
+    runs = []
+    for temperature, k in [(20, 100.0), (40, 100.1), (-20, 99.7)]:
+        path = tmp_path / f"t{temperature}.csv"
+        path.write_text("rate,output\n" + "".join(f"{r},{k * r + 0.5!r}\n" for r in rates))
+        runs.append((temperature, str(path)))
+    listing = tmp_path / "runs.csv"
+    listing.write_text("temperature_degC,file\n" + "".join(f"{t},{p}\n" for t, p in runs))
+    expected = cli_json("scale-factor-temperature", listing, "--reference-temperature", "20")
+    result = inertest.scale_factor_temperature(run=runs, reference_temperature=20)
+    assert result.to_dict() == expected
+    assert result.scale_factor_temperature_sensitivity.value == pytest.approx(75.0, rel=1e-6)
+    with pytest.raises(inertest.Error) as raised:
+        inertest.scale_factor_temperature(run=runs, reference_temperature=25)
+    assert "matches no run" in str(raised.value)

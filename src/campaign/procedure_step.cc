@@ -15,23 +15,25 @@
 namespace inertest::campaign {
 namespace {
 
-// "\"a\"", "\"a\" or \"b\"", "\"a\", \"b\" or \"c\"".
-std::string choice_list(const std::vector<std::string>& choices) {
+// "\"a\"", "\"a\" or \"b\"", "\"a\", \"b\" or \"c\"" (text); "1, 2 or 3" (numbers, quote "").
+std::string choice_list(const std::vector<std::string>& choices, const std::string& quote) {
   std::string text;
   for (std::size_t i = 0; i < choices.size(); ++i) {
     if (i > 0) text += i + 1 == choices.size() ? " or " : ", ";
-    text += "\"" + choices[i] + "\"";
+    text += quote + choices[i] + quote;
   }
   return text;
 }
 
-// The [instrument] value a parameter defaults to; null when the plan does not give it.
-nlohmann::json instrument_value(const PlanContext& context, const std::string& key) {
+// The [instrument] or [site] value a parameter defaults to; null when the plan does not give it.
+nlohmann::json instrument_value(const PlanContext& context, const ParameterSpec& parameter) {
+  const std::string& key = parameter.instrument_default;
+  const auto optional = [](const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(); };
+  if (parameter.site_default && key == "latitude_deg") return context.site.latitude_deg;
+  if (parameter.site_default && key == "heading_deg") return context.site.heading_deg;
   if (key == "output_unit") return context.instrument.output_unit;
-  if (key == "nominal_scale_factor" && context.instrument.nominal_scale_factor) {
-    return *context.instrument.nominal_scale_factor;
-  }
-  if (key == "nominal_scale_factor") return nullptr;
+  if (key == "nominal_scale_factor") return optional(context.instrument.nominal_scale_factor);
+  if (key == "sample_rate_hz") return optional(context.instrument.sample_rate_hz);
   throw Error("procedure spec: unknown instrument key '" + key + "'");
 }
 
@@ -71,12 +73,16 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (parameter.type == ParameterType::number) {
       if (const auto value = step.optional_number(key)) {
         if (parameter.whole && !(*value >= 0.0 && *value == std::floor(*value))) step.fail_at(key, "must be a whole number");
+        if (!parameter.choices.empty() && std::find(parameter.choices.begin(), parameter.choices.end(),
+                                                    fmt::format("{}", *value)) == parameter.choices.end()) {
+          step.fail_at(key, "must be " + choice_list(parameter.choices, ""));
+        }
         call.parameters[parameter.name] = *value;
       }
     } else if (const auto value = step.optional_string(key)) {
       if (!parameter.choices.empty() &&
           std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
-        step.fail_at(key, "must be " + choice_list(parameter.choices));
+        step.fail_at(key, "must be " + choice_list(parameter.choices, "\""));
       }
       call.parameters[parameter.name] = *value;
     }
@@ -87,7 +93,7 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (!parameter.instrument_default.empty() && !given.contains(parameter.name)) {
       const auto& condition = parameter.instrument_condition;
       if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
-        const nlohmann::json value = instrument_value(context, parameter.instrument_default);
+        const nlohmann::json value = instrument_value(context, parameter);
         if (!value.is_null()) call.parameters[parameter.name] = value;
       }
     }
@@ -106,7 +112,17 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   // Each input from exactly one source; records read when the step runs.
   std::map<std::string, std::string> files;
   bool reads_records = false;
+  // A file or runs input in a group of alternatives is its key (or table array) when given.
+  const auto is_given = [&step](const InputSpec& input) {
+    return input.alternatives.empty() || input.kind == InputKind::value_or_record || step.contains(input.plan_key);
+  };
+  check_in_plan(step, [&] {
+    check_alternatives(spec, "", is_given, [](const InputSpec& input) {
+      return input.number_key.empty() ? "'" + input.plan_key + "'" : "[[procedure." + input.plan_key + "]]";
+    });
+  });
   for (const InputSpec& input : spec.inputs) {
+    if (!is_given(input)) continue;
     if (input.kind == InputKind::file) {
       call.files[input.name] = step.file(input.plan_key);
       continue;
@@ -131,7 +147,13 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     record.path = file;
     return read_output_record(record);
   };
-  check_in_plan(step, [&] { spec.check(call); });
+  try {
+    spec.check(call);
+  } catch (const ParameterError& e) {
+    step.fail_at(spec.find_parameter(e.parameter)->plan_name(), e.message());
+  } catch (const Error& e) {
+    step.fail(e.message());
+  }
   return [&spec, call, files](const StepRunContext&) {
     ProcedureCall run_call = call;
     for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "inertest/io/procedure_inputs.h"
 #include "inertest/numerics/statistics.h"
 #include "record_options.h"
 
@@ -30,6 +31,7 @@ struct Arguments {
   std::map<std::string, InputArguments> inputs;             // by input name
   std::map<std::string, std::string> files;                 // by input name
   std::map<std::string, std::vector<std::string>> runs;     // by input name: FILE or NUMBER:FILE each
+  std::map<std::string, std::string> listings;              // by input name: the CSV listing of its runs
   OutputRecordSource source;
   bool json = false;
 };
@@ -66,11 +68,23 @@ double input_value(const ProcedureSpec& spec, const InputSpec& input, const Inpu
   return with_file_context(given.file, [&] { return mean(read_output_record(source)); });
 }
 
-// The runs of a runs input: files numbered 1, 2, ... or NUMBER:FILE each; at least the minimum.
-std::vector<RunInput> runs_given(const ProcedureSpec& spec, const InputSpec& input,
-                                 const std::vector<std::string>& given) {
+// Whether a file or runs input is on the command line (a value input always is).
+bool is_given(const InputSpec& input, const Arguments& arguments) {
+  if (input.kind == InputKind::file) return !arguments.files.at(input.name).empty();
+  if (input.kind == InputKind::runs) {
+    return !arguments.runs.at(input.name).empty() || !arguments.listings.at(input.name).empty();
+  }
+  return true;
+}
+
+// The runs of a runs input: files numbered 1, 2, ..., NUMBER:FILE each, or the rows of its listing;
+// at least the minimum.
+std::vector<RunInput> runs_given(const ProcedureSpec& spec, const InputSpec& input, const Arguments& arguments) {
   std::vector<RunInput> runs;
-  for (const std::string& text : given) {
+  if (const std::string& listing = arguments.listings.at(input.name); !listing.empty()) {
+    for (ListedFile& row : read_file_listing(listing, input.number_key)) runs.push_back({row.key, std::move(row.path)});
+  }
+  for (const std::string& text : arguments.runs.at(input.name)) {
     if (input.number_key.empty()) {
       runs.push_back({static_cast<double>(runs.size() + 1), text});
     } else {
@@ -99,20 +113,26 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   CLI::App* command = root.add_subcommand(kebab_case(spec.kind), help_text(spec));
   bool reads_records = false;
   for (const InputSpec& input : spec.inputs) {
+    CLI::Option* option = nullptr;
     if (input.kind == InputKind::file) {
-      command->add_option(input.cli_name, arguments->files[input.name], input.doc)->required()->check(CLI::ExistingFile);
-      continue;
-    }
-    if (input.kind == InputKind::runs) {
+      option = command->add_option(input.cli_name, arguments->files[input.name], input.doc)->check(CLI::ExistingFile);
+    } else if (input.kind == InputKind::runs) {
       reads_records = reads_records || input.records;
       std::vector<std::string>& given = arguments->runs[input.name];
-      if (input.number_key.empty()) {
-        command->add_option(input.cli_name, given, input.doc)->required()->check(CLI::ExistingFile);
+      std::string& listing = arguments->listings[input.name];
+      if (!input.listing.empty()) {
+        option = command->add_option(input.listing, listing, fmt::format("{}: a CSV with the header '{},file'",
+                                                                         input.doc, input.number_key))
+                     ->check(CLI::ExistingFile);
+      } else if (input.number_key.empty()) {
+        option = command->add_option(input.cli_name, given, input.doc)->check(CLI::ExistingFile);
       } else {
-        command->add_option(input.cli_name, given, fmt::format("{}, once per run: NUMBER:FILE (e.g. {}), NUMBER the {}",
-                                                               input.doc, input.number_example, input.number_key))
-            ->required();
+        option = command->add_option(input.cli_name, given, fmt::format("{}, once per run: NUMBER:FILE (e.g. {}), NUMBER the {}",
+                                                                        input.doc, input.number_example, input.number_key));
       }
+    }
+    if (option) {
+      if (input.alternatives.empty()) option->required();
       continue;
     }
     reads_records = true;
@@ -150,8 +170,12 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     for (const auto& [name, value] : arguments->texts) {
       if (value) call.parameters[name] = *value;
     }
+    check_alternatives(spec, spec.kind + ": ", [&](const InputSpec& input) { return is_given(input, *arguments); },
+                       [](const InputSpec& input) { return input.listing.empty() ? input.cli_name : input.listing; });
     for (const InputSpec& input : spec.inputs) {
-      if (input.kind == InputKind::runs) call.runs[input.name] = runs_given(spec, input, arguments->runs.at(input.name));
+      if (!is_given(input, *arguments)) continue;
+      if (input.kind == InputKind::runs) call.runs[input.name] = runs_given(spec, input, *arguments);
+      if (input.kind == InputKind::file) call.files[input.name] = arguments->files.at(input.name);
     }
     call.read_record = [source = arguments->source](const std::string& file) {
       OutputRecordSource record = source;
@@ -160,9 +184,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     };
     spec.check(call);
     for (const InputSpec& input : spec.inputs) {
-      if (input.kind == InputKind::file) {
-        call.files[input.name] = arguments->files.at(input.name);
-      } else if (input.kind == InputKind::value_or_record) {
+      if (input.kind == InputKind::value_or_record) {
         call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
       }
     }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "inertest/core/error.h"
+
 namespace inertest {
 
 // Defined in the generated procedure_spec_list.cc: every spec of src/procedures/*_spec.cc.
@@ -28,6 +30,25 @@ const ProcedureSpec* find_procedure_spec(const std::string& kind) {
   return found == specs.end() ? nullptr : &*found;
 }
 
+void check_alternatives(const ProcedureSpec& spec, const std::string& who,
+                        const std::function<bool(const InputSpec&)>& given,
+                        const std::function<std::string(const InputSpec&)>& name_of) {
+  std::map<std::string, std::pair<int, std::vector<std::string>>> groups;  // given count, names
+  for (const InputSpec& input : spec.inputs) {
+    if (input.alternatives.empty()) continue;
+    auto& [count, names] = groups[input.alternatives];
+    count += given(input) ? 1 : 0;
+    names.push_back(name_of(input));
+  }
+  for (const auto& [group, entry] : groups) {
+    const auto& [count, names] = entry;
+    if (count == 1) continue;
+    std::string list = names.front();
+    for (std::size_t i = 1; i < names.size(); ++i) list += (i + 1 == names.size() ? " or " : ", ") + names[i];
+    throw Error(who + "give exactly one of " + list);
+  }
+}
+
 std::string kebab_case(const std::string& name) {
   std::string flag = name;
   std::replace(flag.begin(), flag.end(), '_', '-');
@@ -35,7 +56,7 @@ std::string kebab_case(const std::string& name) {
 }
 
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields) {
-  nlohmann::json json = {{"procedure", spec.kind}, {"clause", spec.clause}};
+  nlohmann::json json = {{"procedure", spec.json_procedure}, {"clause", spec.clause}};
   for (const auto& [name, value] : fields.items()) {
     if (!value.is_null()) json[name] = value;
   }
@@ -81,7 +102,7 @@ std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
 }  // namespace
 
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields) {
-  std::string text = fmt::format("{} ({})\n", spec.title, spec.clause);
+  std::string text = fmt::format("{} ({})\n", spec.title, fields.value("clause", spec.clause));
   for (const FieldSpec& field : spec.fields) {
     if (field.role == FieldRole::hidden || !fields.contains(field.name) || fields.at(field.name).is_null()) continue;
     const nlohmann::json& value = fields.at(field.name);

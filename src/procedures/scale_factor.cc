@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -138,48 +137,6 @@ ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const S
     }
   }
   return result;
-}
-
-nlohmann::json ScaleFactorResult::to_json() const {
-  nlohmann::json curve = nlohmann::json::array();
-  for (const auto& point : nonlinearity_curve) {
-    curve.push_back({{"rate", Figure{point.rate, rate_unit, std::nullopt}},
-                     {"deviation", Figure{point.deviation, "ppm", std::nullopt}}});
-  }
-  return {
-      {"procedure", "scale_factor"},
-      {"clause", "GJB 2426A-2004 5.8.1-5.8.3, eqs. (1)-(11)"},
-      {"scale_factor", scale_factor},
-      {"zero_offset", zero_offset},
-      {"nonlinearity", nonlinearity},
-      {"asymmetry", asymmetry},
-      {"scale_factor_positive", scale_factor_positive},
-      {"scale_factor_negative", scale_factor_negative},
-      {"static_output_start", static_output_start},
-      {"static_output_end", static_output_end},
-      {"fit_residual_rms", fit_residual_rms},
-      {"nonlinearity_curve", curve},
-      {"warnings", warnings},
-  };
-}
-
-std::string ScaleFactorResult::report() const {
-  auto line = [](const char* name, const Figure& f) {
-    return f.uncertainty ? fmt::format("  {:<28} {:.9g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
-                         : fmt::format("  {:<28} {:.9g} {}\n", name, f.value, f.unit);
-  };
-  std::string text = "Scale factor (GJB 2426A-2004 5.8.1-5.8.3)\n";
-  text += line("scale factor K", scale_factor);
-  text += line("zero offset F0", zero_offset);
-  text += line("nonlinearity Kn", nonlinearity);
-  text += line("asymmetry Ka", asymmetry);
-  text += line("scale factor K(+)", scale_factor_positive);
-  text += line("scale factor K(-)", scale_factor_negative);
-  text += line("static output at start", static_output_start);
-  text += line("static output at end", static_output_end);
-  text += line("fit residual rms", fit_residual_rms);
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 
@@ -76,39 +75,6 @@ ScaleFactorTemperatureResult scale_factor_temperature_sensitivity(std::span<cons
   result.reference_temperature = {tm, "degC", std::nullopt};
   result.reference_scale_factor = k[reference];
   return result;
-}
-
-nlohmann::json ScaleFactorTemperatureResult::to_json() const {
-  nlohmann::json points = nlohmann::json::array();
-  for (const auto& p : test_temperatures) {
-    points.push_back({{"temperature", Figure{p.temperature_degC, "degC", std::nullopt}},
-                      {"scale_factor", p.scale_factor},
-                      {"sensitivity", p.sensitivity}});
-  }
-  return {
-      {"procedure", "scale_factor_temperature_sensitivity"},
-      {"clause", "GJB 2426A-2004 5.8.5, eq. (13)"},
-      {"scale_factor_temperature_sensitivity", scale_factor_temperature_sensitivity},
-      {"reference_temperature", reference_temperature},
-      {"reference_scale_factor", reference_scale_factor},
-      {"worst_temperature", Figure{worst_temperature_degC, "degC", std::nullopt}},
-      {"test_temperatures", points},
-      {"warnings", warnings},
-  };
-}
-
-std::string ScaleFactorTemperatureResult::report() const {
-  std::string text = "Scale factor temperature sensitivity (GJB 2426A-2004 5.8.5)\n";
-  text += fmt::format("  {:<28} {:.6g} {} (at {} degC)\n", "sensitivity Kt", scale_factor_temperature_sensitivity.value,
-                      scale_factor_temperature_sensitivity.unit, worst_temperature_degC);
-  text += fmt::format("  {:<28} {:.9g} {} at {} degC\n", "reference Km", reference_scale_factor.value,
-                      reference_scale_factor.unit, reference_temperature.value);
-  for (const auto& p : test_temperatures) {
-    text += fmt::format("  {:>8} degC  K = {:.9g}  {:.6g} ppm/degC\n", p.temperature_degC, p.scale_factor.value,
-                        p.sensitivity.value);
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

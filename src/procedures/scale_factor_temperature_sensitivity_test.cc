@@ -27,7 +27,7 @@ TEST(ScaleFactorTemperatureSensitivity, HandComputedMaximumOverTheTestTemperatur
   ASSERT_EQ(result.test_temperatures.size(), 3u);
   EXPECT_NEAR_RELATIVE(result.test_temperatures[0].sensitivity.value, 50.0, 1e-9);
   EXPECT_NEAR_RELATIVE(result.test_temperatures[2].sensitivity.value, 50.0, 1e-9);
-  EXPECT_EQ(result.to_json().at("test_temperatures").size(), 3u);
+  EXPECT_EQ(scale_factor_temperature_spec().fields_of(&result).at("test_temperatures").size(), 3u);
 }
 
 TEST(ScaleFactorTemperatureSensitivity, ReferenceChosenByTemperature) {

@@ -193,7 +193,8 @@ TEST(ScaleFactor, OptionsAreValidated) {
 
 TEST(ScaleFactor, JsonHasEveryFigureWithItsUnit) {
   const auto data = points({{0, 1.0}, {-2, -2.1}, {-1, 0.0}, {1, 4.1}, {2, 6.0}, {0, 3.0}});
-  const nlohmann::json json = scale_factor(data).to_json();
+  const ScaleFactorResult result = scale_factor(data);
+  const nlohmann::json json = scale_factor_spec().fields_of(&result);
   for (const char* key : {"scale_factor", "zero_offset", "nonlinearity", "asymmetry", "scale_factor_positive",
                           "scale_factor_negative"}) {
     ASSERT_TRUE(json.contains(key)) << key;

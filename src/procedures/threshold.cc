@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -75,15 +74,14 @@ double zero_from(const std::optional<double>& given, const std::vector<double>& 
   return mean(measured);
 }
 
-// How each criterion reads, with its source.
+}  // namespace
+
 const char* criterion_text(CriterionDenominator denominator) {
   return denominator == CriterionDenominator::kMeasured
              ? "|(F_expected - F)/F| <= 50 %, GJB 2426A-2004 eq. (15) as printed (measured output)"
              : "|(F_expected - F)/F_expected| <= 50 %, IEEE Std 952-1997 (output at least 50 % of the expected), "
                "as GJB 2426A-2004 eq. (18)";
 }
-
-}  // namespace
 
 std::string_view to_string(CriterionDenominator denominator) {
   return denominator == CriterionDenominator::kMeasured ? "measured" : "expected";
@@ -211,47 +209,6 @@ ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<con
                                           revolutions));
   }
   return result;
-}
-
-nlohmann::json ThresholdResult::to_json() const {
-  nlohmann::json branch_json = nlohmann::json::array();
-  for (const auto& b : branches) {
-    nlohmann::json points_json = nlohmann::json::array();
-    for (const auto& p : b.points) {
-      points_json.push_back({{"input", Figure{p.input_deg_h, "deg/h", std::nullopt}},
-                             {"expected_output", p.expected_output},
-                             {"output", p.output},
-                             {"relative_error", p.relative_error},
-                             {"satisfies", p.satisfies}});
-    }
-    branch_json.push_back({{"name", b.name},
-                           {"candidate", Figure{b.candidate_deg_h, "deg/h", std::nullopt}},
-                           {"bounded", b.bounded},
-                           {"points", points_json}});
-  }
-  return {
-      {"procedure", "threshold"},
-      {"clause", fmt::format("GJB 2426A-2004 5.10.4.{}, eqs. (14)-(17); IEEE Std 952-1997", method)},
-      {"method", method},
-      {"criterion_denominator", to_string(criterion_denominator)},
-      {"criterion", criterion_text(criterion_denominator)},
-      {"threshold", threshold},
-      {"zero_output", zero_output.value},
-      {"branches", branch_json},
-      {"warnings", warnings},
-  };
-}
-
-std::string ThresholdResult::report() const {
-  std::string text = fmt::format("Threshold, method {} (GJB 2426A-2004 5.10)\n", method);
-  text += fmt::format("  {:<32} {}\n", "criterion", criterion_text(criterion_denominator));
-  for (const auto& b : branches) {
-    text += fmt::format("  {:<32} {:.6g} deg/h{}\n", "candidate, " + b.name, b.candidate_deg_h,
-                        b.bounded ? "" : " (smallest input tested)");
-  }
-  text += fmt::format("  {:<32} {:.6g} deg/h\n", "threshold", threshold.value);
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

@@ -50,18 +50,19 @@ TEST(ThresholdTest, DefaultCriterionIsHalfTheExpectedOutput) {
   EXPECT_TRUE(expected.branches[0].bounded);
   EXPECT_NEAR(expected.branches[0].points[1].relative_error, 0.4, 1e-12);
   EXPECT_DOUBLE_EQ(expected.threshold.value, 2.0);
-  const nlohmann::json json = expected.to_json();
+  const ProcedureSpec spec = threshold_spec();
+  const nlohmann::json json = spec.fields_of(&expected);
   EXPECT_EQ(json.at("criterion_denominator"), "expected");
   EXPECT_THAT(json.at("criterion").get<std::string>(), ::testing::HasSubstr("IEEE Std 952-1997"));
-  EXPECT_THAT(expected.report(), ::testing::HasSubstr("IEEE Std 952-1997"));
+  EXPECT_THAT(procedure_text(spec, json), ::testing::HasSubstr("IEEE Std 952-1997"));
 
   options.criterion_denominator = CriterionDenominator::kMeasured;
   const ThresholdResult measured = threshold_rate_table(points, options);
   EXPECT_DOUBLE_EQ(measured.branches[0].candidate_deg_h, 4.0);
   EXPECT_NEAR(measured.branches[0].points[1].relative_error, 0.8 / 1.2, 1e-12);
   EXPECT_DOUBLE_EQ(measured.threshold.value, 4.0);
-  EXPECT_EQ(measured.to_json().at("criterion_denominator"), "measured");
-  EXPECT_THAT(measured.report(), ::testing::HasSubstr("eq. (15) as printed"));
+  EXPECT_EQ(spec.fields_of(&measured).at("criterion_denominator"), "measured");
+  EXPECT_THAT(procedure_text(spec, spec.fields_of(&measured)), ::testing::HasSubstr("eq. (15) as printed"));
 }
 
 TEST(ThresholdTest, MeasuredDenominatorIsEquationFifteenAsPrinted) {

@@ -24,9 +24,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "inertest/core/error.h"
+
 namespace inertest {
 
 enum class ParameterType { number, text };
+
+// An Error about the value of one parameter (`parameter`, its name), thrown by a check: a plan
+// places it at the parameter's key.
+class ParameterError : public Error {
+ public:
+  ParameterError(std::string parameter_name, const std::string& message)
+      : Error(message), parameter(std::move(parameter_name)) {}
+  std::string parameter;
+};
 
 // A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
 // setters below, e.g. .unit_is("deg/s").required_on_command_line().
@@ -46,6 +57,11 @@ struct ParameterSpec {
     instrument_default = std::move(key);
     instrument_only = only;
     return *this;
+  }
+  // As instrument_gives, from the plan's [site] ("latitude_deg", "heading_deg").
+  ParameterSpec& site_gives(std::string key, bool only = false) {
+    site_default = true;
+    return instrument_gives(std::move(key), only);
   }
   // The [instrument] default applies only while the parameter `name` has `value` (e.g. the nominal
   // scale factor, per deg/s, only with rate_unit = "deg/s").
@@ -70,10 +86,11 @@ struct ParameterSpec {
   std::string doc;
   std::vector<std::string> choices;  // the accepted values of a text parameter, empty when free
   bool required = false;             // no default: the command line must give it
-  // In a plan, the [instrument] key ("output_unit", "nominal_scale_factor") that gives the value
+  // In a plan, the [instrument] key ("output_unit", "nominal_scale_factor", "sample_rate_hz") that gives the value
   // when the step does not; with `instrument_only` the step has no key for it at all.
   std::string instrument_default;
   bool instrument_only = false;
+  bool site_default = false;  // instrument_default is a key of [site]
   std::optional<std::pair<std::string, std::string>> instrument_condition;  // parameter, value
   std::string plan_key;  // "" : the plan key is `name`
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
@@ -85,8 +102,9 @@ enum class InputKind {
   // A value from exactly one source: the mean of a record file (--NAME-file / NAME_file, read
   // with --column/--format) or the value itself (--NAME-output / NAME_output).
   value_or_record,
-  // A file the procedure's reader reads (call.files): the positional argument `cli_name` on the
-  // command line, the key `plan_key` in a plan (a path relative to the plan, checked to exist).
+  // A file the procedure's reader reads (call.files): the positional argument `cli_name` (or the
+  // option, when it starts with "--") on the command line, the key `plan_key` in a plan (a path
+  // relative to the plan, checked to exist).
   file,
   // Several runs, each a file (call.runs): repeated runs numbered 1, 2, ... in the order given, or
   // runs each with a number of its own (a temperature, an input rate). See InputSpec::runs_in_files
@@ -123,6 +141,13 @@ struct InputSpec {
     number_example = std::move(example);
     return *this;
   }
+  // On the command line the numbered runs are one CSV listing, `name` (a positional argument such
+  // as "RUNS" or an option such as "--records"), with the header `<number key>,file`, one row per
+  // run, paths relative to the listing; instead of --run NUMBER:FILE. Plans keep [[procedure.run]].
+  InputSpec& listed_on_command_line(std::string listing_name) { listing = std::move(listing_name); return *this; }
+  // Inputs with the same `group` are alternatives: exactly one of them is given (e.g. a table of
+  // test points, one long record, or a record per point). Their message names them in order.
+  InputSpec& alternative_in(std::string group) { alternatives = std::move(group); return *this; }
   // A [[procedure.run]] table without the number key has this number (e.g. 0: a run at rest).
   InputSpec& number_defaults_to(double value) { number_default = value; return *this; }
   // Each run's file is an instrument-output record (call.read_record): read with --column/--format
@@ -145,6 +170,8 @@ struct InputSpec {
   std::string number_key;
   std::string number_example;
   std::optional<double> number_default;
+  std::string listing;  // InputKind::runs with numbers: the command line's CSV listing, "" for --run
+  std::string alternatives;  // "" : always given; else the group of alternatives it belongs to
   bool records = false;  // InputKind::runs: the files are output records, read by call.read_record
   std::size_t minimum_runs = 1;
   std::string minimum_why;
@@ -179,6 +206,8 @@ struct RunInput {
 };
 
 // Parameter values by name (defaults already applied), input values, input files and runs by name.
+// files and runs are set before the check and hold only the inputs given (an alternative not given
+// is absent).
 struct ProcedureCall {
   nlohmann::json parameters = nlohmann::json::object();
   std::map<std::string, double> inputs;
@@ -192,6 +221,7 @@ struct ProcedureCall {
 // The whole description of one procedure. Built with ProcedureDefinition below.
 struct ProcedureSpec {
   std::string kind;    // snake_case plan kind; the CLI command is its kebab-case form
+  std::string json_procedure;  // the JSON's "procedure": the kind, or a contract that differs from it
   std::string title;   // e.g. "Polarity"
   std::string clause;  // e.g. "GJB 2426A-2004 5.7"
   std::string doc;     // the method in a few lines, for --help
@@ -218,10 +248,18 @@ struct ProcedureSpec {
 const std::vector<ProcedureSpec>& procedure_specs();
 const ProcedureSpec* find_procedure_spec(const std::string& kind);
 
+// Throws Error("<who>give exactly one of A, B or C") unless exactly one input of each group of
+// alternatives (InputSpec::alternative_in) is given; `name_of` names an input as its caller takes it.
+void check_alternatives(const ProcedureSpec& spec, const std::string& who,
+                        const std::function<bool(const InputSpec&)>& given,
+                        const std::function<std::string(const InputSpec&)>& name_of);
+
 // "nonlinearity_limit" -> "nonlinearity-limit".
 std::string kebab_case(const std::string& name);
 
-// The JSON object of a result: "procedure", "clause", the fields (nulls left out) and "warnings".
+// The JSON object of a result: "procedure" (json_procedure), "clause", the fields (nulls left out) and "warnings".
+// A field named "clause" (e.g. the subclause of the method used) replaces the spec's clause, here
+// and in the text.
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields);
 
 // The text report of a result, the same shape for every procedure: a title line with the clause,
@@ -241,6 +279,14 @@ class ProcedureDefinition {
     spec_.title = std::move(title);
     spec_.clause = std::move(clause);
     spec_.doc = std::move(doc);
+    spec_.json_procedure = spec_.kind;
+  }
+
+  // The JSON's "procedure" when it is a contract that differs from the kind (e.g.
+  // "scale_factor_temperature_sensitivity" for the kind "scale_factor_temperature").
+  ProcedureDefinition& json_procedure_is(std::string name) {
+    spec_.json_procedure = std::move(name);
+    return *this;
   }
 
   // A parameter stored in an Options member; its default is the member's default value unless the
@@ -305,8 +351,9 @@ class ProcedureDefinition {
     return *this;
   }
 
-  // Replaces the check before any input is read (Options::validate by default), e.g. to check
-  // only what the procedure uses of a shared Options or the number of runs an option asks for.
+  // Replaces the check before any input is read (Options::validate by default; an Options without
+  // validate() needs one), e.g. to check only what the procedure uses of a shared Options or the
+  // number of runs an option asks for.
   ProcedureDefinition& checked_by(std::function<void(const ProcedureCall&, const Options&)> check) {
     check_ = std::move(check);
     return *this;
@@ -343,7 +390,7 @@ class ProcedureDefinition {
     spec.check = [options_of, check = check_](const ProcedureCall& call) {
       if (check) {
         check(call, options_of(call));
-      } else {
+      } else if constexpr (requires(const Options& options) { options.validate(); }) {
         options_of(call).validate();
       }
     };

@@ -12,9 +12,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -51,14 +50,14 @@ struct ScaleFactorResult {
   std::string rate_unit;          // unit of the rates in nonlinearity_curve
   std::vector<NonlinearityPoint> nonlinearity_curve;  // eq. (8), one per nonzero rate, test order
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  // A readable multi-line summary for a terminal.
-  std::string report() const;
 };
 
 // Throws Error when the static runs are missing, fewer than two rates lie on either side of zero,
 // or the options are invalid.
 ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const ScaleFactorOptions& options = {});
+
+// The declaration of the procedure (core/procedure_spec.h): `inertest scale-factor` with a table of
+// test points, one long record or a record per point, plan kind "scale_factor".
+ProcedureSpec scale_factor_spec();
 
 }  // namespace inertest

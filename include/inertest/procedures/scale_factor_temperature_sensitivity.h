@@ -12,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
 #include "inertest/procedures/scale_factor.h"
 
@@ -46,14 +44,15 @@ struct ScaleFactorTemperatureResult {
   double worst_temperature_degC = 0.0;           // Ti where the max of eq. (13) is reached
   std::vector<TemperaturePointSensitivity> test_temperatures;  // every Ti ≠ Tm, in the order given
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error when fewer than two runs are given, two runs share a temperature, no run (or more
 // than one) is at the reference temperature, or a run's scale factor cannot be computed (named).
 ScaleFactorTemperatureResult scale_factor_temperature_sensitivity(std::span<const TemperatureRun> runs,
                                                                   const ScaleFactorTemperatureOptions& options = {});
+
+// The declaration of the procedure (core/procedure_spec.h): `inertest scale-factor-temperature`
+// with a CSV listing of the runs, plan kind "scale_factor_temperature".
+ProcedureSpec scale_factor_temperature_spec();
 
 }  // namespace inertest

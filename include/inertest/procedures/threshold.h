@@ -34,9 +34,8 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -49,6 +48,8 @@ enum class CriterionDenominator {
 std::string_view to_string(CriterionDenominator denominator);
 // Parses "expected" or "measured"; throws Error naming the two otherwise.
 CriterionDenominator parse_criterion_denominator(std::string_view text);
+// How the criterion reads, with its source (e.g. "... GJB 2426A-2004 eq. (15) as printed ...").
+const char* criterion_text(CriterionDenominator denominator);
 
 struct ThresholdOptions {
   double scale_factor = 0.0;  // K, output units per deg/s (from 5.8.1)
@@ -88,9 +89,6 @@ struct ThresholdResult {
   Figure zero_output;  // output unit
   std::vector<ThresholdBranch> branches;
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 struct RateTablePoint {
@@ -113,5 +111,9 @@ ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> point
 // or a record that leaves one of the four branches empty (less than one revolution).
 ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<const double> output,
                                    double table_rate_deg_s, const ThresholdOptions& options);
+
+// The declaration of the procedure (core/procedure_spec.h): `inertest threshold FILE --method 1|2|3`,
+// plan kind "threshold" (latitude and heading from [site]).
+ProcedureSpec threshold_spec();
 
 }  // namespace inertest

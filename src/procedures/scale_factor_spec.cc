@@ -36,6 +36,10 @@ ProcedureSpec scale_factor_spec() {
              "  --records LIST: a CSV with the header 'rate,file', one record per test point in test\n"
              "    order (paths relative to LIST), each with the output column --output-column.\n"
              "  Both need --sample-rate (Hz). Columns are header names or 1-based indexes.")
+      .chinese_title("标度因数")
+      .report_method(
+          "The mean static output of the runs before and after the rate sequence is subtracted from the mean output at each table rate; a least-squares line through these gives the scale factor K and the zero offset F0. The nonlinearity is the largest deviation of a point from the line relative to the largest output; the asymmetry compares the slopes fitted to the positive and to the negative rates alone.",
+          "以转速序列前、后静态测试输出的平均值作为零位，从各转台角速度下的输出平均值中扣除；对其作最小二乘直线拟合得标度因数 K 和零位 F0。各点相对拟合直线的最大偏差与最大输出之比为标度因数非线性度；正、负输入角速度分别拟合的标度因数之差为标度因数不对称性。")
       .input(InputSpec("points", "CSV of test points (rate,output)")
                  .read_from_file("POINTS", "file")
                  .alternative_in("data"))
@@ -86,7 +90,7 @@ ProcedureSpec scale_factor_spec() {
              &ScaleFactorResult::static_output_end)
       .field({"fit_residual_rms", FieldRole::detail, "fit residual rms", "拟合残差均方根", "eq. (4)"},
              &ScaleFactorResult::fit_residual_rms)
-      .field_from({"nonlinearity_curve", FieldRole::table, "nonlinearity curve", "非线性度曲线", "eq. (8)"},
+      .field_from({"nonlinearity_curve", FieldRole::curve, "nonlinearity curve", "非线性度曲线", "eq. (8)", {"rate", "deviation"}},
                   [](const ScaleFactorResult& result) {
                     nlohmann::json curve = nlohmann::json::array();
                     for (const auto& point : result.nonlinearity_curve) {

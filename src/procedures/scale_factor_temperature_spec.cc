@@ -20,6 +20,7 @@ ProcedureSpec scale_factor_temperature_spec() {
              "RUNS is a CSV with the header 'temperature_degC,file': one scale-factor test per temperature\n"
              "(each file has the header 'rate,output', paths relative to RUNS). The room-temperature run\n"
              "Tm is the first row, or the row at --reference-temperature.")
+      .chinese_title("标度因数温度灵敏度")
       .json_procedure_is("scale_factor_temperature_sensitivity")
       .input(InputSpec("runs", "one CSV of test points (rate,output) per temperature")
                  .numbered_runs("temperature_degC", "20:sf_20C.csv")

@@ -73,6 +73,10 @@ ProcedureSpec threshold_spec() {
              "  the output alone with --rate HZ; --table-rate is the rate (deg/s) at which the IRA azimuth grows,\n"
              "  --heading its azimuth at t = 0; the zero is the record's mean unless --zero.\n"
              "In a plan the latitude is [site]'s and the heading defaults to [site]'s.")
+      .chinese_title("阈值")
+      .report_method(
+          "The input is decreased step by step; the threshold is the smallest input whose output is within 50 % of the expected output K·Ω (IEEE Std 952-1997; GJB 2426A eq. (15) as printed, relative to the measured output, on request), the largest over the directions.",
+          "逐级减小输入角速度；阈值为输出与理论输出 K·Ω 之差不超过理论输出 50 % 的最小输入（IEEE Std 952-1997；按需采用 GJB 2426A 式 (15) 原式，相对实测输出），取各方向中的最大值。")
       .input(InputSpec("file", "test points or record").read_from_file("FILE", "file"))
       .parameter(
           ParameterSpec("method", "1 (rate table), 2 (dividing head), 3 (slow rotation)")

@@ -84,14 +84,11 @@ constexpr Translation kTable[] = {
     {"ui.negative", "negative rates", "负向"},
 
     // Procedures (plan kinds).
-    {"kind.scale_factor", "Scale factor", "标度因数"},
-    {"kind.scale_factor_temperature", "Scale factor temperature sensitivity", "标度因数温度灵敏度"},
     {"kind.bias", "Bias and bias stability", "零偏与零偏稳定性"},
     {"kind.bias_temperature", "Bias temperature sensitivity", "零偏温度灵敏度"},
     {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
     {"kind.turn_on_time", "Turn-on time", "启动时间"},
     {"kind.warm_up_time", "Warm-up time", "预热时间"},
-    {"kind.threshold", "Threshold", "阈值"},
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
     {"kind.bandwidth", "Bandwidth and output delay", "频带宽度与输出延迟时间"},
     {"kind.gyro_misalignment", "Gyro misalignment separation (rate table)", "陀螺失准角分离（速率转台）"},
@@ -100,16 +97,6 @@ constexpr Translation kTable[] = {
     {"kind.centrifuge", "Drift coefficients on a centrifuge", "离心机漂移系数标定"},
 
     // Methods, one sentence each.
-    {"method.scale_factor",
-     "The mean static output of the runs before and after the rate sequence is subtracted from the mean output at "
-     "each table rate; a least-squares line through these gives the scale factor K and the zero offset F0. The "
-     "nonlinearity is the largest deviation of a point from the line relative to the largest output; the "
-     "asymmetry compares the slopes fitted to the positive and to the negative rates alone.",
-     "以转速序列前、后静态测试输出的平均值作为零位，从各转台角速度下的输出平均值中扣除；对其作最小二乘直线拟合得标度因"
-     "数 K "
-     "和零位 "
-     "F0。各点相对拟合直线的最大偏差与最大输出之比为标度因数非线性度；正、负输入角速度分别拟合的标度因数之差为标度因数"
-     "不对称性。"},
     {"method.allan",
      "Overlapping Allan variance of the rate record (IEEE Std 952-1997 Annex C) with confidence intervals; the "
      "noise model σ²(τ) = Σ A_m·τ^m (m = −2…2) is fitted and each term read at its characteristic slope.",
@@ -144,12 +131,6 @@ constexpr Translation kTable[] = {
      "factor's 180° removed first).",
      "在按对数分布的各频率点施加正弦角速度输入；由各频率增益按一阶模型 G² = K² − G²ω²T² 拟合，带宽为 "
      "1/(2πT)；由相位求输出延迟时间（标度因数为负时先去除其 180° 相移）。"},
-    {"method.threshold",
-     "The input is decreased step by step; the threshold is the smallest input whose output is within 50 % of "
-     "the expected output K·Ω (IEEE Std 952-1997; GJB 2426A eq. (15) as printed, relative to the measured "
-     "output, on request), the largest over the directions.",
-     "逐级减小输入角速度；阈值为输出与理论输出 K·Ω 之差不超过理论输出 50 % 的最小输入（IEEE Std 952-1997；"
-     "按需采用 GJB 2426A 式 (15) 原式，相对实测输出），取各方向中的最大值。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},

@@ -78,7 +78,7 @@ ProcedureSpec scale_factor_spec() {
              &ScaleFactorResult::zero_offset)
       .field({"nonlinearity", FieldRole::headline, "nonlinearity Kn", "标度因数非线性度", "eq. (9)"},
              &ScaleFactorResult::nonlinearity)
-      .field({"asymmetry", FieldRole::headline, "asymmetry Ka", "标度因数不对称度", "eqs. (10)-(11)"},
+      .field({"asymmetry", FieldRole::headline, "asymmetry Ka", "标度因数不对称性", "eqs. (10)-(11)"},
              &ScaleFactorResult::asymmetry)
       .field({"scale_factor_positive", FieldRole::detail, "scale factor K(+)", "正向标度因数", "eqs. (5)-(6)"},
              &ScaleFactorResult::scale_factor_positive)

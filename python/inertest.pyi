@@ -255,7 +255,7 @@ class AllanResult(Result):
     # One Record per estimator asked for (adev, oadev, mdev, hdev, ohdev, totdev): unit, the numpy
     # arrays values, lower, upper (confidence bounds), edf, terms, alpha (per tau, the noise its edf
     # assumes), and the lists noise_type and noise_identification ("lag1_autocorrelation", "b1_ratio",
-    # "b1_ratio_and_rn" or "not_identified").
+    # "b1_ratio_and_rn", "shorter_tau" or "not_identified").
     adev: Record
     oadev: Record
     mdev: Record

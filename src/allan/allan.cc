@@ -134,14 +134,17 @@ AllanResult assemble(std::size_t sample_count, double mean, const std::vector<Al
     result.averaging_factors.push_back(s.averaging_factor);
     result.tau_s.push_back(static_cast<double>(s.averaging_factor) / options.sample_rate_hz);
   }
-  for (const AllanSums& s : sums) result.noise_types.push_back(identify_power_law_noise(Estimator::kAdev, s).type);
+  for (const NoiseIdentification& noise : identify_along_taus(Estimator::kAdev, sums)) {
+    result.noise_types.push_back(noise.type);
+  }
   for (Estimator e : options.estimators.members()) {
     DeviationCurve& curve = result.curves[e];
     curve.unit = options.input_unit;
     for (const AllanSums& s : sums) {
       curve.values.push_back(std::abs(options.scale) * std::sqrt(std::max(0.0, s.variance(e))));
       curve.terms.push_back(s.terms(e));
-      const NoiseIdentification noise = identify_power_law_noise(e, s);
+    }
+    for (const NoiseIdentification& noise : identify_along_taus(e, sums)) {
       curve.noise_types.push_back(noise.type);
       curve.noise_methods.push_back(noise.method);
     }

@@ -40,4 +40,12 @@ double Lag1Sums::sample_variance() const {
   return (t.squares - t.sum * t.sum / static_cast<double>(count_)) / static_cast<double>(count_ - 1);
 }
 
+double Lag1Sums::mean_square() const {
+  if (count_ == 0) return std::numeric_limits<double>::quiet_NaN();
+  const Totals t = totals();
+  const double n = static_cast<double>(count_);
+  // sum w^2 = sum (v + w_1)^2 with v = w - w_1.
+  return (t.squares + shift_ * (2.0 * t.sum + n * shift_)) / n;
+}
+
 }  // namespace inertest

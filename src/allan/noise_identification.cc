@@ -51,6 +51,7 @@ std::string_view noise_identification_method_name(NoiseIdentificationMethod meth
     case NoiseIdentificationMethod::kLag1Autocorrelation: return "lag1_autocorrelation";
     case NoiseIdentificationMethod::kB1Ratio: return "b1_ratio";
     case NoiseIdentificationMethod::kB1RatioAndRn: return "b1_ratio_and_rn";
+    case NoiseIdentificationMethod::kShorterTau: return "shorter_tau";
     case NoiseIdentificationMethod::kNotIdentified: return "not_identified";
   }
   return "";
@@ -99,12 +100,11 @@ NoiseIdentification identify_power_law_noise(Estimator estimator, const AllanSum
     if (!p) return {};
     return {clamped_noise_type(std::lround(*p)), NoiseIdentificationMethod::kLag1Autocorrelation};
   }
-  // The standard variance of the tau-averages the estimator is built from: the non-overlapping ones
-  // for ADEV and HDEV, every overlapping one for the others (identify_power_law_noise in the header).
-  const bool non_overlapping = estimator == Estimator::kAdev || estimator == Estimator::kHdev;
-  const double standard_variance = non_overlapping ? averages.sample_variance() : sums.overlapping_average_variance;
-  const double allan_variance = sums.variance(Estimator::kOadev);
-  const double b1 = standard_variance / allan_variance;
+  // Howe et al. (2000): B1 = the N-sample variance of the non-overlapping averages over the
+  // (non-overlapping) Allan variance of the same averages, 1/2 the mean square of their first
+  // differences (identify_power_law_noise in the header).
+  const double allan_variance = 0.5 * sums.averages.series(1).mean_square();
+  const double b1 = averages.sample_variance() / allan_variance;
   const auto terms = static_cast<double>(b1_term_count(estimator, sums));
   if (!std::isfinite(b1) || !(terms >= 2.0)) return {};
   const int mu = b1_mu(b1, terms);
@@ -115,6 +115,16 @@ NoiseIdentification identify_power_law_noise(Estimator estimator, const AllanSum
   if (estimator != Estimator::kMdev) return {NoiseType::kWhiteFrequency, NoiseIdentificationMethod::kB1Ratio};
   const double rn = sums.variance(Estimator::kMdev) / allan_variance;
   return {phase_noise_from_rn(rn, static_cast<double>(sums.averaging_factor)), NoiseIdentificationMethod::kB1RatioAndRn};
+}
+
+std::vector<NoiseIdentification> identify_along_taus(Estimator estimator, std::span<const AllanSums> sums) {
+  std::vector<NoiseIdentification> noise;
+  noise.reserve(sums.size());
+  for (const AllanSums& s : sums) noise.push_back(identify_power_law_noise(estimator, s));
+  if (noise.size() >= 2 && sums.back().averages.series(0).count() < kLag1MinimumAverages) {
+    noise.back() = {noise[noise.size() - 2].type, NoiseIdentificationMethod::kShorterTau};
+  }
+  return noise;
 }
 
 }  // namespace inertest

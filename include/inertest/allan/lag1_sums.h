@@ -39,6 +39,8 @@ class Lag1Sums {
   double autocorrelation() const;
   // The sample variance sum (w_t - w̄)^2 / (n - 1); NaN for n < 2.
   double sample_variance() const;
+  // The mean square sum w_t^2 / n (about zero, not about the mean); NaN for n = 0.
+  double mean_square() const;
 
  private:
   static constexpr std::size_t kFoldEvery = 4096;

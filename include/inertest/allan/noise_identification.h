@@ -13,7 +13,9 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string_view>
+#include <vector>
 
 #include "inertest/allan/allan_engine.h"
 #include "inertest/allan/confidence.h"
@@ -21,9 +23,16 @@
 
 namespace inertest {
 
-enum class NoiseIdentificationMethod { kLag1Autocorrelation, kB1Ratio, kB1RatioAndRn, kNotIdentified };
+enum class NoiseIdentificationMethod {
+  kLag1Autocorrelation,
+  kB1Ratio,
+  kB1RatioAndRn,
+  kShorterTau,
+  kNotIdentified
+};
 
-// "lag1_autocorrelation", "b1_ratio", "b1_ratio_and_rn", "not_identified" (white FM assumed).
+// "lag1_autocorrelation", "b1_ratio", "b1_ratio_and_rn", "shorter_tau" (that of the next shorter
+// averaging time), "not_identified" (white FM assumed).
 std::string_view noise_identification_method_name(NoiseIdentificationMethod method);
 
 struct NoiseIdentification {
@@ -49,19 +58,25 @@ int b1_mu(double b1, double n);
 
 // The noise of one estimator at one averaging factor from the engine's sums (the OADEV sums are
 // always there). At least kLag1MinimumAverages averages: lag1_alpha, rounded (max_differences 2
-// for HDEV and OHDEV, else 1). Fewer: B1 = the sample variance of the tau-averages the estimator is
-// built from (the non-overlapping ones for ADEV and HDEV, all N - m + 1 overlapping ones for OADEV,
-// MDEV, OHDEV and TOTDEV) over the OADEV variance, compared with b1_expected for N = the
-// estimator's number of terms (the choices that reproduce Stable32's published alphas, 31 of 33
-// taus, data/stable32/README.md), mu = 1, 0, -1 giving
-// alpha = -2, -1, 0 (mu = 2 is clamped to random walk FM). B1 cannot tell white from flicker PM
-// (both mu = -2): for MDEV, R(n) = MVAR/AVAR picks white PM, flicker PM or, above their
-// boundary with white FM, white FM; the unmodified estimators take white FM, as Stable32 reports.
-// For the overlapping estimators that N is large, which moves the boundaries up: at the longest
-// taus a random walk FM record then reads as white or flicker FM, as in Stable32. The top-level
-// noise type of AllanResult uses the ADEV convention (N = floor(N/m) - 1, the averages' count, as
-// Howe et al. define it).
+// for HDEV and OHDEV, else 1). Fewer: B1 = the sample variance of the non-overlapping averages
+// over their Allan variance (half the mean square of their first differences), compared with
+// b1_expected for N = the estimator's number of terms; mu = 1, 0, -1 give alpha = -2, -1, 0
+// (mu = 2 is clamped to random walk FM). For the overlapping estimators that N is large, which
+// moves the boundaries up: at long taus a random walk FM record then reads as white or flicker FM,
+// as in Stable32. B1 cannot tell white from flicker PM (both mu = -2): for MDEV, R(n) = MVAR/AVAR
+// picks white PM, flicker PM or, above their boundary with white FM, white FM; the unmodified
+// estimators take white FM, as Stable32 reports. These are the choices that reproduce every alpha
+// Stable32 published for the three data sets of data/stable32 (with identify_along_taus; the rule
+// used before, and how this one was found, are in data/stable32/README.md).
 // Fewer than 2 averages or a constant record: white FM, not identified.
 NoiseIdentification identify_power_law_noise(Estimator estimator, const AllanSums& sums);
+
+// identify_power_law_noise at every averaging factor of a run (sums in increasing order), except
+// that the longest one, when it has fewer than kLag1MinimumAverages averages and a shorter one
+// exists, takes the identification of the next shorter one (method kShorterTau), as Stable32 does:
+// identified on their own, the longest taus of 5 of the 17 published Stable32 curves in
+// data/stable32 disagree with its alpha; carried over, none does. With so few averages (4 to 19
+// there) B1 scatters across a boundary; the next shorter tau has twice as many.
+std::vector<NoiseIdentification> identify_along_taus(Estimator estimator, std::span<const AllanSums> sums);
 
 }  // namespace inertest

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "inertest/core/procedure_spec.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -274,6 +275,20 @@ TEST_F(GoldenOutputs, EveryComputingCommand) {
     ASSERT_EQ(run.exit_code, 0) << command.name << ": " << run.err;
     check_golden(command.name, json::parse(run.out), lab);
   }
+}
+
+// The worked example of every declared procedure that has one (ProcedureSpec::example), against
+// tests/golden/<kind>_example.json.
+TEST_F(GoldenOutputs, EveryDeclaredExample) {
+  std::size_t examples = 0;
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    if (spec.example.empty()) continue;
+    const testing::CliRun run = testing::run_example(spec);
+    ASSERT_EQ(run.exit_code, 0) << spec.kind << ": " << run.err;
+    check_golden(spec.kind + "_example", json::parse(run.out), out_ + "/lab");
+    ++examples;
+  }
+  RecordProperty("examples", static_cast<int>(examples));
 }
 
 }  // namespace

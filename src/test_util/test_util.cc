@@ -11,6 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "inertest/core/procedure_spec.h"
+
 namespace inertest::testing {
 
 ::testing::AssertionResult near_relative(double actual, double expected, double tolerance) {
@@ -39,6 +41,16 @@ std::string f64_bytes(const std::vector<double>& values) {
 double log_relative_error(double actual, double expected) {
   if (actual == expected) return 17.0;
   return -std::log10(std::abs(actual - expected) / std::abs(expected));
+}
+
+CliRun run_example(const ProcedureSpec& spec) {
+  std::vector<std::string> arguments = {kebab_case(spec.kind)};
+  for (const std::string& argument : spec.example) {
+    const std::string path = source_path(argument);
+    arguments.push_back(std::filesystem::exists(path) ? path : argument);
+  }
+  arguments.push_back("--json");
+  return run_cli(arguments);
 }
 
 CliRun run_cli(const std::vector<std::string>& arguments) {

@@ -9,6 +9,10 @@
 #include <string>
 #include <vector>
 
+namespace inertest {
+struct ProcedureSpec;
+}
+
 namespace inertest::testing {
 
 // |actual - expected| <= tolerance * |expected| (absolute tolerance when expected is 0).
@@ -38,6 +42,10 @@ struct CliRun {
 
 // Runs build/bin/inertest with the arguments (no shell quoting; each is one argv entry).
 CliRun run_cli(const std::vector<std::string>& arguments);
+
+// `inertest <kind> <example...> --json`, the worked example of a declared procedure
+// (ProcedureSpec::example); its arguments that name a file of the source tree are made absolute.
+CliRun run_example(const ProcedureSpec& spec);
 
 // Whether `text` names one of the papers by the file name of the developers' text extraction
 // ("000_746ebd72f166769f.txt", "paper 001", ".../seeds/"): users cite them as core/citations.h does.

@@ -233,6 +233,11 @@ struct ProcedureSpec {
   std::map<std::string, nlohmann::json> defaults;  // by parameter name; absent: optional, no default
   std::vector<InputSpec> inputs;
   std::vector<FieldSpec> fields;
+  // A worked example: the command line's arguments after the command, paths relative to the source
+  // tree (e.g. {"examples/power_consumption/supplies.csv"}). Its `--json` output is a golden file
+  // (tests/golden/<kind>_example.json) and its result is reported when the golden campaign lacks
+  // the kind, so that a procedure can be added without touching a shared file.
+  std::vector<std::string> example;
   // Checks the parameters (Options::validate) and the runs given before any input is read; throws Error.
   std::function<void(const ProcedureCall&)> check;
   // Runs the procedure; returns the result's fields by name (a null field is left out).
@@ -348,6 +353,12 @@ class ProcedureDefinition {
   ProcedureDefinition& report_method(std::string english, std::string chinese) {
     spec_.method_en = std::move(english);
     spec_.method_zh = std::move(chinese);
+    return *this;
+  }
+
+  // The worked example (ProcedureSpec::example).
+  ProcedureDefinition& example(std::vector<std::string> arguments) {
+    spec_.example = std::move(arguments);
     return *this;
   }
 

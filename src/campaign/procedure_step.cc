@@ -25,14 +25,19 @@ std::string choice_list(const std::vector<std::string>& choices) {
   return text;
 }
 
-// The [instrument] value a parameter defaults to; null when the plan does not give it.
-nlohmann::json instrument_value(const PlanContext& context, const std::string& key) {
-  if (key == "output_unit") return context.instrument.output_unit;
-  if (key == "nominal_scale_factor" && context.instrument.nominal_scale_factor) {
-    return *context.instrument.nominal_scale_factor;
+// The [instrument] or [site] value a parameter defaults to; null when the plan does not give it.
+nlohmann::json default_value(const PlanContext& context, const ParameterSpec& parameter) {
+  const std::string& key = parameter.instrument_default;
+  const auto optional = [](const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(); };
+  if (parameter.default_table == "site") {
+    if (key == "latitude_deg") return context.site.latitude_deg;
+    if (key == "heading_deg") return context.site.heading_deg;
+  } else {
+    if (key == "output_unit") return context.instrument.output_unit;
+    if (key == "nominal_scale_factor") return optional(context.instrument.nominal_scale_factor);
+    if (key == "sample_rate_hz") return optional(context.instrument.sample_rate_hz);
   }
-  if (key == "nominal_scale_factor") return nullptr;
-  throw Error("procedure spec: unknown instrument key '" + key + "'");
+  throw Error("procedure spec: unknown " + parameter.default_table + " key '" + key + "'");
 }
 
 // The runs of a runs input: the array of files `plan_key` (numbered 1, 2, ...) or one
@@ -53,8 +58,9 @@ std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
     run.require_all_used();
   }
   if (runs.size() < input.minimum_runs) {
-    step.fail(fmt::format("needs at least {} [[procedure.{}]] tables with file and {} ({})", input.minimum_runs,
-                          input.plan_key, input.number_key, input.minimum_why));
+    step.fail(fmt::format("needs at least {} [[procedure.{}]] {} with file and {} ({})",
+                          input.minimum_runs == 1 ? "one" : std::to_string(input.minimum_runs), input.plan_key,
+                          input.minimum_runs == 1 ? "table" : "tables", input.number_key, input.minimum_why));
   }
   return runs;
 }
@@ -73,6 +79,10 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
         if (parameter.whole && !(*value >= 0.0 && *value == std::floor(*value))) step.fail_at(key, "must be a whole number");
         call.parameters[parameter.name] = *value;
       }
+    } else if (parameter.type == ParameterType::numbers) {
+      if (const auto values = step.optional_numbers(key)) call.parameters[parameter.name] = *values;
+    } else if (parameter.type == ParameterType::boolean) {
+      if (step.contains(key)) call.parameters[parameter.name] = step.boolean_or(key, false);
     } else if (const auto value = step.optional_string(key)) {
       if (!parameter.choices.empty() &&
           std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
@@ -87,14 +97,14 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (!parameter.instrument_default.empty() && !given.contains(parameter.name)) {
       const auto& condition = parameter.instrument_condition;
       if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
-        const nlohmann::json value = instrument_value(context, parameter.instrument_default);
+        const nlohmann::json value = default_value(context, parameter);
         if (!value.is_null()) call.parameters[parameter.name] = value;
       }
     }
     if (parameter.required && !call.parameters.contains(parameter.name)) {
       std::string where;
       if (!parameter.instrument_default.empty()) {
-        where = " (give it here or as [instrument] " + parameter.instrument_default;
+        where = " (give it here or as [" + parameter.default_table + "] " + parameter.instrument_default;
         if (parameter.instrument_condition) {
           where += " with " + parameter.instrument_condition->first + " = \"" + parameter.instrument_condition->second + "\"";
         }
@@ -106,14 +116,16 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   // Each input from exactly one source; records read when the step runs.
   std::map<std::string, std::string> files;
   bool reads_records = false;
+  bool reads_timed_records = false;
   for (const InputSpec& input : spec.inputs) {
+    reads_records = reads_records || input.records;
+    reads_timed_records = reads_timed_records || input.timed;
     if (input.kind == InputKind::file) {
       call.files[input.name] = step.file(input.plan_key);
       continue;
     }
     if (input.kind == InputKind::runs) {
       call.runs[input.name] = read_runs(input, step);
-      reads_records = reads_records || input.records;
       continue;
     }
     reads_records = true;
@@ -126,11 +138,23 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (file) files[input.name] = *file;
   }
   const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
-  call.read_record = [source](const std::string& file) {
+  const std::size_t minimum = minimum_samples_of(spec.inputs);
+  call.read_record = [source, minimum](const std::string& file) {
     OutputRecordSource record = source;
     record.path = file;
-    return read_output_record(record);
+    return read_output_record(record, minimum);
   };
+  if (reads_timed_records) {
+    const std::optional<double> rate = step.optional_number("sample_rate_hz");
+    if (rate && !(*rate > 0.0)) step.fail_at("sample_rate_hz", "must be positive");
+    const std::string time_column = step.string_or("time_column", "");
+    if (rate && !time_column.empty()) step.fail_at("time_column", "is not used with sample_rate_hz");
+    call.read_timed_record = [source, rate, time_column, minimum](const std::string& file) {
+      OutputRecordSource record = source;
+      record.path = file;
+      return read_timed_record(record, rate, time_column, minimum);
+    };
+  }
   check_in_plan(step, [&] { spec.check(call); });
   return [&spec, call, files](const StepRunContext&) {
     ProcedureCall run_call = call;

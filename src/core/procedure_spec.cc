@@ -35,7 +35,7 @@ std::string kebab_case(const std::string& name) {
 }
 
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields) {
-  nlohmann::json json = {{"procedure", spec.kind}, {"clause", spec.clause}};
+  nlohmann::json json = {{"procedure", spec.json_name.empty() ? spec.kind : spec.json_name}, {"clause", spec.clause}};
   for (const auto& [name, value] : fields.items()) {
     if (!value.is_null()) json[name] = value;
   }

@@ -3,7 +3,6 @@
 // are all generated from it.
 #include <nlohmann/json.hpp>
 
-#include "inertest/core/error.h"
 #include "inertest/procedures/bias.h"
 #include "inertest/procedures/bias_repeatability.h"
 
@@ -41,11 +40,7 @@ ProcedureSpec bias_repeatability_spec() {
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &BiasRepeatabilityResult::warnings)
       .checked_by([](const ProcedureCall& call, const BiasOptions& options) {
-        if (!options.input_in_deg_h && !call.parameters.contains("scale_factor")) {
-          throw Error("bias repeatability: missing the scale factor K (--scale-factor; in a plan scale_factor or "
-                      "[instrument] nominal_scale_factor), or records in deg/h (--input-deg-h; input = \"deg/h\")");
-        }
-        options.validate_conversion();
+        check_bias_conversion(call, options, "bias repeatability");
       })
       .compute([](const ProcedureCall& call, const BiasOptions& options) {
         std::vector<double> biases;

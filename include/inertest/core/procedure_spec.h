@@ -13,6 +13,7 @@
 // generated procedure_spec_list.cc calls them all (procedure_specs() below).
 #pragma once
 
+#include <algorithm>
 #include <any>
 #include <functional>
 #include <map>
@@ -26,7 +27,15 @@
 
 namespace inertest {
 
-enum class ParameterType { number, text };
+struct TimedRecord;  // io/output_record.h
+
+// number: a double or (whole) a std::size_t member; text: std::string; numbers: std::vector<double>
+// (a comma-separated list on the command line, an array in a plan); boolean: bool (a flag without a
+// value on the command line, true/false in a plan).
+// "nonlinearity_limit" -> "nonlinearity-limit".
+std::string kebab_case(const std::string& name);
+
+enum class ParameterType { number, text, numbers, boolean };
 
 // A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
 // setters below, e.g. .unit_is("deg/s").required_on_command_line().
@@ -41,6 +50,8 @@ struct ParameterSpec {
     return *this;
   }
   ParameterSpec& required_on_command_line() { required = true; return *this; }
+  // A yes/no parameter stored through a binder (a bool member is one already).
+  ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
   ParameterSpec& instrument_gives(std::string key, bool only = false) {
     instrument_default = std::move(key);
@@ -53,8 +64,17 @@ struct ParameterSpec {
     instrument_condition = {std::move(parameter), std::move(value)};
     return *this;
   }
+  // Plans take the value from [site]'s `key` (e.g. "latitude_deg") and have no key of their own for it.
+  ParameterSpec& site_gives(std::string key) {
+    instrument_gives(std::move(key), true);
+    default_table = "site";
+    return *this;
+  }
   // The plan key when it is a contract that differs from the name (e.g. "nonlinearity_limit_ppm").
   ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
+  // The command-line option when it is a contract that differs from --kebab-case(name) (e.g. "rate"
+  // for sample_rate_hz: --rate).
+  ParameterSpec& command_line_name_is(std::string option) { cli_option = std::move(option); return *this; }
   // On the command line a flag without a value, `--flag`, that gives the text `value` (e.g.
   // --input-deg-h for input = "deg/h", a contract); without it the parameter has its default.
   ParameterSpec& command_line_flag(std::string flag, std::string value) {
@@ -63,6 +83,8 @@ struct ParameterSpec {
     return *this;
   }
   const std::string& plan_name() const { return plan_key.empty() ? name : plan_key; }
+  // "--rate", "--nonlinearity-limit".
+  std::string command_line_option() const { return "--" + (cli_option.empty() ? kebab_case(name) : cli_option); }
 
   std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
   ParameterType type = ParameterType::number;
@@ -70,15 +92,18 @@ struct ParameterSpec {
   std::string doc;
   std::vector<std::string> choices;  // the accepted values of a text parameter, empty when free
   bool required = false;             // no default: the command line must give it
-  // In a plan, the [instrument] key ("output_unit", "nominal_scale_factor") that gives the value
-  // when the step does not; with `instrument_only` the step has no key for it at all.
+  // In a plan, the key of `default_table` ("output_unit", "nominal_scale_factor", "sample_rate_hz" of
+  // [instrument]; "latitude_deg", "heading_deg" of [site]) that gives the value when the step does
+  // not; with `instrument_only` the step has no key for it at all.
   std::string instrument_default;
   bool instrument_only = false;
+  std::string default_table = "instrument";
   std::optional<std::pair<std::string, std::string>> instrument_condition;  // parameter, value
   std::string plan_key;  // "" : the plan key is `name`
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
   std::string cli_flag_value;
+  std::string cli_option;  // "": the option is --kebab-case(name)
 };
 
 enum class InputKind {
@@ -125,9 +150,19 @@ struct InputSpec {
   }
   // A [[procedure.run]] table without the number key has this number (e.g. 0: a run at rest).
   InputSpec& number_defaults_to(double value) { number_default = value; return *this; }
-  // Each run's file is an instrument-output record (call.read_record): read with --column/--format
-  // on the command line and the keys column/format in a plan.
+  // The file (file) or each run's file (runs) is an instrument-output record (call.read_record): read
+  // with --column/--format on the command line and the keys column/format in a plan.
   InputSpec& output_records() { records = true; return *this; }
+  // Output records with the time of each sample (call.read_timed_record): a time column (--time-column,
+  // time_column; default the first) beside the output column, or the output column alone sampled at
+  // --rate HZ (sample_rate_hz), sample i (from 0) at (i + 1)/HZ. Also output_records().
+  InputSpec& timed_records() {
+    records = true;
+    timed = true;
+    return *this;
+  }
+  // A record (output_records, timed_records) of fewer samples is an error of its reader, naming the file.
+  InputSpec& samples_at_least(std::size_t count) { minimum_samples = count; return *this; }
   // Fewer runs than `count` is an error given before any file is read; `why` says where the count
   // comes from (e.g. "GJB 2426A 5.12.3 asks for 6 or more").
   InputSpec& at_least(std::size_t count, std::string why) {
@@ -145,10 +180,19 @@ struct InputSpec {
   std::string number_key;
   std::string number_example;
   std::optional<double> number_default;
-  bool records = false;  // InputKind::runs: the files are output records, read by call.read_record
+  bool records = false;  // file, runs: the files are output records, read by call.read_record
+  bool timed = false;    // file, runs: the records are timed, read by call.read_timed_record
   std::size_t minimum_runs = 1;
   std::string minimum_why;
+  std::size_t minimum_samples = 1;  // output and timed records
 };
+
+// The largest minimum_samples of a spec's inputs: what its readers ask of every record.
+inline std::size_t minimum_samples_of(const std::vector<InputSpec>& inputs) {
+  std::size_t count = 1;
+  for (const InputSpec& input : inputs) count = std::max(count, input.minimum_samples);
+  return count;
+}
 
 // What a result field is in a report.
 enum class FieldRole {
@@ -183,6 +227,9 @@ struct ProcedureCall {
   // An instrument-output record as the command line (--column/--format) or the plan (column/format)
   // says it is stored; set when a runs input has output_records(). Errors name the file.
   std::function<std::vector<double>(const std::string& file)> read_record;
+  // A timed record as the command line (--rate/--time-column) or the plan (sample_rate_hz/time_column)
+  // says it is stored; set when an input has timed_records(). Errors name the file.
+  std::function<TimedRecord(const std::string& file)> read_timed_record;
 };
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
@@ -191,6 +238,7 @@ struct ProcedureSpec {
   std::string title;   // e.g. "Polarity"
   std::string clause;  // e.g. "GJB 2426A-2004 5.7"
   std::string doc;     // the method in a few lines, for --help
+  std::string json_name;  // the JSON's "procedure" when that contract differs from the kind; "": the kind
   std::vector<ParameterSpec> parameters;
   std::map<std::string, nlohmann::json> defaults;  // by parameter name; absent: optional, no default
   std::vector<InputSpec> inputs;
@@ -210,9 +258,6 @@ struct ProcedureSpec {
 const std::vector<ProcedureSpec>& procedure_specs();
 const ProcedureSpec* find_procedure_spec(const std::string& kind);
 
-// "nonlinearity_limit" -> "nonlinearity-limit".
-std::string kebab_case(const std::string& name);
-
 // The JSON object of a result: "procedure", "clause", the fields (nulls left out) and "warnings".
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields);
 
@@ -220,6 +265,11 @@ nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& f
 // then one line per headline and detail field, "label  value ± uncertainty unit" for a figure,
 // then the warnings.
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields);
+
+template <typename T>
+inline constexpr bool is_optional = false;
+template <typename T>
+inline constexpr bool is_optional<std::optional<T>> = true;
 
 // Typed construction of a ProcedureSpec: parameters bound to Options members, fields read from
 // Result members, and the computation.
@@ -237,13 +287,18 @@ class ProcedureDefinition {
 
   // A parameter stored in an Options member; its default is the member's default value unless the
   // parameter is required.
-  // A std::size_t member is a whole number (checked by the command line and plans).
+  // A std::size_t member is a whole number (checked by the command line and plans); the other types
+  // are as ParameterType says.
   template <typename T>
   ProcedureDefinition& parameter(ParameterSpec parameter, T Options::*member) {
-    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t>,
-                  "number, whole number or text parameters");
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t> ||
+                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool>,
+                  "number, whole number, text, numbers or boolean parameters");
     if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*member;
-    parameter.type = std::is_same_v<T, std::string> ? ParameterType::text : ParameterType::number;
+    parameter.type = std::is_same_v<T, std::string>           ? ParameterType::text
+                     : std::is_same_v<T, std::vector<double>> ? ParameterType::numbers
+                     : std::is_same_v<T, bool>                ? ParameterType::boolean
+                                                              : ParameterType::number;
     parameter.whole = std::is_same_v<T, std::size_t>;
     binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
       if constexpr (std::is_same_v<T, std::size_t>) {
@@ -284,7 +339,13 @@ class ProcedureDefinition {
     return this->parameter(std::move(parameter), std::move(bind));
   }
 
-  // Replaces the check before any input is read (Options::validate by default), e.g. to check
+  // The JSON's "procedure" when that contract differs from the kind (e.g. "bias_temperature_sensitivity").
+  ProcedureDefinition& json_procedure_is(std::string name) {
+    spec_.json_name = std::move(name);
+    return *this;
+  }
+
+  // Replaces the check before any input is read (Options::validate by default, if it has one), e.g. to check
   // only what the procedure uses of a shared Options or the number of runs an option asks for.
   ProcedureDefinition& checked_by(std::function<void(const ProcedureCall&, const Options&)> check) {
     check_ = std::move(check);
@@ -296,10 +357,17 @@ class ProcedureDefinition {
     return *this;
   }
 
-  // A field read from a Result member (anything nlohmann::json converts, e.g. Figure).
+  // A field read from a Result member (anything nlohmann::json converts, e.g. Figure; a std::optional
+  // of it, left out when empty).
   template <typename T>
   ProcedureDefinition& field(FieldSpec field, T Result::*member) {
-    return field_from(std::move(field), [member](const Result& result) { return nlohmann::json(result.*member); });
+    return field_from(std::move(field), [member](const Result& result) {
+      if constexpr (is_optional<T>) {
+        return result.*member ? nlohmann::json(*(result.*member)) : nlohmann::json();
+      } else {
+        return nlohmann::json(result.*member);
+      }
+    });
   }
 
   // A field computed from the Result (e.g. a sign spelled out); null leaves it out.
@@ -322,7 +390,7 @@ class ProcedureDefinition {
     spec.check = [options_of, check = check_](const ProcedureCall& call) {
       if (check) {
         check(call, options_of(call));
-      } else {
+      } else if constexpr (requires(const Options& options) { options.validate(); }) {
         options_of(call).validate();
       }
     };

@@ -26,9 +26,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/earth_rate.h"
 #include "inertest/procedures/random_walk_normalisation.h"
 
@@ -70,14 +69,19 @@ struct BiasResult {
   std::size_t samples = 0;
   Figure duration;                                // s
   std::vector<std::string> warnings;              // e.g. a constant record (stuck channel)
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error for invalid options or fewer than two samples. Smoothing times and a random walk
 // coefficient the record cannot support are warnings (see above).
 BiasResult bias(std::span<const double> output, const BiasOptions& options);
+
+// The procedure's spec (src/procedures/bias_spec.cc): CLI, plan step, JSON and text.
+ProcedureSpec bias_spec();
+
+// The check, before any record is read, of a spec whose records eq. (19) converts (`procedure`: bias,
+// its repeatability or temperature sensitivity): the scale factor given unless the records hold deg/h,
+// then validate_conversion(). Throws Error.
+void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options, const std::string& procedure);
 
 // Eq. (19) alone, in deg/h (Earth rate removed if asked): the bias of one run, as bias
 // repeatability and temperature sensitivity use it. Mean by compensated sum. Needs no sample rate

@@ -44,7 +44,11 @@ ProcedureSpec bias_spec() {
       "deg/sqrt(h) = Bs(1 s)[deg/h] / 60. Earth rate is not removed unless --remove-earth-rate.\n"
       "A smoothing time the record cannot support (longer than half of it, not whole samples) and a random\n"
       "walk coefficient from under 2 s or below 1 Hz are left out with a warning; the bias is always given.");
-  definition.input(InputSpec("record", "instrument output record").read_from_file("FILE", "file").output_records().samples_at_least(2))
+  definition.chinese_title("零偏")
+      .report_method(
+          "The bias is the mean output over the record; the bias stability is the standard deviation of the output averaged over the smoothing time, expressed as an input rate.",
+          "零偏为记录时间内输出的平均值折算成输入角速度；零偏稳定性为按平滑时间平均后输出的标准偏差折算成输入角速度。")
+      .input(InputSpec("record", "instrument output record").read_from_file("FILE", "file").output_records().samples_at_least(2))
       .parameter(ParameterSpec("sample_rate_hz", "sample rate")
                      .unit_is("Hz")
                      .required_on_command_line()

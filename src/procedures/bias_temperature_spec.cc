@@ -25,6 +25,10 @@ ProcedureSpec bias_temperature_spec() {
       "one run's output record (one column, or --column; or binary with --format); bias = mean output / K\n"
       "in deg/h (eq. 19).");
   definition.json_procedure_is("bias_temperature_sensitivity")
+      .chinese_title("零偏温度灵敏度")
+      .report_method(
+          "The bias of eq. (19) is measured at room temperature and, after the soak, at each test temperature; the sensitivity is the largest ratio of the change of bias from room temperature to the change of temperature, |B0i − B0m| / |Ti − Tm| (eq. (22)).",
+          "按式(19)分别求出室温及各试验温度点（保温使陀螺仪达到热平衡后）的零偏，按式(22)取零偏相对室温零偏的变化量与温度变化量之比的最大值为零偏温度灵敏度。")
       .input(InputSpec("runs", "one output record per temperature")
                  .numbered_runs("temperature_degC", "25:run_25C.txt")
                  .output_records()

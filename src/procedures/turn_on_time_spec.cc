@@ -24,7 +24,15 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
       "at time (i + 1)/HZ. Bands: at rate |rate error| <= --rate-band x |input rate| (a fraction, e.g.\n"
       "0.001); at rest |indicated rate| <= --rest-band deg/h. --smoothing S averages into S-second windows\n"
       "from power-on (stamped at their end) before the test.");
-  definition
+  definition.chinese_title(warm_up ? "预热时间" : "启动时间")
+      .report_method(
+          fmt::format("From power-on, the output with the calibrated zero removed (and, at rate, the Earth rate) is "
+                      "followed until the indicated rate stays within the required rate error (at rate) or bias (at "
+                      "rest); the {} is the longest such interval over the runs.",
+                      warm_up ? "warm-up time" : "turn-on time"),
+          fmt::format("{}从加电开始，输出中扣除事先标定的零位（速率试验中还扣除地球速率），确定每次从加电到陀螺仪指示"
+                      "满足速率误差要求（速率试验）或达到要求零偏值（位置试验）的时间，取其最大值为{}。",
+                      warm_up ? "带温控的陀螺仪" : "", warm_up ? "预热时间" : "启动时间"))
       .input(InputSpec("runs", "one record per power-on run")
                  .numbered_runs("input_rate_deg_s", "100:power_on_100dps.txt")
                  .number_defaults_to(0.0)

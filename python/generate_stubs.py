@@ -9,7 +9,7 @@ import importlib
 import json
 import sys
 
-PYTHON_TYPES = {"number": "float", "text": "str"}
+PYTHON_TYPES = {"number": "float", "text": "str", "numbers": "Sequence[float]", "boolean": "bool"}
 
 
 def parameter_line(parameter):
@@ -42,6 +42,8 @@ def function_stub(spec):
     lines += [parameter_line(p) for p in spec["parameters"] if not p["required"]]
     if spec["reads_records"]:
         lines += ['    column: str = "",', '    format: str = "",']
+    if spec["reads_timed_records"]:
+        lines += ["    sample_rate_hz: Optional[float] = None,", '    time_column: str = "",']
     lines.append(") -> ProcedureResult:")
     lines.append(f'    """{spec["title"]} ({spec["clause"]}). Members: {", ".join(spec["fields"])}."""')
     return "\n".join(lines)

@@ -60,7 +60,7 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
     py::gil_scoped_release release;
     result = with_source(source, [&] { return bias(samples, options); });
   }
-  return make_result<BiasTag>(result);
+  return make_spec_result<BiasTag>(bias_spec(), result);
 }
 
 struct MaximumInputRateTag {};
@@ -104,7 +104,8 @@ ResultOf<BiasTemperatureTag> bias_temperature_sensitivity_of(const DoubleArray& 
   require_equal_lengths({{"temperature_degC", temperatures.size()}, {"bias_deg_h", biases.size()}});
   std::vector<TemperatureRunBias> runs(temperatures.size());
   for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = {temperatures[i], biases[i]};
-  return make_result<BiasTemperatureTag>(bias_temperature_sensitivity(runs, BiasTemperatureOptions{room_temperature_degC}));
+  return make_spec_result<BiasTemperatureTag>(bias_temperature_spec(),
+                                              bias_temperature_sensitivity(runs, BiasTemperatureOptions{room_temperature_degC}));
 }
 
 struct BandwidthTag {};

@@ -30,17 +30,30 @@ bool reads_records(const ProcedureSpec& spec) {
   return std::any_of(spec.inputs.begin(), spec.inputs.end(), [](const InputSpec& input) { return input.records; });
 }
 
+bool reads_timed_records(const ProcedureSpec& spec) {
+  return std::any_of(spec.inputs.begin(), spec.inputs.end(), [](const InputSpec& input) { return input.timed; });
+}
+
 // The Python keywords of a spec, in declaration order: parameters, inputs, then column and format
-// when it reads output records.
+// when it reads output records and sample_rate_hz and time_column when they are timed.
 std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
   std::vector<std::string> keywords;
   for (const ParameterSpec& parameter : spec.parameters) keywords.push_back(parameter.name);
   for (const InputSpec& input : spec.inputs) keywords.push_back(keyword_of(input));
   if (reads_records(spec)) keywords.insert(keywords.end(), {"column", "format"});
+  if (reads_timed_records(spec)) keywords.insert(keywords.end(), {"sample_rate_hz", "time_column"});
   return keywords;
 }
 
 nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle& value) {
+  if (parameter.type == ParameterType::boolean) {
+    if (!py::isinstance<py::bool_>(value)) throw Error(fmt::format("{} must be True or False", parameter.name));
+    return value.cast<bool>();
+  }
+  if (parameter.type == ParameterType::numbers) {
+    if (py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a list of numbers", parameter.name));
+    return value.cast<std::vector<double>>();
+  }
   if (parameter.type == ParameterType::number) {
     if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) {
       throw Error(fmt::format("{} must be a number", parameter.name));
@@ -128,10 +141,19 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
   OutputRecordSource source;
   if (keywords.contains("column")) source.column = py::str(keywords["column"]).cast<std::string>();
   if (keywords.contains("format")) source.format = py::str(keywords["format"]).cast<std::string>();
-  call.read_record = [source](const std::string& file) {
+  const std::size_t minimum = minimum_samples_of(spec.inputs);
+  call.read_record = [source, minimum](const std::string& file) {
     OutputRecordSource record = source;
     record.path = file;
-    return read_output_record(record);
+    return read_output_record(record, minimum);
+  };
+  std::optional<double> rate;
+  if (keywords.contains("sample_rate_hz")) rate = keywords["sample_rate_hz"].cast<double>();
+  const std::string time_column = keywords.contains("time_column") ? py::str(keywords["time_column"]).cast<std::string>() : "";
+  call.read_timed_record = [source, rate, time_column, minimum](const std::string& file) {
+    OutputRecordSource record = source;
+    record.path = file;
+    return read_timed_record(record, rate, time_column, minimum);
   };
   return call;
 }
@@ -161,16 +183,18 @@ std::string docstring_of(const ProcedureSpec& spec) {
     }
   }
   if (reads_records(spec)) text += "  column, format: how the records are stored, as in a plan\n";
+  if (reads_timed_records(spec)) text += "  sample_rate_hz, time_column: the time of each sample, as in a plan\n";
   return text + "Returns a ProcedureResult (members as in the CLI's --json); raises inertest.Error.";
 }
 
 // The spec as plain data, for the stub generator and for users who script around the registry.
 nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) {
+  static const std::vector<std::string> parameter_type_names = {"number", "text", "numbers", "boolean"};  // ParameterType
   nlohmann::json parameters = nlohmann::json::array();
   for (const ParameterSpec& parameter : spec.parameters) {
     const auto found = spec.defaults.find(parameter.name);
     parameters.push_back({{"name", parameter.name},
-                          {"type", parameter.type == ParameterType::number ? "number" : "text"},
+                          {"type", parameter_type_names.at(static_cast<std::size_t>(parameter.type))},
                           {"unit", parameter.unit},
                           {"doc", parameter.doc},
                           {"choices", parameter.choices},
@@ -188,7 +212,8 @@ nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) 
   for (const FieldSpec& field : spec.fields) fields.push_back(field.name);
   return {{"kind", spec.kind},          {"title", spec.title},   {"clause", spec.clause},
           {"parameters", parameters},   {"inputs", inputs},      {"fields", fields},
-          {"reads_records", reads_records(spec)}, {"generic_function", generic_function}};
+          {"reads_records", reads_records(spec)}, {"reads_timed_records", reads_timed_records(spec)},
+          {"generic_function", generic_function}};
 }
 
 }  // namespace

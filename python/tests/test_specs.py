@@ -20,7 +20,7 @@ PYTHON_NAMES = {
 
 # Hand-written plan steps not yet declared as specs nor wrapped: they get their function when they
 # are declared (issue 22). Listed so that the test fails when one is exposed and the list is stale.
-AWAITING_SPEC = {"hand_checks", "turn_on_time", "warm_up_time"}
+AWAITING_SPEC = {"hand_checks"}
 
 
 def test_every_plan_kind_has_a_function():
@@ -65,6 +65,20 @@ def test_resolution_from_a_file_is_the_cli_json(tmp_path):
     assert result.to_dict() == expected
     assert result.resolution.value == pytest.approx(4.0, rel=1e-9)
     assert result.resolution.unit == "deg/h"
+
+
+def test_turn_on_time_from_timed_records_is_the_cli_json(tmp_path):
+    # The case of src/cli/bias_command_test.cc: error 1, 0.5, 0.2, 0.05, 0.01 deg/h (K = 3600) at
+    # t = 1..5 s settles into 0.1 deg/h at 4 s; the column alone at 2 Hz at 2 s.
+    timed = tmp_path / "on.csv"
+    timed.write_text("t,out\n1,1\n2,0.5\n3,0.2\n4,0.05\n5,0.01\n")
+    expected = cli_json("turn-on-time", "--run", f"0:{timed}", "--scale-factor", "3600", "--rest-band", "0.1")
+    result = inertest.turn_on_time(run=[(0, str(timed))], scale_factor=3600, rest_band_deg_h=0.1)
+    assert result.to_dict() == expected
+    column = tmp_path / "on.txt"
+    column.write_text("1\n0.5\n0.2\n0.05\n0.01\n")
+    by_rate = inertest.warm_up_time(run=[(0, str(column))], sample_rate_hz=2, scale_factor=3600, rest_band_deg_h=0.1)
+    assert by_rate.warm_up_time.value == pytest.approx(2.0)
 
 
 @pytest.mark.parametrize(

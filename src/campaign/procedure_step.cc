@@ -55,8 +55,9 @@ std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
     run.require_all_used();
   }
   if (runs.size() < input.minimum_runs) {
-    step.fail(fmt::format("needs at least {} [[procedure.{}]] tables with file and {} ({})", input.minimum_runs,
-                          input.plan_key, input.number_key, input.minimum_why));
+    step.fail(fmt::format("needs at least {} [[procedure.{}]] {} with file and {} ({})",
+                          input.minimum_runs == 1 ? "one" : std::to_string(input.minimum_runs), input.plan_key,
+                          input.minimum_runs == 1 ? "table" : "tables", input.number_key, input.minimum_why));
   }
   return runs;
 }
@@ -79,6 +80,10 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
         }
         call.parameters[parameter.name] = *value;
       }
+    } else if (parameter.type == ParameterType::numbers) {
+      if (const auto values = step.optional_numbers(key)) call.parameters[parameter.name] = *values;
+    } else if (parameter.type == ParameterType::boolean) {
+      if (step.contains(key)) call.parameters[parameter.name] = step.boolean_or(key, false);
     } else if (const auto value = step.optional_string(key)) {
       if (!parameter.choices.empty() &&
           std::find(parameter.choices.begin(), parameter.choices.end(), *value) == parameter.choices.end()) {
@@ -100,7 +105,8 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (parameter.required && !call.parameters.contains(parameter.name)) {
       std::string where;
       if (!parameter.instrument_default.empty()) {
-        where = " (give it here or as [instrument] " + parameter.instrument_default;
+        where = fmt::format(" (give it here or as [{}] {}", parameter.site_default ? "site" : "instrument",
+                            parameter.instrument_default);
         if (parameter.instrument_condition) {
           where += " with " + parameter.instrument_condition->first + " = \"" + parameter.instrument_condition->second + "\"";
         }
@@ -112,6 +118,7 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   // Each input from exactly one source; records read when the step runs.
   std::map<std::string, std::string> files;
   bool reads_records = false;
+  bool reads_timed_records = false;
   // A file or runs input in a group of alternatives is its key (or table array) when given.
   const auto is_given = [&step](const InputSpec& input) {
     return input.alternatives.empty() || input.kind == InputKind::value_or_record || step.contains(input.plan_key);
@@ -123,13 +130,14 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   });
   for (const InputSpec& input : spec.inputs) {
     if (!is_given(input)) continue;
+    reads_records = reads_records || input.records;
+    reads_timed_records = reads_timed_records || input.timed;
     if (input.kind == InputKind::file) {
       call.files[input.name] = step.file(input.plan_key);
       continue;
     }
     if (input.kind == InputKind::runs) {
       call.runs[input.name] = read_runs(input, step);
-      reads_records = reads_records || input.records;
       continue;
     }
     reads_records = true;
@@ -142,11 +150,23 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (file) files[input.name] = *file;
   }
   const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
-  call.read_record = [source](const std::string& file) {
+  const std::size_t minimum = minimum_samples_of(spec.inputs);
+  call.read_record = [source, minimum](const std::string& file) {
     OutputRecordSource record = source;
     record.path = file;
-    return read_output_record(record);
+    return read_output_record(record, minimum);
   };
+  if (reads_timed_records) {
+    const std::optional<double> rate = step.optional_number("sample_rate_hz");
+    if (rate && !(*rate > 0.0)) step.fail_at("sample_rate_hz", "must be positive");
+    const std::string time_column = step.string_or("time_column", "");
+    if (rate && !time_column.empty()) step.fail_at("time_column", "is not used with sample_rate_hz");
+    call.read_timed_record = [source, rate, time_column, minimum](const std::string& file) {
+      OutputRecordSource record = source;
+      record.path = file;
+      return read_timed_record(record, rate, time_column, minimum);
+    };
+  }
   try {
     spec.check(call);
   } catch (const ParameterError& e) {

@@ -27,12 +27,15 @@ struct InputArguments {
 struct Arguments {
   std::map<std::string, std::optional<double>> numbers;     // by parameter name
   std::map<std::string, std::optional<std::string>> texts;  // by parameter name
-  std::map<std::string, bool> flags;                        // by parameter name (ParameterSpec::cli_flag)
+  std::map<std::string, std::vector<double>> lists;         // by parameter name
+  std::map<std::string, bool> flags;                        // by parameter name (boolean or ParameterSpec::cli_flag)
   std::map<std::string, InputArguments> inputs;             // by input name
   std::map<std::string, std::string> files;                 // by input name
   std::map<std::string, std::vector<std::string>> runs;     // by input name: FILE or NUMBER:FILE each
   std::map<std::string, std::string> listings;              // by input name: the CSV listing of its runs
   OutputRecordSource source;
+  std::optional<double> sample_rate_hz;  // timed records without a time column
+  std::string time_column;
   bool json = false;
 };
 
@@ -102,8 +105,22 @@ std::vector<RunInput> runs_given(const ProcedureSpec& spec, const InputSpec& inp
 // "--number" for a whole-number parameter given 2.5 or -1.
 void check_whole(const ParameterSpec& parameter, double value) {
   if (parameter.whole && !(value >= 0.0 && value == std::floor(value))) {
-    throw Error(fmt::format("--{} must be a whole number, got {}", kebab_case(parameter.name), value));
+    throw Error(fmt::format("{} must be a whole number, got {}", parameter.command_line_option(), value));
   }
+}
+
+// One option of a parameter: a flag for a boolean, a list for numbers, a value otherwise.
+CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const ProcedureSpec& spec,
+                                  const ParameterSpec& parameter) {
+  const std::string flag = parameter.command_line_option();
+  switch (parameter.type) {
+    case ParameterType::boolean: return command.add_flag(flag, arguments.flags[parameter.name], parameter.doc);
+    case ParameterType::numbers:
+      return command.add_option(flag, arguments.lists[parameter.name], parameter_help(spec, parameter))->delimiter(',');
+    case ParameterType::number: return command.add_option(flag, arguments.numbers[parameter.name], parameter_help(spec, parameter));
+    case ParameterType::text: break;
+  }
+  return command.add_option(flag, arguments.texts[parameter.name], parameter_help(spec, parameter));
 }
 
 }  // namespace
@@ -112,12 +129,14 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = root.add_subcommand(kebab_case(spec.kind), help_text(spec));
   bool reads_records = false;
+  bool reads_timed_records = false;
   for (const InputSpec& input : spec.inputs) {
+    reads_records = reads_records || input.records;
+    reads_timed_records = reads_timed_records || input.timed;
     CLI::Option* option = nullptr;
     if (input.kind == InputKind::file) {
       option = command->add_option(input.cli_name, arguments->files[input.name], input.doc)->check(CLI::ExistingFile);
     } else if (input.kind == InputKind::runs) {
-      reads_records = reads_records || input.records;
       std::vector<std::string>& given = arguments->runs[input.name];
       std::string& listing = arguments->listings[input.name];
       if (!input.listing.empty()) {
@@ -147,14 +166,15 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
                         fmt::format("{} (this flag: {})", parameter.doc, parameter.cli_flag_value));
       continue;
     }
-    const std::string flag = "--" + kebab_case(parameter.name);
-    CLI::Option* option = parameter.type == ParameterType::number
-                              ? command->add_option(flag, arguments->numbers[parameter.name], parameter_help(spec, parameter))
-                              : command->add_option(flag, arguments->texts[parameter.name], parameter_help(spec, parameter));
+    CLI::Option* option = add_parameter_option(*command, *arguments, spec, parameter);
     if (!parameter.choices.empty()) option->check(CLI::IsMember(parameter.choices));
     if (parameter.required) option->required();
   }
   if (reads_records) add_record_options(*command, arguments->source);
+  if (reads_timed_records) {
+    command->add_option("--rate", arguments->sample_rate_hz, "sample rate, Hz (records without a time column)");
+    command->add_option("--time-column", arguments->time_column, "time column by name or 1-based index");
+  }
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments, &spec] {
     ProcedureCall call;
@@ -165,7 +185,14 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       call.parameters[name] = *value;
     }
     for (const auto& [name, given] : arguments->flags) {
-      if (given) call.parameters[name] = spec.find_parameter(name)->cli_flag_value;
+      const ParameterSpec& parameter = *spec.find_parameter(name);
+      if (given) {
+        call.parameters[name] = parameter.type == ParameterType::boolean ? nlohmann::json(true)
+                                                                         : nlohmann::json(parameter.cli_flag_value);
+      }
+    }
+    for (const auto& [name, values] : arguments->lists) {
+      if (!values.empty()) call.parameters[name] = values;
     }
     for (const auto& [name, value] : arguments->texts) {
       if (value) call.parameters[name] = *value;
@@ -177,10 +204,17 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       if (input.kind == InputKind::runs) call.runs[input.name] = runs_given(spec, input, *arguments);
       if (input.kind == InputKind::file) call.files[input.name] = arguments->files.at(input.name);
     }
-    call.read_record = [source = arguments->source](const std::string& file) {
+    call.read_record = [source = arguments->source, minimum = minimum_samples_of(spec.inputs)](const std::string& file) {
       OutputRecordSource record = source;
       record.path = file;
-      return with_file_context(file, [&] { return read_output_record(record); });
+      return with_file_context(file, [&] { return read_output_record(record, minimum); });
+    };
+    call.read_timed_record = [source = arguments->source, rate = arguments->sample_rate_hz,
+                              time_column = arguments->time_column,
+                              minimum = minimum_samples_of(spec.inputs)](const std::string& file) {
+      OutputRecordSource record = source;
+      record.path = file;
+      return with_file_context(file, [&] { return read_timed_record(record, rate, time_column, minimum); });
     };
     spec.check(call);
     for (const InputSpec& input : spec.inputs) {

@@ -1,5 +1,5 @@
-// Options shared by the commands that read one instrument-output record: --column and --format,
-// and the Earth-rate geometry (--latitude, --heading, --elevation).
+// Options shared by the commands that read instrument-output records: --column and --format, and
+// NUMBER:FILE runs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -7,15 +7,11 @@
 #include <utility>
 
 #include "inertest/io/output_record.h"
-#include "inertest/procedures/earth_rate.h"
 
 namespace inertest::cli {
 
 // Adds --column (text records) and --format (binary records) writing into source.
 void add_record_options(CLI::App& command, OutputRecordSource& source);
-
-// Adds --latitude, --heading and --elevation (deg) writing into axis.
-void add_axis_options(CLI::App& command, AxisOrientation& axis);
 
 // "NUMBER:FILE" -> (NUMBER, FILE), the file name may itself hold ':'. Throws Error naming the
 // option and showing `example` when the text has another form.

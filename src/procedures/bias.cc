@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -35,6 +34,14 @@ void BiasOptions::validate_conversion() const {
                             scale_factor));
   }
   if (remove_earth_rate) remove_earth_rate->validate();
+}
+
+void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options, const std::string& procedure) {
+  if (!options.input_in_deg_h && !call.parameters.contains("scale_factor")) {
+    throw Error(procedure + ": missing the scale factor K (--scale-factor; in a plan scale_factor or [instrument] "
+                            "nominal_scale_factor), or records in deg/h (--input-deg-h; input = \"deg/h\")");
+  }
+  options.validate_conversion();
 }
 
 double BiasOptions::deg_h_per_output() const { return input_in_deg_h ? 1.0 : kSecondsPerHour / scale_factor; }
@@ -101,63 +108,6 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
     }
   }
   return result;
-}
-
-nlohmann::json BiasResult::to_json() const {
-  nlohmann::json stability = nlohmann::json::array();
-  for (const auto& s : bias_stability) {
-    stability.push_back({{"smoothing_s", s.smoothing_s}, {"value", s.value.value}, {"unit", s.value.unit}});
-  }
-  nlohmann::json json = {
-      {"procedure", "bias"},
-      {"clause", "GJB 2426A-2004 5.12.1-5.12.2, 5.12.5.4.1, eqs. (19), (20), (23), (24)"},
-      {"bias", bias},
-      {"bias_stability", stability},
-      {"samples", samples},
-      {"duration", duration},
-  };
-  if (random_walk_coefficient) {
-    json["random_walk_coefficient"] = *random_walk_coefficient;
-    json["noise_equivalent_rate"] = *noise_equivalent_rate;
-    nlohmann::json curve = nlohmann::json::array();
-    for (const auto& p : normalised_stability_curve) {
-      curve.push_back({{"tau_s", p.tau_s}, {"value", p.stability}, {"unit", "deg/h"}});
-    }
-    json["normalised_stability_curve"] = curve;
-  }
-  // The smoothed records behind eq. (20), for the report's plot; left out beyond kMaxSmoothedPoints
-  // means (a 1 s smoothing of a day-long record) to keep results.json small.
-  constexpr std::size_t kMaxSmoothedPoints = 20000;
-  nlohmann::json smoothed = nlohmann::json::array();
-  for (const auto& s : bias_stability) {
-    if (s.smoothed.size() > kMaxSmoothedPoints) continue;
-    smoothed.push_back({{"smoothing_s", s.smoothing_s}, {"unit", "deg/h"}, {"values", s.smoothed}});
-  }
-  json["smoothed_record"] = smoothed;
-  if (earth_rate_removed) json["earth_rate_removed"] = *earth_rate_removed;
-  json["warnings"] = warnings;
-  return json;
-}
-
-std::string BiasResult::report() const {
-  std::string text = "Bias (GJB 2426A-2004 5.12.1, 5.12.2, 5.12.5.4.1)\n";
-  text += fmt::format("  {:<32} {} samples, {:.6g} s\n", "record", samples, duration.value);
-  text += fmt::format("  {:<32} {:.9g} {}\n", "bias B0", bias.value, bias.unit);
-  if (earth_rate_removed) {
-    text += fmt::format("  {:<32} {:.9g} {}\n", "Earth rate removed", earth_rate_removed->value, earth_rate_removed->unit);
-  }
-  for (const auto& s : bias_stability) {
-    text += fmt::format("  {:<32} {:.6g} {} ({} windows)\n", fmt::format("bias stability at {:g} s", s.smoothing_s),
-                        s.value.value, s.value.unit, s.windows);
-  }
-  if (random_walk_coefficient) {
-    text += fmt::format("  {:<32} {:.6g} {}\n", "noise equivalent rate Bs(1 s)", noise_equivalent_rate->value,
-                        noise_equivalent_rate->unit);
-    text += fmt::format("  {:<32} {:.6g} {}\n", "random walk coefficient", random_walk_coefficient->value,
-                        random_walk_coefficient->unit);
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

@@ -3,32 +3,23 @@
 // are all generated from it.
 #include <nlohmann/json.hpp>
 
-#include "inertest/core/error.h"
 #include "inertest/procedures/bias.h"
 #include "inertest/procedures/bias_repeatability.h"
 
 namespace inertest {
 
 ProcedureSpec bias_repeatability_spec() {
-  return ProcedureDefinition<BiasOptions, BiasRepeatabilityResult>(
-             "bias_repeatability", "Bias repeatability", "GJB 2426A-2004 5.12.3, eq. (21)",
-             "the standard deviation (Q-1) of the biases of Q runs (Q >= 6 asked\n"
-             "for; at least 2 needed), each bias = mean output / K in deg/h (eq. 19).\n"
-             "Each FILE is one run's output record (one column, or --column; or binary with --format).")
-      .chinese_title("零偏重复性")
+  ProcedureDefinition<BiasOptions, BiasRepeatabilityResult> definition(
+      "bias_repeatability", "Bias repeatability", "GJB 2426A-2004 5.12.3, eq. (21)",
+      "the standard deviation (Q-1) of the biases of Q runs (Q >= 6 asked\n"
+      "for; at least 2 needed), each bias = mean output / K in deg/h (eq. 19).\n"
+      "Each FILE is one run's output record (one column, or --column; or binary with --format).");
+  definition.chinese_title("零偏重复性")
       .input(InputSpec("runs", "one output record per run")
                  .runs_in_files("FILE", "files")
                  .output_records()
-                 .at_least(2, "GJB 2426A 5.12.3 asks for 6 or more"))
-      .parameter(ParameterSpec("scale_factor", "K")
-                     .unit_is("output units per deg/s")
-                     .instrument_gives("nominal_scale_factor"),
-                 [](BiasOptions& options, const nlohmann::json& value) { options.scale_factor = value.get<double>(); })
-      .parameter(ParameterSpec("input", "what the records hold: the output, or rate in deg/h already")
-                     .one_of({"output", "deg/h"})
-                     .command_line_flag("input-deg-h", "deg/h"),
-                 "output",
-                 [](BiasOptions& options, const nlohmann::json& value) { options.input_in_deg_h = value == "deg/h"; })
+                 .at_least(2, "GJB 2426A 5.12.3 asks for 6 or more"));
+  return bias_conversion_parameters(definition, +[](BiasOptions& options) -> BiasOptions& { return options; })
       .field({"bias_repeatability", FieldRole::headline, "bias repeatability Br", "零偏重复性", "eq. (21)"},
              &BiasRepeatabilityResult::bias_repeatability)
       .field({"mean_bias", FieldRole::detail, "mean bias", "零偏平均值", "eq. (21)"}, &BiasRepeatabilityResult::mean_bias)
@@ -42,11 +33,7 @@ ProcedureSpec bias_repeatability_spec() {
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &BiasRepeatabilityResult::warnings)
       .checked_by([](const ProcedureCall& call, const BiasOptions& options) {
-        if (!options.input_in_deg_h && !call.parameters.contains("scale_factor")) {
-          throw Error("bias repeatability: missing the scale factor K (--scale-factor; in a plan scale_factor or "
-                      "[instrument] nominal_scale_factor), or records in deg/h (--input-deg-h; input = \"deg/h\")");
-        }
-        options.validate_conversion();
+        check_bias_conversion(call, options, "bias repeatability");
       })
       .compute([](const ProcedureCall& call, const BiasOptions& options) {
         std::vector<double> biases;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 
@@ -63,35 +62,6 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
   result.room_temperature_bias = {reference.bias_deg_h, "deg/h", std::nullopt};
   result.worst_temperature = {runs[worst_index].temperature_degC, "degC", std::nullopt};
   return result;
-}
-
-nlohmann::json BiasTemperatureSensitivityResult::to_json() const {
-  nlohmann::json table = nlohmann::json::array();
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    table.push_back({{"temperature", Figure{runs[i].temperature_degC, "degC", std::nullopt}},
-                     {"bias", Figure{runs[i].bias_deg_h, "deg/h", std::nullopt}},
-                     {"sensitivity", Figure{sensitivities[i], "deg/h/degC", std::nullopt}}});
-  }
-  return {
-      {"procedure", "bias_temperature_sensitivity"},
-      {"clause", "GJB 2426A-2004 5.12.4, eq. (22)"},
-      {"bias_temperature_sensitivity", bias_temperature_sensitivity},
-      {"room_temperature", room_temperature},
-      {"room_temperature_bias", room_temperature_bias},
-      {"worst_temperature", worst_temperature},
-      {"runs", table},
-  };
-}
-
-std::string BiasTemperatureSensitivityResult::report() const {
-  std::string text = "Bias temperature sensitivity (GJB 2426A-2004 5.12.4)\n";
-  for (const auto& run : runs) {
-    text += fmt::format("  {:<32} {:.9g} deg/h\n", fmt::format("bias at {:g} degC", run.temperature_degC), run.bias_deg_h);
-  }
-  text += fmt::format("  {:<32} {:.6g} deg/h/degC (worst at {:g} degC, room {:g} degC)\n",
-                      "temperature sensitivity Bt", bias_temperature_sensitivity.value, worst_temperature.value,
-                      room_temperature.value);
-  return text;
 }
 
 }  // namespace inertest

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -59,7 +58,6 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
   if (runs.empty()) throw Error(fmt::format("{}: no power-on runs", what));
   const double earth_deg_s = options.earth_rate ? earth_rate_on_axis(*options.earth_rate) / constants::kDegree : 0.0;
   TurnOnTimeResult result;
-  result.warm_up = options.warm_up;
   double longest = -1.0;
   for (const auto& run : runs) {
     if (run.time_s.size() != run.output.size()) {
@@ -105,34 +103,6 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
   }
   result.time = {longest, "s", std::nullopt};
   return result;
-}
-
-nlohmann::json TurnOnTimeResult::to_json() const {
-  nlohmann::json runs_json = nlohmann::json::array();
-  for (const auto& r : runs) {
-    runs_json.push_back({{"name", r.name},
-                         {"input_rate", Figure{r.input_rate_deg_s, "deg/s", std::nullopt}},
-                         {"time", r.time}});
-  }
-  const char* key = warm_up ? "warm_up_time" : "turn_on_time";
-  return {
-      {"procedure", key},
-      {"clause", warm_up ? "GJB 2426A-2004 5.6.4 (as 5.5.4)" : "GJB 2426A-2004 5.5.4"},
-      {key, time},
-      {"longest_run", longest_run},
-      {"runs", runs_json},
-  };
-}
-
-std::string TurnOnTimeResult::report() const {
-  std::string text = warm_up ? "Warm-up time (GJB 2426A-2004 5.6)\n" : "Turn-on time (GJB 2426A-2004 5.5)\n";
-  for (const auto& r : runs) {
-    text += fmt::format("  {:<32} {:.6g} s\n",
-                        fmt::format("{} ({})", r.name, r.input_rate_deg_s == 0.0 ? "at rest" : fmt::format("{:g} deg/s", r.input_rate_deg_s)),
-                        r.time.value);
-  }
-  text += fmt::format("  {:<32} {:.6g} s (run {})\n", warm_up ? "warm-up time" : "turn-on time", time.value, longest_run);
-  return text;
 }
 
 }  // namespace inertest

@@ -52,7 +52,7 @@ TEST(TurnOnTimeTest, AtRestAndAtRateLargestOverRuns) {
   EXPECT_NEAR(result.runs[0].time.value, rest_time, 1e-9);
   EXPECT_NEAR(result.runs[1].time.value, rate_time, 1e-9);
   EXPECT_NEAR(result.time.value, std::max(rest_time, rate_time), 1e-9);
-  EXPECT_EQ(result.to_json().at("turn_on_time").at("unit"), "s");
+  EXPECT_EQ(turn_on_time_spec().fields_of(&result).at("turn_on_time").at("unit"), "s");
 }
 
 TEST(TurnOnTimeTest, EarthRateRemovedFromTheIndicatedRate) {
@@ -68,7 +68,7 @@ TEST(TurnOnTimeTest, EarthRateRemovedFromTheIndicatedRate) {
   options.warm_up = true;
   const TurnOnTimeResult result = turn_on_time(runs, options);
   EXPECT_NEAR(result.time.value, first_sample_within(0.01, 10.0, 1.0 / 3600.0, 1.0), 1e-9);
-  EXPECT_TRUE(result.to_json().contains("warm_up_time"));
+  EXPECT_TRUE(warm_up_time_spec().fields_of(&result).contains("warm_up_time"));
 }
 
 TEST(TurnOnTimeTest, SmoothingAveragesWindowsFromPowerOn) {

@@ -84,11 +84,7 @@ constexpr Translation kTable[] = {
     {"ui.negative", "negative rates", "负向"},
 
     // Procedures (plan kinds).
-    {"kind.bias", "Bias and bias stability", "零偏与零偏稳定性"},
-    {"kind.bias_temperature", "Bias temperature sensitivity", "零偏温度灵敏度"},
     {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
-    {"kind.turn_on_time", "Turn-on time", "启动时间"},
-    {"kind.warm_up_time", "Warm-up time", "预热时间"},
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
     {"kind.bandwidth", "Bandwidth and output delay", "频带宽度与输出延迟时间"},
     {"kind.gyro_misalignment", "Gyro misalignment separation (rate table)", "陀螺失准角分离（速率转台）"},
@@ -103,10 +99,6 @@ constexpr Translation kTable[] = {
      "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
      "-2..2），"
      "各噪声项按其特征斜率读取。"},
-    {"method.bias",
-     "The bias is the mean output over the record; the bias stability is the standard deviation of the output "
-     "averaged over the smoothing time, expressed as an input rate.",
-     "零偏为记录时间内输出的平均值折算成输入角速度；零偏稳定性为按平滑时间平均后输出的标准偏差折算成输入角速度。"},
     {"method.centrifuge",
      "One platform revolution at each angle β and g-level gives the harmonic amplitudes of eq. (11); stacking "
      "them, Y = Φq + ε (eqs. 13-16) is solved by least squares for the ten drift coefficients, the centrifuge "

@@ -151,7 +151,12 @@ void generate_bias_repeatability(campaign::PlanTable& test, const std::string& n
                        {"true_run_biases_deg_h", truth}});
 }
 
-void generate_turn_on_time(campaign::PlanTable& test, const std::string& name, Lab& lab) {
+namespace {
+
+// Turn-on time (5.5) or, with warm_up, warm-up time (5.6, computed as 5.5.4): records from power-on
+// at rest, the figure the time the thermal transient takes to settle into the band.
+void generate_power_on_time(campaign::PlanTable& test, const std::string& name, Lab& lab, bool warm_up) {
+  const std::string kind = warm_up ? "warm_up_time" : "turn_on_time";
   const double runs = whole_key(test, "runs", 1.0, 1.0);
   const double seconds = seconds_key(test, "seconds", 1200.0);
   const double band = seconds_key(test, "rest_band_deg_h", 0.2);
@@ -186,14 +191,25 @@ void generate_turn_on_time(campaign::PlanTable& test, const std::string& name, L
   }
   const double sigma_w = noise_of_record_mean_deg_s(gyro, smoothing) * kDegHour;
   const double shift = tau > 0.0 ? 4.0 * tau * sigma_w / band : 0.0;
-  lab.truth.push_back({name, "turn-on time", "turn_on_time", truth, "s", smoothing * (std::ceil(shift / smoothing) + 1.0),
+  lab.truth.push_back({name, warm_up ? "warm-up time" : "turn-on time", kind, truth, "s",
+                       smoothing * (std::ceil(shift / smoothing) + 1.0),
                        fmt::format("4 sigma of a {} s window mean moves the crossing by tau*sigma/band, in whole windows",
                                    smoothing)});
-  lab.plan_steps += fmt::format("[[procedure]]\nkind = \"turn_on_time\"\nname = \"{}\"\nformat = \"f64\"\n"
+  lab.plan_steps += fmt::format("[[procedure]]\nkind = \"{}\"\nname = \"{}\"\nformat = \"f64\"\n"
                                 "sample_rate_hz = {}\nzero_output = {}\nrest_band_deg_h = {}\nsmoothing_s = {}\n{}\n",
-                                name, exact(fs), exact(settled), exact(band), exact(smoothing), steps);
-  lab.tests.push_back({{"name", name}, {"kind", "turn_on_time"}, {"runs", runs}, {"seconds", seconds},
+                                kind, name, exact(fs), exact(settled), exact(band), exact(smoothing), steps);
+  lab.tests.push_back({{"name", name}, {"kind", kind}, {"runs", runs}, {"seconds", seconds},
                        {"rest_band_deg_h", band}, {"smoothing_s", smoothing}});
+}
+
+}  // namespace
+
+void generate_turn_on_time(campaign::PlanTable& test, const std::string& name, Lab& lab) {
+  generate_power_on_time(test, name, lab, false);
+}
+
+void generate_warm_up_time(campaign::PlanTable& test, const std::string& name, Lab& lab) {
+  generate_power_on_time(test, name, lab, true);
 }
 
 void generate_polarity(campaign::PlanTable& test, const std::string& name, Lab& lab) {

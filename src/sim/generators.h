@@ -19,6 +19,7 @@ void generate_maximum_input_rate(campaign::PlanTable& test, const std::string& n
 void generate_bias_temperature(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_bias_repeatability(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_turn_on_time(campaign::PlanTable& test, const std::string& name, Lab& lab);
+void generate_warm_up_time(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_polarity(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab& lab);

@@ -91,6 +91,9 @@ seconds = 60
 kind = "turn_on_time"
 seconds = 900
 [[test]]
+kind = "warm_up_time"
+seconds = 900
+[[test]]
 kind = "polarity"
 [[test]]
 kind = "threshold"
@@ -134,7 +137,7 @@ TEST(SimGenerators, EveryKindRecoversItsTruthInAShortCase) {
   }
   for (const char* kind : {"scale_factor", "scale_factor_repeatability", "scale_factor_temperature",
                            "maximum_input_rate", "bias", "bias_repeatability", "bias_temperature", "turn_on_time",
-                           "polarity", "threshold", "resolution", "bandwidth", "input_axis_misalignment",
+                           "warm_up_time", "polarity", "threshold", "resolution", "bandwidth", "input_axis_misalignment",
                            "gyro_misalignment",
                            "accelerometer_misalignment", "allan", "centrifuge"}) {
     EXPECT_TRUE(procedures.count(kind)) << kind << " has no truth check";

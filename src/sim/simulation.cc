@@ -32,6 +32,7 @@ const std::map<std::string, TestGenerator, std::less<>>& generators() {
       {"bias_temperature", generate_bias_temperature},
       {"bias_repeatability", generate_bias_repeatability},
       {"turn_on_time", generate_turn_on_time},
+      {"warm_up_time", generate_warm_up_time},
       {"polarity", generate_polarity},
       {"threshold", generate_threshold},
       {"resolution", generate_resolution},

@@ -13,6 +13,7 @@
 // generated procedure_spec_list.cc calls them all (procedure_specs() below).
 #pragma once
 
+#include <algorithm>
 #include <any>
 #include <functional>
 #include <map>
@@ -28,7 +29,15 @@
 
 namespace inertest {
 
-enum class ParameterType { number, text };
+struct TimedRecord;  // io/output_record.h
+
+// "nonlinearity_limit" -> "nonlinearity-limit".
+std::string kebab_case(const std::string& name);
+
+// number: a double or (whole) a std::size_t member; text: std::string; numbers: std::vector<double>
+// (a comma-separated list on the command line, an array in a plan); boolean: bool (a flag without a
+// value on the command line, true/false in a plan).
+enum class ParameterType { number, text, numbers, boolean };
 
 // An Error about the value of one parameter (`parameter`, its name), thrown by a check: a plan
 // places it at the parameter's key.
@@ -52,6 +61,8 @@ struct ParameterSpec {
     return *this;
   }
   ParameterSpec& required_on_command_line() { required = true; return *this; }
+  // A yes/no parameter stored through a binder (a bool member is one already).
+  ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
   ParameterSpec& instrument_gives(std::string key, bool only = false) {
     instrument_default = std::move(key);
@@ -71,6 +82,9 @@ struct ParameterSpec {
   }
   // The plan key when it is a contract that differs from the name (e.g. "nonlinearity_limit_ppm").
   ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
+  // The command-line option when it is a contract that differs from --kebab-case(name) (e.g. "rate"
+  // for sample_rate_hz: --rate).
+  ParameterSpec& command_line_name_is(std::string option) { cli_option = std::move(option); return *this; }
   // On the command line a flag without a value, `--flag`, that gives the text `value` (e.g.
   // --input-deg-h for input = "deg/h", a contract); without it the parameter has its default.
   ParameterSpec& command_line_flag(std::string flag, std::string value) {
@@ -79,6 +93,8 @@ struct ParameterSpec {
     return *this;
   }
   const std::string& plan_name() const { return plan_key.empty() ? name : plan_key; }
+  // "--rate", "--nonlinearity-limit".
+  std::string command_line_option() const { return "--" + (cli_option.empty() ? kebab_case(name) : cli_option); }
 
   std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
   ParameterType type = ParameterType::number;
@@ -96,6 +112,7 @@ struct ParameterSpec {
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
   std::string cli_flag_value;
+  std::string cli_option;  // "": the option is --kebab-case(name)
 };
 
 enum class InputKind {
@@ -150,9 +167,19 @@ struct InputSpec {
   InputSpec& alternative_in(std::string group) { alternatives = std::move(group); return *this; }
   // A [[procedure.run]] table without the number key has this number (e.g. 0: a run at rest).
   InputSpec& number_defaults_to(double value) { number_default = value; return *this; }
-  // Each run's file is an instrument-output record (call.read_record): read with --column/--format
-  // on the command line and the keys column/format in a plan.
+  // The file (file) or each run's file (runs) is an instrument-output record (call.read_record): read
+  // with --column/--format on the command line and the keys column/format in a plan.
   InputSpec& output_records() { records = true; return *this; }
+  // Output records with the time of each sample (call.read_timed_record): a time column (--time-column,
+  // time_column; default the first) beside the output column, or the output column alone sampled at
+  // --rate HZ (sample_rate_hz), sample i (from 0) at (i + 1)/HZ. Also output_records().
+  InputSpec& timed_records() {
+    records = true;
+    timed = true;
+    return *this;
+  }
+  // A record (output_records, timed_records) of fewer samples is an error of its reader, naming the file.
+  InputSpec& samples_at_least(std::size_t count) { minimum_samples = count; return *this; }
   // Fewer runs than `count` is an error given before any file is read; `why` says where the count
   // comes from (e.g. "GJB 2426A 5.12.3 asks for 6 or more").
   InputSpec& at_least(std::size_t count, std::string why) {
@@ -172,10 +199,19 @@ struct InputSpec {
   std::optional<double> number_default;
   std::string listing;  // InputKind::runs with numbers: the command line's CSV listing, "" for --run
   std::string alternatives;  // "" : always given; else the group of alternatives it belongs to
-  bool records = false;  // InputKind::runs: the files are output records, read by call.read_record
+  bool records = false;  // file, runs: the files are output records, read by call.read_record
+  bool timed = false;    // file, runs: the records are timed, read by call.read_timed_record
   std::size_t minimum_runs = 1;
   std::string minimum_why;
+  std::size_t minimum_samples = 1;  // output and timed records
 };
+
+// The largest minimum_samples of a spec's inputs: what its readers ask of every record.
+inline std::size_t minimum_samples_of(const std::vector<InputSpec>& inputs) {
+  std::size_t count = 1;
+  for (const InputSpec& input : inputs) count = std::max(count, input.minimum_samples);
+  return count;
+}
 
 // What a result field is in a report.
 enum class FieldRole {
@@ -194,7 +230,8 @@ struct FieldSpec {
   std::string label_zh;  // GJB 2426A terms
   std::string equation;  // the source clause or equation, "" when the field is bookkeeping
   // FieldRole::curve: the members of each point that the report plots, the abscissa first, then the
-  // ordinates (e.g. {"rate", "deviation"}).
+  // ordinates (e.g. {"rate", "deviation"}); none when the kind's plot builder draws it (bias's
+  // smoothed records).
   std::vector<std::string> axes = {};
 };
 
@@ -216,6 +253,9 @@ struct ProcedureCall {
   // An instrument-output record as the command line (--column/--format) or the plan (column/format)
   // says it is stored; set when a runs input has output_records(). Errors name the file.
   std::function<std::vector<double>(const std::string& file)> read_record;
+  // A timed record as the command line (--rate/--time-column) or the plan (sample_rate_hz/time_column)
+  // says it is stored; set when an input has timed_records(). Errors name the file.
+  std::function<TimedRecord(const std::string& file)> read_timed_record;
 };
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
@@ -259,9 +299,6 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
                         const std::function<bool(const InputSpec&)>& given,
                         const std::function<std::string(const InputSpec&)>& name_of);
 
-// "nonlinearity_limit" -> "nonlinearity-limit".
-std::string kebab_case(const std::string& name);
-
 // The JSON object of a result: "procedure" (json_procedure), "clause", the fields (nulls left out) and "warnings".
 // A field named "clause" (e.g. the subclause of the method used) replaces the spec's clause, here
 // and in the text.
@@ -271,6 +308,11 @@ nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& f
 // then one line per headline and detail field, "label  value ± uncertainty unit" for a figure,
 // then the warnings.
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields);
+
+template <typename T>
+inline constexpr bool is_optional = false;
+template <typename T>
+inline constexpr bool is_optional<std::optional<T>> = true;
 
 // Typed construction of a ProcedureSpec: parameters bound to Options members, fields read from
 // Result members, and the computation.
@@ -296,13 +338,18 @@ class ProcedureDefinition {
 
   // A parameter stored in an Options member; its default is the member's default value unless the
   // parameter is required.
-  // A std::size_t member is a whole number (checked by the command line and plans).
+  // A std::size_t member is a whole number (checked by the command line and plans); the other types
+  // are as ParameterType says.
   template <typename T>
   ProcedureDefinition& parameter(ParameterSpec parameter, T Options::*member) {
-    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t>,
-                  "number, whole number or text parameters");
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t> ||
+                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool>,
+                  "number, whole number, text, numbers or boolean parameters");
     if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*member;
-    parameter.type = std::is_same_v<T, std::string> ? ParameterType::text : ParameterType::number;
+    parameter.type = std::is_same_v<T, std::string>           ? ParameterType::text
+                     : std::is_same_v<T, std::vector<double>> ? ParameterType::numbers
+                     : std::is_same_v<T, bool>                ? ParameterType::boolean
+                                                              : ParameterType::number;
     parameter.whole = std::is_same_v<T, std::size_t>;
     binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
       if constexpr (std::is_same_v<T, std::size_t>) {
@@ -375,10 +422,17 @@ class ProcedureDefinition {
     return *this;
   }
 
-  // A field read from a Result member (anything nlohmann::json converts, e.g. Figure).
+  // A field read from a Result member (anything nlohmann::json converts, e.g. Figure; a std::optional
+  // of it, left out when empty).
   template <typename T>
   ProcedureDefinition& field(FieldSpec field, T Result::*member) {
-    return field_from(std::move(field), [member](const Result& result) { return nlohmann::json(result.*member); });
+    return field_from(std::move(field), [member](const Result& result) {
+      if constexpr (is_optional<T>) {
+        return result.*member ? nlohmann::json(*(result.*member)) : nlohmann::json();
+      } else {
+        return nlohmann::json(result.*member);
+      }
+    });
   }
 
   // A field computed from the Result (e.g. a sign spelled out); null leaves it out.

@@ -26,9 +26,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/earth_rate.h"
 #include "inertest/procedures/random_walk_normalisation.h"
 
@@ -70,14 +69,40 @@ struct BiasResult {
   std::size_t samples = 0;
   Figure duration;                                // s
   std::vector<std::string> warnings;              // e.g. a constant record (stuck channel)
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error for invalid options or fewer than two samples. Smoothing times and a random walk
 // coefficient the record cannot support are warnings (see above).
 BiasResult bias(std::span<const double> output, const BiasOptions& options);
+
+// The procedure's spec (src/procedures/bias_spec.cc): CLI, plan step, JSON and text.
+ProcedureSpec bias_spec();
+
+// The check, before any record is read, of a spec whose records eq. (19) converts (`procedure`: bias,
+// its repeatability or temperature sensitivity): the scale factor given unless the records hold deg/h,
+// then validate_conversion(). Throws Error.
+void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options, const std::string& procedure);
+
+// Declares eq. (19)'s conversion on `definition`, alike for bias, its repeatability and temperature
+// sensitivity: scale_factor (K; a plan without it takes [instrument] nominal_scale_factor) and input
+// ("output", or "deg/h" for records in deg/h already: the flag --input-deg-h), stored in the
+// BiasOptions that `conversion` gives of the procedure's Options.
+template <typename Options, typename Result>
+ProcedureDefinition<Options, Result>& bias_conversion_parameters(ProcedureDefinition<Options, Result>& definition,
+                                                                  BiasOptions& (*conversion)(Options&)) {
+  return definition
+      .parameter(ParameterSpec("scale_factor", "K").unit_is("output units per deg/s").instrument_gives("nominal_scale_factor"),
+                 [conversion](Options& options, const nlohmann::json& value) {
+                   conversion(options).scale_factor = value.get<double>();
+                 })
+      .parameter(ParameterSpec("input", "what the records hold: the output, or rate in deg/h already")
+                     .one_of({"output", "deg/h"})
+                     .command_line_flag("input-deg-h", "deg/h"),
+                 "output",
+                 [conversion](Options& options, const nlohmann::json& value) {
+                   conversion(options).input_in_deg_h = value == "deg/h";
+                 });
+}
 
 // Eq. (19) alone, in deg/h (Earth rate removed if asked): the bias of one run, as bias
 // repeatability and temperature sensitivity use it. Mean by compensated sum. Needs no sample rate

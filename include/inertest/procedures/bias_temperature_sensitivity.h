@@ -13,9 +13,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -35,14 +34,15 @@ struct BiasTemperatureSensitivityResult {
   Figure worst_temperature;             // the Ti that gives the maximum, degC
   std::vector<TemperatureRunBias> runs;
   std::vector<double> sensitivities;    // |B0i − B0m| / |Ti − Tm| per run (0 for the room run)
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error for fewer than 2 runs, no run (or more than one) at the room temperature, another
 // run at the room temperature (division by zero in eq. 22), or a non-finite value.
 BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const TemperatureRunBias> runs,
                                                               const BiasTemperatureOptions& options = {});
+
+// The procedure's spec (src/procedures/bias_temperature_spec.cc): CLI, plan step, JSON and text; each
+// run's bias by eq. (19) from its output record.
+ProcedureSpec bias_temperature_spec();
 
 }  // namespace inertest

@@ -17,9 +17,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/earth_rate.h"
 
 namespace inertest {
@@ -50,18 +49,20 @@ struct PowerOnRunResult {
 };
 
 struct TurnOnTimeResult {
-  bool warm_up = false;
   Figure time;  // the largest over the runs, s
   std::string longest_run;
   std::vector<PowerOnRunResult> runs;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // Throws Error for no runs, a run with fewer than 2 samples, times that do not increase, a missing
 // band for a kind of run present, or a run whose output is outside the band at its last sample
 // (it never settles within the record).
 TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTimeOptions& options);
+
+// The procedures' specs (src/procedures/turn_on_time_spec.cc): CLI, plan step, JSON and text of turn-on
+// time (warm_up false) or warm-up time (true), each run a timed record numbered by its input rate.
+ProcedureSpec power_on_time_spec(bool warm_up);
+ProcedureSpec turn_on_time_spec();
+ProcedureSpec warm_up_time_spec();
 
 }  // namespace inertest

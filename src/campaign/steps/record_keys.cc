@@ -21,18 +21,6 @@ OutputRecordSource read_record_keys(PlanTable& step, const std::string& file) {
   return source;
 }
 
-double read_sample_rate(PlanTable& step, const PlanContext& context) {
-  const auto rate = step.optional_number("sample_rate_hz");
-  if (rate) {
-    if (!(*rate > 0.0)) step.fail_at("sample_rate_hz", "must be positive");
-    return *rate;
-  }
-  if (!context.instrument.sample_rate_hz) {
-    step.fail("missing 'sample_rate_hz' (give it here or in [instrument])");
-  }
-  return *context.instrument.sample_rate_hz;
-}
-
 double read_scale_factor(PlanTable& step, const PlanContext& context) {
   const auto k = step.optional_number("scale_factor");
   if (k) {
@@ -43,24 +31,6 @@ double read_scale_factor(PlanTable& step, const PlanContext& context) {
     step.fail("missing 'scale_factor' (give it here or as [instrument] nominal_scale_factor)");
   }
   return *context.instrument.nominal_scale_factor;
-}
-
-bool read_input_in_deg_h(PlanTable& step) {
-  const std::string input = step.string_or("input", "output");
-  if (input != "output" && input != "deg/h") step.fail_at("input", "must be \"output\" or \"deg/h\"");
-  return input == "deg/h";
-}
-
-std::optional<AxisOrientation> read_earth_rate_removal(PlanTable& step, const PlanContext& context) {
-  const bool remove = step.boolean_or("remove_earth_rate", false);
-  const double elevation = step.number_or("ira_elevation_deg", 0.0);
-  if (!remove) {
-    if (step.contains("ira_elevation_deg")) step.fail_at("ira_elevation_deg", "is used only with remove_earth_rate = true");
-    return std::nullopt;
-  }
-  AxisOrientation axis{context.site.latitude_deg, context.site.heading_deg, elevation};
-  check_in_plan(step, [&] { axis.validate(); });
-  return axis;
 }
 
 }  // namespace inertest::campaign

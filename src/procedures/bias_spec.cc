@@ -1,0 +1,103 @@
+// The bias procedure's one description (issue 22): the CLI command `inertest bias`, the plan kind
+// "bias", its JSON and its text report are all generated from it.
+#include <nlohmann/json.hpp>
+
+#include "inertest/procedures/bias.h"
+#include "inertest/procedures/earth_rate_parameters.h"
+
+namespace inertest {
+namespace {
+
+// The smoothed records behind eq. (20), for the report's plot; one beyond kMaxSmoothedPoints means
+// (a 1 s smoothing of a day-long record) is left out to keep results.json small.
+nlohmann::json smoothed_record_json(const BiasResult& result) {
+  constexpr std::size_t kMaxSmoothedPoints = 20000;
+  nlohmann::json smoothed = nlohmann::json::array();
+  for (const auto& s : result.bias_stability) {
+    if (s.smoothed.size() > kMaxSmoothedPoints) continue;
+    smoothed.push_back({{"smoothing_s", s.smoothing_s}, {"unit", "deg/h"}, {"values", s.smoothed}});
+  }
+  return smoothed;
+}
+
+// The random-walk figures come together, when the record supports the random walk coefficient.
+nlohmann::json normalised_curve_json(const BiasResult& result) {
+  if (!result.random_walk_coefficient) return nullptr;
+  nlohmann::json curve = nlohmann::json::array();
+  for (const auto& p : result.normalised_stability_curve) {
+    curve.push_back({{"tau_s", p.tau_s}, {"value", p.stability}, {"unit", "deg/h"}});
+  }
+  return curve;
+}
+
+}  // namespace
+
+ProcedureSpec bias_spec() {
+  ProcedureDefinition<BiasOptions, BiasResult> definition(
+      "bias", "Bias", "GJB 2426A-2004 5.12.1-5.12.2, 5.12.5.4.1, eqs. (19), (20), (23), (24)",
+      "bias (eq. 19), bias stability (eq. 20) and random walk coefficient by the\n"
+      "normalisation method (eqs. 23-24) from one record of the gyro at rest.\n"
+      "FILE holds the instrument output, one sample (the mean output rate) per sampling interval: a text\n"
+      "record (one column, or --column NAME|INDEX) or a binary record (--format f64|f32|...). K is in\n"
+      "output units per deg/s; bias = mean output / K in deg/h. Bias stability: standard deviation (n-1)\n"
+      "of the means of consecutive whole windows of each smoothing time, in deg/h. Random walk coefficient in\n"
+      "deg/sqrt(h) = Bs(1 s)[deg/h] / 60. Earth rate is not removed unless --remove-earth-rate.\n"
+      "A smoothing time the record cannot support (longer than half of it, not whole samples) and a random\n"
+      "walk coefficient from under 2 s or below 1 Hz are left out with a warning; the bias is always given.");
+  definition.chinese_title("零偏")
+      .report_method(
+          "The bias is the mean output over the record; the bias stability is the standard deviation of the output averaged over the smoothing time, expressed as an input rate.",
+          "零偏为记录时间内输出的平均值折算成输入角速度；零偏稳定性为按平滑时间平均后输出的标准偏差折算成输入角速度。")
+      .input(InputSpec("record", "instrument output record").read_from_file("FILE", "file").output_records().samples_at_least(2))
+      .parameter(ParameterSpec("sample_rate_hz", "sample rate")
+                     .unit_is("Hz")
+                     .required_on_command_line()
+                     .command_line_name_is("rate")
+                     .instrument_gives("sample_rate_hz"),
+                 &BiasOptions::sample_rate_hz)
+      .parameter(ParameterSpec("smoothing_s", "smoothing times for the bias stability")
+                     .unit_is("s")
+                     .command_line_name_is("smoothing"),
+                 &BiasOptions::smoothing_s)
+      .parameter(ParameterSpec("output_unit", "instrument output unit, for the report").instrument_gives("output_unit", true),
+                 &BiasOptions::output_unit);
+  bias_conversion_parameters(definition, +[](BiasOptions& options) -> BiasOptions& { return options; });
+  earth_rate_parameters(definition, &BiasOptions::remove_earth_rate);
+  return definition
+      .field({"bias", FieldRole::headline, "bias B0", "零偏", "eq. (19)"}, &BiasResult::bias)
+      .field_from({"bias_stability", FieldRole::table, "bias stability", "零偏稳定性", "eq. (20)"},
+                  [](const BiasResult& result) {
+                    nlohmann::json stability = nlohmann::json::array();
+                    for (const auto& s : result.bias_stability) {
+                      stability.push_back(
+                          {{"smoothing_s", s.smoothing_s}, {"value", s.value.value}, {"unit", s.value.unit}});
+                    }
+                    return stability;
+                  })
+      .field_from({"noise_equivalent_rate", FieldRole::detail, "noise equivalent rate Bs(1 s)", "噪声等效角速率",
+                   "eq. (24)"},
+                  [](const BiasResult& result) {
+                    return result.random_walk_coefficient ? nlohmann::json(*result.noise_equivalent_rate) : nullptr;
+                  })
+      .field({"random_walk_coefficient", FieldRole::headline, "random walk coefficient", "随机游走系数", "eq. (24)"},
+             &BiasResult::random_walk_coefficient)
+      .field_from({"normalised_stability_curve", FieldRole::curve, "normalised bias stability Bs(tau)",
+                   "归一化零偏稳定性", "eq. (23)", {"tau_s", "value"}},
+                  normalised_curve_json)
+      .field({"earth_rate_removed", FieldRole::detail, "Earth rate removed", "扣除的地球自转角速率", ""},
+             &BiasResult::earth_rate_removed)
+      .field({"samples", FieldRole::detail, "samples", "采样点数", ""}, &BiasResult::samples)
+      .field({"duration", FieldRole::detail, "record duration", "记录时长", ""}, &BiasResult::duration)
+      .field_from({"smoothed_record", FieldRole::curve, "smoothed records", "平滑后记录", "eq. (20)"},
+                  smoothed_record_json)
+      .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &BiasResult::warnings)
+      .checked_by([](const ProcedureCall& call, const BiasOptions& options) {
+        check_bias_conversion(call, options, "bias");
+        options.validate();
+      })
+      .compute([](const ProcedureCall& call, const BiasOptions& options) {
+        return bias(call.read_record(call.files.at("record")), options);
+      });
+}
+
+}  // namespace inertest

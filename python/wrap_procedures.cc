@@ -122,7 +122,7 @@ ResultOf<BandwidthTag> bandwidth_of(const DoubleArray& frequency_hz, const Doubl
   }
   BandwidthOptions options;
   options.minimum_frequencies = minimum_frequencies;
-  return make_result<BandwidthTag>(bandwidth_and_delay(points, options));
+  return make_spec_result<BandwidthTag>(bandwidth_spec(), bandwidth_and_delay(points, options));
 }
 
 struct ThresholdTag {};

@@ -46,6 +46,8 @@ class PlanTable {
   // An Error located at this table, or at the given key within it.
   [[noreturn]] void fail(const std::string& message) const;
   [[noreturn]] void fail_at(std::string_view key, const std::string& message) const;
+  // Where the key is in the plan, or the table when it has no such key.
+  SourceLocation location_of_key(std::string_view key) const { return location_of(table_->get(key)); }
 
   const std::string& plan_path() const { return plan_path_; }
   const std::string& plan_dir() const { return plan_dir_; }

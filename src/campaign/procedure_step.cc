@@ -51,7 +51,7 @@ std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
   for (PlanTable& run : step.tables(input.plan_key)) {
     const double number = input.number_default ? run.number_or(input.number_key, *input.number_default)
                                                : run.number(input.number_key);
-    runs.push_back({number, run.file("file")});
+    runs.push_back({number, run.file("file"), run.location_of_key(input.number_key)});
     run.require_all_used();
   }
   if (runs.size() < input.minimum_runs) {
@@ -172,6 +172,7 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   } catch (const ParameterError& e) {
     step.fail_at(spec.find_parameter(e.parameter)->plan_name(), e.message());
   } catch (const Error& e) {
+    if (e.location()) throw;  // already at its place, e.g. a run's (RunInput::where)
     step.fail(e.message());
   }
   return [&spec, call, files](const StepRunContext&) {

@@ -85,7 +85,9 @@ bool is_given(const InputSpec& input, const Arguments& arguments) {
 std::vector<RunInput> runs_given(const ProcedureSpec& spec, const InputSpec& input, const Arguments& arguments) {
   std::vector<RunInput> runs;
   if (const std::string& listing = arguments.listings.at(input.name); !listing.empty()) {
-    for (ListedFile& row : read_file_listing(listing, input.number_key)) runs.push_back({row.key, std::move(row.path)});
+    for (ListedFile& row : read_file_listing(listing, input.listing_column())) {
+      runs.push_back({row.key, std::move(row.path), row.where});
+    }
   }
   for (const std::string& text : arguments.runs.at(input.name)) {
     if (input.number_key.empty()) {
@@ -141,7 +143,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       std::string& listing = arguments->listings[input.name];
       if (!input.listing.empty()) {
         option = command->add_option(input.listing, listing, fmt::format("{}: a CSV with the header '{},file'",
-                                                                         input.doc, input.number_key))
+                                                                         input.doc, input.listing_column()))
                      ->check(CLI::ExistingFile);
       } else if (input.number_key.empty()) {
         option = command->add_option(input.cli_name, given, input.doc)->check(CLI::ExistingFile);

@@ -111,7 +111,9 @@ std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fiel
     } else if (field.role == FieldRole::curve && value.is_array()) {
       text += fmt::format("  {:<32} {} points (plotted in the report)\n", field.label_en, value.size());
     } else {
-      text += fmt::format("  {:<32} {}\n", field.label_en, value_text(value));
+      const auto word = field.value_words.find(value.dump());
+      text += fmt::format("  {:<32} {}\n", field.label_en,
+                          word == field.value_words.end() ? value_text(value) : word->second);
     }
   }
   if (fields.contains("warnings")) {

@@ -164,11 +164,13 @@ std::vector<FrequencyResponsePoint> read_frequency_response(const std::string& p
   return points;
 }
 
-std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<const ListedFile> runs,
-                                                                   const std::string& time_column,
-                                                                   const std::string& output_column,
-                                                                   const std::string& angle_column) {
-  std::vector<AngularVibrationRecord> records;
+std::vector<ListedFile> listed_files(std::span<const RunInput> runs) {
+  std::vector<ListedFile> files;
+  for (const RunInput& run : runs) files.push_back({run.number, run.file, run.where});
+  return files;
+}
+
+void check_increasing_frequencies(std::span<const ListedFile> runs) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& run = runs[i];
     if (run.key <= 0.0) throw Error(run.where, fmt::format("frequency {} Hz is not positive", run.key));
@@ -177,6 +179,16 @@ std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<con
                                          "increase",
                                          run.key, runs[i - 1].key));
     }
+  }
+}
+
+std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<const ListedFile> runs,
+                                                                   const std::string& time_column,
+                                                                   const std::string& output_column,
+                                                                   const std::string& angle_column) {
+  check_increasing_frequencies(runs);
+  std::vector<AngularVibrationRecord> records;
+  for (const ListedFile& run : runs) {
     TextTable table = read_columns(run.path, {time_column, output_column, angle_column});
     AngularVibrationRecord record;
     record.frequency_hz = run.key;

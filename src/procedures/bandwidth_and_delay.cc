@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -215,73 +214,6 @@ BandwidthResult bandwidth_and_delay(std::span<const AngularVibrationRecord> reco
   result.vibration_fits = fits;
   result.output_unit = options.output_unit;
   return result;
-}
-
-nlohmann::json BandwidthResult::to_json() const {
-  nlohmann::json bode_json = nlohmann::json::array();
-  for (const auto& p : bode) {
-    bode_json.push_back({{"frequency_hz", p.frequency_hz},
-                         {"gain", p.gain},
-                         {"fitted_gain", p.fitted_gain},
-                         {"phase_deg", p.phase_deg},
-                         {"fitted_phase_deg", p.fitted_phase_deg}});
-  }
-  nlohmann::json json = {
-      {"procedure", "bandwidth"},
-      {"clause", "GJB 2426A-2004 5.13-5.14, eqs. (32)-(46)"},
-      {"bandwidth", bandwidth},
-      {"delay", delay},
-      {"dc_gain", dc_gain},
-      {"time_constant", time_constant},
-      {"gain_fit_residual_rms", gain_fit_residual_rms},
-      {"phase_fit_residual_rms", phase_fit_residual_rms},
-      {"polarity", polarity},
-      {"bode", bode_json},
-      {"warnings", warnings},
-  };
-  if (!vibration_fits.empty()) {
-    nlohmann::json fits = nlohmann::json::array();
-    const std::string rate_unit = angle_unit + "/s";
-    for (const auto& f : vibration_fits) {
-      fits.push_back({
-          {"frequency_hz", f.frequency_hz},
-          {"output_amplitude", Figure{f.output.amplitude, output_unit, f.output.amplitude_standard_error}},
-          {"output_phase", Figure{f.output.phase / constants::kDegree, "deg",
-                                  f.output.phase_standard_error / constants::kDegree}},
-          {"angle_amplitude", Figure{f.angle.amplitude, angle_unit, f.angle.amplitude_standard_error}},
-          {"angle_phase",
-           Figure{f.angle.phase / constants::kDegree, "deg", f.angle.phase_standard_error / constants::kDegree}},
-          {"rate_amplitude", Figure{f.rate_amplitude, rate_unit, std::nullopt}},
-      });
-    }
-    json["vibration_fits"] = fits;
-    const auto& lowest = vibration_fits.front();
-    json["gain_at_lowest_frequency"] =
-        Figure{static_cast<double>(polarity) * lowest.output.amplitude / lowest.rate_amplitude,
-               output_unit + "/(" + rate_unit + ")", std::nullopt};
-  }
-  return json;
-}
-
-std::string BandwidthResult::report() const {
-  auto line = [](const char* name, const Figure& f) {
-    return f.uncertainty ? fmt::format("  {:<28} {:.9g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
-                         : fmt::format("  {:<28} {:.9g} {}\n", name, f.value, f.unit);
-  };
-  std::string text = "Bandwidth and output delay (GJB 2426A-2004 5.13-5.14)\n";
-  text += line("bandwidth Bw", bandwidth);
-  text += line("output delay Td", delay);
-  text += line("dc gain K", dc_gain);
-  text += line("time constant T", time_constant);
-  text += line("phase fit residual rms", phase_fit_residual_rms);
-  if (polarity < 0) text += "  output polarity negative: 180 deg removed from every phase before eqs. (43)-(46)\n";
-  text += "  frequency/Hz      gain    fitted   phase/deg  fitted/deg\n";
-  for (const auto& p : bode) {
-    text += fmt::format("  {:>12.6g} {:>9.5f} {:>9.5f} {:>11.3f} {:>11.3f}\n", p.frequency_hz, p.gain, p.fitted_gain,
-                        p.phase_deg, p.fitted_phase_deg);
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
 }
 
 }  // namespace inertest

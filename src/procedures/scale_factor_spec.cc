@@ -124,9 +124,8 @@ ProcedureSpec scale_factor_spec() {
               read_scale_factor_record(call.files.at("record"), options.rate_column, options.output_column, segments),
               options.scale_factor);
         }
-        std::vector<ListedFile> points;
-        for (const RunInput& run : call.runs.at("point_records")) points.push_back({run.number, run.file, {}});
-        const auto records = read_scale_factor_point_records(points, options.output_column, options.timing);
+        const auto records = read_scale_factor_point_records(listed_files(call.runs.at("point_records")),
+                                                             options.output_column, options.timing);
         return scale_factor(records, options.scale_factor);
       });
 }

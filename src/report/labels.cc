@@ -86,7 +86,6 @@ constexpr Translation kTable[] = {
     // Procedures (plan kinds).
     {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
-    {"kind.bandwidth", "Bandwidth and output delay", "频带宽度与输出延迟时间"},
     {"kind.gyro_misalignment", "Gyro misalignment separation (rate table)", "陀螺失准角分离（速率转台）"},
     {"kind.accelerometer_misalignment", "Accelerometer misalignment (four-position test)",
      "加速度计失准角（四位置试验）"},
@@ -117,12 +116,6 @@ constexpr Translation kTable[] = {
      "the outputs give Δθy2 = (V(π) − V(0))/(2kI) and Δθz2 = (V(π/2) − V(3π/2))/(2kI).",
      "加速度计输入轴水平置于竖直基准面上，绕面法线转 β = 0°、90°、180°、270°；由输出求 Δθy2 = (V(π) − V(0))/(2kI)、"
      "Δθz2 = (V(π/2) − V(3π/2))/(2kI)。"},
-    {"method.bandwidth",
-     "Sinusoidal rate inputs at logarithmically spaced frequencies; the gains fit the first-order model "
-     "G² = K² − G²·ω²·T² and the bandwidth is 1/(2πT); the phases give the output delay (a negative scale "
-     "factor's 180° removed first).",
-     "在按对数分布的各频率点施加正弦角速度输入；由各频率增益按一阶模型 G² = K² − G²ω²T² 拟合，带宽为 "
-     "1/(2πT)；由相位求输出延迟时间（标度因数为负时先去除其 180° 相移）。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},

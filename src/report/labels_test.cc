@@ -25,7 +25,7 @@ TEST(ReportLabels, GjbTermsInChinese) {
   EXPECT_EQ(chinese("bias_stability"), "零偏稳定性");
   EXPECT_EQ(chinese("random_walk_coefficient"), "随机游走系数");
   EXPECT_EQ(chinese("bandwidth"), "带宽");
-  EXPECT_EQ(chinese("kind.bandwidth"), "频带宽度与输出延迟时间");
+  EXPECT_EQ(chinese.title_of("bandwidth"), "频带宽度与输出延迟时间");
   EXPECT_EQ(Labels(Language::english)("bias_stability"), "Bias stability");
 }
 

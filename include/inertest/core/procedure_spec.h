@@ -161,7 +161,15 @@ struct InputSpec {
   // On the command line the numbered runs are one CSV listing, `name` (a positional argument such
   // as "RUNS" or an option such as "--records"), with the header `<number key>,file`, one row per
   // run, paths relative to the listing; instead of --run NUMBER:FILE. Plans keep [[procedure.run]].
-  InputSpec& listed_on_command_line(std::string listing_name) { listing = std::move(listing_name); return *this; }
+  // `number_column`: the listing's header for the number when it is a contract that differs from
+  // the number key (bandwidth: "freq_hz" for frequency_hz).
+  InputSpec& listed_on_command_line(std::string listing_name, std::string number_column = "") {
+    listing = std::move(listing_name);
+    listing_number_column = std::move(number_column);
+    return *this;
+  }
+  // The listing's header for the number: listing_number_column, or the number key.
+  const std::string& listing_column() const { return listing_number_column.empty() ? number_key : listing_number_column; }
   // Inputs with the same `group` are alternatives: exactly one of them is given (e.g. a table of
   // test points, one long record, or a record per point). Their message names them in order.
   InputSpec& alternative_in(std::string group) { alternatives = std::move(group); return *this; }
@@ -198,6 +206,7 @@ struct InputSpec {
   std::string number_example;
   std::optional<double> number_default;
   std::string listing;  // InputKind::runs with numbers: the command line's CSV listing, "" for --run
+  std::string listing_number_column;  // the listing's number header, "" : number_key
   std::string alternatives;  // "" : always given; else the group of alternatives it belongs to
   bool records = false;  // file, runs: the files are output records, read by call.read_record
   bool timed = false;    // file, runs: the records are timed, read by call.read_timed_record
@@ -233,13 +242,19 @@ struct FieldSpec {
   // ordinates (e.g. {"rate", "deviation"}); none when the kind's plot builder draws it (bias's
   // smoothed records).
   std::vector<std::string> axes = {};
+  // The text report's words for some values, by the value's JSON text (e.g. {{"-1", "negative"}} for a
+  // sign); other values read as they are.
+  std::map<std::string, std::string> value_words = {};
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
-// 1, 2, ... when the runs have no numbers of their own) and its file.
+// 1, 2, ... when the runs have no numbers of their own), its file and where it was given (the plan's
+// [[procedure.run]] table, at its number key when it has one, or the listing's row; empty when
+// neither), for the procedure's errors about the run.
 struct RunInput {
   double number = 0.0;
   std::string file;
+  SourceLocation where = {};
 };
 
 // Parameter values by name (defaults already applied), input values, input files and runs by name.
@@ -342,38 +357,15 @@ class ProcedureDefinition {
   // are as ParameterType says.
   template <typename T>
   ProcedureDefinition& parameter(ParameterSpec parameter, T Options::*member) {
-    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t> ||
-                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool>,
-                  "number, whole number, text, numbers or boolean parameters");
-    if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*member;
-    parameter.type = std::is_same_v<T, std::string>           ? ParameterType::text
-                     : std::is_same_v<T, std::vector<double>> ? ParameterType::numbers
-                     : std::is_same_v<T, bool>                ? ParameterType::boolean
-                                                              : ParameterType::number;
-    parameter.whole = std::is_same_v<T, std::size_t>;
-    binders_.emplace_back(parameter.name, [member](Options& options, const nlohmann::json& value) {
-      if constexpr (std::is_same_v<T, std::size_t>) {
-        options.*member = static_cast<std::size_t>(value.get<double>());
-      } else {
-        options.*member = value.get<T>();
-      }
-    });
-    spec_.parameters.push_back(std::move(parameter));
-    return *this;
+    return member_parameter<T>(std::move(parameter), [member](Options& options) -> T& { return options.*member; });
   }
 
   // A parameter stored in a member of an Options member (e.g. &Options::scale_factor,
   // &ScaleFactorOptions::rate_unit); its default is that member's default value unless required.
   template <typename Part, typename T>
   ProcedureDefinition& parameter(ParameterSpec parameter, Part Options::*part, T Part::*member) {
-    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string>, "number or text parameters");
-    if (!parameter.required) spec_.defaults[parameter.name] = Options{}.*part.*member;
-    parameter.type = std::is_same_v<T, double> ? ParameterType::number : ParameterType::text;
-    binders_.emplace_back(parameter.name, [part, member](Options& options, const nlohmann::json& value) {
-      options.*part.*member = value.get<T>();
-    });
-    spec_.parameters.push_back(std::move(parameter));
-    return *this;
+    return member_parameter<T>(std::move(parameter),
+                               [part, member](Options& options) -> T& { return options.*part.*member; });
   }
 
   // A parameter without a default (optional, or required on the command line) stored through `bind`.
@@ -472,6 +464,30 @@ class ProcedureDefinition {
   }
 
  private:
+  // A parameter stored in the member of the Options that `member_of` returns.
+  template <typename T>
+  ProcedureDefinition& member_parameter(ParameterSpec parameter, std::function<T&(Options&)> member_of) {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t> ||
+                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool>,
+                  "number, whole number, text, numbers or boolean parameters");
+    Options defaults;
+    if (!parameter.required) spec_.defaults[parameter.name] = member_of(defaults);
+    parameter.type = std::is_same_v<T, std::string>           ? ParameterType::text
+                     : std::is_same_v<T, std::vector<double>> ? ParameterType::numbers
+                     : std::is_same_v<T, bool>                ? ParameterType::boolean
+                                                              : ParameterType::number;
+    parameter.whole = std::is_same_v<T, std::size_t>;
+    binders_.emplace_back(parameter.name, [member_of](Options& options, const nlohmann::json& value) {
+      if constexpr (std::is_same_v<T, std::size_t>) {
+        member_of(options) = static_cast<std::size_t>(value.get<double>());
+      } else {
+        member_of(options) = value.get<T>();
+      }
+    });
+    spec_.parameters.push_back(std::move(parameter));
+    return *this;
+  }
+
   ProcedureSpec spec_;
   std::vector<std::pair<std::string, Binder>> binders_;
   std::vector<std::pair<std::string, std::function<nlohmann::json(const Result&)>>> getters_;

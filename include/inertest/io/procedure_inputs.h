@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/bandwidth_and_delay.h"
 #include "inertest/procedures/rate_segments.h"
 #include "inertest/procedures/scale_factor.h"
@@ -21,6 +22,13 @@ struct ListedFile {
   std::string path;     // resolved against the listing's directory
   SourceLocation where;  // the row in the listing
 };
+
+// The runs of a numbered runs input (ProcedureCall::runs) as listed files, each at its run's place.
+std::vector<ListedFile> listed_files(std::span<const RunInput> runs);
+
+// Throws Error at the run's place unless every listed frequency is positive and above the one
+// before (GJB 2426A 5.13.3 a: frequencies in increasing order).
+void check_increasing_frequencies(std::span<const ListedFile> runs);
 
 // Reads a CSV listing with a header row naming key_column and file_column (other columns are
 // ignored; '#' starts a comment line). Relative paths are taken from the listing's directory; each

@@ -18,9 +18,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/numerics/sine_fit.h"
 
 namespace inertest {
@@ -80,9 +79,6 @@ struct BandwidthResult {
   std::string output_unit;                   // raw-record input only
   std::string angle_unit;
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
 
 // From a table of gains and phases. Throws Error when fewer than minimum_frequencies points are
@@ -100,5 +96,9 @@ BandwidthResult bandwidth_and_delay(std::span<const AngularVibrationRecord> reco
 // The frequency response of the raw records (the sine fits and the points above), without the fit.
 std::vector<VibrationFit> fit_vibration_records(std::span<const AngularVibrationRecord> records,
                                                 const BandwidthOptions& options);
+
+// The procedure's one description (src/procedures/bandwidth_spec.cc): a table of gains (file) or a
+// raw record per frequency ([[procedure.run]], --records RUNS.csv with the header freq_hz,file).
+ProcedureSpec bandwidth_spec();
 
 }  // namespace inertest

@@ -9,6 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/figure.h"
+
 namespace inertest::criterion {
 
 enum class Denominator {
@@ -34,5 +38,21 @@ struct Outcome {
 
 // Throws Error (naming `what`) when there are no points or the largest input already fails.
 Outcome search(std::vector<Point> points, Denominator denominator, const std::string& what);
+
+// The JSON of a procedure's branches (threshold, resolution): per direction its name, candidate
+// (deg/h), whether it is bounded, and its points, each made by `point_json`.
+template <typename Branch, typename PointJson>
+nlohmann::json branches_json(const std::vector<Branch>& branches, PointJson point_json) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const Branch& b : branches) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : b.points) points.push_back(point_json(p));
+    rows.push_back({{"name", b.name},
+                    {"candidate", Figure{b.candidate_deg_h, "deg/h", std::nullopt}},
+                    {"bounded", b.bounded},
+                    {"points", points}});
+  }
+  return rows;
+}
 
 }  // namespace inertest::criterion

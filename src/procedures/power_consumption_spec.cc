@@ -26,7 +26,7 @@
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
-#include "inertest/numerics/compensated_sum.h"
+#include "inertest/numerics/statistics.h"
 
 namespace inertest {
 namespace {
@@ -125,14 +125,8 @@ std::vector<SupplyReadings> read_supply_readings(const std::string& path) {
 
 // The mean of the values and, from two values on, its standard error s / sqrt(n).
 Figure mean_figure(const std::vector<double>& values, const std::string& unit) {
-  const auto n = static_cast<double>(values.size());
-  CompensatedSum sum;
-  for (double v : values) sum.add(v);
-  const double mean = sum.value() / n;
-  if (values.size() < 2) return {mean, unit, std::nullopt};
-  CompensatedSum squares;
-  for (double v : values) squares.add((v - mean) * (v - mean));
-  return {mean, unit, std::sqrt(squares.value() / (n - 1.0) / n)};
+  if (values.size() < 2) return {mean(values), unit, std::nullopt};
+  return {mean(values), unit, sample_standard_deviation(values) / std::sqrt(static_cast<double>(values.size()))};
 }
 
 PowerConsumptionResult power_consumption(const std::vector<SupplyReadings>& readings) {
@@ -149,7 +143,7 @@ PowerConsumptionResult power_consumption(const std::vector<SupplyReadings>& read
     if (!row.power.uncertainty) {
       every_uncertainty = false;
       result.warnings.push_back(fmt::format("supply '{}' has one reading: its power has no uncertainty", supply.supply));
-    } else if (*row.power.uncertainty == 0.0) {
+    } else if (is_constant(power)) {
       result.warnings.push_back(fmt::format(
           "the {} readings of supply '{}' are all equal: the uncertainty 0 is the meters' resolution, not the "
           "supply's",

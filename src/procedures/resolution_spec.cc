@@ -3,28 +3,20 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/procedures/resolution.h"
+#include "procedures/fifty_percent_criterion.h"
 
 namespace inertest {
 namespace {
 
 // Each direction's candidate and every increment with its eq. (18) test.
 nlohmann::json branches_json(const ResolutionResult& result) {
-  nlohmann::json branches = nlohmann::json::array();
-  for (const auto& b : result.branches) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const auto& p : b.points) {
-      points.push_back({{"increment", Figure{p.increment_deg_h, "deg/h", std::nullopt}},
-                        {"expected_output_increment", p.expected_increment},
-                        {"output_increment", p.output_increment},
-                        {"relative_error", p.relative_error},
-                        {"satisfies", p.satisfies}});
-    }
-    branches.push_back({{"name", b.name},
-                        {"candidate", Figure{b.candidate_deg_h, "deg/h", std::nullopt}},
-                        {"bounded", b.bounded},
-                        {"points", points}});
-  }
-  return branches;
+  return criterion::branches_json(result.branches, [](const ResolutionPoint& p) {
+    return nlohmann::json{{"increment", Figure{p.increment_deg_h, "deg/h", std::nullopt}},
+                          {"expected_output_increment", p.expected_increment},
+                          {"output_increment", p.output_increment},
+                          {"relative_error", p.relative_error},
+                          {"satisfies", p.satisfies}};
+  });
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "inertest/io/output_record.h"
 #include "inertest/io/text_table.h"
 #include "inertest/procedures/threshold.h"
+#include "procedures/fifty_percent_criterion.h"
 
 namespace inertest {
 namespace {
@@ -37,22 +38,13 @@ std::vector<Point> read_points(const std::string& file, const char* first, const
 
 // Each direction's candidate and every input with its 50 % test.
 nlohmann::json branches_json(const ThresholdResult& result) {
-  nlohmann::json branches = nlohmann::json::array();
-  for (const auto& b : result.branches) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const auto& p : b.points) {
-      points.push_back({{"input", Figure{p.input_deg_h, "deg/h", std::nullopt}},
-                        {"expected_output", p.expected_output},
-                        {"output", p.output},
-                        {"relative_error", p.relative_error},
-                        {"satisfies", p.satisfies}});
-    }
-    branches.push_back({{"name", b.name},
-                        {"candidate", Figure{b.candidate_deg_h, "deg/h", std::nullopt}},
-                        {"bounded", b.bounded},
-                        {"points", points}});
-  }
-  return branches;
+  return criterion::branches_json(result.branches, [](const ThresholdPoint& p) {
+    return nlohmann::json{{"input", Figure{p.input_deg_h, "deg/h", std::nullopt}},
+                          {"expected_output", p.expected_output},
+                          {"output", p.output},
+                          {"relative_error", p.relative_error},
+                          {"satisfies", p.satisfies}};
+  });
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ FUZZ_SECONDS ?= 600
 FUZZ_SHORT_SECONDS ?= 20
 FUZZ_MAX_LEN ?= 4096
 FUZZ_TIMEOUT ?= 10
-FUZZ_TARGETS := text_table binary_record plan
+FUZZ_TARGETS := text_table binary_record plan mat_record hdf5_record tdms_record
 export ASAN_OPTIONS ?= detect_leaks=1:strict_string_checks=1
 export UBSAN_OPTIONS ?= halt_on_error=1:print_stacktrace=1
 

@@ -10,6 +10,8 @@ machine may be shared, so only ratios within the run mean anything):
     there), and against inertest's own OADEV alone (the issue's bound: at most 2x);
   - CSV ingestion of --csv-rows rows (csv_compare.py): inertest inspect against pandas.read_csv
     and numpy.loadtxt;
+  - Allan on --hdf5-samples f64 samples (10^8) from an HDF5 dataset written by h5py against the
+    same samples as raw f64 (hdf5_compare.py): time at most 1.3x, peak memory at most 1.5x the dataset;
   - with --huge: 10^9 f32 samples (4 GB, written to --huge-dir and deleted after), all six
     estimators, its time and peak resident memory.
 The read bandwidth: one pass over 1 GiB in memory on 1 and 2 threads (memory_read_benchmark) and
@@ -30,6 +32,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import allan_compare  # noqa: E402
 import csv_compare  # noqa: E402
+import hdf5_compare  # noqa: E402
 
 WRITE_F32 = r"""
 import sys, numpy as np
@@ -92,6 +95,8 @@ def main():
     parser.add_argument("--samples", type=int, default=30_000_000, help="f64 samples of the Allan record")
     parser.add_argument("--csv-rows", type=int, default=5_000_000)
     parser.add_argument("--runs", type=int, default=3, help="runs of each program, fastest kept")
+    parser.add_argument("--hdf5-samples", type=int, default=10**8,
+                        help="f64 samples of the HDF5 record (written twice, HDF5 and raw, deleted after)")
     parser.add_argument("--huge", action="store_true", help="also 1e9 f32 samples (4 GB on disk, deleted after)")
     parser.add_argument("--huge-dir", default=None, help="where the 4 GB file goes (default: the temp dir)")
     parser.add_argument("--huge-samples", type=int, default=10**9, help="f32 samples of the --huge record")
@@ -108,6 +113,7 @@ def main():
         file_bandwidth = file_read_bandwidth(record, args.runs)
         os.remove(record)
         csv, csv_mb = csv_compare.measure(inertest, args.csv_rows, args.runs, True, os.path.join(tmp, "record.csv"))
+        hdf5 = hdf5_compare.measure(inertest, args.hdf5_samples, args.runs, tmp)
     huge = None
     if args.huge:
         with tempfile.TemporaryDirectory(dir=args.huge_dir) as tmp:
@@ -135,6 +141,12 @@ def main():
     for reader in ("pandas.read_csv", "numpy.loadtxt"):
         rows.append((f"CSV ingestion, {args.csv_rows:.0e} rows ({csv_mb:.0f} MB)", base, reader, csv[reader][0],
                      f"{csv[reader][0] / base:.1f}x faster", "", csv_mb / 1e3 / base))
+    hdf5_text = f"{args.hdf5_samples:.0e} f64 ({hdf5['size_mb']:.0f} MB)"
+    rows.append((f"all six + bounds + fit, {hdf5_text} from HDF5", hdf5["hdf5"][0], "inertest, the same as raw f64",
+                 hdf5["raw"][0], f"{hdf5['hdf5'][0] / hdf5['raw'][0]:.2f}x the time", "<= 1.3x",
+                 hdf5["size_mb"] / 1e3 / hdf5["hdf5"][0]))
+    rows.append(("peak RSS of the same from HDF5", hdf5["hdf5"][0], f"the dataset, {hdf5['size_mb']:.0f} MB", None,
+                 f"{hdf5['hdf5'][1] / hdf5['size_mb']:.2f}x the dataset", "<= 1.5x", None))
     if huge:
         huge_gb = 4 * args.huge_samples / 1e9
         rows.append((f"all six + bounds + fit, {args.huge_samples:.0e} f32 ({huge_gb:.2g} GB)", huge[0],

@@ -10,3 +10,11 @@ find_package(Boost 1.74 REQUIRED)
 # The results archive: SQLite embedded, PostgreSQL (libpq) for a lab's shared server.
 find_package(SQLite3 REQUIRED)
 find_package(PostgreSQL REQUIRED)
+# Lab record formats (issue 21): HDF5 through its C API, MATLAB .mat (v5, v7, v7.3) through matio.
+# FindHDF5 test-compiles a C program: the C language is enabled for it (no C sources are built).
+enable_language(C)
+find_package(HDF5 REQUIRED COMPONENTS C)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
+# zlib: the check of a compressed MAT variable's headers before matio reads it.
+find_package(ZLIB REQUIRED)

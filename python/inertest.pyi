@@ -286,7 +286,7 @@ def allan_variance_of_file(
     path: str,
     *,
     sample_rate_hz: float,
-    format: str = "csv",
+    format: str = "auto",  # auto, csv, f64, f32, mat, hdf5, tdms
     column: Optional[str] = None,
     input_unit: str = "deg/h",
     taus: Union[str, Sequence[float], FloatArray] = "octave",  # a grid name or taus in s
@@ -299,7 +299,7 @@ def allan_variance_of_file(
     """The same on a record streamed from a file, as the CLI's allan command."""
 
 def read_rate_record(
-    path: str, format: str = "csv", column: Optional[str] = None
+    path: str, format: str = "auto", column: Optional[str] = None
 ) -> FloatArray: ...
 def fit_noise_terms(
     tau_s: ArrayLike,

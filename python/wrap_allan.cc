@@ -114,12 +114,14 @@ void wrap_allan(py::module_& module) {
               options_doc)
                  .c_str());
   module.def("allan_variance_of_file", &allan_of_file, "path"_a, py::kw_only(), "sample_rate_hz"_a,
-             "format"_a = "csv", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
+             "format"_a = "auto", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
              "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
              "fit_range"_a = py::none(),
              (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
-                          "allan command: format 'csv', 'f64' or 'f32' (raw little-endian); column: header name or\n"
-                          "1-based index (text only).\n") +
+                          "allan command: format 'auto' (.mat, HDF5, TDMS by magic bytes, else text), 'csv', 'f64' or\n"
+                          "'f32' (raw little-endian), 'mat', 'hdf5', 'tdms'; column: header name or 1-based index, or\n"
+                          "the channel ('group/channel', 'struct.field'). A sample_rate_hz that contradicts the rate the\n"
+                          "file stores is an error.\n") +
               options_doc)
                  .c_str());
   module.def(
@@ -133,9 +135,10 @@ void wrap_allan(py::module_& module) {
         }
         return to_numpy(std::move(samples));
       },
-      "path"_a, "format"_a = "csv", "column"_a = py::none(),
-      "Reads one channel of a rate record (text, or raw little-endian f64/f32) into a float64 array that\n"
-      "owns the buffer. Raises inertest.Error with file:line:column for a bad sample.");
+      "path"_a, "format"_a = "auto", "column"_a = py::none(),
+      "Reads one channel of a rate record (text, raw little-endian f64/f32, or a channel of a .mat, HDF5 or\n"
+      "TDMS record, by name as 'group/channel' or 'struct.field') into a float64 array that owns the buffer.\n"
+      "Raises inertest.Error with file:line:column (or channel and sample) for a bad sample.");
   module.def(
       "fit_noise_terms",
       [](const DoubleArray& tau_s, const DoubleArray& variance, const DoubleArray& edf, const std::string& input_unit,

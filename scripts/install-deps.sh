@@ -8,8 +8,9 @@ packages=(
   libeigen3-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libfast-float-dev
   libboost-dev
   libsqlite3-dev libpq-dev postgresql
+  libmatio-dev libhdf5-dev zlib1g-dev
   libgtest-dev googletest libbenchmark-dev
-  python3-numpy python3-pandas python3-scipy python3-pytest python3-dev pybind11-dev
+  python3-numpy python3-pandas python3-scipy python3-h5py python3-pytest python3-dev pybind11-dev
   chromium
 )
 

@@ -170,7 +170,8 @@ constexpr std::size_t kMemoryReserveBytes = 32u << 20;
 constexpr std::size_t kSmallestRingLimitBytes = 64u << 20;
 
 // The ring limit that keeps the peak resident memory within 1.5 times the raw binary size of the
-// record (issue bound): 8 bytes per sample for text, the file size for f64 and f32. Text records
+// record (issue bound): 8 bytes per sample for text, the file size for f64, f32 and records of named
+// channels (.mat, HDF5, TDMS). Text records
 // cannot be read at random, and their 8 (N+1)-byte ring is within the bound anyway: no limit.
 std::size_t automatic_ring_limit(const RateRecordSource& source) {
   if (source.format == RateRecordFormat::kCsv) return 0;
@@ -252,17 +253,30 @@ AllanResult allan_variance(std::span<const double> rate, const AllanOptions& opt
   return assemble(rate.size(), mean, sums, options);
 }
 
-AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
+AllanResult allan_variance_of_file(const RateRecordSource& given_source, const AllanOptions& options,
                                    const ProgressCallback& progress) {
   options.validate();
+  RateRecordSource source = given_source;
+  source.format = resolve_rate_record_format(given_source);
   if (source.format == RateRecordFormat::kCsv) {
     // Text is parsed once, in parallel, into memory and analysed there: a second parse would cost
     // more than the 8 bytes a sample. Binary records stream twice (the mean, then the engine).
     if (progress) progress("reading " + source.path, 0.0);
     return allan_variance(read_text_rate_record(source), options);
   }
+  // A record of named channels is opened once for both passes and the random reads of the second.
+  std::unique_ptr<ChannelRecord> record;
+  std::size_t channel = 0;
+  if (const std::optional<ChannelRecordFormat> channel_format = channel_record_format_of(source.format)) {
+    record = open_channel_record(source.path, *channel_format);
+    channel = record->find(source.column);
+    resolve_sample_rate(*record, channel, options.sample_rate_hz);
+  }
+  const auto stream = [&](const SampleSink& sink) {
+    return record ? stream_channel(*record, channel, sink) : read_rate_record(source, sink);
+  };
   CompensatedSum sum;
-  const std::size_t count = read_rate_record(source, [&](std::span<const double> samples) {
+  const std::size_t count = stream([&](std::span<const double> samples) {
     for (double v : samples) sum.add(v);
   });
   const double mean = sum.value() / static_cast<double>(count);
@@ -272,7 +286,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOp
   AllanEngine engine(count, mean, std::move(engine_setup));
   std::size_t pushed = 0;
   std::size_t reported = 0;
-  const std::size_t again = read_rate_record(source, [&](std::span<const double> samples) {
+  const std::size_t again = stream([&](std::span<const double> samples) {
     engine.push(samples);
     pushed += samples.size();
     if (progress && pushed - reported >= count / 100 + 1) {
@@ -284,7 +298,11 @@ AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOp
   SampleReader reader;
   if (engine.deferred_factor_count() > 0) {
     if (progress) progress("Allan variance (largest taus, second pass)", 1.0);
-    reader = binary_sample_reader(source);
+    if (record) {
+      reader = [&record, channel](std::size_t first, std::span<double> out) { record->read(channel, first, out); };
+    } else {
+      reader = binary_sample_reader(source);
+    }
   }
   const auto sums = engine.finish(reader);
   if (progress) progress("Allan variance", 1.0);

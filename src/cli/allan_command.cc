@@ -1,4 +1,4 @@
-// inertest allan FILE --rate HZ [--format csv|f64|f32] [--column N] [--taus SPEC] [--input-unit U]
+// inertest allan FILE [--rate HZ] [--format auto|csv|f64|f32|mat|hdf5|tdms] [--column N] [--taus SPEC] [--input-unit U]
 //                [--scale-factor K] [--estimators LIST] [--fit-range TMIN:TMAX] [--threads N] [--json]
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -11,8 +11,9 @@ namespace {
 
 struct Arguments {
   RateRecordSource source;
-  std::string format = "csv";
+  std::string format = "auto";
   std::string column;
+  std::optional<double> sample_rate_hz;
   std::string estimators = "all";
   std::string fit_range;
   double scale_factor = 0.0;
@@ -28,11 +29,16 @@ CommandAction setup(CLI::App& root) {
       "Allan variance of a rate record (GJB 2426A-2004 5.12.5.4.2, IEEE Std 952-1997 Annex C, NIST SP 1065):\n"
       "ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV with chi-squared bounds, and the noise terms Q, N (ARW),\n"
       "B (bias instability), K (RRW), R (rate ramp) by the fit of GJB eq. (30) and by slope read-off.\n"
-      "FILE: one channel of rate samples, text (csv) or raw little-endian f64/f32. Text is parsed once, into memory; binary streams twice.");
+      "FILE: one channel of rate samples, text (csv), raw little-endian f64/f32, or a channel of a MATLAB .mat,\n"
+      "HDF5 or NI TDMS file (found by its magic bytes; --column names the channel). Text is parsed once, into\n"
+      "memory; the others stream twice.");
   command->add_option("FILE", arguments->source.path, "rate record")->required()->check(CLI::ExistingFile);
-  command->add_option("--rate", arguments->options.sample_rate_hz, "sample rate in Hz")->required();
-  command->add_option("--format", arguments->format, "csv, f64 or f32 (raw little-endian)")->capture_default_str();
-  command->add_option("--column", arguments->column, "text column: header name or 1-based index");
+  command->add_option("--rate", arguments->sample_rate_hz,
+                      "sample rate in Hz (default: the rate the file stores; one that contradicts it is an error)");
+  command->add_option("--format", arguments->format, "auto, csv, f64 or f32 (raw little-endian), mat, hdf5 or tdms")
+      ->capture_default_str();
+  command->add_option("--column", arguments->column,
+                      "text column (header name or 1-based index), or channel: group/channel, struct.field");
   command->add_option("--taus", arguments->options.taus, "octave, decade, all, N/decade or a list of tau in s")
       ->capture_default_str();
   CLI::Option* unit =
@@ -56,6 +62,13 @@ CommandAction setup(CLI::App& root) {
   return [arguments] {
     arguments->source.format = parse_rate_record_format(arguments->format);
     if (!arguments->column.empty()) arguments->source.column = ColumnSelector::parse(arguments->column);
+    if (arguments->sample_rate_hz) {
+      arguments->options.sample_rate_hz = *arguments->sample_rate_hz;
+    } else if (const std::optional<double> stored = stored_sample_rate(arguments->source)) {
+      arguments->options.sample_rate_hz = *stored;
+    } else {
+      throw Error(SourceLocation{arguments->source.path, 0, 0}, "the record stores no sample rate: give --rate");
+    }
     arguments->options.estimators = EstimatorSet::parse(arguments->estimators);
     if (!arguments->fit_range.empty()) arguments->options.fit_range = parse_fit_range(arguments->fit_range);
     if (arguments->scaled) {

@@ -1,15 +1,19 @@
 // inertest inspect FILE: what a record holds (rows, columns, and per column count, mean, standard
 // deviation, min, max), read exactly as the procedures read it. A first look at lab data: it warns
 // about a constant (stuck) channel and, with --time-column, checks the time stamps for steps
-// backwards and gaps (io/time_stamps.h).
+// backwards and gaps (io/time_stamps.h). A MATLAB .mat, HDF5 or TDMS record (found by its magic
+// bytes) lists its channels with their stored types, lengths, units and sample rates.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "command.h"
 #include "inertest/io/binary_record.h"
+#include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
 #include "inertest/numerics/statistics.h"
@@ -19,7 +23,7 @@ namespace {
 
 struct Arguments {
   std::string file;
-  std::string format = "csv";
+  std::string format = "auto";
   std::size_t channels = 1;
   std::string time_column;
   std::string gaps = "stop";
@@ -39,6 +43,50 @@ nlohmann::json describe(const std::string& name, const std::vector<double>& valu
                                    values.size(), *low));
   }
   return column;
+}
+
+// A channel of a .mat, HDF5 or TDMS record: what the file stores about it, and for a numeric channel
+// the statistics of describe(), accumulated as the channel streams (Welford's running variance).
+nlohmann::json describe_channel(ChannelRecord& record, std::size_t index, nlohmann::json& warnings) {
+  const ChannelInfo& info = record.channels()[index];
+  nlohmann::json channel = {{"name", info.name}, {"type", info.type}, {"count", info.length}};
+  if (!info.unit.empty()) channel["unit"] = info.unit;
+  if (info.sample_rate_hz) channel["sample_rate_hz"] = *info.sample_rate_hz;
+  if (info.start_time_s) channel["start_time_s"] = *info.start_time_s;
+  if (!info.numeric || info.length == 0) return channel;
+  double running_mean = 0.0;
+  double squares = 0.0;
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  std::size_t count = 0;
+  stream_channel(record, index, [&](std::span<const double> samples) {
+    for (const double value : samples) {
+      ++count;
+      const double delta = value - running_mean;
+      running_mean += delta / static_cast<double>(count);
+      squares += delta * (value - running_mean);
+      low = std::min(low, value);
+      high = std::max(high, value);
+    }
+  });
+  channel["mean"] = running_mean;
+  channel["min"] = low;
+  channel["max"] = high;
+  if (count > 1) channel["standard_deviation"] = std::sqrt(squares / static_cast<double>(count - 1));
+  if (low == high) {
+    warnings.push_back(fmt::format("channel '{}' is constant: all {} samples equal {:.10g} (a stuck channel?)", info.name,
+                                   count, low));
+  }
+  return channel;
+}
+
+// The channel format named by --format, or found by the magic bytes under "auto".
+std::optional<ChannelRecordFormat> channel_format_of(const std::string& format, const std::string& file) {
+  if (format == "mat") return ChannelRecordFormat::kMat;
+  if (format == "hdf5") return ChannelRecordFormat::kHdf5;
+  if (format == "tdms") return ChannelRecordFormat::kTdms;
+  if (format == "auto") return detect_channel_record_format(file);
+  return std::nullopt;
 }
 
 // The 0-based index of the time column among all columns of the table.
@@ -74,11 +122,15 @@ CommandAction setup(CLI::App& root) {
       "mean, standard deviation (n-1), min and max, in the record's own units. Text records: CSV, TSV,\n"
       "semicolon or whitespace separated, header optional, '#' comments. Binary: --format f64|f32|i32|i16\n"
       "(suffix be for big endian) with --channels interleaved channels. A constant column gives a warning.\n"
+      "MATLAB .mat, HDF5 and NI TDMS records (found by their magic bytes, or --format mat|hdf5|tdms): every\n"
+      "channel with its stored type, length, unit and sample rate, and the statistics of the numeric ones.\n"
       "--time-column checks the time stamps: going backwards is an error; a step of more than 1.5 sample\n"
       "intervals is a gap, and --gaps says what to do: stop (an error), split (report the contiguous\n"
       "segments) or interpolate (fill the missing samples linearly and count them).");
   command->add_option("FILE", arguments->file, "record to read")->required();
-  command->add_option("--format", arguments->format, "csv (any text table) or a binary sample type")
+  command->add_option("--format", arguments->format,
+                      "auto (.mat, HDF5, TDMS by magic bytes, else text), csv (any text table), mat, hdf5, tdms, or a "
+                      "binary sample type")
       ->capture_default_str();
   command->add_option("--channels", arguments->channels, "interleaved channels of a binary record")
       ->capture_default_str();
@@ -94,7 +146,15 @@ CommandAction setup(CLI::App& root) {
     nlohmann::json warnings = nlohmann::json::array();
     nlohmann::json time_report;
     std::size_t rows = 0;
-    if (arguments->format == "csv") {
+    const std::optional<ChannelRecordFormat> channel_format = channel_format_of(arguments->format, arguments->file);
+    if (channel_format) {
+      if (!arguments->time_column.empty()) throw Error("--time-column needs a text record: a .mat, HDF5 or TDMS record stores its sample rate");
+      const std::unique_ptr<ChannelRecord> record = open_channel_record(arguments->file, *channel_format);
+      for (std::size_t i = 0; i < record->channels().size(); ++i) {
+        rows = std::max(rows, static_cast<std::size_t>(record->channels()[i].length));
+        columns.push_back(describe_channel(*record, i, warnings));
+      }
+    } else if (arguments->format == "csv" || arguments->format == "auto") {
       TextTableOptions options;
       options.record_row_lines = !arguments->time_column.empty();
       TextTable table = read_text_table(arguments->file, options);
@@ -123,7 +183,24 @@ CommandAction setup(CLI::App& root) {
     }
     nlohmann::json json = {{"file", arguments->file}, {"rows", rows}, {"columns", columns}, {"warnings", warnings}};
     std::string report = fmt::format("{}: {} rows, {} columns\n", arguments->file, rows, columns.size());
+    if (channel_format) {
+      json["format"] = channel_record_format_name(*channel_format);
+      report = fmt::format("{}: {} record, {} channels\n", arguments->file, channel_record_format_name(*channel_format),
+                           columns.size());
+    }
     for (const auto& c : columns) {
+      if (channel_format) {
+        report += fmt::format("  {:<24} {:<10} {:>12} samples", c["name"].get<std::string>(), c["type"].get<std::string>(),
+                              c["count"].get<std::uint64_t>());
+        if (c.contains("unit")) report += fmt::format("  unit {}", c["unit"].get<std::string>());
+        if (c.contains("sample_rate_hz")) report += fmt::format("  {:.10g} Hz", c["sample_rate_hz"].get<double>());
+        if (c.contains("mean")) {
+          report += fmt::format("  mean {:.8g} sd {:.6g} min {:.8g} max {:.8g}", c["mean"].get<double>(),
+                                c.value("standard_deviation", 0.0), c["min"].get<double>(), c["max"].get<double>());
+        }
+        report += "\n";
+        continue;
+      }
       report += fmt::format("  {:<16} mean {:<14.8g} sd {:<12.6g} min {:<14.8g} max {:.8g}\n",
                             c["name"].get<std::string>(), c["mean"].get<double>(),
                             c.value("standard_deviation", 0.0), c["min"].get<double>(), c["max"].get<double>());

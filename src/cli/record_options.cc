@@ -9,10 +9,11 @@ namespace inertest::cli {
 
 void add_record_options(CLI::App& command, OutputRecordSource& source) {
   command.add_option("--column", source.column,
-                     "text record: the output column by header name or 1-based index (default: the only or first "
-                     "column)");
+                     "the output column by header name or 1-based index (default: the only or first column), or "
+                     "channel of a .mat, HDF5 or TDMS record (struct.field, group/channel)");
   command.add_option("--format", source.format,
-                     "binary record instead of text: f64, f32, i32 or i16, optionally with le/be (e.g. f32be)");
+                     "auto (default: .mat, HDF5 or TDMS by magic bytes, else text), csv, mat, hdf5, tdms, or binary: "
+                     "f64, f32, i32 or i16, optionally with le/be (e.g. f32be)");
 }
 
 std::pair<double, std::string> parse_number_and_file(const std::string& text, const std::string& option,

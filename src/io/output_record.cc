@@ -4,6 +4,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/io/binary_record.h"
+#include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
 
 namespace inertest {
@@ -21,10 +22,43 @@ ColumnSelector selector_or(const std::string& text, std::size_t fallback_index) 
   return ColumnSelector::parse(text);
 }
 
+bool is_text(const std::string& format) { return format.empty() || format == "auto" || format == "csv"; }
+
+// The format of a record of named channels: named, or found by its magic bytes under "" and "auto".
+std::optional<ChannelRecordFormat> channel_format_of(const OutputRecordSource& source) {
+  if (source.format == "mat") return ChannelRecordFormat::kMat;
+  if (source.format == "hdf5") return ChannelRecordFormat::kHdf5;
+  if (source.format == "tdms") return ChannelRecordFormat::kTdms;
+  if (source.format.empty() || source.format == "auto") return detect_channel_record_format(source.path);
+  return std::nullopt;
+}
+
+std::optional<ColumnSelector> channel_selector(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  return ColumnSelector::parse(text);
+}
+
 }  // namespace
 
+void check_output_record_format(const std::string& format) {
+  if (is_text(format) || format == "mat" || format == "hdf5" || format == "tdms") return;
+  try {
+    BinaryFormat::parse(format);
+  } catch (const Error&) {
+    throw Error(fmt::format("unknown record format '{}' (expected auto, csv, mat, hdf5, tdms, or f64, f32, i32 or i16, "
+                            "optionally with le or be)",
+                            format));
+  }
+}
+
 std::vector<double> read_output_record(const OutputRecordSource& source, std::size_t minimum_samples) {
-  if (!source.format.empty()) {
+  if (const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source)) {
+    const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *channel_format);
+    std::vector<double> samples = read_channel(*record, record->find(channel_selector(source.column)));
+    require_samples(source.path, samples.size(), minimum_samples);
+    return samples;
+  }
+  if (!is_text(source.format)) {
     std::vector<double> samples = read_binary_record(source.path, BinaryFormat::parse(source.format));
     require_samples(source.path, samples.size(), minimum_samples);
     return samples;
@@ -40,6 +74,35 @@ std::vector<double> read_output_record(const OutputRecordSource& source, std::si
 TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<double> sample_rate_hz,
                               const std::string& time_column, std::size_t minimum_samples) {
   TimedRecord record;
+  if (const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source)) {
+    const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);
+    const std::size_t output = file->find(channel_selector(source.column));
+    if (!sample_rate_hz && !file->channels()[output].sample_rate_hz && !time_column.empty()) {
+      record.time_s = read_channel(*file, file->find(ColumnSelector::parse(time_column)));
+      record.output = read_channel(*file, output);
+      if (record.time_s.size() != record.output.size()) {
+        throw Error(SourceLocation{source.path, 0, 0},
+                    fmt::format("time channel '{}' holds {} samples, output channel '{}' {}", time_column,
+                                record.time_s.size(), file->channels()[output].name, record.output.size()));
+      }
+      require_samples(source.path, record.output.size(), minimum_samples);
+      for (std::size_t i = 1; i < record.time_s.size(); ++i) {
+        if (!(record.time_s[i] > record.time_s[i - 1])) {
+          throw Error(SourceLocation{source.path, 0, 0},
+                      fmt::format("time channel '{}', sample {}: time {} s does not follow the previous time {} s: "
+                                  "times must increase",
+                                  time_column, i + 1, record.time_s[i], record.time_s[i - 1]));
+        }
+      }
+      return record;
+    }
+    const double rate = resolve_sample_rate(*file, output, sample_rate_hz);
+    record.output = read_channel(*file, output);
+    require_samples(source.path, record.output.size(), minimum_samples);
+    record.time_s.resize(record.output.size());
+    for (std::size_t i = 0; i < record.output.size(); ++i) record.time_s[i] = static_cast<double>(i + 1) / rate;
+    return record;
+  }
   if (sample_rate_hz) {
     if (!(*sample_rate_hz > 0.0)) throw Error(fmt::format("sample rate must be positive, got {} Hz", *sample_rate_hz));
     record.output = read_output_record(source, minimum_samples);
@@ -49,7 +112,7 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
     }
     return record;
   }
-  if (!source.format.empty()) {
+  if (!is_text(source.format)) {
     throw Error(SourceLocation{source.path, 0, 0},
                 "a binary record has no time column: give the sample rate (--rate / sample_rate_hz)");
   }

@@ -75,10 +75,42 @@ std::size_t read_binary(const RateRecordSource& source, const SampleSink& sink) 
 }  // namespace
 
 RateRecordFormat parse_rate_record_format(std::string_view text) {
+  if (text == "auto") return RateRecordFormat::kAuto;
   if (text == "csv") return RateRecordFormat::kCsv;
   if (text == "f64") return RateRecordFormat::kFloat64;
   if (text == "f32") return RateRecordFormat::kFloat32;
-  throw Error("unknown record format '" + std::string(text) + "' (expected csv, f64 or f32)");
+  if (text == "mat") return RateRecordFormat::kMat;
+  if (text == "hdf5") return RateRecordFormat::kHdf5;
+  if (text == "tdms") return RateRecordFormat::kTdms;
+  throw Error("unknown record format '" + std::string(text) + "' (expected auto, csv, f64, f32, mat, hdf5 or tdms)");
+}
+
+RateRecordFormat resolve_rate_record_format(const RateRecordSource& source) {
+  if (source.format != RateRecordFormat::kAuto) return source.format;
+  const std::optional<ChannelRecordFormat> detected = detect_channel_record_format(source.path);
+  if (!detected) return RateRecordFormat::kCsv;
+  switch (*detected) {
+    case ChannelRecordFormat::kMat: return RateRecordFormat::kMat;
+    case ChannelRecordFormat::kHdf5: return RateRecordFormat::kHdf5;
+    case ChannelRecordFormat::kTdms: return RateRecordFormat::kTdms;
+  }
+  return RateRecordFormat::kCsv;
+}
+
+std::optional<ChannelRecordFormat> channel_record_format_of(RateRecordFormat format) {
+  switch (format) {
+    case RateRecordFormat::kMat: return ChannelRecordFormat::kMat;
+    case RateRecordFormat::kHdf5: return ChannelRecordFormat::kHdf5;
+    case RateRecordFormat::kTdms: return ChannelRecordFormat::kTdms;
+    default: return std::nullopt;
+  }
+}
+
+std::optional<double> stored_sample_rate(const RateRecordSource& source) {
+  const std::optional<ChannelRecordFormat> format = channel_record_format_of(resolve_rate_record_format(source));
+  if (!format) return std::nullopt;
+  const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *format);
+  return record->channels()[record->find(source.column)].sample_rate_hz;
 }
 
 std::vector<double> read_text_rate_record(const RateRecordSource& source) {
@@ -98,7 +130,16 @@ std::vector<double> read_text_rate_record(const RateRecordSource& source) {
 }
 
 std::size_t read_rate_record(const RateRecordSource& source, const SampleSink& sink) {
-  if (source.format != RateRecordFormat::kCsv) return read_binary(source, sink);
+  const RateRecordFormat format = resolve_rate_record_format(source);
+  if (const std::optional<ChannelRecordFormat> channel_format = channel_record_format_of(format)) {
+    const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *channel_format);
+    return stream_channel(*record, record->find(source.column), sink);
+  }
+  if (format == RateRecordFormat::kFloat64 || format == RateRecordFormat::kFloat32) {
+    RateRecordSource binary = source;
+    binary.format = format;
+    return read_binary(binary, sink);
+  }
   const std::vector<double> samples = read_text_rate_record(source);
   sink(samples);
   return samples.size();

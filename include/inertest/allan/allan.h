@@ -85,8 +85,10 @@ struct AllanResult {
 AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options);
 
 // Streams a file twice (mean, then the estimators); memory is the engine's ring buffer, at most
-// 8 (N + 1) bytes plus a few MB, and for raw f64/f32 records at most 1.5 times the file size: the
-// largest averaging factors are then computed in a third, partial pass that re-reads the file.
+// 8 (N + 1) bytes plus a few MB, and for raw f64/f32 records and records of named channels (.mat,
+// HDF5, TDMS) at most 1.5 times the file size: the largest averaging factors are then computed in a
+// third, partial pass that re-reads the file. A record that stores its sample rate (HDF5
+// sample_rate_hz, TDMS wf_increment) must agree with options.sample_rate_hz, else an Error naming both.
 AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
                                    const ProgressCallback& progress = {});
 

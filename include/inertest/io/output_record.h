@@ -1,6 +1,7 @@
 // Reading one instrument-output record for the procedures that work on sampled output (bias,
 // turn-on time, threshold method 3, polarity): a text record (one column chosen by name or
-// 1-based position, optionally with a time column) or a raw binary record (f64, f32, ...).
+// 1-based position, optionally with a time column), a raw binary record (f64, f32, ...), or a
+// channel of a MATLAB .mat, HDF5 or NI TDMS record (io/channel_record.h), found by its magic bytes.
 #pragma once
 
 #include <optional>
@@ -11,12 +12,19 @@ namespace inertest {
 
 struct OutputRecordSource {
   std::string path;
-  // Empty: a text record. Otherwise a binary format as BinaryFormat::parse reads it ("f64", "f32be").
+  // Empty or "auto": a .mat, HDF5 or TDMS record by its magic bytes, else a text record. "csv": a
+  // text record; "mat", "hdf5", "tdms": that format. Otherwise a binary format as
+  // BinaryFormat::parse reads it ("f64", "f32be").
   std::string format;
   // Text records: the output column by header name or 1-based index ("2"); empty means the only
-  // column, or the second when a time column is read. Ignored for binary records.
+  // column, or the second when a time column is read. Records of named channels: the channel by
+  // name ("group/channel", "struct.field") or 1-based index; empty means the only numeric channel.
+  // Ignored for binary records.
   std::string column;
 };
+
+// Checks a format as OutputRecordSource::format takes it; throws Error naming the formats known.
+void check_output_record_format(const std::string& format);
 
 // The output column as doubles. Throws Error naming the file (and line/column in a text record)
 // when it is missing, malformed, or holds fewer than minimum_samples samples.
@@ -32,7 +40,9 @@ struct TimedRecord {
 // the end of the interval over which the instrument accumulated it. Without: a text record with a
 // time column (time_column by name or index; empty means the first column) and the output column
 // (source.column; empty means the second column). Times must increase strictly; a violation is an
-// Error naming the line.
+// Error naming the line. A record of named channels gives its time as the sample rate it stores
+// (1 / wf_increment, a sample_rate_hz attribute): a sample_rate_hz that contradicts it is an Error
+// naming both; without a stored rate, time_column names a channel of times, or the rate is needed.
 TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<double> sample_rate_hz,
                               const std::string& time_column = "", std::size_t minimum_samples = 1);
 

@@ -1,8 +1,9 @@
 // Streaming reader of one channel of a rate record, for records too long to hold (the Allan
 // engine reads 10^9 samples through it): text (CSV, TSV, semicolon or whitespace separated,
-// optional header, '#' comments) or raw little-endian f64/f32. The file is read in chunks, never
-// held whole: a record of any length passes through a few MB of buffer. Text rows are checked
-// exactly as read_text_table checks them (same messages, same file:line:column).
+// optional header, '#' comments), raw little-endian f64/f32, or a record of named channels
+// (MATLAB .mat, HDF5, NI TDMS; io/channel_record.h). The file is read in chunks, never held whole:
+// a record of any length passes through a few MB of buffer. Text rows are checked exactly as
+// read_text_table checks them (same messages, same file:line:column).
 #pragma once
 
 #include <cstddef>
@@ -13,29 +14,44 @@
 #include <string_view>
 #include <vector>
 
+#include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
 
 namespace inertest {
 
-enum class RateRecordFormat { kCsv, kFloat64, kFloat32 };
+// kAuto: a .mat, HDF5 or TDMS record by its magic bytes (detect_channel_record_format), else text.
+// Raw binary has no magic bytes: f64 and f32 are always named.
+enum class RateRecordFormat { kAuto, kCsv, kFloat64, kFloat32, kMat, kHdf5, kTdms };
 
-// "csv", "f64", "f32"; throws Error.
+// "auto", "csv", "f64", "f32", "mat", "hdf5", "tdms"; throws Error.
 RateRecordFormat parse_rate_record_format(std::string_view text);
 
 struct RateRecordSource {
   std::string path;
-  RateRecordFormat format = RateRecordFormat::kCsv;
-  // Text only: the column, by header name or 1-based index. Without it the record must have one column.
+  RateRecordFormat format = RateRecordFormat::kAuto;
+  // Text: the column, by header name or 1-based index; .mat, HDF5, TDMS: the channel, by name or
+  // 1-based index (io/channel_record.h). Without it the record must have one column (channel).
   std::optional<ColumnSelector> column;
 };
+
+// source.format with kAuto replaced by what the file holds (kMat, kHdf5, kTdms or kCsv). Throws
+// Error when the file cannot be opened.
+RateRecordFormat resolve_rate_record_format(const RateRecordSource& source);
+
+// The format of a record of named channels, or nullopt for text and raw binary (after kAuto is resolved).
+std::optional<ChannelRecordFormat> channel_record_format_of(RateRecordFormat format);
+
+// The sample rate the record stores for the channel (io/channel_record.h), nullopt when it stores
+// none or is text or raw binary. Throws Error as read_rate_record.
+std::optional<double> stored_sample_rate(const RateRecordSource& source);
 
 using SampleSink = std::function<void(std::span<const double> samples)>;
 
 // Reads the record from the start and hands consecutive chunks of samples to `sink`; returns the
-// number of samples. A binary record streams in buffers; a text record is parsed once, whole (see
-// read_text_rate_record), and handed over as one chunk. Throws Error with file:line:column for text
-// that is not a number, a missing column, a NaN or infinite sample, a binary size that is not a
-// whole number of samples, or an unreadable file.
+// number of samples. A binary record and a record of named channels stream in buffers; a text
+// record is parsed once, whole (see read_text_rate_record), and handed over as one chunk. Throws
+// Error with file:line:column for text that is not a number, a missing column or channel, a NaN or
+// infinite sample, a binary size that is not a whole number of samples, or an unreadable file.
 std::size_t read_rate_record(const RateRecordSource& source, const SampleSink& sink);
 
 // The samples of a text record (source.format csv): the file mapped and parsed once, in parallel

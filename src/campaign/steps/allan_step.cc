@@ -1,7 +1,8 @@
 // Plan kind "allan": Allan variance and noise terms of a rate record (GJB 2426A-2004 5.12.5.4.2).
 //   file = "static.f64"          # the record
-//   format = "f64"               # csv (default), f64 or f32 (raw little-endian)
-//   column = "rate"              # optional (text): header name or 1-based index
+//   format = "f64"               # auto (default: .mat, HDF5, TDMS by magic bytes, else csv), csv,
+//                                # f64 or f32 (raw little-endian), mat, hdf5, tdms
+//   column = "rate"              # optional: header name or 1-based index; channel "group/channel", "struct.field"
 //   sample_rate_hz = 100         # optional: default the instrument's sample_rate_hz
 //   input_unit = "deg/h"         # optional: unit of the samples
 //   taus = "octave"              # optional: octave, decade, all, N/decade or "0.1,1,10"
@@ -34,7 +35,7 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
   RateRecordSource source;
   source.path = step.file("file");
   try {
-    source.format = parse_rate_record_format(step.string_or("format", "csv"));
+    source.format = parse_rate_record_format(step.string_or("format", "auto"));
   } catch (const Error& e) {
     step.fail_at("format", e.message());
   }

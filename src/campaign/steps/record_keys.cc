@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "inertest/io/binary_record.h"
+#include "inertest/io/output_record.h"
 
 namespace inertest::campaign {
 
@@ -13,7 +13,7 @@ OutputRecordSource read_record_keys(PlanTable& step, const std::string& file) {
   source.column = step.string_or("column", "");
   if (!source.format.empty()) {
     try {
-      BinaryFormat::parse(source.format);
+      check_output_record_format(source.format);
     } catch (const Error& e) {
       step.fail_at("format", e.message());
     }

@@ -1,0 +1,96 @@
+// Records whose channels carry names, as labs save them (issue 21): MATLAB .mat (v5, v7 compressed,
+// v7.3), HDF5 and National Instruments TDMS. The format is found by the file's magic bytes, never
+// by its extension. A channel is selected as a text column is: by name or by 1-based position among
+// the channels listed. Names: HDF5 "group/dataset" (a leading '/' may be given), MAT "variable" or
+// "struct.field" (nested: "a.b.c"), TDMS "group/channel" (the group and channel names, unquoted).
+// Channels are read in ranges, so a record of 10^9 samples streams through a few MB of buffer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "inertest/io/text_table.h"
+
+namespace inertest {
+
+enum class ChannelRecordFormat { kMat, kHdf5, kTdms };
+
+// "mat", "hdf5", "tdms".
+std::string_view channel_record_format_name(ChannelRecordFormat format);
+
+// The format of a file by its magic bytes: "MATLAB 5.0 MAT-file" with a version and endian
+// indicator at bytes 124..127 (v5, v7; v7.3 when the HDF5 signature follows at 512), the HDF5
+// signature \x89HDF\r\n\x1a\n at byte 0, 512, 1024, 2048, ... (a user block), or the TDMS lead-in
+// "TDSm" at byte 0. nullopt for anything else (text, raw binary). Throws Error when the file cannot
+// be opened.
+std::optional<ChannelRecordFormat> detect_channel_record_format(const std::string& path);
+
+// One channel of a record. `type` names the stored sample type: "f64", "f32", "i8".."i64",
+// "u8".."u64", "bool" for numbers; anything else ("string", "timestamp", "complex", "struct") is
+// listed but cannot be read as samples (numeric is false).
+struct ChannelInfo {
+  std::string name;
+  std::string type;
+  bool numeric = true;
+  std::uint64_t length = 0;
+  std::string unit;                       // the file's `units` / `unit_string`; empty when absent
+  std::optional<double> sample_rate_hz;   // stored: 1 / wf_increment, or a sample_rate_hz attribute
+  std::optional<double> start_time_s;     // stored wf_start_time, in seconds since 1970-01-01 UTC
+};
+
+// An open record. Not safe to share between threads.
+class ChannelRecord {
+ public:
+  virtual ~ChannelRecord() = default;
+  ChannelRecord(const ChannelRecord&) = delete;
+  ChannelRecord& operator=(const ChannelRecord&) = delete;
+
+  const std::string& path() const { return path_; }
+  ChannelRecordFormat format() const { return format_; }
+  const std::vector<ChannelInfo>& channels() const { return channels_; }
+
+  // The 0-based index of the channel chosen by name or 1-based position. Without a selector the
+  // record must hold exactly one numeric channel. Throws Error naming the file and listing the
+  // channels when there is no such channel, or it is not numeric.
+  std::size_t find(const std::optional<ColumnSelector>& selector) const;
+
+  // Samples [first, first + out.size()) of a numeric channel, converted to double. Throws Error
+  // naming the file, the channel and the offset when the range lies beyond the channel or the
+  // stored data cannot be read (truncated, corrupt).
+  virtual void read(std::size_t channel, std::uint64_t first, std::span<double> out) = 0;
+
+ protected:
+  ChannelRecord(std::string path, ChannelRecordFormat format) : path_(std::move(path)), format_(format) {}
+  std::vector<ChannelInfo> channels_;
+
+ private:
+  std::string path_;
+  ChannelRecordFormat format_;
+};
+
+// Opens a record of the given format and lists its channels. Throws Error naming the file (and the
+// byte offset or object) when it is not a readable record of that format.
+std::unique_ptr<ChannelRecord> open_channel_record(const std::string& path, ChannelRecordFormat format);
+
+// Reads a channel from the start, handing consecutive chunks of at most 1 Mi samples to `sink`;
+// returns the number of samples. A NaN or infinite sample is an Error naming the channel and the
+// 1-based sample number, raised before that sample's chunk is handed over.
+std::size_t stream_channel(ChannelRecord& record, std::size_t channel,
+                           const std::function<void(std::span<const double>)>& sink);
+
+// The whole channel, as stream_channel checks it.
+std::vector<double> read_channel(ChannelRecord& record, std::size_t channel);
+
+// The sample rate to use: the stored one, or `given` when the record stores none. Throws Error
+// naming the file, the channel and both values when they differ by more than 1e-9 relative, and
+// when neither is known.
+double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given);
+
+}  // namespace inertest

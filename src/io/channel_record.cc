@@ -1,0 +1,171 @@
+#include "inertest/io/channel_record.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "inertest/core/error.h"
+#include "io/channel_readers.h"
+
+namespace inertest {
+namespace {
+
+constexpr std::size_t kChunkSamples = 1u << 20;
+constexpr std::array<unsigned char, 8> kHdf5Signature = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+
+bool has_hdf5_signature_at(std::ifstream& file, std::uint64_t offset) {
+  std::array<char, 8> bytes{};
+  file.clear();
+  file.seekg(static_cast<std::streamoff>(offset));
+  if (!file.read(bytes.data(), bytes.size())) return false;
+  return std::memcmp(bytes.data(), kHdf5Signature.data(), bytes.size()) == 0;
+}
+
+std::string channel_list(const ChannelRecord& record) {
+  std::string names;
+  for (const auto& channel : record.channels()) names += (names.empty() ? "" : ", ") + channel.name;
+  return names.empty() ? "none" : names;
+}
+
+// "/a/b" and "a/b" name the same HDF5 dataset or TDMS channel.
+std::string_view without_leading_slash(std::string_view name) {
+  return !name.empty() && name.front() == '/' ? name.substr(1) : name;
+}
+
+}  // namespace
+
+std::string_view channel_record_format_name(ChannelRecordFormat format) {
+  switch (format) {
+    case ChannelRecordFormat::kMat: return "mat";
+    case ChannelRecordFormat::kHdf5: return "hdf5";
+    case ChannelRecordFormat::kTdms: return "tdms";
+  }
+  return "unknown";
+}
+
+std::optional<ChannelRecordFormat> detect_channel_record_format(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(SourceLocation{path, 0, 0}, std::string("cannot open: ") + std::strerror(errno));
+  std::array<char, 128> head{};
+  file.read(head.data(), head.size());
+  const auto got = static_cast<std::size_t>(file.gcount());
+  const std::string_view start(head.data(), got);
+  if (start.starts_with("TDSm")) return ChannelRecordFormat::kTdms;
+  // MAT-file level 5 header (MATLAB "MAT-File Format", 1-6): 116 bytes of text, 8 of subsystem
+  // offset, a 2-byte version and the endian indicator "IM" (or "MI" when written big-endian).
+  if (got == head.size() && start.starts_with("MATLAB ") &&
+      (start.substr(126, 2) == "IM" || start.substr(126, 2) == "MI")) {
+    return ChannelRecordFormat::kMat;
+  }
+  // HDF5 (File Format Specification 3.0, II.A): the superblock signature at 0 or at 512, 1024,
+  // 2048, ... after a user block.
+  file.clear();
+  file.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(file.tellg());
+  for (std::uint64_t offset = 0; offset + kHdf5Signature.size() <= size; offset = offset == 0 ? 512 : offset * 2) {
+    if (has_hdf5_signature_at(file, offset)) return ChannelRecordFormat::kHdf5;
+  }
+  return std::nullopt;
+}
+
+std::size_t ChannelRecord::find(const std::optional<ColumnSelector>& selector) const {
+  const SourceLocation where{path_, 0, 0};
+  std::size_t index = channels_.size();
+  if (!selector) {
+    std::size_t numeric = 0;
+    for (std::size_t i = 0; i < channels_.size(); ++i) {
+      if (channels_[i].numeric) {
+        ++numeric;
+        index = i;
+      }
+    }
+    if (numeric != 1) {
+      throw Error(where, fmt::format("the record has {} numeric channels ({}): choose one with --column (plan key "
+                                     "`column`)",
+                                     numeric, channel_list(*this)));
+    }
+    return index;
+  }
+  if (selector->index > 0) {
+    if (selector->index > channels_.size()) {
+      throw Error(where, fmt::format("channel {} asked for, but the record has {} channels ({})", selector->index,
+                                     channels_.size(), channel_list(*this)));
+    }
+    index = selector->index - 1;
+  } else {
+    const std::string_view wanted = without_leading_slash(selector->name);
+    const auto it = std::find_if(channels_.begin(), channels_.end(),
+                                 [&](const ChannelInfo& c) { return without_leading_slash(c.name) == wanted; });
+    if (it == channels_.end()) {
+      throw Error(where, fmt::format("no channel '{}' in the record (channels: {})", selector->name, channel_list(*this)));
+    }
+    index = static_cast<std::size_t>(it - channels_.begin());
+  }
+  if (!channels_[index].numeric) {
+    throw Error(where, fmt::format("channel '{}' holds {} values, not numbers", channels_[index].name,
+                                   channels_[index].type));
+  }
+  return index;
+}
+
+std::unique_ptr<ChannelRecord> open_channel_record(const std::string& path, ChannelRecordFormat format) {
+  switch (format) {
+    case ChannelRecordFormat::kMat: return open_mat_record(path);
+    case ChannelRecordFormat::kHdf5: return open_hdf5_record(path);
+    case ChannelRecordFormat::kTdms: return open_tdms_record(path);
+  }
+  throw Error(SourceLocation{path, 0, 0}, "unknown record format");
+}
+
+std::size_t stream_channel(ChannelRecord& record, std::size_t channel,
+                           const std::function<void(std::span<const double>)>& sink) {
+  const ChannelInfo& info = record.channels().at(channel);
+  if (info.length == 0) throw Error(SourceLocation{record.path(), 0, 0}, fmt::format("channel '{}' holds no samples", info.name));
+  std::vector<double> buffer(static_cast<std::size_t>(std::min<std::uint64_t>(info.length, kChunkSamples)));
+  for (std::uint64_t first = 0; first < info.length; first += buffer.size()) {
+    const std::span<double> chunk(buffer.data(),
+                                  static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), info.length - first)));
+    record.read(channel, first, chunk);
+    for (std::size_t i = 0; i < chunk.size(); ++i) {
+      if (!std::isfinite(chunk[i])) {
+        throw Error(SourceLocation{record.path(), 0, 0},
+                    fmt::format("channel '{}': sample {} is not a finite number", info.name, first + i + 1));
+      }
+    }
+    sink(chunk);
+  }
+  return static_cast<std::size_t>(info.length);
+}
+
+std::vector<double> read_channel(ChannelRecord& record, std::size_t channel) {
+  std::vector<double> samples;
+  // A corrupt file may claim any length: reserve at most what one chunk proves readable.
+  samples.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(record.channels().at(channel).length, kChunkSamples)));
+  stream_channel(record, channel, [&](std::span<const double> chunk) { samples.insert(samples.end(), chunk.begin(), chunk.end()); });
+  return samples;
+}
+
+double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given) {
+  const ChannelInfo& info = record.channels().at(channel);
+  const SourceLocation where{record.path(), 0, 0};
+  if (!info.sample_rate_hz) {
+    if (!given) throw Error(where, fmt::format("channel '{}' stores no sample rate: give it (--rate / sample_rate_hz)", info.name));
+    return *given;
+  }
+  if (given && std::abs(*given - *info.sample_rate_hz) > 1e-9 * std::abs(*info.sample_rate_hz)) {
+    throw Error(where, fmt::format("the sample rate given, {} Hz, contradicts the {} Hz stored for channel '{}'", *given,
+                                   *info.sample_rate_hz, info.name));
+  }
+  return *info.sample_rate_hz;
+}
+
+std::string channel_range_context(const ChannelInfo& channel, std::uint64_t first, std::size_t count) {
+  return fmt::format("channel '{}', samples {}..{}", channel.name, first + 1, first + count);
+}
+
+}  // namespace inertest

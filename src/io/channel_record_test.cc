@@ -1,0 +1,245 @@
+// Records of named channels written by other implementations: .mat by scipy.io.savemat (v5, v7),
+// HDF5 by h5py (data/lab_formats/make_records.py), TDMS by LabVIEW and NI-DAQmx (data/tdms/, from
+// npTDMS's test data, with the values npTDMS's tests expect).
+#include "inertest/io/channel_record.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "inertest/core/error.h"
+#include "inertest/io/output_record.h"
+#include "inertest/io/rate_record.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The formulas of data/lab_formats/make_records.py.
+double known_rate(std::size_t i) { return 0.001 * static_cast<double>(i) - 0.25; }
+double known_gyro_x(std::size_t i) { return (static_cast<double>(i % 7) - 3.0) * 0.5; }
+
+std::string lab_file(const std::string& name) { return testing::source_path("data/lab_formats/" + name); }
+std::string tdms_file(const std::string& name) { return testing::source_path("data/tdms/" + name); }
+
+const ChannelInfo& channel_named(const ChannelRecord& record, const std::string& name) {
+  return record.channels()[record.find(ColumnSelector::parse(name))];
+}
+
+TEST(ChannelRecord, DetectsFormatsByMagicBytesNotExtension) {
+  EXPECT_EQ(detect_channel_record_format(lab_file("record_v5.mat")), ChannelRecordFormat::kMat);
+  EXPECT_EQ(detect_channel_record_format(lab_file("record_v7.mat")), ChannelRecordFormat::kMat);
+  EXPECT_EQ(detect_channel_record_format(lab_file("record.h5")), ChannelRecordFormat::kHdf5);
+  EXPECT_EQ(detect_channel_record_format(tdms_file("big_endian.tdms")), ChannelRecordFormat::kTdms);
+  testing::ScratchDirectory dir;
+  EXPECT_EQ(detect_channel_record_format(dir.write("record.h5", "t,rate\n0,1\n")), std::nullopt);
+  // An HDF5 file behind a 512-byte user block (as MATLAB v7.3 writes one) is still HDF5.
+  const std::string hdf5 = testing::read_file(lab_file("record.h5"));
+  const std::string blocked = dir.write("blocked.bin", std::string(512, 'x') + hdf5);
+  EXPECT_EQ(detect_channel_record_format(blocked), ChannelRecordFormat::kHdf5);
+}
+
+TEST(ChannelRecord, MatV5AndV7WrittenByScipy) {
+  for (const std::string name : {"record_v5.mat", "record_v7.mat"}) {
+    SCOPED_TRACE(name);
+    const auto record = open_channel_record(lab_file(name), ChannelRecordFormat::kMat);
+    const ChannelInfo& rate = channel_named(*record, "rate");
+    EXPECT_EQ(rate.type, "f64");
+    EXPECT_EQ(rate.length, 1000u);
+    EXPECT_EQ(channel_named(*record, "imu.gyro_x").type, "f32");
+    EXPECT_EQ(channel_named(*record, "imu.temperature").type, "i16");
+    const std::vector<double> samples = read_channel(*record, record->find(ColumnSelector::parse("rate")));
+    ASSERT_EQ(samples.size(), 1000u);
+    for (std::size_t i = 0; i < samples.size(); ++i) ASSERT_EQ(samples[i], known_rate(i)) << i;
+    const std::vector<double> gyro = read_channel(*record, record->find(ColumnSelector::parse("imu.gyro_x")));
+    for (std::size_t i = 0; i < gyro.size(); ++i) ASSERT_EQ(gyro[i], known_gyro_x(i)) << i;
+    const std::vector<double> temperature = read_channel(*record, record->find(ColumnSelector::parse("imu.temperature")));
+    EXPECT_EQ(temperature[123], 23.0);
+    // A 2 x 3 matrix is listed, not read as samples.
+    try {
+      record->find(ColumnSelector::parse("matrix"));
+      FAIL() << "no error";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.message(), HasSubstr("channel 'matrix' holds f64 2x3 values, not numbers"));
+    }
+  }
+}
+
+TEST(ChannelRecord, Hdf5WrittenByH5pyWithUnitsRateAndChunks) {
+  const auto record = open_channel_record(lab_file("record.h5"), ChannelRecordFormat::kHdf5);
+  const std::size_t gyro = record->find(ColumnSelector::parse("/imu/gyro_x"));
+  const ChannelInfo& info = record->channels()[gyro];
+  EXPECT_EQ(info.name, "imu/gyro_x");
+  EXPECT_EQ(info.type, "f64");
+  EXPECT_EQ(info.unit, "deg/h");
+  EXPECT_EQ(info.sample_rate_hz, 200.0);
+  EXPECT_EQ(info.length, 10000u);
+  EXPECT_EQ(channel_named(*record, "imu/temperature").type, "i16");
+  // A range across chunk boundaries, read by hyperslab.
+  std::vector<double> part(2500);
+  record->read(gyro, 1234, part);
+  for (std::size_t i = 0; i < part.size(); ++i) ASSERT_EQ(part[i], known_rate((1234 + i) / 10)) << i;
+  EXPECT_THROW(record->read(gyro, 9999, std::span<double>(part.data(), 2)), Error);
+}
+
+TEST(ChannelRecord, RateRecordAndOutputRecordReadChannelsByName) {
+  const std::vector<double> direct = read_output_record({lab_file("record_v7.mat"), "", "imu.gyro_x"});
+  EXPECT_EQ(direct[10], known_gyro_x(10));
+  std::vector<double> streamed;
+  const std::size_t count = read_rate_record({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")},
+                                             [&](std::span<const double> chunk) { streamed.insert(streamed.end(), chunk.begin(), chunk.end()); });
+  EXPECT_EQ(count, 10000u);
+  EXPECT_EQ(streamed[9999], known_rate(999));
+  EXPECT_EQ(stored_sample_rate({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")}), 200.0);
+  // The stored rate gives the times; a rate that contradicts it is an error naming both.
+  const TimedRecord timed = read_timed_record({lab_file("record.h5"), "auto", "imu/gyro_x"}, std::nullopt);
+  EXPECT_DOUBLE_EQ(timed.time_s[199], 1.0);
+  try {
+    read_timed_record({lab_file("record.h5"), "", "imu/gyro_x"}, 100.0);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("the sample rate given, 100 Hz, contradicts the 200 Hz stored for channel 'imu/gyro_x'"));
+  }
+}
+
+TEST(ChannelRecord, MissingChannelListsTheChannels) {
+  const auto record = open_channel_record(lab_file("record.h5"), ChannelRecordFormat::kHdf5);
+  try {
+    record->find(ColumnSelector::parse("imu/gyro_y"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, lab_file("record.h5"));
+    EXPECT_EQ(e.message(), "no channel 'imu/gyro_y' in the record (channels: imu/gyro_x, imu/temperature, matrix)");
+  }
+}
+
+// Written by LabVIEW (npTDMS's test data; values as npTDMS's tests expect them).
+TEST(ChannelRecord, TdmsWrittenByLabview) {
+  const auto record = open_channel_record(tdms_file("Digital_Input.tdms"), ChannelRecordFormat::kTdms);
+  const std::size_t line = record->find(ColumnSelector::parse(
+      "07/09/2012 06:58:23 PM - Digital Input - Decimated Data_Level1/Dev1_port3_line7 - line 0"));
+  EXPECT_EQ(record->channels()[line].type, "u8");
+  std::vector<double> first(10);
+  record->read(line, 0, first);
+  EXPECT_THAT(first, ::testing::ElementsAre(0, 1, 0, 1, 0, 1, 0, 1, 0, 1));
+}
+
+TEST(ChannelRecord, TdmsBigEndianWrittenByLabview) {
+  const auto record = open_channel_record(tdms_file("big_endian.tdms"), ChannelRecordFormat::kTdms);
+  const std::size_t sweep = record->find(ColumnSelector::parse("Measured Data/Phase sweep"));
+  std::vector<double> first(10);
+  record->read(sweep, 0, first);
+  const std::vector<double> expected = {0.0000000, 0.0634176, 0.1265799, 0.1892325, 0.2511234,
+                                        0.3120033, 0.3716271, 0.4297548, 0.4861524, 0.5405928};
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(first[i], expected[i], 5e-8) << i;
+}
+
+// DAQmx raw data: int16 samples in a strided buffer, scaled by the channel's NI_Scale[1] (linear).
+TEST(ChannelRecord, TdmsDaqmxRawDataScaled) {
+  const auto record = open_channel_record(tdms_file("raw1.tdms"), ChannelRecordFormat::kTdms);
+  const std::size_t first_channel = record->find(ColumnSelector::parse("Layer Data/First  Channel"));
+  std::vector<double> first(10);
+  record->read(first_channel, 0, first);
+  const std::vector<double> expected = {-0.18402661, 0.14801477, -0.24506363, -0.29725028, -0.20020142,
+                                        0.18158513,  0.02380444, 0.20661031,  0.20447401,  0.2517777};
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(first[i], expected[i], 5e-9) << i;
+}
+
+}  // namespace
+}  // namespace inertest
+
+namespace inertest {
+namespace {
+
+// A TDMS file assembled here byte by byte as NI's format description lays it out (the layouts no
+// file above has): an interleaved segment, then a raw-data-only segment repeating the object list
+// and indices contiguously, and the same metadata as a .tdms_index file.
+class TdmsBytes {
+ public:
+  void u32(std::uint32_t v) { append(&v, 4); }
+  void u64(std::uint64_t v) { append(&v, 8); }
+  void i32(std::int32_t v) { append(&v, 4); }
+  void f64(double v) { append(&v, 8); }
+  void text(const std::string& s) {
+    u32(static_cast<std::uint32_t>(s.size()));
+    bytes += s;
+  }
+  std::string bytes;
+
+ private:
+  void append(const void* v, std::size_t n) { bytes.append(static_cast<const char*>(v), n); }
+};
+
+std::string lead_in(const char* tag, std::uint32_t toc, std::uint64_t next, std::uint64_t raw) {
+  TdmsBytes b;
+  b.bytes = tag;
+  b.u32(toc);
+  b.u32(4713);
+  b.u64(next);
+  b.u64(raw);
+  return b.bytes;
+}
+
+TEST(ChannelRecord, TdmsInterleavedThenContiguousSegmentsAndIndexFile) {
+  constexpr std::uint32_t kMeta = 2, kNewList = 4, kRaw = 8, kInterleaved = 32;
+  TdmsBytes meta;
+  meta.u32(2);  // objects
+  meta.text("/'g'/'a'");
+  meta.u32(20);  // index length
+  meta.u32(3);   // tdsTypeI32
+  meta.u32(1);
+  meta.u64(3);
+  meta.u32(1);  // one property
+  meta.text("unit_string");
+  meta.u32(0x20);
+  meta.text("deg/h");
+  meta.text("/'g'/'b''s'");
+  meta.u32(20);
+  meta.u32(10);  // tdsTypeDoubleFloat
+  meta.u32(1);
+  meta.u64(3);
+  meta.u32(1);
+  meta.text("wf_increment");
+  meta.u32(10);
+  meta.f64(0.01);
+  TdmsBytes interleaved;
+  for (int i = 0; i < 3; ++i) {
+    interleaved.i32(10 + i);
+    interleaved.f64(0.5 * i);
+  }
+  TdmsBytes contiguous;
+  for (int i = 0; i < 3; ++i) contiguous.i32(20 + i);
+  for (int i = 0; i < 3; ++i) contiguous.f64(-1.0 - i);
+  const std::string first = meta.bytes + interleaved.bytes;
+  std::string file = lead_in("TDSm", kMeta | kNewList | kRaw | kInterleaved, first.size(), meta.bytes.size()) + first;
+  file += lead_in("TDSm", kRaw, contiguous.bytes.size(), 0) + contiguous.bytes;
+  const std::string index = lead_in("TDSh", kMeta | kNewList | kRaw | kInterleaved, first.size(), meta.bytes.size()) +
+                            meta.bytes + lead_in("TDSh", kRaw, contiguous.bytes.size(), 0);
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write("made.tdms", file);
+  for (const bool with_index : {false, true}) {
+    SCOPED_TRACE(with_index ? "with index" : "without index");
+    if (with_index) dir.write("made.tdms_index", index);
+    const auto record = open_channel_record(path, ChannelRecordFormat::kTdms);
+    const std::size_t a = record->find(ColumnSelector::parse("g/a"));
+    const std::size_t b = record->find(ColumnSelector::parse("g/b's"));
+    EXPECT_EQ(record->channels()[a].unit, "deg/h");
+    EXPECT_EQ(record->channels()[a].type, "i32");
+    EXPECT_EQ(record->channels()[b].sample_rate_hz, 100.0);
+    EXPECT_THAT(read_channel(*record, a), ::testing::ElementsAre(10, 11, 12, 20, 21, 22));
+    EXPECT_THAT(read_channel(*record, b), ::testing::ElementsAre(0, 0.5, 1, -1, -2, -3));
+  }
+  // An index file that does not match the data file is refused, naming the offset.
+  dir.write("made.tdms_index", lead_in("TDSh", kMeta | kNewList | kRaw, first.size(), meta.bytes.size()) + meta.bytes);
+  try {
+    open_channel_record(path, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("byte offset 0: the segment lead-in differs from the one in the index file"));
+  }
+}
+
+}  // namespace
+}  // namespace inertest

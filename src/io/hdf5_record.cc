@@ -1,0 +1,234 @@
+// HDF5 records through the HDF5 C library: every dataset of the file is a channel named by its
+// path ("group/dataset"). One-dimensional datasets (or N x 1 and 1 x N) of integers or floats are
+// read as samples, in hyperslabs of the range asked for, so a chunked, compressed dataset of 10^9
+// samples is never copied whole. Units come from a string attribute `units` (or `unit`), the
+// sample rate from a numeric attribute `sample_rate_hz` (or `sample_rate`), or `wf_increment` (s).
+#include <fmt/format.h>
+#include <hdf5.h>
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "inertest/core/error.h"
+#include "io/channel_readers.h"
+
+namespace inertest {
+namespace {
+
+// An HDF5 identifier closed by `close` when it goes out of scope.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), close_(other.close_) {}
+  Handle& operator=(Handle&& other) noexcept {
+    std::swap(id_, other.id_);
+    std::swap(close_, other.close_);
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  Closer close_;
+};
+
+// The innermost message of HDF5's error stack (what went wrong, in the library's words).
+std::string hdf5_error_text() {
+  std::string text;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t* error, void* data) -> herr_t {
+        auto* out = static_cast<std::string*>(data);
+        if (out->empty() && error->desc != nullptr) *out = error->desc;
+        return 0;
+      },
+      &text);
+  H5Eclear2(H5E_DEFAULT);
+  return text.empty() ? "unknown HDF5 error" : text;
+}
+
+// The library prints its error stack to stderr unless told not to; errors are reported as Error.
+void silence_hdf5() {
+  static const bool silenced = [] {
+    H5open();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)silenced;
+}
+
+std::string type_name(hid_t type, bool& numeric) {
+  const H5T_class_t type_class = H5Tget_class(type);
+  const std::size_t size = H5Tget_size(type);
+  numeric = true;
+  if (type_class == H5T_FLOAT && (size == 4 || size == 8)) return fmt::format("f{}", size * 8);
+  if (type_class == H5T_INTEGER && size <= 8) {
+    return fmt::format("{}{}", H5Tget_sign(type) == H5T_SGN_NONE ? 'u' : 'i', size * 8);
+  }
+  numeric = false;
+  switch (type_class) {
+    case H5T_STRING: return "string";
+    case H5T_COMPOUND: return "compound";
+    case H5T_ENUM: return "enum";
+    case H5T_ARRAY: return "array";
+    case H5T_VLEN: return "vlen";
+    case H5T_REFERENCE: return "reference";
+    default: return fmt::format("{}-byte non-numeric", size);
+  }
+}
+
+// H5T_VARIABLE, without the C cast of its macro.
+constexpr std::size_t kVariableLength = static_cast<std::size_t>(-1);
+
+std::optional<std::string> string_attribute(hid_t object, const char* name) {
+  if (H5Aexists(object, name) <= 0) return std::nullopt;
+  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  if (!attribute.valid()) return std::nullopt;
+  Handle type(H5Aget_type(attribute.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING) return std::nullopt;
+  Handle space(H5Aget_space(attribute.get()), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) return std::nullopt;
+  Handle memory_type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_cset(memory_type.get(), H5Tget_cset(type.get()));
+  if (H5Tis_variable_str(type.get()) > 0) {
+    H5Tset_size(memory_type.get(), kVariableLength);
+    char* text = nullptr;
+    if (H5Aread(attribute.get(), memory_type.get(), &text) < 0 || text == nullptr) return std::nullopt;
+    std::string value(text);
+    H5free_memory(text);
+    return value;
+  }
+  const std::size_t size = H5Tget_size(type.get());
+  std::string value(size + 1, '\0');
+  H5Tset_size(memory_type.get(), size + 1);
+  H5Tset_strpad(memory_type.get(), H5T_STR_NULLTERM);
+  if (H5Aread(attribute.get(), memory_type.get(), value.data()) < 0) return std::nullopt;
+  value.resize(value.find('\0'));
+  return value;
+}
+
+std::optional<double> number_attribute(hid_t object, const char* name) {
+  if (H5Aexists(object, name) <= 0) return std::nullopt;
+  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  Handle type(H5Aget_type(attribute.get()), H5Tclose);
+  Handle space(H5Aget_space(attribute.get()), H5Sclose);
+  const H5T_class_t type_class = H5Tget_class(type.get());
+  if ((type_class != H5T_FLOAT && type_class != H5T_INTEGER) || H5Sget_simple_extent_npoints(space.get()) != 1) {
+    return std::nullopt;
+  }
+  double value = 0.0;
+  if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) < 0) return std::nullopt;
+  return value;
+}
+
+class Hdf5Record final : public ChannelRecord {
+ public:
+  explicit Hdf5Record(const std::string& path)
+      : ChannelRecord(path, ChannelRecordFormat::kHdf5), file_(H5I_INVALID_HID, H5Fclose),
+        dataset_(H5I_INVALID_HID, H5Dclose) {
+    silence_hdf5();
+    file_ = Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    if (!file_.valid()) throw Error(SourceLocation{path, 0, 0}, "not a readable HDF5 file: " + hdf5_error_text());
+    if (H5Lvisit(file_.get(), H5_INDEX_NAME, H5_ITER_INC, &Hdf5Record::visit, this) < 0) {
+      throw Error(SourceLocation{path, 0, 0}, "cannot list the datasets: " + hdf5_error_text());
+    }
+  }
+
+  void read(std::size_t channel, std::uint64_t first, std::span<double> out) override {
+    const ChannelInfo& info = channels_.at(channel);
+    const SourceLocation where{path(), 0, 0};
+    if (first + out.size() > info.length) {
+      throw Error(where, channel_range_context(info, first, out.size()) + fmt::format(": beyond its {} samples", info.length));
+    }
+    if (open_channel_ != channel) {
+      dataset_ = Handle(H5Dopen2(file_.get(), info.name.c_str(), H5P_DEFAULT), H5Dclose);
+      if (!dataset_.valid()) throw Error(where, fmt::format("channel '{}': cannot open the dataset: {}", info.name, hdf5_error_text()));
+      open_channel_ = channel;
+    }
+    Handle file_space(H5Dget_space(dataset_.get()), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(file_space.get());
+    std::array<hsize_t, 2> dims{1, 1};
+    H5Sget_simple_extent_dims(file_space.get(), dims.data(), nullptr);
+    std::array<hsize_t, 2> start{0, 0};
+    std::array<hsize_t, 2> count{1, 1};
+    // The one dimension longer than 1 runs along the samples (N, N x 1 or 1 x N).
+    const std::size_t axis = rank == 2 && dims[0] == 1 && dims[1] != 1 ? 1 : 0;
+    start[axis] = first;
+    count[axis] = out.size();
+    if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) < 0) {
+      throw Error(where, channel_range_context(info, first, out.size()) + ": " + hdf5_error_text());
+    }
+    const hsize_t memory_count = out.size();
+    Handle memory_space(H5Screate_simple(1, &memory_count, nullptr), H5Sclose);
+    if (H5Dread(dataset_.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, out.data()) < 0) {
+      throw Error(where, channel_range_context(info, first, out.size()) +
+                             ": cannot read (truncated or corrupt file?): " + hdf5_error_text());
+    }
+  }
+
+ private:
+  static herr_t visit(hid_t group, const char* name, const H5L_info_t* link, void* data) {
+    auto* self = static_cast<Hdf5Record*>(data);
+    if (link->type != H5L_TYPE_HARD) return 0;
+    Handle object(H5Oopen(group, name, H5P_DEFAULT), H5Oclose);
+    if (!object.valid()) {
+      H5Eclear2(H5E_DEFAULT);
+      return 0;
+    }
+    if (H5Iget_type(object.get()) != H5I_DATASET) return 0;
+    self->add_dataset(name, object.get());
+    return 0;
+  }
+
+  void add_dataset(const std::string& name, hid_t dataset) {
+    ChannelInfo info;
+    info.name = name;
+    Handle type(H5Dget_type(dataset), H5Tclose);
+    info.type = type_name(type.get(), info.numeric);
+    Handle space(H5Dget_space(dataset), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space.get());
+    std::array<hsize_t, H5S_MAX_RANK> dims{};
+    H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+    const auto points = static_cast<std::uint64_t>(H5Sget_simple_extent_npoints(space.get()));
+    info.length = points;
+    const bool vector = rank == 1 || (rank == 2 && (dims[0] == 1 || dims[1] == 1));
+    if (!vector) {
+      std::string shape;
+      for (int i = 0; i < rank; ++i) {
+        if (i > 0) shape += 'x';
+        shape += std::to_string(dims[static_cast<std::size_t>(i)]);
+      }
+      info.type += ' ';
+      info.type += rank == 0 ? "scalar" : shape;
+      info.numeric = false;
+    }
+    info.unit = string_attribute(dataset, "units").value_or(string_attribute(dataset, "unit").value_or(""));
+    if (auto rate = number_attribute(dataset, "sample_rate_hz")) {
+      info.sample_rate_hz = rate;
+    } else if (auto rate_alias = number_attribute(dataset, "sample_rate")) {
+      info.sample_rate_hz = rate_alias;
+    } else if (auto increment = number_attribute(dataset, "wf_increment"); increment && *increment > 0.0) {
+      info.sample_rate_hz = 1.0 / *increment;
+    }
+    H5Eclear2(H5E_DEFAULT);
+    channels_.push_back(std::move(info));
+  }
+
+  Handle file_;
+  Handle dataset_;
+  std::size_t open_channel_ = static_cast<std::size_t>(-1);
+};
+
+}  // namespace
+
+std::unique_ptr<ChannelRecord> open_hdf5_record(const std::string& path) { return std::make_unique<Hdf5Record>(path); }
+
+}  // namespace inertest

@@ -73,7 +73,7 @@ nlohmann::json describe_channel(ChannelRecord& record, std::size_t index, nlohma
   channel["min"] = low;
   channel["max"] = high;
   if (count > 1) channel["standard_deviation"] = std::sqrt(squares / static_cast<double>(count - 1));
-  if (low == high) {
+  if (count > 1 && low == high) {  // as is_constant: one sample is not a stuck channel
     warnings.push_back(fmt::format("channel '{}' is constant: all {} samples equal {:.10g} (a stuck channel?)", info.name,
                                    count, low));
   }

@@ -1,4 +1,5 @@
-// inertest inspect: the time-stamp checks (--time-column, --gaps) and the constant-channel warning.
+// inertest inspect: the time-stamp checks (--time-column, --gaps), the constant-channel warning, and
+// the channel listing of .mat, HDF5 and TDMS records.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -71,6 +72,30 @@ TEST(InspectCommand, ConstantChannelIsAWarningInTheJson) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.err, HasSubstr("column 'a' is constant: all 2 samples equal 1"));
   EXPECT_EQ(nlohmann::json::parse(run.out)["warnings"].size(), 1u);
+}
+
+// Every format lists its channels with the stored type, length, unit and rate (found by magic bytes).
+TEST(InspectCommand, ListsTheChannelsOfMatHdf5AndTdmsRecords) {
+  const auto tdms = nlohmann::json::parse(
+      testing::run_cli({"inspect", testing::source_path("data/tdms/raw1.tdms"), "--json"}).out);
+  EXPECT_EQ(tdms["format"], "tdms");
+  EXPECT_EQ(tdms["columns"].size(), 7u);
+  const auto& first = tdms["columns"][0];
+  EXPECT_EQ(first["name"], "Layer Data/First  Channel");
+  EXPECT_EQ(first["type"], "daqmx i16");
+  EXPECT_EQ(first["count"], 2000);
+  EXPECT_EQ(first["unit"], "Volts");
+  EXPECT_DOUBLE_EQ(first["sample_rate_hz"].get<double>(), 50000.0);  // 1 / wf_increment (2e-5 s)
+  const auto hdf5 = nlohmann::json::parse(
+      testing::run_cli({"inspect", testing::source_path("data/lab_formats/record.h5"), "--json"}).out);
+  EXPECT_EQ(hdf5["format"], "hdf5");
+  EXPECT_EQ(hdf5["columns"][0]["unit"], "deg/h");
+  EXPECT_EQ(hdf5["columns"][2]["type"], "f64 2x3");  // listed, not read as samples
+  EXPECT_FALSE(hdf5["columns"][2].contains("mean"));
+  const testing::CliRun mat = testing::run_cli({"inspect", testing::source_path("data/lab_formats/record_v7.mat")});
+  EXPECT_EQ(mat.exit_code, 0);
+  EXPECT_THAT(mat.out, HasSubstr("mat record, 5 channels"));
+  EXPECT_THAT(mat.out, HasSubstr("imu.gyro_x"));
 }
 
 }  // namespace

@@ -37,7 +37,6 @@ constexpr std::uint32_t kTocNewObjList = 1u << 2;
 constexpr std::uint32_t kTocRawData = 1u << 3;
 constexpr std::uint32_t kTocInterleavedData = 1u << 5;
 constexpr std::uint32_t kTocBigEndian = 1u << 6;
-constexpr std::uint32_t kTocDaqmxRawData = 1u << 7;
 constexpr std::uint64_t kLeadInBytes = 28;
 constexpr std::uint64_t kIncompleteSegment = 0xFFFFFFFFFFFFFFFFull;
 constexpr std::uint32_t kNoRawData = 0xFFFFFFFFu;
@@ -51,8 +50,8 @@ constexpr double kTdmsEpochToUnixSeconds = 2082844800.0;
 enum : std::uint32_t {
   kVoid = 0, kI8 = 1, kI16 = 2, kI32 = 3, kI64 = 4, kU8 = 5, kU16 = 6, kU32 = 7, kU64 = 8,
   kSingle = 9, kDouble = 10, kExtended = 11, kSingleWithUnit = 0x19, kDoubleWithUnit = 0x1A,
-  kExtendedWithUnit = 0x1B, kString = 0x20, kBoolean = 0x21, kTimeStamp = 0x44, kFixedPoint = 0x4F,
-  kComplexSingle = 0x08000C, kComplexDouble = 0x10000D, kDaqmxRawData = 0xFFFFFFFF
+  kExtendedWithUnit = 0x1B, kString = 0x20, kBoolean = 0x21, kTimeStamp = 0x44, kComplexSingle = 0x08000C,
+  kComplexDouble = 0x10000D
 };
 
 // Bytes of one value; 0 for strings (variable) and types not known.

@@ -141,9 +141,16 @@ void wrap_centrifuge(py::module_& module) {
   bind_result<DriftCalibrationTag>(
       module, "DriftCalibrationResult",
       "Drift coefficients calibrated on a centrifuge (the centrifuge paper, inertest.CITATIONS['centrifuge'],\n"
-      "eqs. 2, 5-16). Members as in the JSON: coefficients (D_F ... D_OS, Figures in deg/h, deg/h/g,\n"
-      "deg/h/g^2 per standard g, with 1-sigma),\n"
-      "residual_rms, centrifuge_errors, influence (paper section 6), runs (residuals), warnings, ...");
+      "eqs. 2, 5-16): members as in the CLI's --json object.\n"
+      "Members:\n"
+      "    coefficients: Record  # D_F ... D_OS: Figures in deg/h, deg/h/g, deg/h/g^2 per standard g, 1 sigma\n"
+      "    residual_rms: Figure\n"
+      "    degrees_of_freedom: int\n"
+      "    g_levels: int\n"
+      "    centrifuge_errors: Record\n"
+      "    influence: list[Record]  # per error alone (paper section 6)\n"
+      "    runs: list[Record]  # the residuals\n"
+      "    warnings: list[str]\n");
   module.def("calibrate_drift_coefficients", &calibrate, "runs"_a, py::kw_only(), "latitude_deg"_a = py::none(),
              "radius_m"_a = 1.0, "gravity_m_s2"_a = constants::kStandardGravity, "k1_rad"_a = py::none(),
              "k2_rad"_a = py::none(), "delta_omega_rad_s"_a = py::none(), "compensation"_a = true,

@@ -123,16 +123,39 @@ void wrap_misalignment(py::module_& module) {
   using namespace pybind11::literals;
   bind_result<GyroMisalignmentTag>(
       module, "GyroMisalignmentResult",
-      "Gyro misalignment separation (the misalignment paper, inertest.CITATIONS['misalignment']).\n"
-      "Members as in the JSON:\n"
-      "delta_theta_y0, delta_theta_x0, delta_theta_y1, delta_theta_y2, delta_theta_z2, misalignment\n"
-      "(arcsec, all rates together), residual_rms, by_rate (the same per rate, with rate_dps), ...");
+      "Gyro misalignment separation (the misalignment paper, inertest.CITATIONS['misalignment']): members\n"
+      "as in the CLI's --json object; the angles in arcsec, all rates together.\n"
+      "Members:\n"
+      "    delta_theta_y0: Figure  # the table's error\n"
+      "    delta_theta_x0: Figure  # the table's error\n"
+      "    delta_theta_y1: Figure  # the fixture's error\n"
+      "    delta_theta_y2: Figure  # the gyro's input-axis misalignment\n"
+      "    delta_theta_z2: Figure  # the gyro's input-axis misalignment\n"
+      "    misalignment: Figure\n"
+      "    equation_count: int\n"
+      "    degrees_of_freedom: int\n"
+      "    residual_rms: Figure\n"
+      "    residuals: list[Record]  # alpha_deg, beta_deg, rate_dps, residual\n"
+      "    procedure: str\n"
+      "    source: str\n"
+      "    scale_factor: Figure\n"
+      "    by_rate: list[Record]  # the same per rate, with rate_dps\n"
+      "    warnings: list[str]\n");
   bind_result<AccelerometerMisalignmentTag>(
       module, "AccelerometerMisalignmentResult",
       "Accelerometer misalignment by the multi-position gravity test (the misalignment paper,\n"
-      "inertest.CITATIONS['misalignment']). Members as in the JSON: delta_theta_y2, delta_theta_z2,\n"
-      "misalignment (arcsec, mean\n"
-      "over runs with its standard error), by_run (the same per run, with run), ...");
+      "inertest.CITATIONS['misalignment']): members as in the CLI's --json object; the angles in arcsec,\n"
+      "the mean over runs with its standard error.\n"
+      "Members:\n"
+      "    delta_theta_y2: Figure\n"
+      "    delta_theta_z2: Figure\n"
+      "    misalignment: Figure\n"
+      "    procedure: str\n"
+      "    source: str\n"
+      "    scale_factor: Figure\n"
+      "    run_count: int\n"
+      "    by_run: list[Record]  # the same per run, with run, position_count, degrees_of_freedom, residual_rms\n"
+      "    warnings: list[str]\n");
 
   module.def("gyro_misalignment", &gyro_misalignment_of, "alpha_deg"_a, "beta_deg"_a, "rate_dps"_a, "output"_a,
              py::kw_only(), "scale_factor"_a, "output_unit"_a = "1", "line"_a = py::none(), "source"_a = py::none(),

@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
+#include "inertest/core/figure.h"
 
 namespace inertest {
 
@@ -231,6 +232,19 @@ enum class FieldRole {
   hidden,    // in the JSON only
 };
 
+// What a field's JSON value is: the Python stubs' type of the member, and what a plan's limit may
+// name (a figure or a number).
+enum class FieldValue {
+  figure,        // {"value", "unit"[, "uncertainty"]} (core/figure.h)
+  number,
+  whole_number,
+  boolean,
+  text,
+  texts,         // an array of strings (warnings)
+  rows,          // an array of objects (a table's rows, a curve's points)
+  structured,    // anything else: an object, a number or null
+};
+
 // One key of the result's JSON object.
 struct FieldSpec {
   std::string name;  // the JSON key (a contract: README, docs, closed issues)
@@ -245,6 +259,9 @@ struct FieldSpec {
   // The text report's words for some values, by the value's JSON text (e.g. {{"-1", "negative"}} for a
   // sign); other values read as they are.
   std::map<std::string, std::string> value_words = {};
+  // Set by ProcedureDefinition::field from the member's type; by field_from, rows for a table or a
+  // curve and structured otherwise unless declared.
+  FieldValue value = FieldValue::structured;
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
@@ -328,6 +345,29 @@ template <typename T>
 inline constexpr bool is_optional = false;
 template <typename T>
 inline constexpr bool is_optional<std::optional<T>> = true;
+
+template <typename T>
+constexpr FieldValue field_value_of() {
+  if constexpr (is_optional<T>) {
+    return field_value_of<typename T::value_type>();
+  } else if constexpr (std::is_same_v<T, Figure>) {
+    return FieldValue::figure;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return FieldValue::boolean;
+  } else if constexpr (std::is_integral_v<T>) {
+    return FieldValue::whole_number;
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return FieldValue::number;
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return FieldValue::text;
+  } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+    return FieldValue::texts;
+  } else if constexpr (requires { typename T::value_type; } && !std::is_same_v<T, nlohmann::json>) {
+    return FieldValue::rows;
+  } else {
+    return FieldValue::structured;
+  }
+}
 
 // Typed construction of a ProcedureSpec: parameters bound to Options members, fields read from
 // Result members, and the computation.
@@ -418,6 +458,7 @@ class ProcedureDefinition {
   // of it, left out when empty).
   template <typename T>
   ProcedureDefinition& field(FieldSpec field, T Result::*member) {
+    field.value = field_value_of<T>();
     return field_from(std::move(field), [member](const Result& result) {
       if constexpr (is_optional<T>) {
         return result.*member ? nlohmann::json(*(result.*member)) : nlohmann::json();
@@ -429,6 +470,9 @@ class ProcedureDefinition {
 
   // A field computed from the Result (e.g. a sign spelled out); null leaves it out.
   ProcedureDefinition& field_from(FieldSpec field, std::function<nlohmann::json(const Result&)> value) {
+    if (field.value == FieldValue::structured && (field.role == FieldRole::table || field.role == FieldRole::curve)) {
+      field.value = FieldValue::rows;
+    }
     getters_.emplace_back(field.name, std::move(value));
     spec_.fields.push_back(std::move(field));
     return *this;

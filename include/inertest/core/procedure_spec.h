@@ -86,9 +86,10 @@ struct ParameterSpec {
   // The command-line option when it is a contract that differs from --kebab-case(name) (e.g. "rate"
   // for sample_rate_hz: --rate).
   ParameterSpec& command_line_name_is(std::string option) { cli_option = std::move(option); return *this; }
-  // On the command line a flag without a value, `--flag`, that gives the text `value` (e.g.
-  // --input-deg-h for input = "deg/h", a contract); without it the parameter has its default.
-  ParameterSpec& command_line_flag(std::string flag, std::string value) {
+  // On the command line a flag without a value, `--flag`, that gives `value` (e.g. --input-deg-h for
+  // input = "deg/h", --no-compensation for compensation = false: contracts); without it the
+  // parameter has its default.
+  ParameterSpec& command_line_flag(std::string flag, nlohmann::json value) {
     cli_flag = std::move(flag);
     cli_flag_value = std::move(value);
     return *this;
@@ -112,7 +113,7 @@ struct ParameterSpec {
   std::string plan_key;  // "" : the plan key is `name`
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
-  std::string cli_flag_value;
+  nlohmann::json cli_flag_value;
   std::string cli_option;  // "": the option is --kebab-case(name)
 };
 

@@ -129,7 +129,8 @@ CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const
 
 CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   auto arguments = std::make_shared<Arguments>();
-  CLI::App* command = root.add_subcommand(kebab_case(spec.kind), help_text(spec));
+  CLI::App* command =
+      root.add_subcommand(spec.command_path.empty() ? kebab_case(spec.kind) : spec.command_path.back(), help_text(spec));
   bool reads_records = false;
   bool reads_timed_records = false;
   for (const InputSpec& input : spec.inputs) {

@@ -86,9 +86,6 @@ constexpr Translation kTable[] = {
     // Procedures (plan kinds).
     {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
-    {"kind.gyro_misalignment", "Gyro misalignment separation (rate table)", "陀螺失准角分离（速率转台）"},
-    {"kind.accelerometer_misalignment", "Accelerometer misalignment (four-position test)",
-     "加速度计失准角（四位置试验）"},
 
     // Methods, one sentence each.
     {"method.allan",
@@ -97,16 +94,6 @@ constexpr Translation kTable[] = {
      "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
      "-2..2），"
      "各噪声项按其特征斜率读取。"},
-    {"method.gyro_misalignment",
-     "The gyro turns at +ω and −ω in five positions (α, β) of the fixture on a single-axis rate table; the "
-     "differences V(+) − V(−) give the table, fixture and input-axis error angles by least squares.",
-     "陀螺在单轴速率转台上以 +ω、−ω 分别在五个夹具位置 (α, β) 测试；由 V(+) − V(−) "
-     "以最小二乘法分离台面、夹具面和输入轴失准角。"},
-    {"method.accelerometer_misalignment",
-     "The accelerometer's input axis lies horizontal on a vertical face turned through β = 0°, 90°, 180°, 270°; "
-     "the outputs give Δθy2 = (V(π) − V(0))/(2kI) and Δθz2 = (V(π/2) − V(3π/2))/(2kI).",
-     "加速度计输入轴水平置于竖直基准面上，绕面法线转 β = 0°、90°、180°、270°；由输出求 Δθy2 = (V(π) − V(0))/(2kI)、"
-     "Δθz2 = (V(π/2) − V(3π/2))/(2kI)。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},

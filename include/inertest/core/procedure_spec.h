@@ -293,7 +293,11 @@ struct ProcedureCall {
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
 struct ProcedureSpec {
-  std::string kind;    // snake_case plan kind; the CLI command is its kebab-case form
+  std::string kind;    // snake_case plan kind; the CLI command is its kebab-case form (or command_path)
+  // The CLI command when it is a contract that differs from the kind's: a subcommand of a group,
+  // e.g. {"misalignment", "gyro"} for `inertest misalignment gyro`; empty: {kebab_case(kind)}.
+  std::vector<std::string> command_path;
+  std::string command_group_doc;  // the group's --help, "" when another spec of the group gives it
   std::string json_procedure;  // the JSON's "procedure": the kind, or a contract that differs from it
   std::string title;   // e.g. "Polarity"
   std::string clause;  // e.g. "GJB 2426A-2004 5.7"
@@ -385,6 +389,13 @@ class ProcedureDefinition {
     spec_.json_procedure = spec_.kind;
   }
 
+  // The CLI command as a subcommand of a group (ProcedureSpec::command_path), a contract.
+  ProcedureDefinition& command_is(std::string group, std::string name, std::string group_doc = "") {
+    spec_.command_path = {std::move(group), std::move(name)};
+    spec_.command_group_doc = std::move(group_doc);
+    return *this;
+  }
+
   // The JSON's "procedure" when it is a contract that differs from the kind (e.g.
   // "scale_factor_temperature_sensitivity" for the kind "scale_factor_temperature").
   ProcedureDefinition& json_procedure_is(std::string name) {
@@ -466,6 +477,14 @@ class ProcedureDefinition {
       } else {
         return nlohmann::json(result.*member);
       }
+    });
+  }
+
+  // A figure computed from the Result (e.g. a member of a member).
+  ProcedureDefinition& figure_from(FieldSpec field, std::function<Figure(const Result&)> figure) {
+    field.value = FieldValue::figure;
+    return field_from(std::move(field), [figure = std::move(figure)](const Result& result) {
+      return nlohmann::json(figure(result));
     });
   }
 

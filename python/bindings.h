@@ -77,11 +77,16 @@ class ResultOf : public Result {
   using Result::Result;
 };
 
-// Binds ResultOf<Tag> as `name`, a subclass of Result.
+// Binds ResultOf<Tag> as `name`, a subclass of Result. The doc ends with a "Members:" section, one
+// line per JSON key in stub syntax (`    name: Type  # comment`), which python/generate_stubs.py
+// copies into the type stubs.
 template <typename Tag>
-void bind_result(py::module_& module, const char* name, const char* doc) {
-  py::class_<ResultOf<Tag>, Result>(module, name, doc);
+void bind_result(py::module_& module, const char* name, const std::string& doc) {
+  py::class_<ResultOf<Tag>, Result>(module, name, doc.c_str());
 }
+
+// The doc of a declared procedure's result: its title and clause, then its members from the spec.
+std::string result_doc(const ProcedureSpec& spec);
 
 // Wraps a procedure's result (anything with to_json() and report()) as the Python class of Tag.
 template <typename Tag, typename CppResult>

@@ -61,7 +61,7 @@ ResultOf<DriftCalibrationTag> calibrate(const std::vector<CentrifugeRun>& runs, 
   options.validate();
   DriftCalibrationResult result = calibrate_drift_coefficients(runs, options);
   if (!latitude_deg) result.warnings.emplace_back("no latitude_deg: 0 deg in the Coriolis term");
-  return make_result<DriftCalibrationTag>(result);
+  return make_spec_result<DriftCalibrationTag>(centrifuge_spec(), result);
 }
 
 py::array_t<double> model_output(const std::array<double, kDriftTermCount>& coefficients, double omega_rad_s,
@@ -138,12 +138,7 @@ void wrap_centrifuge(py::module_& module) {
       "Fits w = k0 + k1c cos g + k1s sin g + k2c cos 2g + k2s sin 2g (centrifuge paper eq. 11) to samples at\n"
       "angles gamma (rad): exact DFT bins for equally spaced whole revolutions, else least squares.");
 
-  bind_result<DriftCalibrationTag>(
-      module, "DriftCalibrationResult",
-      "Drift coefficients calibrated on a centrifuge (the centrifuge paper, inertest.CITATIONS['centrifuge'],\n"
-      "eqs. 2, 5-16). Members as in the JSON: coefficients (D_F ... D_OS, Figures in deg/h, deg/h/g,\n"
-      "deg/h/g^2 per standard g, with 1-sigma),\n"
-      "residual_rms, centrifuge_errors, influence (paper section 6), runs (residuals), warnings, ...");
+  bind_result<DriftCalibrationTag>(module, "DriftCalibrationResult", result_doc(centrifuge_spec()));
   module.def("calibrate_drift_coefficients", &calibrate, "runs"_a, py::kw_only(), "latitude_deg"_a = py::none(),
              "radius_m"_a = 1.0, "gravity_m_s2"_a = constants::kStandardGravity, "k1_rad"_a = py::none(),
              "k2_rad"_a = py::none(), "delta_omega_rad_s"_a = py::none(), "compensation"_a = true,

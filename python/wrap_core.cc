@@ -145,7 +145,11 @@ void wrap_error(py::module_& module) {
   error_type = PyErr_NewExceptionWithDoc(
       "inertest.Error",
       "Bad input or options: a ValueError with the message the CLI prints after 'inertest: error: '.\n"
-      "Attributes: message (without the location), file, line, column (None where not known).",
+      "Members:\n"
+      "    message: str  # without the location\n"
+      "    file: Optional[str]  # None where not known, as line and column\n"
+      "    line: Optional[int]\n"
+      "    column: Optional[int]\n",
       PyExc_ValueError, nullptr);
   module.add_object("Error", py::handle(error_type));
   py::register_exception_translator([](std::exception_ptr pointer) {

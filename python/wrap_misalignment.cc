@@ -47,7 +47,7 @@ ResultOf<GyroMisalignmentTag> gyro_misalignment_of(const DoubleArray& alpha_deg,
   options.validate();
   std::vector<GyroMisalignmentRow> rows(outputs.size());
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = {alpha[i], beta[i], rate[i], outputs[i], lines[i]};
-  return make_result<GyroMisalignmentTag>(gyro_misalignment(rows, options));
+  return make_spec_result<GyroMisalignmentTag>(gyro_misalignment_spec(), gyro_misalignment(rows, options));
 }
 
 ResultOf<AccelerometerMisalignmentTag> accelerometer_misalignment_of(
@@ -68,7 +68,8 @@ ResultOf<AccelerometerMisalignmentTag> accelerometer_misalignment_of(
   options.validate();
   std::vector<AccelerometerMisalignmentRow> rows(outputs.size());
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = {beta[i], outputs[i], run ? run->data()[i] : 1, lines[i]};
-  return make_result<AccelerometerMisalignmentTag>(accelerometer_misalignment(rows, options));
+  return make_spec_result<AccelerometerMisalignmentTag>(accelerometer_misalignment_spec(),
+                                                        accelerometer_misalignment(rows, options));
 }
 
 // The rows as keyword arguments of gyro_misalignment: column arrays, line and source.
@@ -121,18 +122,9 @@ Record revolution_mean_record(const RevolutionMean& mean) {
 
 void wrap_misalignment(py::module_& module) {
   using namespace pybind11::literals;
-  bind_result<GyroMisalignmentTag>(
-      module, "GyroMisalignmentResult",
-      "Gyro misalignment separation (the misalignment paper, inertest.CITATIONS['misalignment']).\n"
-      "Members as in the JSON:\n"
-      "delta_theta_y0, delta_theta_x0, delta_theta_y1, delta_theta_y2, delta_theta_z2, misalignment\n"
-      "(arcsec, all rates together), residual_rms, by_rate (the same per rate, with rate_dps), ...");
-  bind_result<AccelerometerMisalignmentTag>(
-      module, "AccelerometerMisalignmentResult",
-      "Accelerometer misalignment by the multi-position gravity test (the misalignment paper,\n"
-      "inertest.CITATIONS['misalignment']). Members as in the JSON: delta_theta_y2, delta_theta_z2,\n"
-      "misalignment (arcsec, mean\n"
-      "over runs with its standard error), by_run (the same per run, with run), ...");
+  bind_result<GyroMisalignmentTag>(module, "GyroMisalignmentResult", result_doc(gyro_misalignment_spec()));
+  bind_result<AccelerometerMisalignmentTag>(module, "AccelerometerMisalignmentResult",
+                                            result_doc(accelerometer_misalignment_spec()));
 
   module.def("gyro_misalignment", &gyro_misalignment_of, "alpha_deg"_a, "beta_deg"_a, "rate_dps"_a, "output"_a,
              py::kw_only(), "scale_factor"_a, "output_unit"_a = "1", "line"_a = py::none(), "source"_a = py::none(),

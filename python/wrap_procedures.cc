@@ -164,13 +164,7 @@ ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray&
 
 void wrap_procedures(py::module_& module) {
   using namespace pybind11::literals;
-  bind_result<ScaleFactorTag>(
-      module, "ScaleFactorResult",
-      "Scale factor result (GJB 2426A-2004 5.8.1-5.8.3, eqs. (1)-(11)). Members as in the JSON:\n"
-      "scale_factor (K, eq. 5), zero_offset (F0, eq. 6), nonlinearity (Kn, eq. 9, ppm), asymmetry (Ka,\n"
-      "eqs. 10-11, ppm), scale_factor_positive, scale_factor_negative, static_output_start,\n"
-      "static_output_end, fit_residual_rms (Figures); nonlinearity_curve (list of Records with rate and\n"
-      "deviation, eq. 8); warnings; procedure; clause.");
+  bind_result<ScaleFactorTag>(module, "ScaleFactorResult", result_doc(scale_factor_spec()));
   module.def("scale_factor", &scale_factor_of, "rate"_a, "output"_a, py::kw_only(), "rate_unit"_a = "deg/s",
              "output_unit"_a = "1", "recommended_rates_per_direction"_a = 11, "source"_a = py::none(),
              "Scale factor K, zero offset F0, nonlinearity Kn and asymmetry Ka: GJB 2426A-2004 5.8.1-5.8.3,\n"
@@ -181,11 +175,7 @@ void wrap_procedures(py::module_& module) {
              "least squares F = K*Omega + F0 (eqs. 4-6). source names the input in error messages.\n"
              "Returns a ScaleFactorResult; raises inertest.Error (a ValueError) with the CLI's message.");
 
-  bind_result<BiasTag>(
-      module, "BiasResult",
-      "Bias, bias stability and random walk coefficient (GJB 2426A-2004 5.12.1 eq. (19), 5.12.2 eq. (20),\n"
-      "5.12.5.4.1 eqs. (23)-(24)). Members as in the JSON: bias (deg/h), bias_stability (one Record per\n"
-      "smoothing time), noise_equivalent_rate, random_walk_coefficient (deg/sqrt(h)), ...");
+  bind_result<BiasTag>(module, "BiasResult", result_doc(bias_spec()));
   module.def("bias", &bias_of, "output"_a, py::kw_only(), "sample_rate_hz"_a, "scale_factor"_a = py::none(),
              "input_in_deg_h"_a = false, "output_unit"_a = "1",
              "smoothing_s"_a = std::vector<double>{1.0, 10.0, 100.0}, "random_walk"_a = true,
@@ -196,9 +186,7 @@ void wrap_procedures(py::module_& module) {
              "copy); scale_factor K in output units per deg/s, or input_in_deg_h=True for a record in deg/h.\n"
              "latitude_deg (with the IRA's heading_deg, elevation_deg) removes the Earth rate along the IRA.");
 
-  bind_result<MaximumInputRateTag>(module, "MaximumInputRateResult",
-                                   "Maximum input rate (GJB 2426A-2004 5.9). Members as in the JSON: maximum_input_rate,\n"
-                                   "nonlinearity, nonlinearity_limit, scale_factor, ranges, warnings.");
+  bind_result<MaximumInputRateTag>(module, "MaximumInputRateResult", result_doc(maximum_input_rate_spec()));
   module.def("maximum_input_rate", &maximum_input_rate_of, "rate"_a, "output"_a, py::kw_only(),
              "nonlinearity_limit_ppm"_a, "rate_unit"_a = "deg/s", "output_unit"_a = "1",
              "Maximum input rate (GJB 2426A-2004 5.9): the largest tested rate R such that the scale-factor\n"
@@ -206,29 +194,25 @@ void wrap_procedures(py::module_& module) {
              "output as for scale_factor().");
 
   bind_result<ScaleFactorRepeatabilityTag>(module, "ScaleFactorRepeatabilityResult",
-                                           "Scale factor repeatability (GJB 2426A-2004 5.8.4, eq. (12)). Members as in the JSON.");
+                                           result_doc(scale_factor_repeatability_spec()));
   module.def("scale_factor_repeatability", &scale_factor_repeatability_of, "scale_factors"_a, py::kw_only(),
              "unit"_a = "1", "minimum_runs"_a = 6,
              "Scale factor repeatability Kr (GJB 2426A-2004 5.8.4, eq. (12)): the sample standard deviation of\n"
              "the runs' scale factors over their mean, in ppm. Q >= 6 runs (5.8.4.3); minimum_runs lowers that\n"
              "with a warning.");
 
-  bind_result<BiasRepeatabilityTag>(module, "BiasRepeatabilityResult",
-                                    "Bias repeatability (GJB 2426A-2004 5.12.3, eq. (21)). Members as in the JSON.");
+  bind_result<BiasRepeatabilityTag>(module, "BiasRepeatabilityResult", result_doc(bias_repeatability_spec()));
   module.def("bias_repeatability", &bias_repeatability_of, "biases_deg_h"_a,
              "Bias repeatability Br (GJB 2426A-2004 5.12.3, eq. (21)): the sample standard deviation of the runs'\n"
              "biases B0i (deg/h), each from bias().");
 
-  bind_result<BiasTemperatureTag>(module, "BiasTemperatureSensitivityResult",
-                                  "Bias temperature sensitivity (GJB 2426A-2004 5.12.4, eq. (22)). Members as in the JSON.");
+  bind_result<BiasTemperatureTag>(module, "BiasTemperatureSensitivityResult", result_doc(bias_temperature_spec()));
   module.def("bias_temperature_sensitivity", &bias_temperature_sensitivity_of, "temperature_degC"_a, "bias_deg_h"_a,
              py::kw_only(), "room_temperature_degC"_a = py::none(),
              "Bias temperature sensitivity Bt (GJB 2426A-2004 5.12.4, eq. (22)): max |B0i - B0m| / |Ti - Tm| over\n"
              "the runs, in deg/h/degC; the room-temperature run is the first, or the one at room_temperature_degC.");
 
-  bind_result<BandwidthTag>(module, "BandwidthResult",
-                            "Bandwidth and output delay (GJB 2426A-2004 5.13-5.14, eqs. (32)-(46)). Members as in the\n"
-                            "JSON: bandwidth (Hz), delay (s), dc_gain, time_constant, bode, warnings.");
+  bind_result<BandwidthTag>(module, "BandwidthResult", result_doc(bandwidth_spec()));
   module.def("bandwidth_and_delay", &bandwidth_of, "frequency_hz"_a, "gain"_a, "phase_deg"_a, py::kw_only(),
              "minimum_frequencies"_a = 10,
              "Bandwidth (GJB 2426A-2004 5.13, eqs. (32)-(41)) and output delay (5.14, eqs. (42)-(46)) from the\n"
@@ -237,10 +221,7 @@ void wrap_procedures(py::module_& module) {
              "Td from -Pi - atan(wi T) with wi = 2 pi fi; a phase beyond +-90 deg at the lowest frequency is a\n"
              "negative scale factor, whose 180 deg is removed from every phase first (polarity = -1).");
 
-  bind_result<ThresholdTag>(
-      module, "ThresholdResult",
-      "Threshold (GJB 2426A-2004 5.10, eqs. (14)-(17)). Members as in the JSON: threshold (deg/h),\n"
-      "method, criterion_denominator, criterion, branches, warnings.");
+  bind_result<ThresholdTag>(module, "ThresholdResult", result_doc(threshold_spec()));
   module.def("threshold_rate_table", &threshold_rate_table_of, "rate"_a, "output"_a, py::kw_only(), "scale_factor"_a,
              "rate_unit"_a = "deg/s", "zero_output"_a = py::none(), "criterion_denominator"_a = "expected",
              "Threshold by method 1 (GJB 2426A-2004 5.10.4.1, rate table): the mean output at each signed table\n"
@@ -249,7 +230,7 @@ void wrap_procedures(py::module_& module) {
              "or of the measured F ('measured', eq. (15) as printed, a 67 % criterion).");
 
   bind_result<InputAxisMisalignmentTag>(module, "InputAxisMisalignmentResult",
-                                        "Input-axis misalignment (GJB 2426A-2004 5.15, eqs. (47)-(50)). Members as in the JSON.");
+                                        result_doc(input_axis_misalignment_spec()));
   module.def("input_axis_misalignment", &input_axis_misalignment_of, "output_positive"_a, "output_negative"_a,
              py::kw_only(), "scale_factor"_a, "rate"_a, "rate_unit"_a = "deg/s", "output_unit"_a = "1",
              "Input-axis misalignment (GJB 2426A-2004 5.15, eqs. (47)-(50)) from the mean outputs at +rate and\n"

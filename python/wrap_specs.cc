@@ -216,7 +216,35 @@ nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) 
           {"generic_function", generic_function}};
 }
 
+// The Python type of a field's JSON value (as Record presents it) in the stubs.
+const char* python_type(FieldValue value) {
+  switch (value) {
+    case FieldValue::figure: return "Figure";
+    case FieldValue::number: return "float";
+    case FieldValue::whole_number: return "int";
+    case FieldValue::boolean: return "bool";
+    case FieldValue::text: return "str";
+    case FieldValue::texts: return "list[str]";
+    case FieldValue::rows: return "list[Record]";
+    case FieldValue::structured: break;
+  }
+  return "Any";
+}
+
 }  // namespace
+
+std::string result_doc(const ProcedureSpec& spec) {
+  std::string text = fmt::format("{} ({}): members as in the CLI's --json object.\nMembers:\n    procedure: str\n",
+                                 spec.title, spec.clause);
+  const bool declares_clause = std::any_of(spec.fields.begin(), spec.fields.end(),
+                                           [](const FieldSpec& field) { return field.name == "clause"; });
+  if (!declares_clause) text += "    clause: str\n";
+  for (const FieldSpec& field : spec.fields) {
+    text += fmt::format("    {}: {}  # {}{}\n", field.name, python_type(field.value), field.label_en,
+                        field.equation.empty() ? "" : ", " + field.equation);
+  }
+  return text;
+}
 
 void wrap_specs(py::module_& module) {
   bind_result<SpecTag>(module, "ProcedureResult",

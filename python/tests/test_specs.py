@@ -123,3 +123,30 @@ def test_scale_factor_temperature_from_runs_is_the_cli_json(tmp_path):
     with pytest.raises(inertest.Error) as raised:
         inertest.scale_factor_temperature(run=runs, reference_temperature=25)
     assert "matches no run" in str(raised.value)
+
+
+def test_generated_stubs_name_every_function_class_and_member():
+    # The stubs (python/generate_stubs.py, at build time) beside the module: valid Python, a stub for
+    # every public name, and every declared field as a member of its procedure's result class.
+    import ast
+    import pathlib
+
+    stubs = pathlib.Path(inertest.__file__).with_name("inertest.pyi").read_text(encoding="utf-8")
+    tree = ast.parse(stubs)
+    defined = {node.name for node in tree.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    defined |= {node.target.id for node in tree.body if isinstance(node, ast.AnnAssign)}
+    public = {name for name in vars(inertest) if not name.startswith("_")} | {"__version__"}
+    assert public <= defined, f"no stub for {sorted(public - defined)}"
+    classes = {node.name: node for node in tree.body if isinstance(node, ast.ClassDef)}
+    members = {name: {item.target.id for item in node.body if isinstance(item, ast.AnnAssign)}
+               for name, node in classes.items()}
+    assert {"message", "file", "line", "column"} <= members["Error"]
+    assert {"tau", "oadev", "noise", "warnings"} <= members["AllanResult"]
+    for spec in inertest.procedure_specs():
+        function = next(node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == spec["kind"])
+        result = ast.unparse(function.returns)
+        if result != "ProcedureResult":
+            assert set(spec["fields"]) | {"procedure"} <= members[result], spec["kind"]
+    figure = next(item for item in classes["ScaleFactorResult"].body
+                  if isinstance(item, ast.AnnAssign) and item.target.id == "scale_factor")
+    assert ast.unparse(figure.annotation) == "Figure"

@@ -99,18 +99,28 @@ std::vector<Limit> read_limits(PlanTable& step) {
 }
 
 // A declared procedure's limits are checked against its declared fields before anything runs: a
-// limit on a key (or a JSON pointer's first key) it never reports is a plan error at the limit.
+// limit on a key (or a JSON pointer's first key) it never reports, or on a key whose value is not a
+// figure or a number (a text, a list of rows), is a plan error at the limit.
 void check_declared_figures(const ProcedureSpec& spec, const PreparedStep& step) {
   for (const Limit& limit : step.limits) {
-    const std::string key = limit.figure.front() == '/' ? limit.figure.substr(1, limit.figure.find('/', 1) - 1)
-                                                        : limit.figure;
-    const bool declared = std::any_of(spec.fields.begin(), spec.fields.end(),
-                                      [&](const FieldSpec& field) { return field.name == key; });
-    if (declared) continue;
-    std::string known;
-    for (const FieldSpec& field : spec.fields) known += (known.empty() ? "" : ", ") + field.name;
-    throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name +
-                                 "' reports no such figure (it reports: " + known + ")");
+    const bool pointer = limit.figure.front() == '/';
+    const std::string key = pointer ? limit.figure.substr(1, limit.figure.find('/', 1) - 1) : limit.figure;
+    const auto field = std::find_if(spec.fields.begin(), spec.fields.end(),
+                                    [&](const FieldSpec& declared) { return declared.name == key; });
+    if (field == spec.fields.end()) {
+      std::string known;
+      for (const FieldSpec& declared : spec.fields) known += (known.empty() ? "" : ", ") + declared.name;
+      throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name +
+                                   "' reports no such figure (it reports: " + known + ")");
+    }
+    const bool measurable = field->value == FieldValue::figure || field->value == FieldValue::number ||
+                            field->value == FieldValue::whole_number || field->value == FieldValue::structured;
+    if (!pointer && !measurable) {
+      throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name + "' reports it as " +
+                                   (field->value == FieldValue::rows ? "a list of rows (name one with a JSON pointer, "
+                                                                       "e.g. '/" + key + "/0/...')"
+                                                                     : "a text or a yes/no, not a figure or a number"));
+    }
   }
 }
 

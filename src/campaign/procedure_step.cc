@@ -31,6 +31,7 @@ nlohmann::json instrument_value(const PlanContext& context, const ParameterSpec&
   const auto optional = [](const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(); };
   if (parameter.site_default && key == "latitude_deg") return context.site.latitude_deg;
   if (parameter.site_default && key == "heading_deg") return context.site.heading_deg;
+  if (parameter.site_default && key == "gravity_m_s2") return context.site.gravity_m_s2;
   if (key == "output_unit") return context.instrument.output_unit;
   if (key == "nominal_scale_factor") return optional(context.instrument.nominal_scale_factor);
   if (key == "sample_rate_hz") return optional(context.instrument.sample_rate_hz);

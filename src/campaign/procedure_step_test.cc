@@ -79,6 +79,15 @@ TEST(ProcedureStep, LimitOnAnUndeclaredFigureIsAPlanErrorBeforeAnythingRuns) {
                     "limit on '/wobble/value': procedure 'pol' reports no such figure");
 }
 
+TEST(ProcedureStep, LimitOnAListOrATextIsAPlanErrorBeforeAnythingRuns) {
+  const std::string step = "[[procedure]]\nkind = \"scale_factor\"\nname = \"sf\"\nfile = \"plan.toml\"\n";
+  expect_plan_error(step + "[procedure.limits]\nnonlinearity_curve = { max = 1 }\n",
+                    "limit on 'nonlinearity_curve': procedure 'sf' reports it as a list of rows (name one with a JSON "
+                    "pointer, e.g. '/nonlinearity_curve/0/...')");
+  expect_plan_error(step + "[procedure.limits]\nwarnings = { max = 1 }\n",
+                    "limit on 'warnings': procedure 'sf' reports it as a text or a yes/no, not a figure or a number");
+}
+
 // A required parameter with an instrument default: the step's key, else [instrument], else an error.
 TEST(ProcedureStep, RequiredParameterFromTheStepOrTheInstrument) {
   expect_plan_error("[[procedure]]\nkind = \"resolution\"\nfile = \"plan.toml\"\n",

@@ -55,12 +55,6 @@ std::vector<std::string> registered_step_kinds() {
   return kinds;
 }
 
-double scale_factor_or_nominal(PlanTable& step, const PlanContext& context, const std::string& input_unit) {
-  if (const auto given = step.optional_number("scale_factor")) return *given;
-  if (context.instrument.nominal_scale_factor) return *context.instrument.nominal_scale_factor;
-  step.fail("needs scale_factor (output units per " + input_unit + ") or [instrument] nominal_scale_factor");
-}
-
 nlohmann::json Instrument::to_json() const {
   nlohmann::json json = {{"id", id}, {"type", type}, {"output_unit", output_unit}};
   if (nominal_scale_factor) json["nominal_scale_factor"] = *nominal_scale_factor;

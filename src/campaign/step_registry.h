@@ -50,10 +50,6 @@ using StepPreparer = std::function<StepAction(PlanTable& step, const PlanContext
 
 bool register_step(const std::string& kind, StepPreparer preparer);
 
-// The step's `scale_factor` key if given, else the instrument's nominal_scale_factor; a plan error
-// naming both when neither is there. `input_unit` names what the scale factor is per ("deg/s", "g").
-double scale_factor_or_nominal(PlanTable& step, const PlanContext& context, const std::string& input_unit);
-
 const StepPreparer* find_step(const std::string& kind);
 std::vector<std::string> registered_step_kinds();
 

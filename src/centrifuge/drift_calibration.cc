@@ -1,4 +1,3 @@
-#include "inertest/core/citations.h"
 #include "inertest/centrifuge/drift_calibration.h"
 
 #include <Eigen/Dense>
@@ -134,12 +133,6 @@ std::array<Figure, kDriftTermCount> coefficient_figures(std::span<const double> 
   return figures;
 }
 
-nlohmann::json coefficient_json(const std::array<Figure, kDriftTermCount>& figures) {
-  nlohmann::json json = nlohmann::json::object();
-  for (std::size_t j = 0; j < kDriftTermCount; ++j) json[std::string(drift_term_name(j))] = figures[j];
-  return json;
-}
-
 nlohmann::json amplitude_json(const HarmonicAmplitudes& amplitudes) {
   nlohmann::json json = nlohmann::json::object();
   for (std::size_t h = 0; h < kHarmonicCount; ++h) {
@@ -149,6 +142,12 @@ nlohmann::json amplitude_json(const HarmonicAmplitudes& amplitudes) {
 }
 
 }  // namespace
+
+nlohmann::json coefficient_json(const std::array<Figure, kDriftTermCount>& figures) {
+  nlohmann::json json = nlohmann::json::object();
+  for (std::size_t j = 0; j < kDriftTermCount; ++j) json[std::string(drift_term_name(j))] = figures[j];
+  return json;
+}
 
 std::vector<CentrifugeRun> analyse_sample_runs(std::span<const CentrifugeSampleRun> runs) {
   std::vector<CentrifugeRun> analysed;
@@ -328,15 +327,17 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
   return result;
 }
 
-nlohmann::json DriftCalibrationResult::to_json() const {
+nlohmann::json centrifuge_errors_json(const DriftCalibrationResult& result) {
   nlohmann::json errors_json = nlohmann::json::object();
+  const CentrifugeErrors& errors = result.errors;
   const std::array<double, kErrorCount> used = {errors.k1_rad, errors.k2_rad, errors.delta_omega_rad_s};
   for (std::size_t e = 0; e < kErrorCount; ++e) {
+    const auto& measured_errors = result.measured_errors;
     const bool measured = std::find(measured_errors.begin(), measured_errors.end(), kErrorNames[e]) != measured_errors.end();
-    const auto estimate = std::find_if(estimated_errors.begin(), estimated_errors.end(),
+    const auto estimate = std::find_if(result.estimated_errors.begin(), result.estimated_errors.end(),
                                        [&](const EstimatedCentrifugeError& x) { return x.name == kErrorNames[e]; });
     nlohmann::json entry;
-    if (estimate != estimated_errors.end()) {
+    if (estimate != result.estimated_errors.end()) {
       nlohmann::json correlation = nlohmann::json::object();
       for (const auto& [name, rho] : estimate->correlation) correlation[name] = rho;
       entry = {{"value", estimate->value}, {"source", "estimated"}, {"correlation", correlation}};
@@ -346,14 +347,22 @@ nlohmann::json DriftCalibrationResult::to_json() const {
     }
     errors_json[kErrorNames[e]] = entry;
   }
-  nlohmann::json influence_json = nlohmann::json::object();
-  for (const ErrorInfluence& i : influence) {
+  return errors_json;
+}
+
+nlohmann::json influence_json(const DriftCalibrationResult& result) {
+  nlohmann::json influence = nlohmann::json::object();
+  for (const ErrorInfluence& i : result.influence) {
     nlohmann::json entry = {{"magnitude", i.magnitude}, {"shift", coefficient_json(i.shift)}};
     if (i.sensitivity) entry["sensitivity"] = coefficient_json(*i.sensitivity);
-    influence_json[i.error] = entry;
+    influence[i.error] = entry;
   }
-  nlohmann::json runs_json = nlohmann::json::array();
-  for (const RunResidual& run : runs) {
+  return influence;
+}
+
+nlohmann::json runs_json(const DriftCalibrationResult& result) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (const RunResidual& run : result.runs) {
     nlohmann::json entry = {{"accel_g", run.accel_g},
                             {"omega", Figure{run.omega_rad_s, "rad/s", std::nullopt}},
                             {"beta", Figure{run.beta_rad / constants::kDegree, "deg", std::nullopt}},
@@ -365,48 +374,16 @@ nlohmann::json DriftCalibrationResult::to_json() const {
                                {"revolutions", run.harmonic_fit->revolutions},
                                {"residual_rms", Figure{run.harmonic_fit->residual_rms, "deg/h", std::nullopt}}};
     }
-    runs_json.push_back(entry);
+    runs.push_back(entry);
   }
-  return {
-      {"procedure", "centrifuge"},
-      {"source", std::string(citations::kCentrifugePaper) + ", eqs. (2), (5)-(16) and section 6"},
-      {"coefficients", coefficient_json(coefficients)},
-      {"coefficients_g", "per standard g (9.80665 m/s^2), converted from the site's gravity of A = Omega^2 R0 / g"},
-      {"residual_rms", residual_rms},
-      {"degrees_of_freedom", degrees_of_freedom},
-      {"g_levels", g_levels},
-      {"compensation", compensation},
-      {"site",
-       {{"radius", Figure{site.radius_m, "m", std::nullopt}},
-        {"latitude", Figure{site.latitude_rad / constants::kDegree, "deg", std::nullopt}},
-        {"gravity", Figure{site.gravity_m_s2, "m/s^2", std::nullopt}},
-        {"earth_rate", Figure{site.earth_rate_rad_s * kDegPerHourPerRadPerSecond, "deg/h", std::nullopt}}}},
-      {"centrifuge_errors", errors_json},
-      {"influence", influence_json},
-      {"runs", runs_json},
-      {"warnings", warnings},
-  };
+  return runs;
 }
 
-std::string DriftCalibrationResult::report() const {
-  auto line = [](std::string_view name, const Figure& f) {
-    return f.uncertainty ? fmt::format("  {:<24} {:>14.6g} ± {:.3g} {}\n", name, f.value, *f.uncertainty, f.unit)
-                         : fmt::format("  {:<24} {:>14.6g} {}\n", name, f.value, f.unit);
-  };
-  std::string text = fmt::format("Centrifuge drift coefficients ({} g-level(s), {} runs, compensation {})\n", g_levels,
-                                 runs.size(), compensation ? "on" : "off");
-  text += fmt::format("  per standard g (9.80665 m/s^2), converted from the site's gravity {:.6g} m/s^2\n",
-                      site.gravity_m_s2);
-  for (std::size_t j = 0; j < kDriftTermCount; ++j) text += line(drift_term_name(j), coefficients[j]);
-  text += line("residual rms", residual_rms);
-  for (const auto& e : estimated_errors) text += line(e.name + " (estimated)", e.value);
-  text += "Influence of each error alone (shift of D_I, D_S, D_OS):\n";
-  for (const ErrorInfluence& i : influence) {
-    text += fmt::format("  {:<12} {:>12.6g} {:<6} D_I {:+.6g}  D_S {:+.6g}  D_OS {:+.6g}\n", i.error, i.magnitude.value,
-                        i.magnitude.unit, i.shift[kI].value, i.shift[kS].value, i.shift[kOS].value);
-  }
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
+nlohmann::json site_json(const CentrifugeSite& site) {
+  return {{"radius", Figure{site.radius_m, "m", std::nullopt}},
+          {"latitude", Figure{site.latitude_rad / constants::kDegree, "deg", std::nullopt}},
+          {"gravity", Figure{site.gravity_m_s2, "m/s^2", std::nullopt}},
+          {"earth_rate", Figure{site.earth_rate_rad_s * kDegPerHourPerRadPerSecond, "deg/h", std::nullopt}}};
 }
 
 }  // namespace inertest::centrifuge

@@ -16,6 +16,9 @@ using ::testing::HasSubstr;
 constexpr double kPi = constants::kPi;
 constexpr double kDegPerHourPerRadPerSecond = 3600.0 / constants::kDegree;
 
+// The result's JSON fields as its spec writes them.
+nlohmann::json json_of(const DriftCalibrationResult& result) { return find_procedure_spec("centrifuge")->fields_of(&result); }
+
 // The reference case (reference README section 1): R0 = 1 m, phi = 45.75 deg, g = 9.8 m/s^2,
 // omega_e = 15.04107 deg/h, k1 = -2e-5 rad, k2 = +2e-5 rad, dOmega = 1e-5 rad/s.
 DriftCalibrationOptions paper_options() {
@@ -246,8 +249,8 @@ TEST(CentrifugeDriftCalibration, CoefficientsArePerStandardGAtAnySiteGravity) {
   expect_true_coefficients(result, 1e-6);
   EXPECT_NEAR_RELATIVE(convert(result.coefficients[kI].value, result.coefficients[kI].unit, "deg/h/(m/s^2)"),
                        kTrueCoefficients[kI] / 9.80665, 1e-6);
-  EXPECT_THAT(result.to_json().at("coefficients_g").get<std::string>(), HasSubstr("standard g"));
-  EXPECT_THAT(result.report(), HasSubstr("per standard g"));
+  EXPECT_THAT(json_of(result).at("coefficients_g").get<std::string>(), HasSubstr("standard g"));
+  EXPECT_THAT(procedure_text(*find_procedure_spec("centrifuge"), json_of(result)), HasSubstr("per standard g"));
 }
 
 // Any platform angles, three g-levels, irregular sampling (least-squares harmonic fit).
@@ -288,7 +291,7 @@ TEST(CentrifugeDriftCalibration, EstimatesUnmeasuredCentrifugeErrors) {
   }
   EXPECT_GT(std::abs(k1_with_di), 0.9);
   EXPECT_EQ(result.errors.k2_rad, result.estimated_errors[1].value.value);
-  const nlohmann::json json = result.to_json();
+  const nlohmann::json json = json_of(result);
   EXPECT_EQ(json["centrifuge_errors"]["k1"]["source"], "estimated");
   EXPECT_TRUE(json["centrifuge_errors"]["k1"]["correlation"].contains("D_I"));
 }
@@ -405,13 +408,13 @@ TEST(CentrifugeDriftCalibration, UnmeasuredErrorsAreZeroWithAWarning) {
   const DriftCalibrationResult result = calibrate_drift_coefficients(table3_runs(), options);
   ASSERT_EQ(result.warnings.size(), 1u);
   EXPECT_THAT(result.warnings[0], HasSubstr("k2 not measured"));
-  const nlohmann::json json = result.to_json();
+  const nlohmann::json json = json_of(result);
   EXPECT_EQ(json["centrifuge_errors"]["k2"]["source"], "not measured (0)");
   EXPECT_EQ(json["centrifuge_errors"]["k1"]["source"], "measured");
 }
 
 TEST(CentrifugeDriftCalibration, JsonHoldsTheFigures) {
-  const nlohmann::json json = calibrate_drift_coefficients(table3_runs(), paper_options()).to_json();
+  const nlohmann::json json = json_of(calibrate_drift_coefficients(table3_runs(), paper_options()));
   for (const char* name : {"D_F", "D_I", "D_O", "D_S", "D_II", "D_OO", "D_SS", "D_IO", "D_IS", "D_OS"}) {
     ASSERT_TRUE(json["coefficients"].contains(name)) << name;
     EXPECT_TRUE(json["coefficients"][name].contains("uncertainty")) << name;

@@ -27,14 +27,29 @@ bool register_command(const std::string& name, CommandSetup setup) {
 std::vector<std::pair<CLI::App*, CommandAction>> add_registered_commands(CLI::App& root) {
   std::map<std::string, CommandSetup> commands = registry();
   for (const ProcedureSpec& spec : procedure_specs()) {
-    const auto [at, added] = commands.emplace(
-        kebab_case(spec.kind), [&spec](CLI::App& app) { return add_procedure_command(app, spec); });
+    // A spec's command in a group (`misalignment gyro`) is added to the group, made by the first.
+    const std::string name = spec.command_path.empty() ? kebab_case(spec.kind)
+                                                        : spec.command_path.front() + " " + spec.command_path.back();
+    const auto [at, added] = commands.emplace(name, [&spec](CLI::App& app) {
+      if (spec.command_path.empty()) return add_procedure_command(app, spec);
+      const std::vector<CLI::App*> made =
+          app.get_subcommands([&spec](CLI::App* command) { return command->get_name() == spec.command_path.front(); });
+      CLI::App* group = made.empty() ? app.add_subcommand(spec.command_path.front())->require_subcommand(1) : made.front();
+      if (!spec.command_group_doc.empty()) group->description(spec.command_group_doc);
+      return add_procedure_command(*group, spec);
+    });
     if (!added) throw Error("two commands named '" + at->first + "'");
   }
   std::vector<std::pair<CLI::App*, CommandAction>> added;
   for (const auto& [name, setup] : commands) {
     CommandAction action = setup(root);
-    added.emplace_back(root.get_subcommand(name), std::move(action));
+    CLI::App* command = &root;
+    for (std::size_t begin = 0; begin < name.size();) {
+      const std::size_t end = std::min(name.find(' ', begin), name.size());
+      command = command->get_subcommand(name.substr(begin, end - begin));
+      begin = end + 1;
+    }
+    added.emplace_back(command, std::move(action));
   }
   return added;
 }

@@ -54,7 +54,10 @@ TEST(MisalignmentCommand, ReportWithoutJsonGoesToStdout) {
   const auto run = run_cli({"misalignment", "accelerometer", source_path("data/misalignment/accelerometer_table2.csv"),
                             "--scale-factor", "1.299"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_THAT(run.out, ::testing::HasSubstr("mean of 3 run(s)"));
+  // The mean over the runs, then the solution of each run.
+  EXPECT_THAT(run.out, ::testing::HasSubstr("misalignment γ"));
+  EXPECT_THAT(run.out, ::testing::HasSubstr("solution of each run"));
+  EXPECT_THAT(run.out, ::testing::HasSubstr(", run 3\n"));
 }
 
 TEST(MisalignmentCommand, GyroRecordsModeAveragesWholeRevolutions) {

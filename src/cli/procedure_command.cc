@@ -129,7 +129,8 @@ CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const
 
 CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   auto arguments = std::make_shared<Arguments>();
-  CLI::App* command = root.add_subcommand(kebab_case(spec.kind), help_text(spec));
+  CLI::App* command =
+      root.add_subcommand(spec.command_path.empty() ? kebab_case(spec.kind) : spec.command_path.back(), help_text(spec));
   bool reads_records = false;
   bool reads_timed_records = false;
   for (const InputSpec& input : spec.inputs) {
@@ -165,7 +166,9 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   for (const ParameterSpec& parameter : spec.parameters) {
     if (!parameter.cli_flag.empty()) {
       command->add_flag("--" + parameter.cli_flag, arguments->flags[parameter.name],
-                        fmt::format("{} (this flag: {})", parameter.doc, parameter.cli_flag_value));
+                        fmt::format("{} (this flag: {})", parameter.doc,
+                                    parameter.cli_flag_value.is_string() ? parameter.cli_flag_value.get<std::string>()
+                                                                         : parameter.cli_flag_value.dump()));
       continue;
     }
     CLI::Option* option = add_parameter_option(*command, *arguments, spec, parameter);
@@ -189,8 +192,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     for (const auto& [name, given] : arguments->flags) {
       const ParameterSpec& parameter = *spec.find_parameter(name);
       if (given) {
-        call.parameters[name] = parameter.type == ParameterType::boolean ? nlohmann::json(true)
-                                                                         : nlohmann::json(parameter.cli_flag_value);
+        call.parameters[name] = parameter.cli_flag.empty() ? nlohmann::json(true) : parameter.cli_flag_value;
       }
     }
     for (const auto& [name, values] : arguments->lists) {

@@ -99,6 +99,20 @@ std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
   return text;
 }
 
+// A field whose value is an object (figures by name, or objects of them): its label, then a member
+// a line, nested objects indented under their key.
+std::string object_text(const std::string& label, const nlohmann::json& object, std::size_t depth) {
+  std::string text = fmt::format("{}{}\n", std::string(2 * depth, ' '), label);
+  for (const auto& [key, member] : object.items()) {
+    if (member.is_object() && !is_figure(member)) {
+      text += object_text(key, member, depth + 1);
+    } else {
+      text += fmt::format("{}{:<24} {}\n", std::string(2 * depth + 2, ' '), key, value_text(member));
+    }
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields) {
@@ -110,6 +124,8 @@ std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fiel
       text += table_text(field, value);
     } else if (field.role == FieldRole::curve && value.is_array()) {
       text += fmt::format("  {:<32} {} points (plotted in the report)\n", field.label_en, value.size());
+    } else if (value.is_object() && !is_figure(value)) {
+      text += object_text(field.label_en, value, 1);
     } else {
       const auto word = field.value_words.find(value.dump());
       text += fmt::format("  {:<32} {}\n", field.label_en,

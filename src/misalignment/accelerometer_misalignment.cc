@@ -1,4 +1,3 @@
-#include "inertest/core/citations.h"
 #include "inertest/misalignment/accelerometer_misalignment.h"
 
 #include <fmt/format.h>
@@ -84,15 +83,6 @@ AccelerometerMisalignmentAngles combine_runs(const std::vector<AccelerometerMisa
   return angles;
 }
 
-std::string figure_text(const Figure& f) {
-  return f.uncertainty ? fmt::format("{:9.2f} ± {:.2f} {}", f.value, *f.uncertainty, f.unit)
-                       : fmt::format("{:9.2f} {}", f.value, f.unit);
-}
-
-std::string angles_text(const AccelerometerMisalignmentAngles& a) {
-  return "    delta_theta_y2        " + figure_text(a.delta_theta_y2) + "\n" + "    delta_theta_z2        " +
-         figure_text(a.delta_theta_z2) + "\n" + "    misalignment gamma    " + figure_text(a.misalignment) + "\n";
-}
 
 }  // namespace
 
@@ -160,16 +150,9 @@ std::array<double, 2> four_position_misalignment(double v_0, double v_90, double
   return {(v_180 - v_0) / (2.0 * scale_factor), (v_90 - v_270) / (2.0 * scale_factor)};
 }
 
-nlohmann::json AccelerometerMisalignmentResult::to_json() const {
-  nlohmann::json json = combined.to_json();
-  json["procedure"] = "accelerometer_misalignment";
-  json["source"] = std::string(citations::kMisalignmentPaper) +
-                   ", accelerometer multi-position gravity test; least squares on V = V0 + kI (-dy0 - dy1 + dz2 sin b - "
-                   "dy2 cos b)";
-  json["scale_factor"] = Figure{scale_factor, output_unit + "/g", std::nullopt};
-  json["run_count"] = by_run.size();
+nlohmann::json by_run_json(const AccelerometerMisalignmentResult& result) {
   nlohmann::json runs = nlohmann::json::array();
-  for (const auto& r : by_run) {
+  for (const auto& r : result.by_run) {
     nlohmann::json entry = r.angles.to_json();
     entry["run"] = r.run;
     entry["position_count"] = r.position_count;
@@ -177,24 +160,7 @@ nlohmann::json AccelerometerMisalignmentResult::to_json() const {
     entry["residual_rms"] = r.residual_rms;
     runs.push_back(entry);
   }
-  json["by_run"] = runs;
-  json["warnings"] = warnings;
-  return json;
-}
-
-std::string AccelerometerMisalignmentResult::report() const {
-  std::string text = fmt::format("Accelerometer misalignment, multi-position gravity test\n  ({})\n",
-                                 citations::kMisalignmentPaper);
-  text += fmt::format("  scale factor kI {:.9g} {}/g\n", scale_factor, output_unit);
-  for (const auto& r : by_run) {
-    text +=
-        fmt::format("  run {} ({} positions, {} degrees of freedom)\n", r.run, r.position_count, r.degrees_of_freedom);
-    text += angles_text(r.angles);
-  }
-  text += fmt::format("  mean of {} run(s)\n", by_run.size());
-  text += angles_text(combined);
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
+  return runs;
 }
 
 }  // namespace inertest

@@ -12,6 +12,9 @@
 namespace inertest {
 namespace {
 
+// The result's JSON fields as its spec writes them.
+nlohmann::json json_of(const AccelerometerMisalignmentResult& result) { return find_procedure_spec("accelerometer_misalignment")->fields_of(&result); }
+
 constexpr double kArcsec = constants::kArcsecond;
 constexpr double kPaperScaleFactor = 1.299;  // V/g, misalignment paper, Table 2
 
@@ -132,8 +135,8 @@ TEST(AccelerometerMisalignment, AStuckOutputIsWarnedAboutAndRealDataIsNot) {
   EXPECT_EQ(stuck.combined.misalignment.value, 0.0);
   ASSERT_EQ(stuck.warnings.size(), 1u);
   EXPECT_THAT(stuck.warnings[0], ::testing::HasSubstr("every position's output equals -0.5 V (a stuck channel?)"));
-  EXPECT_EQ(stuck.to_json().at("warnings"), nlohmann::json(stuck.warnings));
-  EXPECT_THAT(stuck.report(), ::testing::HasSubstr("warning: every position's output"));
+  EXPECT_EQ(json_of(stuck).at("warnings"), nlohmann::json(stuck.warnings));
+  EXPECT_THAT(procedure_text(*find_procedure_spec("accelerometer_misalignment"), json_of(stuck)), ::testing::HasSubstr("warning: every position's output"));
 }
 
 TEST(AccelerometerMisalignment, PositionsThatCannotSeparateNameTheAngle) {
@@ -179,7 +182,7 @@ TEST(AccelerometerMisalignment, NonIntegerRunIsAnErrorAtItsLine) {
 }
 
 TEST(AccelerometerMisalignment, JsonHasTheFiguresAndByRun) {
-  const nlohmann::json json = accelerometer_misalignment(table2(), paper_options()).to_json();
+  const nlohmann::json json = json_of(accelerometer_misalignment(table2(), paper_options()));
   for (const char* key : {"delta_theta_y2", "delta_theta_z2", "misalignment"}) {
     EXPECT_EQ(json.at(key).at("unit"), "arcsec") << key;
     EXPECT_EQ(json.at("by_run").at(0).at(key).at("unit"), "arcsec") << key;

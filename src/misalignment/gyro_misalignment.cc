@@ -1,4 +1,3 @@
-#include "inertest/core/citations.h"
 #include "inertest/misalignment/gyro_misalignment.h"
 
 #include <fmt/format.h>
@@ -119,38 +118,6 @@ GyroMisalignmentFit fit_pairs(const std::vector<const PositionPair*>& pairs, con
   return fit;
 }
 
-nlohmann::json fit_json(const GyroMisalignmentFit& fit) {
-  nlohmann::json json = fit.angles.to_json();
-  json["equation_count"] = fit.equation_count;
-  json["degrees_of_freedom"] = fit.degrees_of_freedom;
-  json["residual_rms"] = fit.residual_rms;
-  nlohmann::json residuals = nlohmann::json::array();
-  for (const auto& r : fit.residuals) {
-    residuals.push_back({{"alpha_deg", r.alpha_deg},
-                         {"beta_deg", r.beta_deg},
-                         {"rate_dps", r.rate_dps},
-                         {"residual", Figure{r.residual_arcsec, "arcsec", std::nullopt}}});
-  }
-  json["residuals"] = residuals;
-  return json;
-}
-
-std::string figure_text(const Figure& f) {
-  return f.uncertainty ? fmt::format("{:9.2f} ± {:.2f} {}", f.value, *f.uncertainty, f.unit)
-                       : fmt::format("{:9.2f} {}", f.value, f.unit);
-}
-
-std::string angles_text(const GyroMisalignmentAngles& a) {
-  std::string text;
-  text += "    delta_theta_y0 (table face)     " + figure_text(a.delta_theta_y0) + "\n";
-  text += "    delta_theta_x0 (table face)     " + figure_text(a.delta_theta_x0) + "\n";
-  text += "    delta_theta_y1 (fixture face)   " + figure_text(a.delta_theta_y1) + "\n";
-  text += "    delta_theta_y2 (input axis)     " + figure_text(a.delta_theta_y2) + "\n";
-  text += "    delta_theta_z2 (input axis)     " + figure_text(a.delta_theta_z2) + "\n";
-  text += "    misalignment gamma              " + figure_text(a.misalignment) + "\n";
-  return text;
-}
-
 }  // namespace
 
 void GyroMisalignmentOptions::validate() const {
@@ -222,37 +189,30 @@ std::array<double, 5> five_position_misalignment(const FivePositionOutputs& outp
   };
 }
 
-nlohmann::json GyroMisalignmentResult::to_json() const {
-  nlohmann::json json = fit_json(combined);
-  json["procedure"] = "gyro_misalignment";
-  json["source"] = std::string(citations::kMisalignmentPaper) +
-                   ", gyro on a rate table; least squares on V(+) - V(-) = 2 kI w (-dy0 cos b + dx0 sin b - dy1 + "
-                   "dz2 sin a - dy2 cos a)";
-  json["scale_factor"] = Figure{scale_factor, output_unit + "/(deg/s)", std::nullopt};
-  nlohmann::json rates = nlohmann::json::array();
-  for (const auto& r : by_rate) {
-    nlohmann::json entry = fit_json(r.fit);
-    entry["rate_dps"] = r.rate_dps;
-    rates.push_back(entry);
+nlohmann::json gyro_fit_json(const GyroMisalignmentFit& fit) {
+  nlohmann::json json = fit.angles.to_json();
+  json["equation_count"] = fit.equation_count;
+  json["degrees_of_freedom"] = fit.degrees_of_freedom;
+  json["residual_rms"] = fit.residual_rms;
+  nlohmann::json residuals = nlohmann::json::array();
+  for (const auto& r : fit.residuals) {
+    residuals.push_back({{"alpha_deg", r.alpha_deg},
+                         {"beta_deg", r.beta_deg},
+                         {"rate_dps", r.rate_dps},
+                         {"residual", Figure{r.residual_arcsec, "arcsec", std::nullopt}}});
   }
-  json["by_rate"] = rates;
-  json["warnings"] = warnings;
+  json["residuals"] = residuals;
   return json;
 }
 
-std::string GyroMisalignmentResult::report() const {
-  std::string text = fmt::format("Gyro misalignment separation on a rate table\n  ({})\n", citations::kMisalignmentPaper);
-  text += fmt::format("  scale factor kI {:.9g} {}/(deg/s)\n", scale_factor, output_unit);
-  for (const auto& r : by_rate) {
-    text += fmt::format("  at {} deg/s ({} positions, {} degrees of freedom)\n", r.rate_dps, r.fit.equation_count,
-                        r.fit.degrees_of_freedom);
-    text += angles_text(r.fit.angles);
+nlohmann::json by_rate_json(const GyroMisalignmentResult& result) {
+  nlohmann::json rates = nlohmann::json::array();
+  for (const auto& r : result.by_rate) {
+    nlohmann::json entry = gyro_fit_json(r.fit);
+    entry["rate_dps"] = r.rate_dps;
+    rates.push_back(entry);
   }
-  text += fmt::format("  all rates ({} equations, {} degrees of freedom, residual rms {:.3g} arcsec)\n",
-                      combined.equation_count, combined.degrees_of_freedom, combined.residual_rms.value);
-  text += angles_text(combined.angles);
-  for (const auto& w : warnings) text += "  warning: " + w + "\n";
-  return text;
+  return rates;
 }
 
 }  // namespace inertest

@@ -12,6 +12,9 @@
 namespace inertest {
 namespace {
 
+// The result's JSON fields as its spec writes them.
+nlohmann::json json_of(const GyroMisalignmentResult& result) { return find_procedure_spec("gyro_misalignment")->fields_of(&result); }
+
 constexpr double kArcsec = constants::kArcsecond;
 constexpr double kPaperScaleFactor = -2.9222;  // V/(deg/s), misalignment paper, Table 1
 
@@ -191,8 +194,8 @@ TEST(GyroMisalignment, AStuckOutputIsWarnedAboutAndRealDataIsNot) {
   EXPECT_EQ(stuck.combined.angles.misalignment.value, 0.0);
   ASSERT_EQ(stuck.warnings.size(), 1u);
   EXPECT_THAT(stuck.warnings[0], ::testing::HasSubstr("every position's output equals 0.125 V (a stuck channel?)"));
-  EXPECT_EQ(stuck.to_json().at("warnings"), nlohmann::json(stuck.warnings));
-  EXPECT_THAT(stuck.report(), ::testing::HasSubstr("warning: every position's output"));
+  EXPECT_EQ(json_of(stuck).at("warnings"), nlohmann::json(stuck.warnings));
+  EXPECT_THAT(procedure_text(*find_procedure_spec("gyro_misalignment"), json_of(stuck)), ::testing::HasSubstr("warning: every position's output"));
 }
 
 TEST(GyroMisalignment, ResidualsAndUncertaintiesOfAnOverDeterminedSetByHand) {
@@ -309,7 +312,7 @@ TEST(GyroMisalignment, ZeroRateAndDuplicateRowsAreErrors) {
 TEST(GyroMisalignment, JsonHasTheFiguresAndByRate) {
   const GyroMisalignmentResult result =
       gyro_misalignment(read_gyro_misalignment_positions(table1_path()), paper_options());
-  const nlohmann::json json = result.to_json();
+  const nlohmann::json json = json_of(result);
   for (const char* key :
        {"delta_theta_y0", "delta_theta_x0", "delta_theta_y1", "delta_theta_y2", "delta_theta_z2", "misalignment"}) {
     EXPECT_EQ(json.at(key).at("unit"), "arcsec") << key;

@@ -86,10 +86,6 @@ constexpr Translation kTable[] = {
     // Procedures (plan kinds).
     {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
-    {"kind.gyro_misalignment", "Gyro misalignment separation (rate table)", "陀螺失准角分离（速率转台）"},
-    {"kind.accelerometer_misalignment", "Accelerometer misalignment (four-position test)",
-     "加速度计失准角（四位置试验）"},
-    {"kind.centrifuge", "Drift coefficients on a centrifuge", "离心机漂移系数标定"},
 
     // Methods, one sentence each.
     {"method.allan",
@@ -98,24 +94,6 @@ constexpr Translation kTable[] = {
      "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
      "-2..2），"
      "各噪声项按其特征斜率读取。"},
-    {"method.centrifuge",
-     "One platform revolution at each angle β and g-level gives the harmonic amplitudes of eq. (11); stacking "
-     "them, Y = Φq + ε (eqs. 13-16) is solved by least squares for the ten drift coefficients, the centrifuge "
-     "errors and Earth rate compensated in ε. Coefficients are per standard g (9.80665 m/s²), converted from the "
-     "local g of A = Ω²R₀/g.",
-     "在各平台角 β 与过载下采集平台一周数据，由谐波分析得式 (11) 的各谐波幅值；组成 Y = Φq + ε（式 13-16），"
-     "以最小二乘法求十项漂移系数，离心机误差与地球自转角速度在 ε 中补偿。漂移系数以标准重力加速度 g（9.80665 m/s²）"
-     "为单位，由 A = Ω²R₀/g 中的当地 g 换算。"},
-    {"method.gyro_misalignment",
-     "The gyro turns at +ω and −ω in five positions (α, β) of the fixture on a single-axis rate table; the "
-     "differences V(+) − V(−) give the table, fixture and input-axis error angles by least squares.",
-     "陀螺在单轴速率转台上以 +ω、−ω 分别在五个夹具位置 (α, β) 测试；由 V(+) − V(−) "
-     "以最小二乘法分离台面、夹具面和输入轴失准角。"},
-    {"method.accelerometer_misalignment",
-     "The accelerometer's input axis lies horizontal on a vertical face turned through β = 0°, 90°, 180°, 270°; "
-     "the outputs give Δθy2 = (V(π) − V(0))/(2kI) and Δθz2 = (V(π/2) − V(3π/2))/(2kI).",
-     "加速度计输入轴水平置于竖直基准面上，绕面法线转 β = 0°、90°、180°、270°；由输出求 Δθy2 = (V(π) − V(0))/(2kI)、"
-     "Δθz2 = (V(π/2) − V(3π/2))/(2kI)。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},

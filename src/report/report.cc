@@ -365,8 +365,9 @@ class ReportWriter {
       const auto* value = member(*result, field.name);
       if (value == nullptr || field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
       if (is_long_array(*value)) continue;
-      collect_figures(*value, "/" + escape_pointer_token(field.name), labels_.field_of(kind, field.name), labels_, 1,
-                      field.role == FieldRole::headline, rows);
+      const std::string pointer = fmt::format("/{}", escape_pointer_token(field.name));
+      collect_figures(*value, pointer, labels_.field_of(kind, field.name), labels_, 1, field.role == FieldRole::headline,
+                      rows);
     }
     return rows;
   }

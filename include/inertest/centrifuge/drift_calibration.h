@@ -27,6 +27,7 @@
 #include "inertest/centrifuge/harmonic_analysis.h"
 #include "inertest/core/error.h"
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/numerics/least_squares.h"
 
 namespace inertest::centrifuge {
@@ -133,10 +134,17 @@ struct DriftCalibrationResult {
   std::vector<ErrorInfluence> influence;
   std::vector<RunResidual> runs;
   std::vector<std::string> warnings;
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
+
+// The JSON of the result's parts, for its spec (src/procedures/centrifuge_spec.cc): the coefficients
+// by name (D_F ... D_OS), the errors in epsilon with their source ("measured", "estimated" with the
+// correlations, "not measured (0)"), the influence of each error alone (magnitude, shift of every
+// coefficient and, when known, that shift per unit error), the residuals of each run, and the site.
+nlohmann::json coefficient_json(const std::array<Figure, kDriftTermCount>& figures);
+nlohmann::json centrifuge_errors_json(const DriftCalibrationResult& result);
+nlohmann::json influence_json(const DriftCalibrationResult& result);
+nlohmann::json runs_json(const DriftCalibrationResult& result);
+nlohmann::json site_json(const CentrifugeSite& site);
 
 // Throws Error (at the offending run's location where known) for an invalid run, a duplicated
 // (g-level, beta) run, fewer amplitudes than parameters, or a design that cannot identify some
@@ -146,3 +154,11 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
                                                     const DriftCalibrationOptions& options);
 
 }  // namespace inertest::centrifuge
+
+namespace inertest {
+
+// The procedure's one description (src/procedures/centrifuge_spec.cc): FILE (harmonic amplitudes or
+// raw samples) and the site, the measured errors and the compensation as parameters.
+ProcedureSpec centrifuge_spec();
+
+}  // namespace inertest

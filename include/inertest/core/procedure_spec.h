@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
+#include "inertest/core/figure.h"
 
 namespace inertest {
 
@@ -85,9 +86,10 @@ struct ParameterSpec {
   // The command-line option when it is a contract that differs from --kebab-case(name) (e.g. "rate"
   // for sample_rate_hz: --rate).
   ParameterSpec& command_line_name_is(std::string option) { cli_option = std::move(option); return *this; }
-  // On the command line a flag without a value, `--flag`, that gives the text `value` (e.g.
-  // --input-deg-h for input = "deg/h", a contract); without it the parameter has its default.
-  ParameterSpec& command_line_flag(std::string flag, std::string value) {
+  // On the command line a flag without a value, `--flag`, that gives `value` (e.g. --input-deg-h for
+  // input = "deg/h", --no-compensation for compensation = false: contracts); without it the
+  // parameter has its default.
+  ParameterSpec& command_line_flag(std::string flag, nlohmann::json value) {
     cli_flag = std::move(flag);
     cli_flag_value = std::move(value);
     return *this;
@@ -111,7 +113,7 @@ struct ParameterSpec {
   std::string plan_key;  // "" : the plan key is `name`
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
-  std::string cli_flag_value;
+  nlohmann::json cli_flag_value;
   std::string cli_option;  // "": the option is --kebab-case(name)
 };
 
@@ -231,6 +233,19 @@ enum class FieldRole {
   hidden,    // in the JSON only
 };
 
+// What a field's JSON value is: the Python stubs' type of the member, and what a plan's limit may
+// name (a figure or a number).
+enum class FieldValue {
+  figure,        // {"value", "unit"[, "uncertainty"]} (core/figure.h)
+  number,
+  whole_number,
+  boolean,
+  text,
+  texts,         // an array of strings (warnings)
+  rows,          // an array of objects (a table's rows, a curve's points)
+  structured,    // anything else: an object, a number or null
+};
+
 // One key of the result's JSON object.
 struct FieldSpec {
   std::string name;  // the JSON key (a contract: README, docs, closed issues)
@@ -245,6 +260,9 @@ struct FieldSpec {
   // The text report's words for some values, by the value's JSON text (e.g. {{"-1", "negative"}} for a
   // sign); other values read as they are.
   std::map<std::string, std::string> value_words = {};
+  // Set by ProcedureDefinition::field from the member's type; by field_from, rows for a table or a
+  // curve and structured otherwise unless declared.
+  FieldValue value = FieldValue::structured;
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
@@ -275,7 +293,11 @@ struct ProcedureCall {
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
 struct ProcedureSpec {
-  std::string kind;    // snake_case plan kind; the CLI command is its kebab-case form
+  std::string kind;    // snake_case plan kind; the CLI command is its kebab-case form (or command_path)
+  // The CLI command when it is a contract that differs from the kind's: a subcommand of a group,
+  // e.g. {"misalignment", "gyro"} for `inertest misalignment gyro`; empty: {kebab_case(kind)}.
+  std::vector<std::string> command_path;
+  std::string command_group_doc;  // the group's --help, "" when another spec of the group gives it
   std::string json_procedure;  // the JSON's "procedure": the kind, or a contract that differs from it
   std::string title;   // e.g. "Polarity"
   std::string clause;  // e.g. "GJB 2426A-2004 5.7"
@@ -329,6 +351,29 @@ inline constexpr bool is_optional = false;
 template <typename T>
 inline constexpr bool is_optional<std::optional<T>> = true;
 
+template <typename T>
+constexpr FieldValue field_value_of() {
+  if constexpr (is_optional<T>) {
+    return field_value_of<typename T::value_type>();
+  } else if constexpr (std::is_same_v<T, Figure>) {
+    return FieldValue::figure;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return FieldValue::boolean;
+  } else if constexpr (std::is_integral_v<T>) {
+    return FieldValue::whole_number;
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return FieldValue::number;
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return FieldValue::text;
+  } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+    return FieldValue::texts;
+  } else if constexpr (requires { typename T::value_type; } && !std::is_same_v<T, nlohmann::json>) {
+    return FieldValue::rows;
+  } else {
+    return FieldValue::structured;
+  }
+}
+
 // Typed construction of a ProcedureSpec: parameters bound to Options members, fields read from
 // Result members, and the computation.
 template <typename Options, typename Result>
@@ -342,6 +387,13 @@ class ProcedureDefinition {
     spec_.clause = std::move(clause);
     spec_.doc = std::move(doc);
     spec_.json_procedure = spec_.kind;
+  }
+
+  // The CLI command as a subcommand of a group (ProcedureSpec::command_path), a contract.
+  ProcedureDefinition& command_is(std::string group, std::string name, std::string group_doc = "") {
+    spec_.command_path = {std::move(group), std::move(name)};
+    spec_.command_group_doc = std::move(group_doc);
+    return *this;
   }
 
   // The JSON's "procedure" when it is a contract that differs from the kind (e.g.
@@ -418,6 +470,7 @@ class ProcedureDefinition {
   // of it, left out when empty).
   template <typename T>
   ProcedureDefinition& field(FieldSpec field, T Result::*member) {
+    field.value = field_value_of<T>();
     return field_from(std::move(field), [member](const Result& result) {
       if constexpr (is_optional<T>) {
         return result.*member ? nlohmann::json(*(result.*member)) : nlohmann::json();
@@ -427,8 +480,19 @@ class ProcedureDefinition {
     });
   }
 
+  // A figure computed from the Result (e.g. a member of a member).
+  ProcedureDefinition& figure_from(FieldSpec field, std::function<Figure(const Result&)> figure) {
+    field.value = FieldValue::figure;
+    return field_from(std::move(field), [figure = std::move(figure)](const Result& result) {
+      return nlohmann::json(figure(result));
+    });
+  }
+
   // A field computed from the Result (e.g. a sign spelled out); null leaves it out.
   ProcedureDefinition& field_from(FieldSpec field, std::function<nlohmann::json(const Result&)> value) {
+    if (field.value == FieldValue::structured && (field.role == FieldRole::table || field.role == FieldRole::curve)) {
+      field.value = FieldValue::rows;
+    }
     getters_.emplace_back(field.name, std::move(value));
     spec_.fields.push_back(std::move(field));
     return *this;

@@ -23,6 +23,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -66,10 +67,15 @@ struct AccelerometerMisalignmentResult {
   std::string output_unit;
   double scale_factor = 0.0;
   std::vector<std::string> warnings;  // e.g. every output equal (a stuck channel)
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
+
+// The JSON of the solution of each run (the angles, run, position_count, degrees_of_freedom,
+// residual_rms), for the spec's fields.
+nlohmann::json by_run_json(const AccelerometerMisalignmentResult& result);
+
+// The procedure's one description (src/procedures/accelerometer_misalignment_spec.cc):
+// `inertest misalignment accelerometer POSITIONS`, plan kind "accelerometer_misalignment".
+ProcedureSpec accelerometer_misalignment_spec();
 
 // Throws Error (located at the row's file and line where known) for a repeated β within a run, and
 // for a run whose positions cannot separate Δθy2 and Δθz2 (naming the angles).

@@ -27,6 +27,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "inertest/core/figure.h"
+#include "inertest/core/procedure_spec.h"
 
 namespace inertest {
 
@@ -87,10 +88,16 @@ struct GyroMisalignmentResult {
   std::string output_unit;
   double scale_factor = 0.0;
   std::vector<std::string> warnings;  // e.g. every output equal (a stuck channel)
-
-  nlohmann::json to_json() const;
-  std::string report() const;
 };
+
+// The JSON of one solution (the angles, equation_count, degrees_of_freedom, residual_rms and the
+// residuals) and of the solution at each rate (with rate_dps), for the spec's fields.
+nlohmann::json gyro_fit_json(const GyroMisalignmentFit& fit);
+nlohmann::json by_rate_json(const GyroMisalignmentResult& result);
+
+// The procedure's one description (src/procedures/gyro_misalignment_spec.cc):
+// `inertest misalignment gyro POSITIONS`, plan kind "gyro_misalignment".
+ProcedureSpec gyro_misalignment_spec();
 
 // Separates the angles at every rate (rows grouped by |rate_dps|) and over all rates together.
 // Uncertainties (1 sigma, from the residuals) are given where there are more equations than

@@ -56,7 +56,8 @@ TEST(MisalignmentSteps, ZeroOrMissingScaleFactorFailsAtValidation) {
       "missing.toml",
       plan_text("gyro", "", fmt::format("[[procedure]]\nkind = \"gyro_misalignment\"\nfile = \"{}\"\n", data)));
   EXPECT_THAT([&] { validate_plan(missing); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("needs scale_factor")));
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr(
+                  "missing 'scale_factor' (give it here or as [instrument] nominal_scale_factor)")));
 }
 
 }  // namespace

@@ -103,7 +103,6 @@ std::vector<ReportPlot> gyro_plots(const PlotContext& context) {
 
 std::vector<ReportPlot> accelerometer_plots(const PlotContext& context) {
   std::vector<ReportPlot> plots;
-  if (auto plot = position_plot(context)) plots.push_back(std::move(*plot));
   Axis run = make_axis(context.labels("ui.run"), "");
   if (auto plot = angles_plot(context, "by_run", "run", run, kAccelerometerAngles)) {
     plot->caption = context.labels("misalignment") + " — " + context.labels("ui.run");

@@ -50,17 +50,19 @@ test-sanitize: sanitize-build
 # Each target runs FUZZ_SECONDS on its seed corpus (fuzz/corpus/<target>/, read only); new inputs
 # go to $(SANITIZE_DIR)/fuzz/<target>/, and a crash, hang (FUZZ_TIMEOUT s) or leak fails the run
 # and leaves its input as $(SANITIZE_DIR)/fuzz/<target>-crash-* (or -timeout-*, -leak-*).
+# The targets run JOBS at a time (one core each), so each gets its whole FUZZ_SECONDS of a core.
 fuzz: sanitize-build
-	@for target in $(FUZZ_TARGETS); do \
-	  mkdir -p $(SANITIZE_DIR)/fuzz/$$target && \
-	  echo "fuzz: $$target for $(FUZZ_SECONDS) s" && \
-	  $(SANITIZE_DIR)/bin/$${target}_fuzzer -max_total_time=$(FUZZ_SECONDS) -max_len=$(FUZZ_MAX_LEN) \
+	@$(MAKE) --no-print-directory -j $(JOBS) $(addprefix fuzz-,$(FUZZ_TARGETS))
+
+fuzz-%:
+	@mkdir -p $(SANITIZE_DIR)/fuzz/$* && \
+	  echo "fuzz: $* for $(FUZZ_SECONDS) s" && \
+	  $(SANITIZE_DIR)/bin/$*_fuzzer -max_total_time=$(FUZZ_SECONDS) -max_len=$(FUZZ_MAX_LEN) \
 	    -timeout=$(FUZZ_TIMEOUT) -rss_limit_mb=2048 -detect_leaks=1 -print_final_stats=1 \
-	    -artifact_prefix=$(SANITIZE_DIR)/fuzz/$$target- \
-	    $(SANITIZE_DIR)/fuzz/$$target fuzz/corpus/$$target 2> $(SANITIZE_DIR)/fuzz/$$target.log || \
-	  { tail -n 60 $(SANITIZE_DIR)/fuzz/$$target.log; echo "fuzz: $$target FAILED"; exit 1; }; \
-	  grep -E '^stat::number_of_executed_units' $(SANITIZE_DIR)/fuzz/$$target.log || true; \
-	done
+	    -artifact_prefix=$(SANITIZE_DIR)/fuzz/$*- \
+	    $(SANITIZE_DIR)/fuzz/$* fuzz/corpus/$* 2> $(SANITIZE_DIR)/fuzz/$*.log || \
+	  { tail -n 60 $(SANITIZE_DIR)/fuzz/$*.log; echo "fuzz: $* FAILED"; exit 1; }; \
+	  echo "fuzz: $* $$(grep -E '^stat::number_of_executed_units' $(SANITIZE_DIR)/fuzz/$*.log)"
 
 test-fuzz-short:
 	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_SHORT_SECONDS)

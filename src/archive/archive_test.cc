@@ -13,10 +13,9 @@
 #include <fmt/format.h>
 
 #include "archive/sha256.h"
-#include "inertest/demo/demo.h"
 #include "inertest/core/error.h"
 #include "test_util/postgresql_server.h"
-#include "test_util/test_util.h"
+#include "test_util/demo_campaign.h"
 
 namespace inertest::archive {
 namespace {
@@ -444,15 +443,8 @@ TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
   EXPECT_FALSE(std::filesystem::exists(scratch_.path() + "/none"));
 }
 
-// The demo's results.json (inertest demo), made once per test program.
-const std::string& demo_results() {
-  static const testing::ScratchDirectory dir;
-  static const std::string path = [] {
-    run_demo(dir.path() + "/demo");
-    return dir.path() + "/demo/results.json";
-  }();
-  return path;
-}
+// The demo's results.json (inertest demo).
+std::string demo_results() { return testing::demo_campaign_directory() + "/results.json"; }
 
 // The acceptance: the demo's results added twice, then list and history give back exactly
 // the scale factor stored in results.json, as one campaign.

@@ -166,7 +166,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   for (const ParameterSpec& parameter : spec.parameters) {
     if (!parameter.cli_flag.empty()) {
       command->add_flag("--" + parameter.cli_flag, arguments->flags[parameter.name],
-                        fmt::format("{} (this flag: {})", parameter.doc,
+                        fmt::format("{} (the flag sets {} = {})", parameter.doc, parameter.name,
                                     parameter.cli_flag_value.is_string() ? parameter.cli_flag_value.get<std::string>()
                                                                          : parameter.cli_flag_value.dump()));
       continue;

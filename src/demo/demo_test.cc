@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/units.h"
-#include "test_util/test_util.h"
+#include "test_util/demo_campaign.h"
 
 namespace inertest {
 namespace {
@@ -15,10 +15,7 @@ namespace {
 using testing::read_file;
 
 TEST(Demo, ReportShowsPassAndFailPerLimitAsTheTruthDecides) {
-  testing::ScratchDirectory dir;
-  const std::string out = dir.path() + "/demo";
-  const auto run = testing::run_cli({"demo", "--out", out});
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string& out = testing::demo_campaign_directory();
   const auto results = nlohmann::json::parse(read_file(out + "/results.json"));
   const auto truth = nlohmann::json::parse(read_file(out + "/lab/truth.json"));
 

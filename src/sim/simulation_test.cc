@@ -7,7 +7,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/demo/demo.h"
-#include "test_util/test_util.h"
+#include "test_util/demo_campaign.h"
 
 namespace inertest::sim {
 namespace {
@@ -168,19 +168,23 @@ TEST(DemoPlan, BuiltInPlanMatchesTheExample) {
   EXPECT_EQ(demo_simulation_plan(), read(inertest::testing::source_path("examples/demo/simulation.toml")));
 }
 
+// Under ctest this test is the `demo_campaign` fixture: the tests that read the campaign's output
+// (testing::demo_campaign_directory) read what it wrote.
 TEST(Demo, EveryTruthCheckIsWithin) {
   ScratchDirectory dir;
-  const auto run = inertest::testing::run_cli({"demo", "--out", dir.path() + "/demo", "--json"});
+  const std::string fixture = inertest::testing::demo_campaign_fixture_directory();
+  const std::string out = fixture.empty() ? dir.path() + "/demo" : fixture;
+  const auto run = inertest::testing::run_demo_campaign(out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const auto results = nlohmann::json::parse(read(dir.path() + "/demo/results.json"));
+  const auto results = nlohmann::json::parse(read(out + "/results.json"));
   EXPECT_EQ(results, nlohmann::json::parse(run.out));
   ASSERT_GE(results.at("truth_check").size(), 3u);
   for (const auto& c : results.at("truth_check")) {
     EXPECT_TRUE(c.at("within").get<bool>()) << c.dump();
     EXPECT_GT(c.at("tolerance").get<double>(), 0.0) << c.dump();
   }
-  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/demo/report.txt"));
-  EXPECT_TRUE(std::filesystem::exists(dir.path() + "/demo/lab/truth.json"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/report.txt"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/lab/truth.json"));
 }
 
 }  // namespace

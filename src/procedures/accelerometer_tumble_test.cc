@@ -1,0 +1,222 @@
+// Accelerometer multipoint tumble (IEEE Std 1293-1998 8.3), through its declaration: positions made
+// from known coefficients by the model equation give them back, exactly without noise and within
+// their uncertainties with it (Monte Carlo coverage); too few positions are said; bad files refused.
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/procedure_spec.h"
+#include "inertest/core/units.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+using ::testing::HasSubstr;
+
+struct Truth {
+  double k0 = 1.5e-3;         // g
+  double k1 = 1.25;           // mA/g
+  double k2 = 15e-6;          // 1/g
+  double k3 = 4e-6;           // 1/g^2
+  double misalignment = 2e-4; // rad: delta_o (head along OA) or delta_p (head along PA)
+  double cross = 8e-6;        // 1/g: K_ip or K_io
+  double gravity_m_s2 = 9.7936;
+};
+
+// The model equation at head angle theta (the spec's convention: a_i = gamma cos, a_c = gamma sin),
+// the cross-axis term +delta_o a_p with the head along OA and -delta_p a_o along PA.
+double model_output(const Truth& t, double angle_deg, bool head_along_output) {
+  const double gamma = t.gravity_m_s2 / constants::kStandardGravity;
+  const double a_i = gamma * std::cos(angle_deg * constants::kDegree);
+  const double a_c = gamma * std::sin(angle_deg * constants::kDegree);
+  return t.k1 * (t.k0 + a_i + t.k2 * a_i * a_i + t.k3 * a_i * a_i * a_i +
+                 (head_along_output ? 1.0 : -1.0) * t.misalignment * a_c + t.cross * a_i * a_c);
+}
+
+// Gaussian noise of standard deviation sigma (Box-Muller on the reproducible uniform sequence).
+double gaussian(testing::UniformSequence& uniform, double sigma) {
+  const double u1 = uniform.next() + 0.5 + 1e-300;
+  const double u2 = uniform.next() + 0.5;
+  return sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * constants::kPi * u2);
+}
+
+std::string positions_csv(const Truth& t, int count, int turns, bool head_along_output, double sigma,
+                          std::uint64_t seed) {
+  testing::UniformSequence uniform(seed);
+  std::string csv = "run,angle_deg,output\n";
+  for (int run = 1; run <= turns; ++run) {
+    for (int k = 0; k < count; ++k) {
+      const double angle = 360.0 * k / count;
+      csv += fmt::format("{},{},{:.17g}\n", run, angle,
+                         model_output(t, angle, head_along_output) + (sigma > 0.0 ? gaussian(uniform, sigma) : 0.0));
+    }
+  }
+  return csv;
+}
+
+nlohmann::json run_on(const std::string& path, const nlohmann::json& parameters = nlohmann::json::object()) {
+  const ProcedureSpec* spec = find_procedure_spec("accelerometer_tumble");
+  EXPECT_NE(spec, nullptr);
+  ProcedureCall call;
+  for (const auto& [name, value] : spec->defaults) call.parameters[name] = value;
+  for (const auto& [name, value] : parameters.items()) call.parameters[name] = value;
+  call.files["positions"] = path;
+  spec->check(call);
+  return spec->run(call);
+}
+
+double value_of(const nlohmann::json& fields, const char* name) { return fields.at(name).at("value").get<double>(); }
+
+struct Layout {
+  int positions;
+  bool head_along_output;
+  const char* name;
+};
+
+class TumbleExact : public ::testing::TestWithParam<Layout> {};
+
+// Noise-free positions: every coefficient of the model back to rounding, in its unit.
+TEST_P(TumbleExact, RecoversEveryCoefficient) {
+  const Layout layout = GetParam();
+  const Truth truth;
+  const testing::ScratchDirectory scratch;
+  const std::string path =
+      scratch.write("positions.csv", positions_csv(truth, layout.positions, 1, layout.head_along_output, 0.0, 1));
+  const nlohmann::json fields =
+      run_on(path, {{"output_unit", "mA"},
+                    {"gravity_m_s2", truth.gravity_m_s2},
+                    {"head_axis", layout.head_along_output ? "output" : "pendulous"}});
+  EXPECT_NEAR(value_of(fields, "bias"), truth.k0, 1e-12);
+  EXPECT_NEAR(value_of(fields, "scale_factor"), truth.k1, 1e-12);
+  EXPECT_NEAR(value_of(fields, "second_order"), truth.k2, 1e-12);
+  EXPECT_NEAR(value_of(fields, "third_order"), truth.k3, 1e-12);
+  EXPECT_EQ(fields.at("bias").at("unit"), "g");
+  EXPECT_EQ(fields.at("scale_factor").at("unit"), "mA/g");
+  EXPECT_EQ(fields.at("second_order").at("unit"), "1/g");
+  EXPECT_EQ(fields.at("third_order").at("unit"), "1/g^2");
+  const char* misalignment =
+      layout.head_along_output ? "misalignment_about_output_axis" : "misalignment_about_pendulous_axis";
+  const char* other = layout.head_along_output ? "misalignment_about_pendulous_axis" : "misalignment_about_output_axis";
+  const char* cross = layout.head_along_output ? "cross_coupling_ip" : "cross_coupling_io";
+  EXPECT_NEAR(value_of(fields, misalignment), truth.misalignment, 1e-12);
+  EXPECT_EQ(fields.at(misalignment).at("unit"), "rad");
+  EXPECT_TRUE(fields.at(other).is_null());
+  EXPECT_NEAR(value_of(fields, cross), truth.cross, 1e-12);
+  EXPECT_EQ(fields.at("positions"), layout.positions);
+  EXPECT_EQ(fields.at("degrees_of_freedom"), layout.positions - 6);
+  EXPECT_LT(value_of(fields, "residual_rms"), 1e-12);
+  ASSERT_EQ(fields.at("residuals").size(), static_cast<std::size_t>(layout.positions));
+  EXPECT_NEAR(fields.at("residuals")[1].at("angle").at("value").get<double>(), 360.0 / layout.positions, 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(Tumble, TumbleExact,
+                         ::testing::Values(Layout{8, true, "eight_head_along_output"},
+                                           Layout{12, true, "twelve_head_along_output"},
+                                           Layout{16, false, "sixteen_head_along_pendulous"},
+                                           Layout{24, false, "twenty_four_head_along_pendulous"}),
+                         testing::NameOfParam());
+
+// Four positions identify K0, K1, K2 and the misalignment, exactly (no degrees of freedom left);
+// K3 and the cross-coupling are not identified and the result says so.
+TEST(Tumble, FourPositionsIdentifyTheFirstTermsAndSaySo) {
+  Truth truth;
+  truth.k3 = 0.0;  // at 0, 90, 180, 270 deg cos 3t equals cos t: K3 would read as scale factor
+  const testing::ScratchDirectory scratch;
+  const nlohmann::json fields =
+      run_on(scratch.write("positions.csv", positions_csv(truth, 4, 1, true, 0.0, 1)),
+             {{"output_unit", "mA"}, {"gravity_m_s2", truth.gravity_m_s2}});
+  EXPECT_NEAR(value_of(fields, "bias"), truth.k0, 1e-12);
+  EXPECT_NEAR(value_of(fields, "scale_factor"), truth.k1, 1e-12);
+  EXPECT_NEAR(value_of(fields, "second_order"), truth.k2, 1e-12);
+  EXPECT_NEAR(value_of(fields, "misalignment_about_output_axis"), truth.misalignment, 1e-12);
+  EXPECT_TRUE(fields.at("third_order").is_null());
+  EXPECT_TRUE(fields.at("cross_coupling_ip").is_null());
+  EXPECT_FALSE(fields.at("scale_factor").contains("uncertainty"));
+  EXPECT_EQ(fields.at("degrees_of_freedom"), 0);
+  ASSERT_EQ(fields.at("warnings").size(), 2u);
+  EXPECT_THAT(fields.at("warnings")[0].get<std::string>(), HasSubstr("do not identify K3 and K_ip"));
+  EXPECT_THAT(fields.at("warnings")[1].get<std::string>(), HasSubstr("no uncertainty"));
+}
+
+// With noise, each coefficient's 1-sigma interval holds the truth in about 68 % of the tumbles:
+// 8 positions over 2 turns leave 10 degrees of freedom, P(|t_10| <= 1) = 0.659; over 400 tumbles
+// the fraction's standard error is 0.024, and the bounds are 3 of them either side.
+TEST(Tumble, OneSigmaIntervalsCoverTheTruthInAboutTwoThirdsOfTheTumbles) {
+  const Truth truth;
+  const testing::ScratchDirectory scratch;
+  constexpr int kTumbles = 400;
+  const char* names[] = {"bias", "scale_factor", "second_order", "third_order", "misalignment_about_output_axis",
+                         "cross_coupling_ip"};
+  const double truths[] = {truth.k0, truth.k1, truth.k2, truth.k3, truth.misalignment, truth.cross};
+  int covered[6] = {};
+  for (int seed = 1; seed <= kTumbles; ++seed) {
+    const nlohmann::json fields =
+        run_on(scratch.write("positions.csv", positions_csv(truth, 8, 2, true, 2e-6, static_cast<std::uint64_t>(seed))),
+               {{"output_unit", "mA"}, {"gravity_m_s2", truth.gravity_m_s2}});
+    for (int k = 0; k < 6; ++k) {
+      const nlohmann::json& figure = fields.at(names[k]);
+      if (std::abs(figure.at("value").get<double>() - truths[k]) <= figure.at("uncertainty").get<double>()) {
+        ++covered[k];
+      }
+    }
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double fraction = static_cast<double>(covered[k]) / kTumbles;
+    EXPECT_GT(fraction, 0.659 - 3 * 0.024) << names[k];
+    EXPECT_LT(fraction, 0.659 + 3 * 0.024) << names[k];
+  }
+}
+
+TEST(Tumble, CommandGivesTheSameFigures) {
+  const Truth truth;
+  const testing::ScratchDirectory scratch;
+  const std::string path = scratch.write("positions.csv", positions_csv(truth, 8, 1, true, 0.0, 1));
+  const auto run = testing::run_cli({"accelerometer-tumble", path, "--output-unit", "mA", "--gravity",
+                                     fmt::format("{}", truth.gravity_m_s2), "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json.at("procedure"), "accelerometer_tumble");
+  EXPECT_EQ(json.at("clause"), "IEEE Std 1293-1998 8.3");
+  EXPECT_NEAR(json.at("scale_factor").at("value").get<double>(), truth.k1, 1e-12);
+  EXPECT_NEAR(json.at("second_order").at("value").get<double>(), truth.k2, 1e-12);
+}
+
+struct Refusal {
+  const char* name;
+  const char* content;
+  const char* message;  // with the place it names, after the file name
+};
+
+class TumbleRefuses : public ::testing::TestWithParam<Refusal> {};
+
+TEST_P(TumbleRefuses, NamingTheFileAndThePlace) {
+  const testing::ScratchDirectory scratch;
+  const std::string path = scratch.write("positions.csv", GetParam().content);
+  const auto run = testing::run_cli({"accelerometer-tumble", path, "--json"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_TRUE(run.out.empty());
+  EXPECT_THAT(run.err, HasSubstr(path + GetParam().message));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Tumble, TumbleRefuses,
+    ::testing::Values(
+        Refusal{"missing_output", "angle_deg,volts\n0,1\n90,0\n180,-1\n270,0\n", ":1:1: expected a header row"},
+        Refusal{"not_a_number", "angle_deg,output\n0,1\n90,x\n180,-1\n270,0\n", ":3:4"},
+        Refusal{"three_positions", "angle_deg,output\n0,1\n90,0\n180,-1\n", ": the 3 positions do not identify"},
+        Refusal{"four_rows_two_angles", "angle_deg,output\n0,1\n180,-1\n0,1.1\n180,-0.9\n",
+                ": the 4 positions do not identify"}),
+    testing::NameOfParam());
+
+TEST(Tumble, GravityOffTheEarthIsRefusedBeforeReading) {
+  const auto run = testing::run_cli({"accelerometer-tumble", testing::source_path("examples/accelerometer_tumble/positions.csv"),
+                                     "--gravity", "98.1", "--json"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("98.1 m/s^2 is not a gravity on the Earth's surface"));
+}
+
+}  // namespace
+}  // namespace inertest

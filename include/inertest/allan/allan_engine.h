@@ -32,7 +32,7 @@
 // chain cost an FP-add latency per sample), the chains' carries added after; the cut depends on
 // the block only, so the phase is the same bits whatever the chunks pushed or the thread count,
 // and the second pass repeats it. Worker w takes a contiguous range of the factors and sweeps each
-// block in sub-blocks of 4096 anchors, every one of its factors per sub-block: on an octave grid
+// block in sub-blocks of 16384 anchors, every one of its factors per sub-block: on an octave grid
 // the lag 2m of factor m is the lag m of the next factor, so a sub-block of a far lag comes from
 // DRAM once and serves two factors, and small lags come from L1/L2. Each term is a few flops on 3
 // or 4 phase streams; the sums of the overlapping averages (B1 ratio) ride in the same loops, and

@@ -208,10 +208,12 @@ SampleReader binary_sample_reader(const RateRecordSource& source) {
   };
 }
 
-// A provisional offset for the engine: the mean of the first samples of the record (at most a
-// block's worth are needed to bring the phase near zero; the exact mean comes from the phase total).
+// A provisional offset for the engine: the mean of the first samples of the record (up to 2^20,
+// the first chunk a reader hands over; the exact mean comes from the phase total). The phase then
+// drifts by k (mean - offset), which the differences cancel; the closer the offset, the smaller the
+// phase values and their rounding.
 double provisional_offset(std::span<const double> first) {
-  first = first.first(std::min<std::size_t>(first.size(), std::size_t{1} << 16));
+  first = first.first(std::min<std::size_t>(first.size(), std::size_t{1} << 20));
   return compensated_sum(first) / static_cast<double>(first.size());
 }
 

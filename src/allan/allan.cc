@@ -208,6 +208,15 @@ SampleReader binary_sample_reader(const RateRecordSource& source) {
   };
 }
 
+// A provisional offset for the engine: the mean of the first samples of the record (up to 2^20,
+// the first chunk a reader hands over; the exact mean comes from the phase total). The phase then
+// drifts by k (mean - offset), which the differences cancel; the closer the offset, the smaller the
+// phase values and their rounding.
+double provisional_offset(std::span<const double> first) {
+  first = first.first(std::min<std::size_t>(first.size(), std::size_t{1} << 20));
+  return compensated_sum(first) / static_cast<double>(first.size());
+}
+
 nlohmann::json noise_type_names(const std::vector<NoiseType>& types) {
   nlohmann::json names = nlohmann::json::array();
   for (NoiseType type : types) names.push_back(noise_type_name(type));
@@ -244,12 +253,14 @@ AllanResult allan_variance(std::span<const double> rate, const AllanOptions& opt
     if (!std::isfinite(rate[i])) throw Error("sample " + std::to_string(i + 1) + " is not a finite number");
   }
   auto factors = averaging_factors_for(rate.size(), options);
-  const double mean = compensated_sum(rate) / static_cast<double>(rate.size());
-  AllanEngine engine(rate.size(), mean, engine_options(std::move(factors), options));
+  // One pass: the phase is integrated about a provisional offset, and the mean is offset + X_N / N.
+  const double offset = provisional_offset(rate);
+  AllanEngine engine(rate.size(), offset, engine_options(std::move(factors), options));
   engine.push(rate);
   const auto sums = engine.finish([rate](std::size_t first, std::span<double> out) {
     std::copy_n(rate.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
   });
+  const double mean = offset + engine.phase_total() / static_cast<double>(rate.size());
   return assemble(rate.size(), mean, sums, options);
 }
 
@@ -260,7 +271,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
   source.format = resolve_rate_record_format(given_source);
   if (source.format == RateRecordFormat::kCsv) {
     // Text is parsed once, in parallel, into memory and analysed there: a second parse would cost
-    // more than the 8 bytes a sample. Binary records stream twice (the mean, then the engine).
+    // more than the 8 bytes a sample. Binary records stream once (below).
     if (progress) progress("reading " + source.path, 0.0);
     return allan_variance(read_text_rate_record(source), options);
   }
@@ -275,19 +286,46 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
   const auto stream = [&](const SampleSink& sink) {
     return record ? stream_channel(*record, channel, sink) : read_rate_record(source, sink);
   };
-  CompensatedSum sum;
-  const std::size_t count = stream([&](std::span<const double> samples) {
-    for (double v : samples) sum.add(v);
-  });
-  const double mean = sum.value() / static_cast<double>(count);
-  auto factors = averaging_factors_for(count, options);
+  // The record is read once: its length comes from the file (raw) or the channel's header, the
+  // engine integrates the phase about the mean of the first chunk, and the mean is offset + X_N / N.
+  std::size_t count = 0;
+  if (record) {
+    count = static_cast<std::size_t>(record->channels()[channel].length);
+  } else {
+    const std::size_t sample_size = source.format == RateRecordFormat::kFloat64 ? 8 : 4;
+    const auto bytes = static_cast<std::size_t>(std::filesystem::file_size(source.path));
+    count = bytes % sample_size == 0 ? bytes / sample_size : 0;
+  }
+  if (count == 0) {
+    // Empty or truncated: the reader says which, with the file's name.
+    stream([](std::span<const double>) {});
+    throw Error(SourceLocation{source.path, 0, 0}, "no data: the record is empty");
+  }
+  std::vector<std::size_t> factors;
+  try {
+    factors = averaging_factors_for(count, options);
+  } catch (const Error&) {
+    // A record the reader rejects (a NaN, a truncated sample) says so first, as when it was read
+    // before the taus were chosen.
+    stream([](std::span<const double>) {});
+    throw;
+  }
   AllanEngineOptions engine_setup = engine_options(std::move(factors), options);
   if (engine_setup.ring_capacity_limit == 0) engine_setup.ring_capacity_limit = automatic_ring_limit(source);
-  AllanEngine engine(count, mean, std::move(engine_setup));
+  std::unique_ptr<AllanEngine> engine;
+  double offset = 0.0;
   std::size_t pushed = 0;
   std::size_t reported = 0;
   const std::size_t again = stream([&](std::span<const double> samples) {
-    engine.push(samples);
+    if (samples.empty()) return;
+    if (!engine) {
+      offset = provisional_offset(samples);
+      engine = std::make_unique<AllanEngine>(count, offset, std::move(engine_setup));
+    }
+    if (pushed + samples.size() > count) {
+      throw Error(SourceLocation{source.path, 0, 0}, "the file changed while it was read");
+    }
+    engine->push(samples);
     pushed += samples.size();
     if (progress && pushed - reported >= count / 100 + 1) {
       reported = pushed;
@@ -296,7 +334,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
   });
   if (again != count) throw Error(SourceLocation{source.path, 0, 0}, "the file changed while it was read");
   SampleReader reader;
-  if (engine.deferred_factor_count() > 0) {
+  if (engine->deferred_factor_count() > 0) {
     if (progress) progress("Allan variance (largest taus, second pass)", 1.0);
     if (record) {
       reader = [&record, channel](std::size_t first, std::span<double> out) { record->read(channel, first, out); };
@@ -304,8 +342,9 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
       reader = binary_sample_reader(source);
     }
   }
-  const auto sums = engine.finish(reader);
+  const auto sums = engine->finish(reader);
   if (progress) progress("Allan variance", 1.0);
+  const double mean = offset + engine->phase_total() / static_cast<double>(count);
   return assemble(count, mean, sums, options);
 }
 

@@ -128,6 +128,7 @@ struct FactorState {
   AveragedFrequencySeries averages;  // ȳ_j at the anchors k = jm, in order
   // Sums of d_k = X_k - X_{k-m}, k = m .. N, where the B1 ratio will need them (overlapping_average_variance).
   bool overlapping_averages = false;
+  double overlapping_shift = 0.0;  // d_m = X_m: the sums are of d_k - shift (so they do not cancel, whatever the offset)
   CompensatedSum overlapping_sum;
   CompensatedSum overlapping_squares;
 };
@@ -229,39 +230,129 @@ double mdev_window_squares(const double* __restrict h, std::size_t length, doubl
   return chain_total(chains) + tail;
 }
 
-// sum a_k^2 over a run, a_k = p0[i] - 2 p1[i] + p2[i] (NIST SP 1065 eq. 11), in kLanes lanes.
-INERTEST_VECTOR_CLONES
-double second_difference_squares(const double* __restrict p0, const double* __restrict p1,
-                                 const double* __restrict p2, std::size_t length) {
+// The sums of d_k - shift, d_k = X_k - X_{k-m} (m times the overlapping averages), that the B1
+// ratio needs for the factors with few non-overlapping averages: summed in the same loop as the
+// differences (the streams are already in registers), in kLanes lanes (kAverageLanes alone).
+constexpr std::size_t kAverageLanes = 8;
+
+struct AverageSums {
+  double sum = 0.0;
+  double squares = 0.0;
+};
+
+double average_lane_total(const double (&lanes)[kAverageLanes]) {
+  return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+}
+
+struct SecondDifferenceSums {
+  double second = 0.0;  // sum a_k^2
+  AverageSums averages;
+};
+
+// sum a_k^2 over a run, a_k = p0[i] - 2 p1[i] + p2[i] (NIST SP 1065 eq. 11), in kLanes lanes; with
+// kAverages also the sums of d_k - shift = p0[i] - p1[i] - shift.
+template <bool kAverages>
+[[gnu::always_inline]] inline SecondDifferenceSums second_difference_loop(const double* __restrict p0,
+                                                                          const double* __restrict p1,
+                                                                          const double* __restrict p2,
+                                                                          std::size_t length, double shift) {
   double lanes[kLanes] = {};
+  double d_sums[kLanes] = {};
+  double d_squares[kLanes] = {};
   std::size_t i = 0;
   for (; i + kLanes <= length; i += kLanes) {
     for (std::size_t l = 0; l < kLanes; ++l) {
       const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
       lanes[l] += a * a;
+      if constexpr (kAverages) {
+        const double d = (p0[i + l] - p1[i + l]) - shift;
+        d_sums[l] += d;
+        d_squares[l] += d * d;
+      }
     }
   }
   for (; i < length; ++i) {
     const double a = p0[i] - 2.0 * p1[i] + p2[i];
     lanes[0] += a * a;
+    if constexpr (kAverages) {
+      const double d = (p0[i] - p1[i]) - shift;
+      d_sums[0] += d;
+      d_squares[0] += d * d;
+    }
   }
-  return lane_total(lanes);
+  return {lane_total(lanes), {lane_total(d_sums), lane_total(d_squares)}};
+}
+
+// second_difference_loop, with the average sums when `shift` is not null.
+INERTEST_VECTOR_CLONES
+SecondDifferenceSums second_difference_sums(const double* __restrict p0, const double* __restrict p1,
+                                            const double* __restrict p2, std::size_t length, const double* shift) {
+  if (shift == nullptr) return second_difference_loop<false>(p0, p1, p2, length, 0.0);
+  return second_difference_loop<true>(p0, p1, p2, length, *shift);
+}
+
+// Over the anchors 2m <= k < 3m: sum a_k^2 and (in averages.sum) sum a_k, the first MDEV window.
+INERTEST_VECTOR_CLONES
+SecondDifferenceSums second_difference_window(const double* __restrict p0, const double* __restrict p1,
+                                              const double* __restrict p2, std::size_t length) {
+  double lanes[kLanes] = {};
+  double window[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= length; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double a = p0[i + l] - 2.0 * p1[i + l] + p2[i + l];
+      lanes[l] += a * a;
+      window[l] += a;
+    }
+  }
+  for (; i < length; ++i) {
+    const double a = p0[i] - 2.0 * p1[i] + p2[i];
+    lanes[0] += a * a;
+    window[0] += a;
+  }
+  return {lane_total(lanes), {lane_total(window), 0.0}};
+}
+
+// The sums of d_k - shift alone (the anchors m <= k < 2m, or 3m, before the difference sweeps).
+INERTEST_VECTOR_CLONES
+AverageSums difference_sums(const double* __restrict p0, const double* __restrict p1, std::size_t length,
+                            double shift) {
+  double d_sums[kAverageLanes] = {};
+  double d_squares[kAverageLanes] = {};
+  std::size_t i = 0;
+  for (; i + kAverageLanes <= length; i += kAverageLanes) {
+    for (std::size_t l = 0; l < kAverageLanes; ++l) {
+      const double d = (p0[i + l] - p1[i + l]) - shift;
+      d_sums[l] += d;
+      d_squares[l] += d * d;
+    }
+  }
+  for (; i < length; ++i) {
+    const double d = (p0[i] - p1[i]) - shift;
+    d_sums[0] += d;
+    d_squares[0] += d * d;
+  }
+  return {average_lane_total(d_sums), average_lane_total(d_squares)};
 }
 
 struct ThirdDifferenceSquares {
   double second = 0.0;  // sum a_k^2
   double third = 0.0;   // sum h_k^2
+  AverageSums averages;
 };
 
 // Over a run: a_k = p0 - 2 p1 + p2 and h_k = a_k - (p1 - 2 p2 + p3) = a_k - a_{k-m} (NIST SP 1065
-// eqs. 11 and 17); with kStoreH the h_k go to `h` (MDEV needs them, OHDEV alone does not). Inlined
-// into the clones of third_difference_squares, so that each is compiled for their targets.
-template <bool kStoreH>
+// eqs. 11 and 17); with kStoreH the h_k go to `h` (MDEV needs them, OHDEV alone does not), with
+// kAverages the sums of d_k - shift. Inlined into the clones of third_difference_squares, so that
+// each is compiled for their targets.
+template <bool kStoreH, bool kAverages>
 [[gnu::always_inline]] inline ThirdDifferenceSquares third_difference_loop(
     const double* __restrict p0, const double* __restrict p1, const double* __restrict p2,
-    const double* __restrict p3, std::size_t length, double* __restrict h) {
+    const double* __restrict p3, std::size_t length, double* __restrict h, double shift) {
   double lanes_a[kLanes] = {};
   double lanes_h[kLanes] = {};
+  double d_sums[kLanes] = {};
+  double d_squares[kLanes] = {};
   std::size_t i = 0;
   for (; i + kLanes <= length; i += kLanes) {
     for (std::size_t l = 0; l < kLanes; ++l) {
@@ -270,6 +361,11 @@ template <bool kStoreH>
       if constexpr (kStoreH) h[i + l] = hk;
       lanes_a[l] += a * a;
       lanes_h[l] += hk * hk;
+      if constexpr (kAverages) {
+        const double d = (p0[i + l] - p1[i + l]) - shift;
+        d_sums[l] += d;
+        d_squares[l] += d * d;
+      }
     }
   }
   for (; i < length; ++i) {
@@ -278,17 +374,169 @@ template <bool kStoreH>
     if constexpr (kStoreH) h[i] = hk;
     lanes_a[0] += a * a;
     lanes_h[0] += hk * hk;
+    if constexpr (kAverages) {
+      const double d = (p0[i] - p1[i]) - shift;
+      d_sums[0] += d;
+      d_squares[0] += d * d;
+    }
   }
-  return {lane_total(lanes_a), lane_total(lanes_h)};
+  return {lane_total(lanes_a), lane_total(lanes_h), {lane_total(d_sums), lane_total(d_squares)}};
 }
 
-// third_difference_loop, storing the h_k unless `h` is null.
+// third_difference_loop, storing the h_k unless `h` is null, with the average sums when `shift`
+// is not null.
 INERTEST_VECTOR_CLONES
 ThirdDifferenceSquares third_difference_squares(const double* __restrict p0, const double* __restrict p1,
                                                 const double* __restrict p2, const double* __restrict p3,
-                                                std::size_t length, double* __restrict h) {
-  if (h == nullptr) return third_difference_loop<false>(p0, p1, p2, p3, length, h);
-  return third_difference_loop<true>(p0, p1, p2, p3, length, h);
+                                                std::size_t length, double* __restrict h, const double* shift) {
+  if (shift == nullptr) {
+    if (h == nullptr) return third_difference_loop<false, false>(p0, p1, p2, p3, length, h, 0.0);
+    return third_difference_loop<true, false>(p0, p1, p2, p3, length, h, 0.0);
+  }
+  if (h == nullptr) return third_difference_loop<false, true>(p0, p1, p2, p3, length, h, *shift);
+  return third_difference_loop<true, true>(p0, p1, p2, p3, length, h, *shift);
+}
+
+// sum term(i)^2 over i < n in four independent partial sums (one chain of dependent additions
+// held the strided ADEV/HDEV sums of small factors to an FP-add latency per term).
+template <typename Term>
+double strided_squares(std::size_t n, Term&& term) {
+  double partial[4] = {};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    for (std::size_t l = 0; l < 4; ++l) {
+      const double t = term(i + l);
+      partial[l] += t * t;
+    }
+  }
+  for (; i < n; ++i) {
+    const double t = term(i);
+    partial[0] += t * t;
+  }
+  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+}
+
+// The Neumaier state of the running phase: X = sum + compensation.
+struct PhaseState {
+  double sum = 0.0;
+  double compensation = 0.0;
+  // Neumaier's step: t = fl(sum + y) and its exact rounding error into the compensation. The
+  // error is found by Knuth's TwoSum, without Neumaier's branch on |sum| >= |y| (which chains
+  // starting from zero mispredict half the time); both give the exact error, so the same bits.
+  void add(double y) {
+    const double t = sum + y;
+    const double y_part = t - sum;
+    compensation += (sum - (t - y_part)) + (y - y_part);
+    sum = t;
+  }
+  double value() const { return sum + compensation; }
+};
+
+// Integrates one block of the phase in place: values[j] holds the rate sample y that ends at that
+// phase index and becomes X = X_before + sum of (y - offset) up to it (Neumaier summation, so that
+// the phase keeps full precision over 1e9 samples). The block is cut into kIntegrationChains
+// equal chains, each summed from zero on its own, side by side in the lanes of a vector (the
+// single chain cost one FP-add latency per sample); then each chain's values get the state reached
+// before it (X = sum + (compensation + local)), and the chains' totals are added to the state in
+// order. The cut depends on the block's length only, never on the caller's chunks or the thread
+// count: the second pass repeats it on the same blocks and gets the same bits (and each lane does
+// the scalar operations of PhaseState::add, in every clone).
+constexpr std::size_t kIntegrationChains = 4;
+
+INERTEST_VECTOR_CLONES
+void integrate_block(double* __restrict values, std::size_t length, double offset, PhaseState& state) {
+  using Quad = double __attribute__((vector_size(4 * sizeof(double))));
+  constexpr std::size_t kMinimumChain = 64;
+  const std::size_t chain = length / kIntegrationChains / 4 * 4;
+  if (chain < kMinimumChain) {
+    for (std::size_t j = 0; j < length; ++j) {
+      state.add(values[j] - offset);
+      values[j] = state.value();
+    }
+    return;
+  }
+  static_assert(kIntegrationChains == 4, "one chain per lane of a Quad");
+  const Quad shift = Quad{} + offset;
+  Quad sum{};
+  Quad compensation{};
+  double* const row[4] = {values, values + chain, values + 2 * chain, values + 3 * chain};
+  const auto step = [&](Quad& t) {  // one sample of every chain: PhaseState::add, lane by lane
+    const Quad y = t - shift;
+    const Quad total = sum + y;
+    const Quad y_part = total - sum;
+    compensation += (sum - (total - y_part)) + (y - y_part);
+    sum = total;
+    t = sum + compensation;
+  };
+  for (std::size_t i = 0; i < chain; i += 4) {
+    // r_c: samples i .. i+3 of chain c, transposed so that t_j holds sample i + j of every chain.
+    Quad r0, r1, r2, r3;
+    __builtin_memcpy(&r0, row[0] + i, sizeof r0);
+    __builtin_memcpy(&r1, row[1] + i, sizeof r1);
+    __builtin_memcpy(&r2, row[2] + i, sizeof r2);
+    __builtin_memcpy(&r3, row[3] + i, sizeof r3);
+    const Quad lo01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+    const Quad hi01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+    const Quad lo23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+    const Quad hi23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+    Quad t0 = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
+    Quad t1 = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
+    Quad t2 = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
+    Quad t3 = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
+    step(t0);
+    step(t1);
+    step(t2);
+    step(t3);
+    // And back: the local phase of chain c to its samples.
+    const Quad a01 = __builtin_shufflevector(t0, t1, 0, 4, 2, 6);
+    const Quad b01 = __builtin_shufflevector(t0, t1, 1, 5, 3, 7);
+    const Quad a23 = __builtin_shufflevector(t2, t3, 0, 4, 2, 6);
+    const Quad b23 = __builtin_shufflevector(t2, t3, 1, 5, 3, 7);
+    r0 = __builtin_shufflevector(a01, a23, 0, 1, 4, 5);
+    r1 = __builtin_shufflevector(b01, b23, 0, 1, 4, 5);
+    r2 = __builtin_shufflevector(a01, a23, 2, 3, 6, 7);
+    r3 = __builtin_shufflevector(b01, b23, 2, 3, 6, 7);
+    __builtin_memcpy(row[0] + i, &r0, sizeof r0);
+    __builtin_memcpy(row[1] + i, &r1, sizeof r1);
+    __builtin_memcpy(row[2] + i, &r2, sizeof r2);
+    __builtin_memcpy(row[3] + i, &r3, sizeof r3);
+  }
+  PhaseState local[kIntegrationChains];
+  for (std::size_t c = 0; c < kIntegrationChains; ++c) local[c] = {sum[c], compensation[c]};
+  PhaseState& last = local[kIntegrationChains - 1];
+  for (std::size_t j = kIntegrationChains * chain; j < length; ++j) {  // the remainder: the last chain's
+    last.add(values[j] - offset);
+    values[j] = last.value();
+  }
+  for (std::size_t c = 0; c < kIntegrationChains; ++c) {
+    const std::size_t begin = c * chain;
+    const std::size_t end = c + 1 == kIntegrationChains ? length : begin + chain;
+    const double before = state.sum;
+    const double before_compensation = state.compensation;
+    for (std::size_t j = begin; j < end; ++j) values[j] = before + (before_compensation + values[j]);
+    state.add(local[c].sum);
+    state.add(local[c].compensation);
+  }
+}
+
+// TOTDEV terms near an end of the record: t_i = p0[i] - 2 p1[i] + (constant - q[-i]), q read
+// backwards (the reflected phase, NIST SP 1065 eq. 25); sum t_i^2 in kLanes lanes.
+INERTEST_VECTOR_CLONES
+double reflected_squares(const double* __restrict p0, const double* __restrict p1, const double* __restrict q,
+                         double constant, std::size_t length) {
+  double lanes[kLanes] = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= length; i += kLanes) {
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double t = p0[i + l] - 2.0 * p1[i + l] + (constant - q[-static_cast<std::ptrdiff_t>(i + l)]);
+      lanes[l] += t * t;
+    }
+  }
+  for (; i < length; ++i) {
+    const double t = p0[i] - 2.0 * p1[i] + (constant - q[-static_cast<std::ptrdiff_t>(i)]);
+    lanes[0] += t * t;
+  }
+  return lane_total(lanes);
 }
 
 }  // namespace
@@ -367,12 +615,6 @@ struct AllanEngine::State {
     std::size_t begin = 0;  // phase indices [begin, end)
     std::size_t end = 0;
   };
-  // The phase X_j = sum + compensation at phase index j (the Neumaier state after it).
-  struct Checkpoint {
-    std::size_t index = 0;
-    double sum = 0.0;
-    double compensation = 0.0;
-  };
 
   std::size_t sample_count = 0;
   double offset = 0.0;
@@ -387,13 +629,31 @@ struct AllanEngine::State {
   PhaseBuffer ring;
   std::size_t written = 0;     // phase values written: X_0 .. X_{written-1}
   std::size_t dispatched = 0;  // phase indices below this were handed to the workers
-  double phase_sum = 0.0;      // Neumaier running sum of (y - offset): X = phase_sum + phase_compensation
-  double phase_compensation = 0.0;
-  std::vector<Checkpoint> checkpoints;  // one per block, for the second pass
+  std::size_t integrated = 1;  // phase values integrated: X_0 .. X_{integrated-1} (the slots above hold samples)
+  PhaseState phase;            // the state after X_{integrated-1}
+  std::vector<PhaseState> checkpoints;  // the state after each block b, for the second pass
 
   std::vector<FactorState> factors;   // done in the streaming pass, from the ring
   std::vector<FactorState> deferred;  // their span exceeds the ring: done in the second pass
   std::vector<std::vector<double>> scratch;  // per worker, block_size values of h_k
+  std::vector<std::size_t> worker_factors;   // worker w takes factors [worker_factors[w], worker_factors[w + 1])
+
+  // Contiguous ranges of about equal cost: a factor whose lags reach past the caches (8 m bytes
+  // beyond 1 MiB) streams from DRAM and counts twice (measured on the octave grid).
+  void assign_factors() {
+    const std::size_t count = options.worker_count;
+    std::vector<std::size_t> cost(factors.size() + 1, 0);  // cost[i]: of factors [0, i)
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      cost[i + 1] = cost[i] + (factors[i].m * sizeof(double) >= (std::size_t{1} << 20) ? 2 : 1);
+    }
+    worker_factors.assign(count + 1, factors.size());
+    worker_factors[0] = 0;
+    std::size_t i = 0;
+    for (std::size_t w = 1; w < count; ++w) {
+      while (i < factors.size() && cost[i] * count < w * cost.back()) ++i;
+      worker_factors[w] = std::max(i, worker_factors[w - 1]);
+    }
+  }
 
   std::vector<std::thread> workers;
   std::mutex mutex;
@@ -411,14 +671,40 @@ struct AllanEngine::State {
     ++written;
   }
 
+  // Block b holds the phase indices [b * block, (b + 1) * block) (X_0 = 0 is not integrated);
+  // capacity is a multiple of the block or the whole record, so a block never wraps in the ring.
+  std::size_t block_begin(std::size_t b) const { return std::max<std::size_t>(1, b * options.block_size); }
+  std::size_t block_end(std::size_t b) const { return std::min(sample_count + 1, (b + 1) * options.block_size); }
+
+  // Integrates the samples written since the last call (a whole block, or the record's last part).
+  void integrate_written() {
+    if (integrated == written) return;
+    integrate_block(ring.data() + integrated % capacity, written - integrated, offset, phase);
+    integrated = written;
+    if (!deferred.empty()) checkpoints.push_back(phase);
+  }
+
+  // Worker w takes a contiguous range of the factors (sorted by m). Within a block it sweeps the
+  // anchors in sub-blocks of kSweep and, for each, every one of its factors: on an octave grid the
+  // lag 2m of factor m is the lag m of the next factor, so each sub-block of a lagged stream comes
+  // from DRAM once and serves two factors from cache, and the sub-blocks of small lags are in L2.
+  // Each factor is still summed by one worker in the order of its anchors, in the same sub-blocks
+  // whatever the thread count: the same bits on any number of threads.
+  // 16384 anchors (128 KiB a stream): the streams of a sub-block stay in L2 for the next factor,
+  // and a far lag is read in runs long enough for the prefetchers (4096 was measured slower).
+  static constexpr std::size_t kSweep = 16384;
+
   void run(const Job& work, std::size_t worker) {
     const PhaseStore store(ring.data(), capacity);
-    for (std::size_t i = worker; i < factors.size(); i += options.worker_count) {
-      if (work.kind == JobKind::kBlock) {
-        process_block(factors[i], work.begin, work.end, store, scratch[worker]);
-      } else {
-        process_end(factors[i], sample_count + 1 - factors[i].m, sample_count, store);
-      }
+    const std::size_t first = worker_factors[worker];
+    const std::size_t last = worker_factors[worker + 1];
+    if (work.kind != JobKind::kBlock) {
+      for (std::size_t i = first; i < last; ++i) process_end(factors[i], sample_count + 1 - factors[i].m, sample_count, store);
+      return;
+    }
+    for (std::size_t k = work.begin; k < work.end; k += kSweep) {
+      const std::size_t k1 = std::min(work.end, k + kSweep);
+      for (std::size_t i = first; i < last; ++i) process_block(factors[i], k, k1, store, scratch[worker]);
     }
   }
 
@@ -426,6 +712,11 @@ struct AllanEngine::State {
   void process_block(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store,
                      std::vector<double>& h_buffer) {
     const std::size_t m = f.m;
+    const std::size_t sweep_start = (third ? 3 : 2) * m;  // the sweeps sum the d_k from here on
+    if (f.overlapping_averages) {
+      if (k0 <= m && m < k1) f.overlapping_shift = store.at(m) - store.at(0);
+      overlapping_average(f, k0, std::min(k1, sweep_start), store);
+    }
     if (totdev) {
       // NIST SP 1065 eq. (25), centres c = k - m in [1, m-1]: X*_{c-m} = 2X_0 - X_{2m-k}, X_0 = 0.
       const std::size_t lo = std::max(k0, m + 1);
@@ -433,12 +724,7 @@ struct AllanEngine::State {
       if (lo < hi) {
         double total = 0.0;
         for_each_run<3>(store, {lagged(0), lagged(m), mirrored(2 * m)}, lo, hi, 1, [&](const auto& p, std::size_t n) {
-          double lanes[kLanes] = {};
-          for (std::size_t i = 0; i < n; ++i) {
-            const double term = -p[2][-static_cast<std::ptrdiff_t>(i)] - 2.0 * p[1][i] + p[0][i];
-            lanes[i % kLanes] += term * term;
-          }
-          total += lane_total(lanes);
+          total += reflected_squares(p[0], p[1], p[2], 0.0, n);
         });
         f.reflected.add(total);
       }
@@ -450,13 +736,9 @@ struct AllanEngine::State {
       if (lo < hi) {
         double total = 0.0;
         for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, lo, hi, 1, [&](const auto& p, std::size_t n) {
-          double lanes[kLanes] = {};
-          for (std::size_t i = 0; i < n; ++i) {
-            const double a = p[0][i] - 2.0 * p[1][i] + p[2][i];
-            lanes[i % kLanes] += a * a;
-            f.window += a;
-          }
-          total += lane_total(lanes);
+          const SecondDifferenceSums sums = second_difference_window(p[0], p[1], p[2], n);
+          total += sums.second;
+          f.window += sums.averages.sum;
         });
         f.sums[index_of(Estimator::kOadev)].add(total);
         if (hi == 3 * m) f.sums[index_of(Estimator::kMdev)].add(f.window * f.window);  // w_{3m-1}
@@ -468,23 +750,20 @@ struct AllanEngine::State {
     if (adev) strided(f, Estimator::kAdev, 2 * m, k0, k1, store);
     if (hdev) strided(f, Estimator::kHdev, 3 * m, k0, k1, store);
     average(f, k0, k1, store);
-    if (f.overlapping_averages) overlapping_average(f, k0, k1, store);
   }
 
-  // d_k = X_k - X_{k-m} at every anchor k in [max(k0, m), k1): m times the overlapping averages.
+  // d_k = X_k - X_{k-m} at every anchor k in [max(k0, m), k1): m times the overlapping averages
+  // (the sweeps sum them past 2m or 3m, with their differences).
   void overlapping_average(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store) {
     const std::size_t m = f.m;
     for_each_run<2>(store, {lagged(0), lagged(m)}, std::max(k0, m), k1, 1, [&](const auto& p, std::size_t n) {
-      double sums[kLanes] = {};
-      double squares[kLanes] = {};
-      for (std::size_t i = 0; i < n; ++i) {
-        const double d = p[0][i] - p[1][i];
-        sums[i % kLanes] += d;
-        squares[i % kLanes] += d * d;
-      }
-      f.overlapping_sum.add(lane_total(sums));
-      f.overlapping_squares.add(lane_total(squares));
+      add_average_sums(f, difference_sums(p[0], p[1], n, f.overlapping_shift));
     });
+  }
+
+  static void add_average_sums(FactorState& f, const AverageSums& sums) {
+    f.overlapping_sum.add(sums.sum);
+    f.overlapping_squares.add(sums.squares);
   }
 
   // The averages ȳ_j = (X_{jm} - X_{(j-1)m}) / m at the anchors k = jm in [k0, k1), 1 <= j <=
@@ -496,7 +775,15 @@ struct AllanEngine::State {
     if (k >= k1) return;
     const double inverse = 1.0 / static_cast<double>(m);
     for_each_run<2>(store, {lagged(0), lagged(m)}, k, k1, m, [&](const auto& p, std::size_t n) {
-      for (std::size_t i = 0; i < n; ++i) f.averages.add((p[0][i * m] - p[1][i * m]) * inverse);
+      // Through a buffer: add_all keeps the series' sums in registers (add() one by one kept them
+      // in memory, a store-to-load latency per sum and average).
+      constexpr std::size_t kBatch = 512;
+      double batch[kBatch];
+      for (std::size_t i = 0; i < n; i += kBatch) {
+        const std::size_t count = std::min(kBatch, n - i);
+        for (std::size_t j = 0; j < count; ++j) batch[j] = (p[0][(i + j) * m] - p[1][(i + j) * m]) * inverse;
+        f.averages.add_all(std::span<const double>(batch, count));
+      }
     });
   }
 
@@ -504,8 +791,11 @@ struct AllanEngine::State {
   void sweep_second(FactorState& f, std::size_t k0, std::size_t k1, const PhaseStore& store) {
     if (k0 >= k1) return;
     const std::size_t m = f.m;
+    const double* shift = f.overlapping_averages ? &f.overlapping_shift : nullptr;
     for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, k0, k1, 1, [&](const auto& p, std::size_t length) {
-      f.sums[index_of(Estimator::kOadev)].add(second_difference_squares(p[0], p[1], p[2], length));
+      const SecondDifferenceSums sums = second_difference_sums(p[0], p[1], p[2], length, shift);
+      f.sums[index_of(Estimator::kOadev)].add(sums.second);
+      if (shift != nullptr) add_average_sums(f, sums.averages);
     });
   }
 
@@ -533,7 +823,10 @@ struct AllanEngine::State {
   // Without MDEV the h_k are not stored: one stream less through the cache.
   template <bool kWithMdev>
   void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t length, double* h) {
-    const ThirdDifferenceSquares squares = third_difference_squares(p[0], p[1], p[2], p[3], length, kWithMdev ? h : nullptr);
+    const double* shift = f.overlapping_averages ? &f.overlapping_shift : nullptr;
+    const ThirdDifferenceSquares squares =
+        third_difference_squares(p[0], p[1], p[2], p[3], length, kWithMdev ? h : nullptr, shift);
+    if (shift != nullptr) add_average_sums(f, squares.averages);
     f.sums[index_of(Estimator::kOadev)].add(squares.second);
     f.sums[index_of(Estimator::kOhdev)].add(squares.third);
     if constexpr (kWithMdev) f.sums[index_of(Estimator::kMdev)].add(mdev_window_squares(h, length, f.window));
@@ -549,18 +842,14 @@ struct AllanEngine::State {
     double total = 0.0;
     if (estimator == Estimator::kAdev) {
       for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, k, k1, m, [&](const auto& p, std::size_t n) {
-        for (std::size_t i = 0; i < n; ++i) {
-          const double a = p[0][i * m] - 2.0 * p[1][i * m] + p[2][i * m];
-          total += a * a;
-        }
+        total += strided_squares(n, [&](std::size_t i) { return p[0][i * m] - 2.0 * p[1][i * m] + p[2][i * m]; });
       });
     } else {
       for_each_run<4>(store, {lagged(0), lagged(m), lagged(2 * m), lagged(3 * m)}, k, k1, m,
                       [&](const auto& p, std::size_t n) {
-                        for (std::size_t i = 0; i < n; ++i) {
-                          const double hk = p[0][i * m] - 3.0 * p[1][i * m] + 3.0 * p[2][i * m] - p[3][i * m];
-                          total += hk * hk;
-                        }
+                        total += strided_squares(n, [&](std::size_t i) {
+                          return p[0][i * m] - 3.0 * p[1][i * m] + 3.0 * p[2][i * m] - p[3][i * m];
+                        });
                       });
     }
     f.sums[index_of(estimator)].add(total);
@@ -575,12 +864,7 @@ struct AllanEngine::State {
     const double twice_last = 2.0 * store.at(n);
     double total = 0.0;
     for_each_run<3>(store, {lagged(m), lagged(0), mirrored(2 * n - m)}, c0, c1, 1, [&](const auto& p, std::size_t len) {
-      double lanes[kLanes] = {};
-      for (std::size_t i = 0; i < len; ++i) {
-        const double term = p[0][i] - 2.0 * p[1][i] + twice_last - p[2][-static_cast<std::ptrdiff_t>(i)];
-        lanes[i % kLanes] += term * term;
-      }
-      total += lane_total(lanes);
+      total += reflected_squares(p[0], p[1], p[2], twice_last, len);
     });
     f.reflected.add(total);
   }
@@ -590,27 +874,22 @@ struct AllanEngine::State {
   void fill_windows(std::span<PhaseStore::Window> windows, const SampleReader& reader,
                     std::vector<double>& samples) const {
     for (PhaseStore::Window& w : windows) {
-      auto checkpoint = std::upper_bound(checkpoints.begin(), checkpoints.end(), w.start,
-                                         [](std::size_t index, const Checkpoint& c) { return index < c.index; });
-      --checkpoint;
-      double sum = checkpoint->sum;
-      double compensation = checkpoint->compensation;
-      std::size_t index = checkpoint->index;  // X_index = sum + compensation
-      std::size_t filled = 0;
-      if (index == w.start) w.values[filled++] = sum + compensation;
-      const std::size_t last = w.start + w.values.size() - 1;
-      while (index < last) {
-        // Samples index .. give X_{index+1} ..
-        const std::size_t count = std::min(samples.size(), last - index);
-        reader(index, std::span<double>(samples.data(), count));
-        for (std::size_t j = 0; j < count; ++j) {
-          const double y = samples[j] - offset;
-          const double t = sum + y;
-          compensation += std::abs(sum) >= std::abs(y) ? (sum - t) + y : (y - t) + sum;
-          sum = t;
-          ++index;
-          if (index >= w.start) w.values[filled++] = sum + compensation;
-        }
+      const std::size_t end = w.start + w.values.size();
+      if (w.start == 0) w.values[0] = 0.0;  // X_0
+      const std::size_t block = options.block_size;
+      for (std::size_t b = w.start / block; b * block < end; ++b) {
+        const std::size_t lo = block_begin(b);
+        const std::size_t hi = block_end(b);
+        if (lo >= hi) continue;
+        // Samples lo - 1 .. hi - 2 give X_lo .. X_{hi-1}, integrated as push() did from the state after block b - 1.
+        PhaseState state = b == 0 ? PhaseState{} : checkpoints[b - 1];
+        reader(lo - 1, std::span<double>(samples.data(), hi - lo));
+        integrate_block(samples.data(), hi - lo, offset, state);
+        const std::size_t from = std::max(lo, w.start);
+        const std::size_t to = std::min(hi, end);
+        std::copy(samples.begin() + static_cast<std::ptrdiff_t>(from - lo),
+                  samples.begin() + static_cast<std::ptrdiff_t>(to - lo),
+                  w.values.begin() + static_cast<std::ptrdiff_t>(from - w.start));
       }
     }
   }
@@ -623,7 +902,7 @@ struct AllanEngine::State {
     const std::size_t n = sample_count;
     ring.reset(0);  // the windows take its place
     const std::size_t segment = std::max<std::size_t>(options.block_size, capacity / 6);
-    std::vector<double> samples(std::min<std::size_t>(segment, 1u << 16));
+    std::vector<double> samples(options.block_size);
     std::vector<double> h_buffer(options.block_size);
     // The windows of one segment are windows[0, used): their buffers are kept from segment to
     // segment (segments are up to a sixth of the ring each: allocating them afresh would have the
@@ -748,13 +1027,15 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
       s.deferred.push_back(f);
     }
   }
-  s.capacity = std::min(sample_count + 1, ring_span + 2 * options.block_size);
+  // A multiple of the block, so that a block never wraps (integrate_block works on contiguous blocks).
+  const std::size_t blocks_in_ring = (ring_span + 2 * options.block_size + options.block_size - 1) / options.block_size;
+  s.capacity = std::min(sample_count + 1, blocks_in_ring * options.block_size);
   s.ring.reset(s.capacity);
   options.worker_count = std::max<std::size_t>(1, std::min(options.worker_count, s.factors.size()));
   s.scratch.assign(options.worker_count, std::vector<double>(options.block_size));
   s.options = std::move(options);
+  s.assign_factors();
   s.write_phase(0.0);  // X_0 = 0
-  s.checkpoints.push_back({0, 0.0, 0.0});
   if (s.options.worker_count > 1) {
     for (std::size_t w = 0; w < s.options.worker_count; ++w) {
       s.workers.emplace_back([&s, w] { s.worker_loop(w); });
@@ -784,23 +1065,12 @@ void AllanEngine::push(std::span<const double> samples) {
     const std::size_t slot = s.written % s.capacity;
     const std::size_t room = std::min(s.dispatched + block - s.written, s.capacity - slot);
     const std::size_t piece = std::min(room, samples.size() - i);
-    double sum = s.phase_sum;
-    double compensation = s.phase_compensation;
-    double* phase = s.ring.data() + slot;
-    for (std::size_t j = 0; j < piece; ++j) {
-      // Neumaier summation of the mean-removed rate: the phase keeps full precision over 1e9 samples.
-      const double y = samples[i + j] - s.offset;
-      const double t = sum + y;
-      compensation += std::abs(sum) >= std::abs(y) ? (sum - t) + y : (y - t) + sum;
-      sum = t;
-      phase[j] = sum + compensation;
-    }
+    // The samples wait in their slots; the block is integrated in place once it is whole.
+    std::copy_n(samples.begin() + static_cast<std::ptrdiff_t>(i), piece, s.ring.data() + slot);
     s.written += piece;
-    s.phase_sum = sum;
-    s.phase_compensation = compensation;
     i += piece;
     if (s.written - s.dispatched == block) {
-      if (!s.deferred.empty()) s.checkpoints.push_back({s.written - 1, sum, compensation});
+      s.integrate_written();
       s.dispatch({State::JobKind::kBlock, s.dispatched, s.written});
       s.dispatched = s.written;
     }
@@ -814,6 +1084,7 @@ std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
                 " samples were pushed");
   }
   if (s.dispatched < s.written) {
+    s.integrate_written();
     s.dispatch({State::JobKind::kBlock, s.dispatched, s.written});
     s.dispatched = s.written;
   }
@@ -831,8 +1102,8 @@ std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
     sums.averaging_factor = m;
     sums.averages = f.averages;
     if (f.overlapping_averages) {
-      // Sample variance of the d_k / m; the record's mean is removed, so the d_k are centred near 0
-      // and the two sums do not cancel.
+      // Sample variance of the d_k / m from the sums of d_k - d_m (the first): shifted so, the two
+      // sums do not cancel whatever offset the phase was integrated with.
       const auto count = static_cast<double>(n + 1 - m);
       const double total = f.overlapping_sum.value();
       sums.overlapping_average_variance = (f.overlapping_squares.value() - total * total / count) /
@@ -861,6 +1132,12 @@ std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
     result.push_back(sums);
   }
   return result;
+}
+
+double AllanEngine::phase_total() const {
+  const State& s = *state_;
+  if (s.integrated != s.sample_count + 1) throw Error("internal: the phase total is known after finish()");
+  return s.phase.value();
 }
 
 std::size_t AllanEngine::ring_bytes() const { return state_->capacity * sizeof(double); }

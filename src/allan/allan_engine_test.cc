@@ -3,6 +3,7 @@
 #include "inertest/allan/allan_engine.h"
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <random>
 
@@ -327,6 +328,101 @@ TEST(AllanEngine, LongRunsAgreeWithTheDefinitions) {
       }
     }
   }
+}
+
+// A record streamed once is integrated about a provisional offset (the mean of its first chunk):
+// no estimator depends on it, and offset + X_N / N is the mean.
+TEST(AllanEngine, ProvisionalOffsetGivesTheSameSumsAndTheMean) {
+  const std::vector<double> y = white_and_random_walk(20011, 50.0, 0.02, 41);
+  const Reference reference(y);
+  const double mean = mean_of(y);
+  std::vector<std::size_t> factors = {1, 2, 7, 64, 700, 1000, 6000, 6670};
+  AllanEngineOptions options;
+  options.averaging_factors = factors;
+  options.block_size = 4096;
+  const auto exact = run_engine(y, factors, 2, 4096, 1000);
+  for (double offset : {y[0], mean + 0.5, mean - 3.0}) {
+    for (std::size_t ring_limit : {std::size_t{0}, std::size_t{12000}}) {
+      options.ring_capacity_limit = ring_limit;
+      AllanEngine engine(y.size(), offset, options);
+      for (std::size_t i = 0; i < y.size(); i += 777) {
+        engine.push(std::span<const double>(y).subspan(i, std::min<std::size_t>(777, y.size() - i)));
+      }
+      const auto sums = engine.finish([&y](std::size_t first, std::span<double> out) {
+        std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
+      });
+      EXPECT_NEAR_RELATIVE(offset + engine.phase_total() / static_cast<double>(y.size()), mean, 1e-14);
+      ASSERT_EQ(sums.size(), factors.size());
+      for (std::size_t i = 0; i < sums.size(); ++i) {
+        for (Estimator e : kAllEstimators) {
+          EXPECT_NEAR_RELATIVE(sums[i].variance(e), static_cast<double>(reference.variance(e, factors[i])), 1e-9)
+              << estimator_name(e) << " m=" << factors[i] << " offset=" << offset;
+        }
+        // The B1 ratio's variance of the overlapping averages (the factors with fewer than 30 averages).
+        EXPECT_EQ(std::isnan(sums[i].overlapping_average_variance), std::isnan(exact[i].overlapping_average_variance));
+        if (!std::isnan(exact[i].overlapping_average_variance)) {
+          EXPECT_NEAR_RELATIVE(sums[i].overlapping_average_variance, exact[i].overlapping_average_variance, 1e-9)
+              << "m=" << factors[i];
+        }
+        for (std::size_t d = 1; d < AveragedFrequencySeries::kOrders; ++d) {
+          const double r1 = exact[i].averages.series(d).autocorrelation();  // NaN below 2 values
+          if (std::isnan(r1)) continue;
+          EXPECT_NEAR(sums[i].averages.series(d).autocorrelation(), r1, 1e-9) << "m=" << factors[i] << " d=" << d;
+        }
+      }
+    }
+  }
+}
+
+// The phase is integrated block by block, each block in four chains side by side (their carries
+// added after), and swept in sub-blocks: lengths that are no multiple of the block, of the four
+// chains or of the sweep, the shortest records and the largest factors give the definitions.
+TEST(AllanEngine, BlockedIntegrationOnAwkwardLengths) {
+  for (std::size_t n : {3u, 4u, 7u, 257u, 1031u, 4099u, 9001u}) {
+    const std::vector<double> y = white_and_random_walk(n, -20.0, 0.03, 50 + n);
+    const Reference reference(y);
+    std::vector<std::size_t> factors = {1};
+    if (n / 3 > 2) factors.push_back(n / 3 - 1);
+    if (n / 3 > 1) factors.push_back(n / 3);
+    for (std::size_t block : {1u, 5u, 256u, 300u, 1024u, 4096u, 5000u}) {
+      for (std::size_t workers : {1u, 2u}) {
+        const auto sums = run_engine(y, factors, workers, block, 333);
+        ASSERT_EQ(sums.size(), factors.size());
+        for (const AllanSums& s : sums) {
+          for (Estimator e : kAllEstimators) {
+            EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9)
+                << estimator_name(e) << " n=" << n << " m=" << s.averaging_factor << " block=" << block;
+          }
+        }
+      }
+    }
+    // Second differences only: 2m up to N.
+    EstimatorSet second;
+    for (Estimator e : {Estimator::kAdev, Estimator::kOadev, Estimator::kTotdev}) second.insert(e);
+    if (n / 2 > 1) {
+      const auto sums = run_engine(y, {1, n / 2}, 2, 256, 100, second);
+      for (const AllanSums& s : sums) {
+        for (Estimator e : second.members()) {
+          EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9)
+              << estimator_name(e) << " n=" << n << " m=" << s.averaging_factor;
+        }
+      }
+    }
+  }
+}
+
+// Hand-computed: y = 1, 3, 2, 6 integrated about the offset 2 (not the mean 3): X = 0, -1, 0, 0, 4.
+TEST(AllanEngine, PhaseTotalIsTheSumAboutTheOffset) {
+  const std::vector<double> y = {1, 3, 2, 6};
+  AllanEngineOptions options;
+  options.averaging_factors = {1};
+  AllanEngine engine(y.size(), 2.0, options);
+  engine.push(y);
+  EXPECT_THROW((void)engine.phase_total(), Error);
+  const auto sums = engine.finish();
+  EXPECT_EQ(engine.phase_total(), 4.0);
+  // Second differences of X: 2, -1, 4, as about the mean.
+  EXPECT_NEAR_RELATIVE(sums[0].variance(Estimator::kOadev), 21.0 / 6.0, 1e-14);
 }
 
 TEST(AllanEngine, RejectsUnsupportedFactorsAndMissingSamples) {

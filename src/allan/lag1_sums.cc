@@ -1,5 +1,6 @@
 #include "inertest/allan/lag1_sums.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace inertest {
@@ -9,6 +10,58 @@ void Lag1Sums::fold() {
   squares_.add(partial_.squares);
   products_.add(partial_.products);
   partial_ = {};
+}
+
+void Lag1Sums::add_all(const double* values, std::size_t n) {
+  std::size_t i = 0;
+  if (count_ == 0 && n > 0) add(values[i++]);  // the first value sets the shift
+  const double shift = shift_;
+  double previous = previous_;
+  Totals partial = partial_;
+  std::size_t count = count_;
+  for (; i < n; ++i) {
+    const double value = values[i] - shift;
+    partial.products += previous * value;
+    partial.sum += value;
+    partial.squares += value * value;
+    previous = value;
+    if (++count % kFoldEvery == 0) {
+      sum_.add(partial.sum);
+      squares_.add(partial.squares);
+      products_.add(partial.products);
+      partial = {};
+    }
+  }
+  previous_ = previous;
+  partial_ = partial;
+  count_ = count;
+}
+
+// Order by order over a batch: each series gets the values add() would give it, in the same order
+// (order d + 1 the differences of the values of order d after its first).
+void AveragedFrequencySeries::add_all(std::span<const double> averages) {
+  constexpr std::size_t kBatch = 512;
+  double values[kBatch];
+  double next[kBatch];
+  while (!averages.empty() && series_[0].count() < kMaximumAverages) {
+    std::size_t n = std::min({averages.size(), kBatch, kMaximumAverages - series_[0].count()});
+    std::copy_n(averages.begin(), n, values);
+    averages = averages.subspan(n);
+    for (std::size_t d = 0; d < kOrders && n > 0; ++d) {
+      double last = last_[d];
+      bool has_previous = series_[d].count() > 0;
+      std::size_t count = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (has_previous) next[count++] = values[i] - last;
+        last = values[i];
+        has_previous = true;
+      }
+      series_[d].add_all(values, n);
+      last_[d] = last;
+      std::copy_n(next, count, values);
+      n = count;
+    }
+  }
 }
 
 Lag1Sums::Totals Lag1Sums::totals() const {

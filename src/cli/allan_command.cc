@@ -31,7 +31,7 @@ CommandAction setup(CLI::App& root) {
       "B (bias instability), K (RRW), R (rate ramp) by the fit of GJB eq. (30) and by slope read-off.\n"
       "FILE: one channel of rate samples, text (csv), raw little-endian f64/f32, or a channel of a MATLAB .mat,\n"
       "HDF5 or NI TDMS file (found by its magic bytes; --column names the channel). Text is parsed once, into\n"
-      "memory; the others stream twice.");
+      "memory; the others stream once.");
   command->add_option("FILE", arguments->source.path, "rate record")->required()->check(CLI::ExistingFile);
   command->add_option("--rate", arguments->sample_rate_hz,
                       "sample rate in Hz (default: the rate the file stores; one that contradicts it is an error)");

@@ -84,10 +84,11 @@ struct AllanResult {
 // On samples in memory. Throws Error for too few samples, a bad tau grid or bad options.
 AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options);
 
-// Streams a file twice (mean, then the estimators); memory is the engine's ring buffer, at most
-// 8 (N + 1) bytes plus a few MB, and for raw f64/f32 records and records of named channels (.mat,
-// HDF5, TDMS) at most 1.5 times the file size: the largest averaging factors are then computed in a
-// third, partial pass that re-reads the file. A record that stores its sample rate (HDF5
+// Streams a binary file once (the engine integrates about the mean of the first chunk and the mean
+// comes from the phase total); text is parsed once into memory. Memory is the engine's ring
+// buffer, at most 8 (N + 1) bytes plus a few MB, and for raw f64/f32 records and records of named
+// channels (.mat, HDF5, TDMS) at most 1.5 times the file size: the largest averaging factors are
+// then computed in a second, partial pass that re-reads the file. A record that stores its sample rate (HDF5
 // sample_rate_hz, TDMS wf_increment) must agree with options.sample_rate_hz, else an Error naming both.
 AllanResult allan_variance_of_file(const RateRecordSource& source, const AllanOptions& options,
                                    const ProgressCallback& progress = {});

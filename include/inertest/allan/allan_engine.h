@@ -22,20 +22,23 @@
 // With a ring_capacity_limit, the factors whose span exceeds it are left to a second pass in
 // finish(): it re-reads the record through the caller's SampleReader, in segments of anchors k, into
 // windows of the phase around k, k - m, k - 2m, k - 3m, each integrated again from a checkpoint of
-// the first pass (the Neumaier state every block), so the phase values are bit for bit those of the
-// first pass. Overlapping estimators need the phase at every offset, so decimated data would not
-// give the same sums; re-reading costs about 5 (N - m) samples per deferred factor, and at most a
+// the first pass (the Neumaier state after every block), block by block as the first pass did, so
+// the phase values are bit for bit those of the first pass. Overlapping estimators need the phase
+// at every offset, so decimated data would not give the same sums; re-reading costs about 5 (N - m) samples per deferred factor, and at most a
 // few octave factors exceed any limit above N/2 phase values.
 //
-// Speed: each term is a few flops on 3 or 4 phase streams. For factors whose lags exceed what the
-// caches hold, every distinct lag is a stream from DRAM: on an octave grid OADEV reads lags m and
-// 2m, and 2m is the next factor's m (one new stream per factor), while third differences add 3m
-// (two per factor): MDEV/HDEV/OHDEV move about twice the data of OADEV per tau, and a second
-// thread gains little once DRAM bandwidth is the limit (the power-of-two lags put at most five
-// streams in one L1 set, within its eight ways, so set conflicts are not the cause). Two compute
-// costs came on top and are gone: the MDEV window w_k = w_{k-1} + h_k was one chain of dependent
-// additions (an FP-add latency per term; it now runs as four chains over quarters of each run), and
-// the h_k were stored even without MDEV.
+// Speed (issue 15): the caller copies the samples into the ring and each whole block is
+// integrated there in place, in four Neumaier chains side by side in the lanes of a vector (one
+// chain cost an FP-add latency per sample), the chains' carries added after; the cut depends on
+// the block only, so the phase is the same bits whatever the chunks pushed or the thread count,
+// and the second pass repeats it. Worker w takes a contiguous range of the factors and sweeps each
+// block in sub-blocks of 16384 anchors, every one of its factors per sub-block: on an octave grid
+// the lag 2m of factor m is the lag m of the next factor, so a sub-block of a far lag comes from
+// DRAM once and serves two factors, and small lags come from L1/L2. Each term is a few flops on 3
+// or 4 phase streams; the sums of the overlapping averages (B1 ratio) ride in the same loops, and
+// the non-overlapping averages are fed to the noise identification in batches whose sums stay in
+// registers. Third differences add the lag 3m: MDEV/HDEV/OHDEV move about twice the data of OADEV
+// per tau. The MDEV window w_k = w_{k-1} + h_k runs as eight chains over parts of each run.
 #pragma once
 
 #include <array>
@@ -121,7 +124,7 @@ using SampleReader = std::function<void(std::size_t first, std::span<double> out
 class AllanEngine {
  public:
   // sample_count: N, the number of rate samples that will be pushed; offset: subtracted from every
-  // sample (the record's mean, so that the integrated phase stays near zero). Throws Error when a
+  // sample (the record's mean or an estimate of it, so that the integrated phase stays near zero). Throws Error when a
   // factor is not supported by N samples.
   AllanEngine(std::size_t sample_count, double offset, AllanEngineOptions options);
   ~AllanEngine();
@@ -135,6 +138,13 @@ class AllanEngine {
   // there is no reader. Sums are ordered by averaging factor.
   std::vector<AllanSums> finish(const SampleReader& reader = {});
 
+  // X_N = the sum of (y - offset) over the record, after finish(): the record's mean is
+  // offset + X_N / N, so a caller that streams the record once can pass a provisional offset (the
+  // mean of its first chunk) and learn the mean at the end. No estimator depends on the offset
+  // (a constant in the rate is a line in the phase, which second and third differences, the
+  // reflections of TOTDEV and the shifted sums of the noise identification cancel), only the
+  // rounding does, and that stays small while the offset is near the mean.
+  double phase_total() const;
   // Bytes held by the ring buffer of the phase (for memory accounting).
   std::size_t ring_bytes() const;
   // Factors left to the second pass (those whose span exceeds ring_capacity_limit).

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 
 #include "inertest/numerics/compensated_sum.h"
 
@@ -32,6 +33,8 @@ class Lag1Sums {
     previous_ = value;
     if (++count_ % kFoldEvery == 0) fold();
   }
+  // add() of values[0 .. n) in order (the same sums), with the running sums in registers.
+  void add_all(const double* values, std::size_t n);
   std::size_t count() const { return count_; }
   // r1 = sum_{t=1}^{n-1} (w_t - w̄)(w_{t+1} - w̄) / sum_{t=1}^{n} (w_t - w̄)^2, the lag-1
   // autocorrelation of W. J. Riley and C. A. Greenhall, "Power law noise identification using the
@@ -83,6 +86,9 @@ class AveragedFrequencySeries {
       value -= previous;
     }
   }
+  // add() of each value in order (the same sums), on a copy whose state stays in registers: the
+  // engine feeds the averages of a run at once.
+  void add_all(std::span<const double> averages);
   // d = 0: the averages; d = 1, 2: their d-th differences.
   const Lag1Sums& series(std::size_t d) const { return series_.at(d); }
 

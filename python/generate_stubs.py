@@ -27,7 +27,7 @@ FloatArray = numpy.typing.NDArray[numpy.float64]
 IntArray = numpy.typing.NDArray[numpy.int64]
 '''
 
-PYTHON_TYPES = {"number": "float", "text": "str", "numbers": "Sequence[float]", "boolean": "bool"}
+PYTHON_TYPES = {"number": "float", "text": "str", "numbers": "Sequence[float]", "boolean": "bool", "texts": "Sequence[str]"}
 ARRAY_TYPES = {"float64": "FloatArray", "int64": "IntArray"}
 SPECIAL_METHODS = {"__init__", "__getattr__", "__getitem__", "__contains__", "__len__", "__float__", "__iter__"}
 

@@ -50,8 +50,9 @@ nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle&
     if (!py::isinstance<py::bool_>(value)) throw Error(fmt::format("{} must be True or False", parameter.name));
     return value.cast<bool>();
   }
-  if (parameter.type == ParameterType::numbers) {
-    if (py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a list of numbers", parameter.name));
+  if (parameter.type == ParameterType::numbers || parameter.type == ParameterType::texts) {
+    if (py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a list", parameter.name));
+    if (parameter.type == ParameterType::texts) return value.cast<std::vector<std::string>>();
     return value.cast<std::vector<double>>();
   }
   if (parameter.type == ParameterType::number) {
@@ -189,7 +190,7 @@ std::string docstring_of(const ProcedureSpec& spec) {
 
 // The spec as plain data, for the stub generator and for users who script around the registry.
 nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) {
-  static const std::vector<std::string> parameter_type_names = {"number", "text", "numbers", "boolean"};  // ParameterType
+  static const std::vector<std::string> parameter_type_names = {"number", "text", "numbers", "boolean", "texts"};  // ParameterType
   nlohmann::json parameters = nlohmann::json::array();
   for (const ParameterSpec& parameter : spec.parameters) {
     const auto found = spec.defaults.find(parameter.name);

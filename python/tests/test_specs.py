@@ -150,3 +150,17 @@ def test_generated_stubs_name_every_function_class_and_member():
     figure = next(item for item in classes["ScaleFactorResult"].body
                   if isinstance(item, ast.AnnAssign) and item.target.id == "scale_factor")
     assert ast.unparse(figure.annotation) == "Figure"
+
+
+def test_temperature_model_with_several_sensors_is_the_cli_json(source_dir):
+    # A list of texts (ParameterType.texts): the repeated --temperature-column is a list of str.
+    record = source_dir / "examples" / "temperature_model" / "ramp.csv"
+    options = ["--scale-factor", "36000", "--interval", "60", "--stability-window", "600", "--rate-window", "600"]
+    expected = cli_json("temperature-model", record, "--temperature-column", "coil", "--temperature-column", "chamber",
+                        *options)
+    result = inertest.temperature_model(file=str(record), temperature_column=["coil", "chamber"], scale_factor=36000,
+                                        interval_s=60, stability_window_s=600, rate_window_s=600)
+    assert result.to_dict() == expected
+    assert [row["sensor"] for row in expected["sensors"]] == ["coil", "chamber"]
+    with pytest.raises(inertest.Error, match="temperature_column must be a list"):
+        inertest.temperature_model(file=str(record), temperature_column="coil", scale_factor=36000)

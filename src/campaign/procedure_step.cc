@@ -83,6 +83,8 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
       }
     } else if (parameter.type == ParameterType::numbers) {
       if (const auto values = step.optional_numbers(key)) call.parameters[parameter.name] = *values;
+    } else if (parameter.type == ParameterType::texts) {
+      if (step.contains(key)) call.parameters[parameter.name] = step.strings(key);
     } else if (parameter.type == ParameterType::boolean) {
       if (step.contains(key)) call.parameters[parameter.name] = step.boolean_or(key, false);
     } else if (const auto value = step.optional_string(key)) {

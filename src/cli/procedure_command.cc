@@ -28,6 +28,7 @@ struct Arguments {
   std::map<std::string, std::optional<double>> numbers;     // by parameter name
   std::map<std::string, std::optional<std::string>> texts;  // by parameter name
   std::map<std::string, std::vector<double>> lists;         // by parameter name
+  std::map<std::string, std::vector<std::string>> text_lists;  // by parameter name (the option repeated)
   std::map<std::string, bool> flags;                        // by parameter name (boolean or ParameterSpec::cli_flag)
   std::map<std::string, InputArguments> inputs;             // by input name
   std::map<std::string, std::string> files;                 // by input name
@@ -120,6 +121,7 @@ CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const
     case ParameterType::numbers:
       return command.add_option(flag, arguments.lists[parameter.name], parameter_help(spec, parameter))->delimiter(',');
     case ParameterType::number: return command.add_option(flag, arguments.numbers[parameter.name], parameter_help(spec, parameter));
+    case ParameterType::texts: return command.add_option(flag, arguments.text_lists[parameter.name], parameter_help(spec, parameter));
     case ParameterType::text: break;
   }
   return command.add_option(flag, arguments.texts[parameter.name], parameter_help(spec, parameter));
@@ -196,6 +198,9 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       }
     }
     for (const auto& [name, values] : arguments->lists) {
+      if (!values.empty()) call.parameters[name] = values;
+    }
+    for (const auto& [name, values] : arguments->text_lists) {
       if (!values.empty()) call.parameters[name] = values;
     }
     for (const auto& [name, value] : arguments->texts) {

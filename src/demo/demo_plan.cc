@@ -146,6 +146,15 @@ seconds = 600
 bias_temperature_sensitivity = { max = 0.005, unit = "deg/h/degC" }
 
 [[test]]
+kind = "temperature_model"
+name = "temperature_model"      # a chamber ramp: soaks, heating and cooling at 1, 2 and 0.5 degC/min
+set_points_c = [60, -20, 20]
+ramps_c_per_min = [1, 2, 0.5]
+soak_s = 1800
+[test.limits]
+residual_bias_stability = { max = 0.005, unit = "deg/h" }
+
+[[test]]
 kind = "turn_on_time"
 name = "turn_on_time"
 seconds = 1200

@@ -23,5 +23,6 @@ void generate_warm_up_time(campaign::PlanTable& test, const std::string& name, L
 void generate_polarity(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab& lab);
+void generate_temperature_model(campaign::PlanTable& test, const std::string& name, Lab& lab);
 
 }  // namespace inertest::sim

@@ -36,6 +36,7 @@ const std::map<std::string, TestGenerator, std::less<>>& generators() {
       {"polarity", generate_polarity},
       {"threshold", generate_threshold},
       {"resolution", generate_resolution},
+      {"temperature_model", generate_temperature_model},
   };
   return table;
 }

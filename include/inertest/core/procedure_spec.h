@@ -37,8 +37,10 @@ std::string kebab_case(const std::string& name);
 
 // number: a double or (whole) a std::size_t member; text: std::string; numbers: std::vector<double>
 // (a comma-separated list on the command line, an array in a plan); boolean: bool (a flag without a
-// value on the command line, true/false in a plan).
-enum class ParameterType { number, text, numbers, boolean };
+// value on the command line, true/false in a plan); texts: std::vector<std::string> (the option
+// repeated on the command line, `--temperature-column coil --temperature-column case`; an array of
+// strings in a plan; a list of str in Python).
+enum class ParameterType { number, text, numbers, boolean, texts };
 
 // An Error about the value of one parameter (`parameter`, its name), thrown by a check: a plan
 // places it at the parameter's key.
@@ -532,13 +534,15 @@ class ProcedureDefinition {
   template <typename T>
   ProcedureDefinition& member_parameter(ParameterSpec parameter, std::function<T&(Options&)> member_of) {
     static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t> ||
-                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool>,
-                  "number, whole number, text, numbers or boolean parameters");
+                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool> ||
+                      std::is_same_v<T, std::vector<std::string>>,
+                  "number, whole number, text, numbers, boolean or texts parameters");
     Options defaults;
     if (!parameter.required) spec_.defaults[parameter.name] = member_of(defaults);
     parameter.type = std::is_same_v<T, std::string>           ? ParameterType::text
                      : std::is_same_v<T, std::vector<double>> ? ParameterType::numbers
                      : std::is_same_v<T, bool>                ? ParameterType::boolean
+                     : std::is_same_v<T, std::vector<std::string>> ? ParameterType::texts
                                                               : ParameterType::number;
     parameter.whole = std::is_same_v<T, std::size_t>;
     binders_.emplace_back(parameter.name, [member_of](Options& options, const nlohmann::json& value) {

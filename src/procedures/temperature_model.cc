@@ -1,0 +1,568 @@
+#include "inertest/procedures/temperature_model.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "inertest/core/error.h"
+#include "inertest/io/mapped_file.h"
+#include "inertest/io/text_table.h"
+#include "inertest/numerics/least_squares.h"
+#include "inertest/numerics/statistics.h"
+#include "procedures/temperature_model_internal.h"
+
+namespace inertest {
+namespace {
+
+constexpr double kSecondsPerHour = 3600.0;
+constexpr double kSecondsPerMinute = 60.0;
+
+std::string power_name(std::size_t k) { return k == 1 ? "D_T" : fmt::format("D_T{}", k); }
+std::string power_unit(std::size_t k) { return k == 1 ? "deg/h/degC" : fmt::format("deg/h/degC^{}", k); }
+
+// The columns of the design in the scaled variables u = (T − T_c)/s, v = Ṫ/r: u^0..u^n, then v and
+// u·v with the rate terms, then h with both legs present.
+struct Design {
+  std::size_t order = 0;
+  bool rate_terms = true;
+  bool hysteresis = true;
+  double centre = 0.0;  // T_c
+  double half_range = 1.0;  // s
+  double rate_scale = 1.0;  // r, degC/min
+
+  std::size_t columns() const { return order + 1 + (rate_terms ? 2 : 0) + (hysteresis ? 1 : 0); }
+
+  void row(const thermal::Interval& interval, double temperature, std::span<double> out) const {
+    const double u = (temperature - centre) / half_range;
+    double power = 1.0;
+    for (std::size_t k = 0; k <= order; ++k, power *= u) out[k] = power;
+    std::size_t c = order + 1;
+    if (rate_terms) {
+      const double v = interval.rate_degC_per_min / rate_scale;
+      out[c++] = v;
+      out[c++] = u * v;
+    }
+    if (hysteresis) out[c] = 0.5 * interval.leg;
+  }
+
+  Matrix matrix(std::span<const thermal::Interval> intervals, std::size_t sensor) const {
+    Matrix a(intervals.size(), columns());
+    for (std::size_t i = 0; i < intervals.size(); ++i) {
+      row(intervals[i], intervals[i].temperature_degC[sensor], std::span<double>(&a(i, 0), a.cols));
+    }
+    return a;
+  }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> names{"D_0"};
+    for (std::size_t k = 1; k <= order; ++k) names.push_back(power_name(k));
+    if (rate_terms) names.insert(names.end(), {"D_dT", "D_TdT"});
+    if (hysteresis) names.push_back("D_H");
+    return names;
+  }
+
+  std::vector<std::string> units() const {
+    std::vector<std::string> units{"deg/h"};
+    for (std::size_t k = 1; k <= order; ++k) units.push_back(power_unit(k));
+    if (rate_terms) units.insert(units.end(), {"deg/h/(degC/min)", "deg/h/degC/(degC/min)"});
+    if (hysteresis) units.push_back("deg/h");
+    return units;
+  }
+
+  // M with θ = M β: the physical coefficients about T_ref (ΔT = T − T_ref = x) from the scaled ones.
+  // u^j = ((x + d)/s)^j = Σ_k C(j, k) d^(j−k) x^k / s^j with d = T_ref − T_c; v = Ṫ/r;
+  // u·v = x·Ṫ/(s r) + d·Ṫ/(s r).
+  Matrix physical_map(double reference) const {
+    const std::size_t n = columns();
+    Matrix m(n, n);
+    const double d = reference - centre;
+    for (std::size_t j = 0; j <= order; ++j) {
+      double binomial = 1.0;
+      for (std::size_t k = 0; k <= j; ++k) {
+        m(k, j) = binomial * std::pow(d, static_cast<double>(j - k)) / std::pow(half_range, static_cast<double>(j));
+        binomial = binomial * static_cast<double>(j - k) / static_cast<double>(k + 1);
+      }
+    }
+    std::size_t c = order + 1;
+    if (rate_terms) {
+      m(c, c) = 1.0 / rate_scale;
+      m(c, c + 1) = d / (half_range * rate_scale);
+      m(c + 1, c + 1) = 1.0 / (half_range * rate_scale);
+      c += 2;
+    }
+    if (hysteresis) m(c, c) = 1.0;
+    return m;
+  }
+};
+
+std::vector<double> biases(std::span<const thermal::Interval> intervals) {
+  std::vector<double> b;
+  for (const auto& interval : intervals) b.push_back(interval.bias_deg_h);
+  return b;
+}
+
+std::vector<double> predict(const Matrix& a, const std::vector<double>& beta) {
+  std::vector<double> y(a.rows, 0.0);
+  for (std::size_t i = 0; i < a.rows; ++i) {
+    for (std::size_t c = 0; c < a.cols; ++c) y[i] += a(i, c) * beta[c];
+  }
+  return y;
+}
+
+// Step 4: k-fold cross-validation on contiguous blocks; the mean square of the held-out errors and
+// its standard error across folds.
+OrderScore cross_validate(const Design& design, std::span<const thermal::Interval> intervals, std::size_t sensor,
+                          std::size_t folds) {
+  const Matrix a = design.matrix(intervals, sensor);
+  const std::vector<double> y = biases(intervals);
+  const std::size_t n = intervals.size();
+  std::vector<double> fold_mean_squares;
+  double total = 0.0;
+  LeastSquaresOptions loose;
+  loose.require_full_rank = false;
+  for (std::size_t f = 0; f < folds; ++f) {
+    const std::size_t begin = f * n / folds;
+    const std::size_t end = (f + 1) * n / folds;
+    Matrix train(n - (end - begin), a.cols);
+    std::vector<double> train_y;
+    for (std::size_t i = 0, r = 0; i < n; ++i) {
+      if (i >= begin && i < end) continue;
+      std::copy_n(a.data.begin() + static_cast<std::ptrdiff_t>(i * a.cols), a.cols, &train(r++, 0));
+      train_y.push_back(y[i]);
+    }
+    const LeastSquaresResult fit = solve_least_squares(train, train_y, loose);
+    double sum = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      double predicted = 0.0;
+      for (std::size_t c = 0; c < a.cols; ++c) predicted += a(i, c) * fit.parameters[c];
+      sum += (y[i] - predicted) * (y[i] - predicted);
+    }
+    total += sum;
+    fold_mean_squares.push_back(sum / static_cast<double>(end - begin));
+  }
+  return {design.order, std::sqrt(total / static_cast<double>(n)),
+          sample_standard_deviation(fold_mean_squares) / std::sqrt(static_cast<double>(folds))};
+}
+
+struct SensorModel {
+  Design design;
+  LeastSquaresResult fit;
+  std::vector<OrderScore> scores;
+};
+
+SensorModel fit_sensor(std::span<const thermal::Interval> intervals, std::size_t sensor, bool hysteresis,
+                       const TemperatureModelOptions& options) {
+  Design design;
+  design.rate_terms = options.rate_terms;
+  design.hysteresis = hysteresis;
+  double low = std::numeric_limits<double>::infinity(), high = -low, rate = 0.0;
+  for (const auto& interval : intervals) {
+    low = std::min(low, interval.temperature_degC[sensor]);
+    high = std::max(high, interval.temperature_degC[sensor]);
+    rate = std::max(rate, std::abs(interval.rate_degC_per_min));
+  }
+  design.centre = 0.5 * (low + high);
+  design.half_range = high > low ? 0.5 * (high - low) : 1.0;
+  design.rate_scale = rate > 0.0 ? rate : 1.0;
+  SensorModel model;
+  for (std::size_t order = 0; order <= options.maximum_order; ++order) {
+    design.order = order;
+    model.scores.push_back(cross_validate(design, intervals, sensor, options.folds));
+  }
+  // The one-standard-error rule on the mean squares.
+  const auto best = std::min_element(model.scores.begin(), model.scores.end(),
+                                     [](const OrderScore& a, const OrderScore& b) { return a.cv_rms_deg_h < b.cv_rms_deg_h; });
+  const double bound = best->cv_rms_deg_h * best->cv_rms_deg_h + best->cv_standard_error;
+  design.order = std::find_if(model.scores.begin(), model.scores.end(), [&](const OrderScore& s) {
+                   return s.cv_rms_deg_h * s.cv_rms_deg_h <= bound;
+                 })->order;
+  LeastSquaresOptions strict;
+  strict.parameter_names = design.names();
+  model.fit = solve_least_squares(design.matrix(intervals, sensor), biases(intervals), strict);
+  model.design = design;
+  return model;
+}
+
+// GJB 2426A-2004 eq. (20): the sample standard deviation of the window means (m intervals each), with
+// its 1-sigma s/sqrt(2(n − 1)) for n windows.
+Figure window_stability(std::span<const double> values, std::size_t m) {
+  const std::vector<double> means = window_means(values, m);
+  if (means.size() < 2) throw Error("the record holds fewer than two bias stability windows");
+  const double s = sample_standard_deviation(means);
+  return {s, "deg/h", s / std::sqrt(2.0 * static_cast<double>(means.size() - 1))};
+}
+
+std::size_t window_intervals(double window_s, double interval_s) {
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(window_s / interval_s)));
+}
+
+double number_cell(const TextField& cell, const std::string& path, std::size_t line) {
+  double value = 0.0;
+  const auto parsed = std::from_chars(cell.text.data(), cell.text.data() + cell.text.size(), value);
+  if (cell.text.empty() || parsed.ec != std::errc() || parsed.ptr != cell.text.data() + cell.text.size()) {
+    throw Error(SourceLocation{path, line, cell.column}, fmt::format("'{}' is not a number", cell.text));
+  }
+  return value;
+}
+
+}  // namespace
+
+namespace thermal {
+
+std::vector<Interval> intervals_of(const ThermalRecord& record, double interval_s, double scale_factor) {
+  const std::size_t sensors = record.temperature_degC.size();
+  std::vector<Interval> intervals;
+  const double start = record.time_s.front();
+  std::size_t i = 0;
+  while (i < record.time_s.size()) {
+    const double index = std::floor((record.time_s[i] - start) / interval_s);
+    Interval interval;
+    interval.temperature_degC.assign(sensors, 0.0);
+    std::size_t count = 0;
+    double time = 0.0, output = 0.0;
+    for (; i < record.time_s.size() && std::floor((record.time_s[i] - start) / interval_s) == index; ++i, ++count) {
+      time += record.time_s[i];
+      output += record.output[i];
+      for (std::size_t s = 0; s < sensors; ++s) interval.temperature_degC[s] += record.temperature_degC[s][i];
+    }
+    interval.time_s = time / static_cast<double>(count);
+    // Bias in input-equivalent units: output / K (deg/s), in deg/h (GJB 2426A eq. 19).
+    interval.bias_deg_h = output / static_cast<double>(count) / scale_factor * kSecondsPerHour;
+    for (double& t : interval.temperature_degC) t /= static_cast<double>(count);
+    intervals.push_back(std::move(interval));
+  }
+  return intervals;
+}
+
+void set_rates(std::vector<Interval>& intervals, std::size_t sensor, double rate_window_s, double soak_rate_degC_per_min) {
+  std::vector<double> time, temperature;
+  for (const auto& interval : intervals) {
+    time.push_back(interval.time_s);
+    temperature.push_back(interval.temperature_degC[sensor]);
+  }
+  const std::vector<double> rate = smoothed_rate_degC_per_min(time, temperature, rate_window_s);
+  for (std::size_t i = 0; i < intervals.size(); ++i) {
+    intervals[i].rate_degC_per_min = rate[i];
+    intervals[i].leg = rate[i] > soak_rate_degC_per_min ? 1 : rate[i] < -soak_rate_degC_per_min ? -1 : 0;
+  }
+}
+
+double compensated_bias(const Interval& interval, std::size_t sensor, std::span<const ThermalCoefficient> coefficients,
+                        double reference_temperature_degC) {
+  return interval.bias_deg_h - thermal_bias_deg_h(coefficients, reference_temperature_degC,
+                                                  interval.temperature_degC[sensor], interval.rate_degC_per_min,
+                                                  interval.leg);
+}
+
+}  // namespace thermal
+
+void TemperatureModelOptions::validate() const {
+  if (!(scale_factor != 0.0 && std::isfinite(scale_factor))) throw ParameterError("scale_factor", "scale_factor must be non-zero");
+  if (!(interval_s > 0.0)) throw ParameterError("interval_s", "interval_s must be positive");
+  if (!(rate_window_s >= 2.0 * interval_s)) {
+    throw ParameterError("rate_window_s", "rate_window_s must cover at least two intervals (2 x interval_s)");
+  }
+  if (!(soak_rate_degC_per_min >= 0.0)) throw ParameterError("soak_rate", "soak_rate must not be negative");
+  if (!(stability_window_s >= interval_s)) {
+    throw ParameterError("stability_window_s", "stability_window_s must be at least interval_s");
+  }
+  if (folds < 2) throw ParameterError("folds", "folds must be at least 2");
+  if (maximum_order > 6) throw ParameterError("maximum_order", "maximum_order must be at most 6");
+}
+
+std::vector<double> smoothed_rate_degC_per_min(std::span<const double> time_s, std::span<const double> temperature_degC,
+                                               double window_s) {
+  const std::size_t n = time_s.size();
+  std::vector<double> rate(n, 0.0);
+  std::size_t first = 0, last = 0;  // the window [first, last)
+  for (std::size_t i = 0; i < n; ++i) {
+    while (time_s[first] < time_s[i] - 0.5 * window_s) ++first;
+    while (last < n && time_s[last] <= time_s[i] + 0.5 * window_s) ++last;
+    // The least-squares slope on centred sums: Σ(t − t̄)(T − T̄) / Σ(t − t̄)².
+    const double count = static_cast<double>(last - first);
+    double t_mean = 0.0, y_mean = 0.0;
+    for (std::size_t k = first; k < last; ++k) {
+      t_mean += time_s[k];
+      y_mean += temperature_degC[k];
+    }
+    t_mean /= count;
+    y_mean /= count;
+    double sxy = 0.0, sxx = 0.0;
+    for (std::size_t k = first; k < last; ++k) {
+      sxy += (time_s[k] - t_mean) * (temperature_degC[k] - y_mean);
+      sxx += (time_s[k] - t_mean) * (time_s[k] - t_mean);
+    }
+    rate[i] = sxx > 0.0 ? sxy / sxx * kSecondsPerMinute : 0.0;
+  }
+  return rate;
+}
+
+double thermal_bias_deg_h(std::span<const ThermalCoefficient> coefficients, double reference_temperature_degC,
+                          double temperature_degC, double rate_degC_per_min, int leg) {
+  const double dt = temperature_degC - reference_temperature_degC;
+  double bias = 0.0;
+  for (const ThermalCoefficient& c : coefficients) {
+    const double value = c.value.value;
+    if (c.name == "D_0") {
+      bias += value;
+    } else if (c.name == "D_dT") {
+      bias += value * rate_degC_per_min;
+    } else if (c.name == "D_TdT") {
+      bias += value * dt * rate_degC_per_min;
+    } else if (c.name == "D_H") {
+      bias += value * 0.5 * leg;
+    } else if (c.name == "D_T") {
+      bias += value * dt;
+    } else {
+      bias += value * std::pow(dt, std::stod(c.name.substr(3)));
+    }
+  }
+  return bias;
+}
+
+TemperatureModelResult temperature_model(const ThermalRecord& record, const TemperatureModelOptions& options) {
+  options.validate();
+  const std::size_t sensors = record.temperature_degC.size();
+  if (sensors == 0) throw Error("no temperature sensor given");
+  for (std::size_t s = 0; s < sensors; ++s) {
+    if (record.temperature_degC[s].size() != record.time_s.size()) {
+      throw Error(fmt::format("temperature sensor '{}' has {} samples, the time {}", record.sensor_names[s],
+                              record.temperature_degC[s].size(), record.time_s.size()));
+    }
+  }
+  if (record.output.size() != record.time_s.size() || record.time_s.empty()) {
+    throw Error("the output and the time must have the same, non-zero number of samples");
+  }
+  std::vector<thermal::Interval> base = thermal::intervals_of(record, options.interval_s, options.scale_factor);
+  const std::size_t per_window = window_intervals(options.stability_window_s, options.interval_s);
+  if (base.size() < std::max(options.folds * (options.maximum_order + 5), 2 * per_window)) {
+    throw Error(fmt::format("the record gives {} intervals of {} s: too few for {} folds of a model of order {} and "
+                            "two stability windows",
+                            base.size(), options.interval_s, options.folds, options.maximum_order));
+  }
+  TemperatureModelResult result;
+  std::optional<SensorModel> chosen;
+  std::vector<thermal::Interval> chosen_intervals;
+  constexpr std::size_t chosen_sensor = 0;  // the first sensor compensates; the others are compared
+  for (std::size_t s = 0; s < sensors; ++s) {
+    std::vector<thermal::Interval> intervals = base;
+    thermal::set_rates(intervals, s, options.rate_window_s, options.soak_rate_degC_per_min);
+    const bool heating = std::any_of(intervals.begin(), intervals.end(), [](const auto& i) { return i.leg > 0; });
+    const bool cooling = std::any_of(intervals.begin(), intervals.end(), [](const auto& i) { return i.leg < 0; });
+    SensorModel model = fit_sensor(intervals, s, heating && cooling, options);
+    const double dof = static_cast<double>(model.fit.degrees_of_freedom);
+    const double rms = model.fit.residual_rms;
+    result.sensors.push_back({record.sensor_names[s], model.design.order,
+                              {rms, "deg/h", rms / std::sqrt(2.0 * std::max(dof, 1.0))}});
+    if (s == 0) {
+      if (!(heating && cooling)) {
+        result.warnings.push_back("the record does not both heat and cool: no hysteresis D_H is fitted");
+      }
+      chosen = std::move(model);
+      chosen_intervals = std::move(intervals);
+    } else if (rms + 2.0 * result.sensors.back().residual_rms.uncertainty.value_or(0.0) < chosen->fit.residual_rms) {
+      result.warnings.push_back(fmt::format("sensor '{}' fits with a residual rms of {:.3g} deg/h, below the "
+                                            "compensation sensor '{}' ({:.3g} deg/h) by more than 2 sigma",
+                                            record.sensor_names[s], rms, record.sensor_names[0],
+                                            chosen->fit.residual_rms));
+    }
+  }
+  const Design& design = chosen->design;
+  const double reference = options.reference_temperature_degC;
+  const Matrix m = design.physical_map(reference);
+  const std::size_t n = design.columns();
+  const std::vector<double> theta = predict(m, chosen->fit.parameters);
+  Matrix covariance(n, n);  // M C Mᵀ
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        for (std::size_t l = 0; l < n; ++l) sum += m(i, k) * chosen->fit.covariance(k, l) * m(j, l);
+      }
+      covariance(i, j) = sum;
+    }
+  }
+  const std::vector<std::string> names = design.names();
+  const std::vector<std::string> units = design.units();
+  for (std::size_t i = 0; i < n; ++i) {
+    result.coefficients.push_back({names[i], {theta[i], units[i], std::sqrt(covariance(i, i))}});
+  }
+  result.sensor = record.sensor_names[chosen_sensor];
+  result.order = design.order;
+  result.order_scores = chosen->scores;
+  result.reference_temperature = {reference, "degC", std::nullopt};
+
+  std::vector<double> raw, residual;
+  for (thermal::Interval& interval : chosen_intervals) {
+    raw.push_back(interval.bias_deg_h);
+    residual.push_back(thermal::compensated_bias(interval, chosen_sensor, result.coefficients, reference));
+  }
+  result.raw_bias_stability = window_stability(raw, per_window);
+  result.residual_bias_stability = window_stability(residual, per_window);
+  const double rms = chosen->fit.residual_rms;
+  result.residual_rms = {rms, "deg/h", rms / std::sqrt(2.0 * static_cast<double>(chosen->fit.degrees_of_freedom))};
+
+  // GJB 2426A eq. (22) on the model's static part: |B(T) − B(T_ref)| / |T − T_ref| = |Σ_k D_Tk ΔT^(k−1)|
+  // at the record's extremes, its variance gᵀ Cov g with g_k = ±ΔT^(k−1).
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const auto& interval : chosen_intervals) {
+    low = std::min(low, interval.temperature_degC[chosen_sensor]);
+    high = std::max(high, interval.temperature_degC[chosen_sensor]);
+  }
+  result.bias_temperature_sensitivity = {0.0, "deg/h/degC", 0.0};
+  for (const double t : {low, high}) {
+    std::vector<double> g(n, 0.0);
+    double value = 0.0;
+    for (std::size_t k = 1; k <= design.order; ++k) {
+      g[k] = std::pow(t - reference, static_cast<double>(k - 1));
+      value += theta[k] * g[k];
+    }
+    if (design.order == 0 || std::abs(value) < result.bias_temperature_sensitivity.value) continue;
+    double variance = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) variance += g[i] * covariance(i, j) * g[j];
+    }
+    result.bias_temperature_sensitivity = {std::abs(value), "deg/h/degC", std::sqrt(variance)};
+  }
+  for (std::size_t i = 0; i < chosen_intervals.size(); ++i) {
+    const thermal::Interval& interval = chosen_intervals[i];
+    result.intervals.push_back({interval.time_s, interval.temperature_degC[chosen_sensor], interval.rate_degC_per_min,
+                                interval.leg, interval.bias_deg_h, interval.bias_deg_h - residual[i]});
+  }
+  if (is_constant(record.output)) result.warnings.push_back("the output is constant: a stuck channel or a wrong column");
+  return result;
+}
+
+TemperatureApplyResult apply_thermal_compensation(const ThermalRecord& record, const ThermalCompensation& compensation,
+                                                  const TemperatureModelOptions& options) {
+  options.validate();
+  std::vector<thermal::Interval> intervals = thermal::intervals_of(record, options.interval_s, options.scale_factor);
+  if (intervals.size() < 2 * window_intervals(options.stability_window_s, options.interval_s)) {
+    throw Error(fmt::format("the record gives {} intervals of {} s: fewer than two stability windows", intervals.size(),
+                            options.interval_s));
+  }
+  thermal::set_rates(intervals, 0, compensation.rate_window_s, compensation.soak_rate_degC_per_min);
+  TemperatureApplyResult result;
+  result.sensor = record.sensor_names.front();
+  std::vector<double> raw, residual;
+  for (const thermal::Interval& interval : intervals) {
+    raw.push_back(interval.bias_deg_h);
+    residual.push_back(thermal::compensated_bias(interval, 0, compensation.coefficients,
+                                                 compensation.reference_temperature_degC));
+    result.intervals.push_back({interval.time_s, interval.temperature_degC[0], interval.rate_degC_per_min, interval.leg,
+                                interval.bias_deg_h, interval.bias_deg_h - residual.back()});
+  }
+  const std::size_t per_window = window_intervals(options.stability_window_s, options.interval_s);
+  result.raw_bias_stability = window_stability(raw, per_window);
+  result.residual_bias_stability = window_stability(residual, per_window);
+  const double count = static_cast<double>(residual.size());
+  const double sd = sample_standard_deviation(residual);
+  result.residual_rms = {sd, "deg/h", sd / std::sqrt(2.0 * (count - 1.0))};
+  result.residual_mean = {mean(residual), "deg/h", sd / std::sqrt(count)};
+  return result;
+}
+
+std::string thermal_coefficients_text(const TemperatureModelResult& result, const TemperatureModelOptions& options,
+                                      const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension == ".json") {
+    nlohmann::json coefficients = nlohmann::json::object();
+    for (const auto& c : result.coefficients) coefficients[c.name] = c.value;
+    return nlohmann::json{{"model", "inertest temperature model"},
+                          {"sensor", result.sensor},
+                          {"reference_temperature_degC", options.reference_temperature_degC},
+                          {"rate_window_s", options.rate_window_s},
+                          {"soak_rate_degC_per_min", options.soak_rate_degC_per_min},
+                          {"coefficients", coefficients}}
+               .dump(2) +
+           "\n";
+  }
+  if (extension != ".csv") throw Error(fmt::format("{}: the export is .json or .csv, not '{}'", path, extension));
+  std::string text = fmt::format("name,value,unit,uncertainty\nsensor,{},,\nreference_temperature,{},degC,\n"
+                                 "rate_window,{},s,\nsoak_rate,{},degC/min,\n",
+                                 result.sensor, options.reference_temperature_degC, options.rate_window_s,
+                                 options.soak_rate_degC_per_min);
+  for (const auto& c : result.coefficients) {
+    text += fmt::format("{},{},{},{}\n", c.name, c.value.value, c.value.unit, c.value.uncertainty.value_or(0.0));
+  }
+  return text;
+}
+
+ThermalCompensation read_thermal_compensation(const std::string& path) {
+  const MappedFile file(path);
+  const std::string_view text = file.bytes();
+  ThermalCompensation compensation;
+  if (std::filesystem::path(path).extension() == ".json") {
+    try {
+      const nlohmann::json json = nlohmann::json::parse(text);
+      compensation.sensor = json.at("sensor").get<std::string>();
+      compensation.reference_temperature_degC = json.at("reference_temperature_degC").get<double>();
+      compensation.rate_window_s = json.at("rate_window_s").get<double>();
+      compensation.soak_rate_degC_per_min = json.at("soak_rate_degC_per_min").get<double>();
+      for (const auto& [name, figure] : json.at("coefficients").items()) {
+        compensation.coefficients.push_back({name, figure.get<Figure>()});
+      }
+    } catch (const nlohmann::json::exception& e) {
+      throw Error(SourceLocation{path, 0, 0}, fmt::format("not an exported temperature model: {}", e.what()));
+    }
+    return compensation;
+  }
+  std::size_t line_number = 0;
+  for (std::size_t start = 0; start < text.size();) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.empty() || line_number == 1) continue;
+    const std::vector<TextField> cells = split_text_line(line, ',', path, line_number);
+    if (cells.size() != 4) throw Error(SourceLocation{path, line_number, 1}, "expected name,value,unit,uncertainty");
+    const std::string& name = cells[0].text;
+    if (name == "sensor") {
+      compensation.sensor = cells[1].text;
+      continue;
+    }
+    const double value = number_cell(cells[1], path, line_number);
+    if (name == "reference_temperature") {
+      compensation.reference_temperature_degC = value;
+    } else if (name == "rate_window") {
+      compensation.rate_window_s = value;
+    } else if (name == "soak_rate") {
+      compensation.soak_rate_degC_per_min = value;
+    } else if (name.starts_with("D_")) {
+      compensation.coefficients.push_back({name, {value, cells[2].text, number_cell(cells[3], path, line_number)}});
+    } else {
+      throw Error(SourceLocation{path, line_number, 1}, fmt::format("unknown row '{}'", name));
+    }
+  }
+  if (compensation.coefficients.empty()) throw Error(SourceLocation{path, line_number, 0}, "no coefficients");
+  return compensation;
+}
+
+ThermalRecord read_thermal_record(const std::string& path, const std::string& time_column,
+                                  const std::string& output_column, const std::vector<std::string>& temperature_columns) {
+  TextTableOptions table_options;
+  table_options.columns = {ColumnSelector::parse(time_column), ColumnSelector::parse(output_column)};
+  for (const std::string& column : temperature_columns) table_options.columns.push_back(ColumnSelector::parse(column));
+  TextTable table = read_text_table(path, table_options);
+  ThermalRecord record;
+  for (std::size_t i = 1; i < table.rows(); ++i) {
+    if (!(table.columns[0][i] > table.columns[0][i - 1])) {
+      throw Error(locate_cell(table, i, 0), "the time does not increase");
+    }
+  }
+  record.time_s = std::move(table.columns[0]);
+  record.output = std::move(table.columns[1]);
+  for (std::size_t s = 0; s < temperature_columns.size(); ++s) {
+    record.sensor_names.push_back(table.names[s + 2].empty() ? temperature_columns[s] : table.names[s + 2]);
+    record.temperature_degC.push_back(std::move(table.columns[s + 2]));
+  }
+  return record;
+}
+
+}  // namespace inertest

@@ -1,0 +1,53 @@
+// The steps that temperature_model and temperature_apply share (procedures/temperature_model.h):
+// averaging intervals, their smoothed temperature rate and leg, the compensated bias and the bias
+// record parameters. Private to src/procedures.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "inertest/core/procedure_spec.h"
+#include "inertest/procedures/temperature_model.h"
+
+namespace inertest::thermal {
+
+struct Interval {
+  double time_s = 0.0;
+  double bias_deg_h = 0.0;                 // output / K, GJB 2426A eq. (19)
+  std::vector<double> temperature_degC;    // one per sensor
+  double rate_degC_per_min = 0.0;          // of the sensor set_rates was given
+  int leg = 0;                             // +1 heating, −1 cooling, 0 soak
+};
+
+// Step 1: means over consecutive intervals of interval_s from the record's first time.
+std::vector<Interval> intervals_of(const ThermalRecord& record, double interval_s, double scale_factor);
+
+// Step 2: Ṫ of `sensor` by local linear regression over rate_window_s, and the leg by the soak rate.
+void set_rates(std::vector<Interval>& intervals, std::size_t sensor, double rate_window_s, double soak_rate_degC_per_min);
+
+// The bias less the model's (deg/h).
+double compensated_bias(const Interval& interval, std::size_t sensor, std::span<const ThermalCoefficient> coefficients,
+                        double reference_temperature_degC);
+
+// The parameters of a spec reading a chamber record: K, the time and output columns, the averaging
+// interval and the stability window (temperature_model_spec.cc, temperature_apply_spec.cc).
+template <typename Result>
+void record_parameters(ProcedureDefinition<TemperatureModelOptions, Result>& definition) {
+  using Options = TemperatureModelOptions;
+  definition
+      .parameter(ParameterSpec("scale_factor", "K: bias = output / K")
+                     .unit_is("output units per deg/s")
+                     .required_on_command_line()
+                     .instrument_gives("nominal_scale_factor"),
+                 &Options::scale_factor)
+      .parameter(ParameterSpec("time_column", "the time column (s) by name or 1-based index"), &Options::time_column)
+      .parameter(ParameterSpec("output_column", "the output column by name or 1-based index"), &Options::output_column)
+      .parameter(ParameterSpec("interval_s", "averaging interval").unit_is("s").command_line_name_is("interval"),
+                 &Options::interval_s)
+      .parameter(ParameterSpec("stability_window_s", "window of the bias stabilities")
+                     .unit_is("s")
+                     .command_line_name_is("stability-window"),
+                 &Options::stability_window_s);
+}
+
+}  // namespace inertest::thermal

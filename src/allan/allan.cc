@@ -380,7 +380,7 @@ nlohmann::json AllanResult::to_json() const {
   }
   if (noise) {
     json["noise"] = noise->to_json(input_unit);
-    if (slopes) json["noise"]["slope_method"] = slopes->to_json();
+    if (slopes) json["noise"]["slope_method"] = slopes->to_json(input_unit);
   } else {
     json["noise"] = nullptr;
   }
@@ -401,8 +401,9 @@ std::string AllanResult::report() const {
     text += "\n";
   }
   text += "  alpha: dominant noise S_y ~ f^alpha (2 white PM, 1 flicker PM, 0 white FM, -1 flicker FM, -2 random walk FM)\n";
+  const auto& names = noise_term_names(sensor_kind_of(input_unit));
   const auto line = [](const std::string& name, const Figure& f) {
-    return fmt::format("  {:<24} {:.5g} ± {:.2g} {}\n", name, f.value, f.uncertainty.value_or(0.0), f.unit);
+    return fmt::format("  {:<28} {:.5g} ± {:.2g} {}\n", name, f.value, f.uncertainty.value_or(0.0), f.unit);
   };
   if (noise) {
     text += fmt::format("Noise terms (fit of GJB 2426A eq. 30, tau {:g} to {:g} s, {}: {}):\n",
@@ -414,11 +415,11 @@ std::string AllanResult::report() const {
       return fmt::format("  {:<24} not identified (< {:.2g} {})\n", name, noise->upper_bounds[k]->value,
                          noise->upper_bounds[k]->unit);
     };
-    text += term("quantization Q", noise->quantization, -2);
-    text += term("angle random walk N", noise->angle_random_walk, -1);
-    text += term("bias instability B", noise->bias_instability, 0);
-    text += term("rate random walk K", noise->rate_random_walk, 1);
-    text += term("rate ramp R", noise->rate_ramp, 2);
+    text += term(std::string(names[0].label), noise->quantization, -2);
+    text += term(std::string(names[1].label), noise->angle_random_walk, -1);
+    text += term(std::string(names[2].label), noise->bias_instability, 0);
+    text += term(std::string(names[3].label), noise->rate_random_walk, 1);
+    text += term(std::string(names[4].label), noise->rate_ramp, 2);
     text += fmt::format("  fit: {} (reduced chi-squared {:.3g}, {} degrees of freedom)\n", noise->verdict,
                         noise->reduced_chi_squared, noise->degrees_of_freedom);
   }
@@ -427,9 +428,9 @@ std::string AllanResult::report() const {
     const auto reading = [&](const std::string& name, const SlopeReading& r) {
       return r.figure ? line(name, *r.figure) : fmt::format("  {:<24} not identified (see the warnings)\n", name);
     };
-    text += reading("angle random walk N", slopes->angle_random_walk);
-    text += reading("bias instability B", slopes->bias_instability);
-    text += reading("rate random walk K", slopes->rate_random_walk);
+    text += reading(std::string(names[1].label), slopes->angle_random_walk);
+    text += reading(std::string(names[2].label), slopes->bias_instability);
+    text += reading(std::string(names[3].label), slopes->rate_random_walk);
   }
   for (const std::string& warning : warnings) text += "warning: " + warning + "\n";
   return text;

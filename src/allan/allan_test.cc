@@ -82,7 +82,7 @@ TEST(SlopeReadOff, UnresolvedOrAbsentRegionsAreNotIdentified) {
   EXPECT_FALSE(slopes.bias_instability.figure.has_value());
   EXPECT_FALSE(slopes.rate_random_walk.figure.has_value());
   EXPECT_EQ(slopes.warnings.size(), 2u);
-  EXPECT_TRUE(slopes.to_json()["rate_random_walk_tau_s"].is_null());
+  EXPECT_TRUE(slopes.to_json("deg/h")["rate_random_walk_tau_s"].is_null());
 }
 
 // A rate random walk with steps of s per sample at f Hz has K = s * sqrt(f) (sigma^2 = K^2 tau / 3).

@@ -15,19 +15,29 @@ namespace {
 
 constexpr int kTerms = 5;  // p = -2..2
 
-bool is_angular_rate(const std::string& unit) {
-  return Unit::parse(unit).dimension() == Unit::parse("rad/s").dimension();
-}
-
 // The unit a figure is computed in from the input unit U, and the unit it is reported in.
 struct FigureUnits {
   std::string computed;
   std::string reported;
 };
 
-FigureUnits units_for(const std::string& input_unit, const std::string& suffix, const std::string& angular) {
-  const std::string computed = suffix.empty() ? input_unit : "(" + input_unit + ")" + suffix;
-  return {computed, is_angular_rate(input_unit) ? angular : computed};
+// The figure of the term p (index p + 2): computed in U times the power of s its coefficient A_p
+// (U^2 s^p) gives under the root, reported in the units of IEEE Std 952-1997 C.1 for a gyro and of
+// IEEE Std 1293-1998 (velocity in m/s, bias in ug) for an accelerometer.
+FigureUnits units_for(const std::string& input_unit, int p) {
+  static constexpr std::array<std::string_view, kTerms> kSuffix = {"*s", "*sqrt(s)", "", "/sqrt(s)", "/s"};
+  static constexpr std::array<std::string_view, kTerms> kGyro = {"arcsec", "deg/sqrt(h)", "deg/h", "deg/h/sqrt(h)",
+                                                                 "deg/h/h"};
+  static constexpr std::array<std::string_view, kTerms> kAccelerometer = {"m/s", "m/s/sqrt(h)", "ug",
+                                                                          "m/s/h/sqrt(h)", "m/s/h/h"};
+  const auto k = static_cast<std::size_t>(p + 2);
+  const std::string computed = kSuffix[k].empty() ? input_unit : "(" + input_unit + ")" + std::string(kSuffix[k]);
+  switch (sensor_kind_of(input_unit)) {
+    case SensorKind::kGyro: return {computed, std::string(kGyro[k])};
+    case SensorKind::kAccelerometer: return {computed, std::string(kAccelerometer[k])};
+    case SensorKind::kOther: break;
+  }
+  return {computed, computed};
 }
 
 // value = sqrt(c A); 1-sigma by first order, or the bound's figure for A = 0.
@@ -453,6 +463,29 @@ void read_floor(SlopeReadOff& result, std::span<const double> tau_s, std::span<c
 
 }  // namespace
 
+SensorKind sensor_kind_of(const std::string& input_unit) {
+  const Dimension dimension = Unit::parse(input_unit).dimension();
+  if (dimension == Unit::parse("rad/s").dimension()) return SensorKind::kGyro;
+  if (dimension == Unit::parse("m/s^2").dimension()) return SensorKind::kAccelerometer;
+  return SensorKind::kOther;
+}
+
+const std::array<NoiseTermName, 5>& noise_term_names(SensorKind kind) {
+  // IEEE Std 952-1997 C.1 (gyro); IEEE Std 1293-1998 names the accelerometer's terms for the
+  // velocity its output integrates to.
+  static constexpr std::array<NoiseTermName, 5> kGyro = {
+      NoiseTermName{"quantization", "quantization Q"}, NoiseTermName{"angle_random_walk", "angle random walk N"},
+      NoiseTermName{"bias_instability", "bias instability B"}, NoiseTermName{"rate_random_walk", "rate random walk K"},
+      NoiseTermName{"rate_ramp", "rate ramp R"}};
+  static constexpr std::array<NoiseTermName, 5> kAccelerometer = {
+      NoiseTermName{"quantization", "velocity quantization Q"},
+      NoiseTermName{"velocity_random_walk", "velocity random walk N"},
+      NoiseTermName{"bias_instability", "bias instability B"},
+      NoiseTermName{"acceleration_random_walk", "acceleration random walk K"},
+      NoiseTermName{"acceleration_ramp", "acceleration ramp R"}};
+  return kind == SensorKind::kAccelerometer ? kAccelerometer : kGyro;
+}
+
 void NoiseFitOptions::validate() const {
   if (fit_range && !(fit_range->tau_min_s > 0.0 && fit_range->tau_min_s <= fit_range->tau_max_s &&
                      std::isfinite(fit_range->tau_max_s))) {
@@ -583,11 +616,11 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
     FigureUnits units;
   };
   const std::array<TermSpec, kTerms> specs = {
-      TermSpec{&NoiseTerms::quantization, 1.0 / 3.0, units_for(input_unit, "*s", "arcsec")},
-      TermSpec{&NoiseTerms::angle_random_walk, 1.0, units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)")},
-      TermSpec{&NoiseTerms::bias_instability, b_factor, units_for(input_unit, "", "deg/h")},
-      TermSpec{&NoiseTerms::rate_random_walk, 3.0, units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)")},
-      TermSpec{&NoiseTerms::rate_ramp, 2.0, units_for(input_unit, "/s", "deg/h/h")}};
+      TermSpec{&NoiseTerms::quantization, 1.0 / 3.0, units_for(input_unit, -2)},
+      TermSpec{&NoiseTerms::angle_random_walk, 1.0, units_for(input_unit, -1)},
+      TermSpec{&NoiseTerms::bias_instability, b_factor, units_for(input_unit, 0)},
+      TermSpec{&NoiseTerms::rate_random_walk, 3.0, units_for(input_unit, 1)},
+      TermSpec{&NoiseTerms::rate_ramp, 2.0, units_for(input_unit, 2)}};
   for (Eigen::Index j = 0; j < kTerms; ++j) {
     const auto k = static_cast<std::size_t>(j);
     terms.coefficients[k] = fit.a[k];
@@ -661,13 +694,16 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
     }
     return json;
   };
-  return {{"quantization", figure(quantization, -2)},
-          {"angle_random_walk", figure(angle_random_walk, -1)},
-          {"random_walk_coefficient", figure(angle_random_walk, -1)},
-          {"bias_instability", figure(bias_instability, 0)},
-          {"rate_random_walk", figure(rate_random_walk, 1)},
-          {"rate_ramp", figure(rate_ramp, 2)},
-          {"fit",
+  const SensorKind kind = sensor_kind_of(input_unit);
+  const auto& names = noise_term_names(kind);
+  nlohmann::json json = {{names[0].key, figure(quantization, -2)},
+                         {names[1].key, figure(angle_random_walk, -1)},
+                         {names[2].key, figure(bias_instability, 0)},
+                         {names[3].key, figure(rate_random_walk, 1)},
+                         {names[4].key, figure(rate_ramp, 2)}};
+  // GJB 2426A eq. (31) is a gyro's: RWC is N.
+  if (kind != SensorKind::kAccelerometer) json["random_walk_coefficient"] = figure(angle_random_walk, -1);
+  json.update(nlohmann::json{{"fit",
            {{"model",
              "sigma^2(tau) = sum_{p=-2..2} A_p tau^p (GJB 2426A eq. 30), non-negative generalised least squares "
              "(covariance of the overlapping estimates from the fitted model)"},
@@ -679,7 +715,8 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
              {{"tau_min_s", fit_range.tau_min_s},
               {"tau_max_s", fit_range.tau_max_s},
               {"chosen_by", fit_range_chosen_by},
-              {"reason", fit_range_reason}}}}}};
+              {"reason", fit_range_reason}}}}}});
+  return json;
 }
 
 SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const double> deviation,
@@ -718,25 +755,26 @@ SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const do
     reading.figure = Figure{value, units.computed, value / std::sqrt(2.0 * edf[i])}.in(units.reported);
   };
   // sigma = N / sqrt(tau): N = sigma(tau) sqrt(tau), the -1/2 line at tau = 1 s.
-  read(-0.5, "angle random walk N", result.angle_random_walk, 0.5, 1.0,
-       units_for(input_unit, "*sqrt(s)", "deg/sqrt(h)"));
-  read_floor(result, tau_s, deviation, edf, units_for(input_unit, "", "deg/h"));
+  const auto& names = noise_term_names(sensor_kind_of(input_unit));
+  read(-0.5, std::string(names[1].label), result.angle_random_walk, 0.5, 1.0, units_for(input_unit, -1));
+  read_floor(result, tau_s, deviation, edf, units_for(input_unit, 0));
   // sigma = K sqrt(tau / 3): K = sigma(tau) sqrt(3 / tau), the +1/2 line at tau = 3 s.
-  read(0.5, "rate random walk K", result.rate_random_walk, -0.5, std::sqrt(3.0),
-       units_for(input_unit, "/sqrt(s)", "deg/h/sqrt(h)"));
+  read(0.5, std::string(names[3].label), result.rate_random_walk, -0.5, std::sqrt(3.0), units_for(input_unit, 1));
   return result;
 }
 
-nlohmann::json SlopeReadOff::to_json() const {
+nlohmann::json SlopeReadOff::to_json(const std::string& input_unit) const {
   const auto figure = [](const SlopeReading& r) { return r.figure ? nlohmann::json(*r.figure) : nlohmann::json(nullptr); };
   const auto tau = [](const SlopeReading& r) { return r.figure ? nlohmann::json(r.tau_s) : nlohmann::json(nullptr); };
+  const auto& names = noise_term_names(sensor_kind_of(input_unit));
+  const auto key = [](std::string_view name, std::string_view suffix) { return std::string(name) + std::string(suffix); };
   return {{"method", "log-log slope read-off on OADEV (MATLAB allanvar example); null: no region of that slope"},
-          {"angle_random_walk", figure(angle_random_walk)},
-          {"angle_random_walk_tau_s", tau(angle_random_walk)},
-          {"bias_instability", figure(bias_instability)},
-          {"bias_instability_tau_s", tau(bias_instability)},
-          {"rate_random_walk", figure(rate_random_walk)},
-          {"rate_random_walk_tau_s", tau(rate_random_walk)},
+          {key(names[1].key, ""), figure(angle_random_walk)},
+          {key(names[1].key, "_tau_s"), tau(angle_random_walk)},
+          {key(names[2].key, ""), figure(bias_instability)},
+          {key(names[2].key, "_tau_s"), tau(bias_instability)},
+          {key(names[3].key, ""), figure(rate_random_walk)},
+          {key(names[3].key, "_tau_s"), tau(rate_random_walk)},
           {"slope_tolerance", kSlopeTolerance},
           {"slope_resolution", kSlopeResolution}};
 }

@@ -1,18 +1,31 @@
-// inertest allan FILE [--rate HZ] [--format auto|csv|f64|f32|mat|hdf5|tdms] [--column N] [--taus SPEC] [--input-unit U]
-//                [--scale-factor K] [--estimators LIST] [--fit-range TMIN:TMAX] [--threads N] [--json]
+// inertest allan FILE [--rate HZ] [--format auto|csv|f64|f32|mat|hdf5|tdms] [--column N | --columns A,B,..]
+//                [--taus SPEC] [--input-unit U | A=U,B=U2] [--scale-factor K] [--estimators LIST]
+//                [--fit-range TMIN:TMAX] [--export kalibr|matlab|gnss-ins-sim|json FILE] [--threads N] [--json]
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "inertest/allan/allan.h"
+#include "inertest/allan/allan_channels.h"
+#include "inertest/allan/filter_parameters.h"
+#include "inertest/io/atomic_write.h"
 
 namespace inertest::cli {
 namespace {
+
+std::string join(const std::vector<std::string>& items) {
+  std::string text;
+  for (const auto& item : items) text += (text.empty() ? "" : ",") + item;
+  return text;
+}
 
 struct Arguments {
   RateRecordSource source;
   std::string format = "auto";
   std::string column;
+  std::vector<std::string> columns;
+  std::string input_units;
+  std::vector<std::string> export_target;  // FORMAT FILE
   std::optional<double> sample_rate_hz;
   std::string estimators = "all";
   std::string fit_range;
@@ -37,12 +50,19 @@ CommandAction setup(CLI::App& root) {
                       "sample rate in Hz (default: the rate the file stores; one that contradicts it is an error)");
   command->add_option("--format", arguments->format, "auto, csv, f64 or f32 (raw little-endian), mat, hdf5 or tdms")
       ->capture_default_str();
-  command->add_option("--column", arguments->column,
-                      "text column (header name or 1-based index), or channel: group/channel, struct.field");
+  CLI::Option* column = command->add_option(
+      "--column", arguments->column, "text column (header name or 1-based index), or channel: group/channel, struct.field");
+  command
+      ->add_option("--columns", arguments->columns,
+                   "several channels in one pass, e.g. gx,gy,gz,ax,ay,az (names or indices): JSON {\"channels\": {...}}")
+      ->delimiter(',')
+      ->excludes(column);
   command->add_option("--taus", arguments->options.taus, "octave, decade, all, N/decade or a list of tau in s")
       ->capture_default_str();
-  CLI::Option* unit =
-      command->add_option("--input-unit", arguments->options.input_unit, "unit of the samples")->capture_default_str();
+  CLI::Option* unit = command->add_option(
+      "--input-unit", arguments->input_units,
+      "unit of the samples (default deg/h); with --columns per channel too: gx=deg/s,ax=m/s^2 (an acceleration unit "
+      "gives the accelerometer's noise terms)");
   command
       ->add_option_function<double>(
           "--scale-factor",
@@ -57,6 +77,11 @@ CommandAction setup(CLI::App& root) {
   command->add_option("--fit-range", arguments->fit_range,
                       "TMIN:TMAX in s: the taus of the eq. (30) fit (default: chosen automatically, see the JSON's "
                       "noise.fit.fit_range)");
+  command
+      ->add_option("--export", arguments->export_target,
+                   "FORMAT FILE: the noise parameters a navigation filter takes, FORMAT kalibr (imu.yaml), matlab "
+                   "(gyroparams/accelparams), gnss-ins-sim (IMU error dictionary) or json")
+      ->expected(2);
   command->add_option("--threads", arguments->options.worker_count, "worker threads")->capture_default_str();
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments] {
@@ -78,8 +103,33 @@ CommandAction setup(CLI::App& root) {
       arguments->options.scale = 3600.0 / k;
       arguments->options.input_unit = "deg/h";
     }
-    const AllanResult result = allan_variance_of_file(arguments->source, arguments->options, terminal_progress());
-    print_result(result.to_json(), result.report(), arguments->json);
+    std::optional<FilterFormat> export_format;
+    if (!arguments->export_target.empty()) export_format = parse_filter_format(arguments->export_target[0]);
+    AllanChannels channels;
+    if (arguments->columns.empty()) {
+      if (!arguments->input_units.empty()) arguments->options.input_unit = arguments->input_units;
+      const std::string name = arguments->column.empty() ? "rate" : arguments->column;
+      channels.channels.push_back(
+          {name, allan_variance_of_file(arguments->source, arguments->options, terminal_progress())});
+    } else {
+      std::vector<ColumnSelector> selectors;
+      for (const std::string& c : arguments->columns) selectors.push_back(ColumnSelector::parse(c));
+      channels = allan_variance_of_channels_in_file(arguments->source, selectors, arguments->input_units,
+                                                    arguments->options, terminal_progress());
+    }
+    // The export is written before anything is printed: a failure leaves no partial output.
+    if (export_format) {
+      const std::string command_line = "inertest allan " + arguments->source.path +
+                                       (arguments->columns.empty() ? "" : " --columns " + join(arguments->columns));
+      write_file_atomically(arguments->export_target[1],
+                            format_filter_parameters(filter_noise_parameters(channels), *export_format, command_line));
+    }
+    if (arguments->columns.empty()) {
+      const AllanResult& result = channels.channels.front().result;
+      print_result(result.to_json(), result.report(), arguments->json);
+    } else {
+      print_result(channels.to_json(), channels.report(), arguments->json);
+    }
     return 0;
   };
 }

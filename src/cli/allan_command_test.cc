@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -127,6 +128,80 @@ TEST(AllanCommand, ClearErrors) {
   run = testing::run_cli({"allan", tiny, "--rate", "1", "--format", "f64"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("too few samples"));
+}
+
+// An IMU record: time and six channels, all streamed once; each channel's object is the
+// single-channel JSON of that column, and an acceleration unit gives the accelerometer's terms.
+std::string imu_record() {
+  std::mt19937_64 random(7);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::string text = "time_s,gx,gy,gz,ax,ay,az\n";
+  for (int i = 0; i < 3000; ++i) {
+    text += fmt::format("{:.2f}", i / 100.0);
+    for (int c = 0; c < 6; ++c) text += fmt::format(",{:.6f}", 0.1 * (c + 1) + white(random));
+    text += "\n";
+  }
+  return text;
+}
+
+TEST(AllanCommand, ColumnsAnalyseEveryChannelInOnePassWithItsOwnUnit) {
+  testing::ScratchDirectory dir;
+  const std::string record = dir.write("imu.csv", imu_record());
+  const auto all = run_cli({"allan", record, "--rate", "100", "--columns", "gx,gy,gz,ax,ay,az", "--input-unit",
+                            "gx=deg/s,gy=deg/s,gz=deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2", "--json"});
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const auto json = nlohmann::json::parse(all.out);
+  ASSERT_EQ(json.at("channels").size(), 6u);
+  const auto one = run_cli({"allan", record, "--rate", "100", "--column", "ay", "--input-unit", "m/s^2", "--json"});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(json.at("channels").at("ay"), nlohmann::json::parse(one.out));
+  EXPECT_EQ(json.at("channels").at("gz").at("input_unit"), "deg/s");
+  EXPECT_TRUE(json.at("channels").at("ax").at("noise").contains("velocity_random_walk"));
+  // By index, and the text report names each channel.
+  const auto text = run_cli({"allan", record, "--rate", "100", "--columns", "2,5", "--input-unit", "deg/s,5=m/s^2"});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("== channel gx =="));
+  EXPECT_THAT(text.out, HasSubstr("velocity random walk N"));
+}
+
+TEST(AllanCommand, ExportWritesTheFilterParametersOrNothing) {
+  testing::ScratchDirectory dir;
+  const std::string record = dir.write("imu.csv", imu_record());
+  const std::string yaml = dir.path() + "/imu.yaml";
+  const auto kalibr = run_cli({"allan", record, "--rate", "100", "--columns", "gx,gy,gz,ax,ay,az", "--input-unit",
+                               "deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2", "--export", "kalibr", yaml, "--json"});
+  ASSERT_EQ(kalibr.exit_code, 0) << kalibr.err;
+  std::ifstream in(yaml);
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(written, HasSubstr("gyroscope_noise_density: "));
+  EXPECT_THAT(written, HasSubstr("accelerometer_random_walk: "));
+  EXPECT_THAT(written, HasSubstr("update_rate: 100"));
+  // Channels in counts have no SI density: an error, and neither the file nor the JSON.
+  const std::string refused = dir.path() + "/refused.yaml";
+  const auto counts = run_cli({"allan", record, "--rate", "100", "--columns", "gx,ax", "--input-unit", "count",
+                               "--export", "kalibr", refused, "--json"});
+  EXPECT_EQ(counts.exit_code, 2);
+  EXPECT_EQ(counts.out, "");
+  EXPECT_THAT(counts.err, HasSubstr("channel gx: its unit count is neither an angular rate nor a specific force"));
+  EXPECT_FALSE(std::ifstream(refused).good());
+  const auto format = run_cli({"allan", record, "--rate", "100", "--column", "gx", "--export", "yaml", refused});
+  EXPECT_EQ(format.exit_code, 2);
+  EXPECT_THAT(format.err, HasSubstr("unknown export format 'yaml'"));
+}
+
+TEST(AllanCommand, ColumnsReportAMissingChannelOrUnitByName) {
+  testing::ScratchDirectory dir;
+  const std::string record = dir.write("imu.csv", imu_record());
+  const auto missing = run_cli({"allan", record, "--rate", "100", "--columns", "gx,mx", "--json"});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("mx"));
+  const auto unit = run_cli({"allan", record, "--rate", "100", "--columns", "gx,ax", "--input-unit", "gz=deg/s"});
+  EXPECT_EQ(unit.exit_code, 2);
+  EXPECT_THAT(unit.err, HasSubstr("--input-unit names 'gz', which is not a channel asked for (gx, ax)"));
+  const auto raw = dir.write("raw.f64", std::string(64, '\0'));
+  const auto binary = run_cli({"allan", raw, "--format", "f64", "--rate", "100", "--columns", "1,2"});
+  EXPECT_EQ(binary.exit_code, 2);
+  EXPECT_THAT(binary.err, HasSubstr("holds one channel"));
 }
 
 }  // namespace

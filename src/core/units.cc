@@ -98,8 +98,10 @@ Parsed named(std::string_view name, std::string_view whole) {
   }
   Parsed p;
   auto add = [&p](Dimension::Base base, int half) { p.dimension.half_powers[base] += half; };
-  if (name == "g") {  // standard gravity as a unit of specific force
-    p.factor = constants::kStandardGravity;
+  // Standard gravity as a unit of specific force, and its milli- and micro- (mg is milli-g here,
+  // as in accelerometer data sheets: inertest has no mass unit but kg).
+  if (name == "g" || name == "mg" || name == "ug") {
+    p.factor = constants::kStandardGravity * (name == "g" ? 1.0 : name == "mg" ? 1e-3 : 1e-6);
     add(Dimension::kLength, 2);
     add(Dimension::kTime, -4);
     return p;

@@ -10,7 +10,10 @@
 //   rate random walk   sigma^2 = K^2 tau / 3           K = sqrt(3 A_1)
 //   rate ramp          sigma^2 = R^2 tau^2 / 2         R = sqrt(2 A_2)
 // For an angular-rate input the figures are in arcsec, deg/sqrt(h), deg/h, deg/h/sqrt(h), deg/h/h;
-// for another input unit U in (U)*s, (U)*sqrt(s), U, (U)/sqrt(s), (U)/s.
+// for a specific force (an accelerometer) they are velocity quantization, velocity random walk,
+// bias instability, acceleration random walk and acceleration ramp (IEEE Std 1293-1998), in m/s,
+// m/s/sqrt(h), ug, m/s/h/sqrt(h), m/s/h/h; for another input unit U in (U)*s, (U)*sqrt(s), U,
+// (U)/sqrt(s), (U)/s.
 //
 // Covariance of the points: overlapping estimates at different taus share data and are correlated.
 // The variance of point i is 2 sigma_i^4 / edf_i (sigma_i of the model, the curve's edf); the
@@ -48,6 +51,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -55,6 +59,22 @@
 #include "inertest/core/figure.h"
 
 namespace inertest {
+
+// What a rate record measures, from its input unit: an angular rate (a gyro), a specific force (an
+// accelerometer: m/s^2, g, mg, ug), or anything else (counts, volts: the gyro's names, the input's
+// own unit). Throws Error for a unit that does not parse.
+enum class SensorKind { kGyro, kAccelerometer, kOther };
+SensorKind sensor_kind_of(const std::string& input_unit);
+
+// The name of the term A_p tau^p (index p + 2) for a sensor: its JSON key and its label in text.
+// A gyro's: quantization, angle_random_walk, bias_instability, rate_random_walk, rate_ramp; an
+// accelerometer's: quantization, velocity_random_walk, bias_instability, acceleration_random_walk,
+// acceleration_ramp.
+struct NoiseTermName {
+  std::string_view key;
+  std::string_view label;
+};
+const std::array<NoiseTermName, 5>& noise_term_names(SensorKind kind);
 
 // The taus fitted, inclusive, and why.
 struct FitRange {
@@ -96,6 +116,7 @@ struct NoiseTerms {
   std::string fit_range_reason;
   std::vector<std::string> warnings;
 
+  // Keys named for the sensor the input unit measures (noise_term_names).
   nlohmann::json to_json(const std::string& input_unit) const;
 };
 
@@ -135,7 +156,8 @@ struct SlopeReadOff {
   SlopeReading rate_random_walk;
   std::vector<std::string> warnings;
 
-  nlohmann::json to_json() const;
+  // Keys named for the sensor the input unit measures (noise_term_names).
+  nlohmann::json to_json(const std::string& input_unit) const;
 };
 
 // Needs at least 2 points; the uncertainty of each figure is that of the deviation it is read at,

@@ -1,0 +1,172 @@
+#include "inertest/allan/allan_channels.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <fmt/format.h>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+
+namespace inertest {
+namespace {
+
+std::string trimmed(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return {};
+  const auto last = text.find_last_not_of(" \t");
+  return std::string(text.substr(first, last - first + 1));
+}
+
+}  // namespace
+
+std::vector<AllanOptions> channel_options(const AllanOptions& common, const std::vector<std::string>& names,
+                                          const std::vector<std::string>& selectors, std::string_view units) {
+  std::string fallback = common.input_unit;
+  std::map<std::size_t, std::string> named;
+  bool bare_seen = false;
+  std::size_t start = 0;
+  while (start <= units.size() && !units.empty()) {
+    const std::size_t comma = std::min(units.find(',', start), units.size());
+    const std::string item = trimmed(units.substr(start, comma - start));
+    start = comma + 1;
+    if (item.empty()) continue;
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos) {
+      if (bare_seen) throw Error("--input-unit: two units without a channel name ('" + fallback + "', '" + item + "')");
+      bare_seen = true;
+      Unit::parse(item);
+      fallback = item;
+      continue;
+    }
+    const std::string name = trimmed(std::string_view(item).substr(0, equals));
+    const std::string unit = trimmed(std::string_view(item).substr(equals + 1));
+    std::size_t channel = names.size();
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (names[i] == name || (i < selectors.size() && selectors[i] == name)) channel = i;
+    }
+    if (channel == names.size()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      throw Error("--input-unit names '" + name + "', which is not a channel asked for (" + list + ")");
+    }
+    if (named.contains(channel)) throw Error("--input-unit gives channel '" + names[channel] + "' twice");
+    Unit::parse(unit);
+    named[channel] = unit;
+  }
+  std::vector<AllanOptions> options(names.size(), common);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    options[i].input_unit = named.contains(i) ? named.at(i) : fallback;
+  }
+  return options;
+}
+
+AllanChannels allan_variance_of_channels(const std::vector<std::span<const double>>& columns,
+                                         const std::vector<std::string>& names,
+                                         const std::vector<AllanOptions>& options) {
+  if (columns.empty()) throw Error("no channel to analyse");
+  if (names.size() != columns.size() || options.size() != columns.size()) {
+    throw Error("one name and one set of options per channel are needed");
+  }
+  for (const auto& column : columns) {
+    if (column.size() != columns.front().size()) throw Error("the channels differ in length");
+  }
+  for (const AllanOptions& o : options) o.validate();
+  // Channels side by side, each engine on one thread (the engine's sums do not depend on its thread
+  // count, so neither do the results); a single channel keeps all the workers.
+  const std::size_t threads = std::min(columns.size(), options.front().worker_count);
+  AllanChannels result;
+  result.channels.resize(columns.size());
+  std::vector<std::exception_ptr> failures(columns.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < columns.size(); i = next++) {
+      try {
+        AllanOptions own = options[i];
+        if (threads > 1) own.worker_count = 1;
+        result.channels[i] = {names[i], allan_variance(columns[i], own)};
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+  }
+  for (std::size_t i = 0; i < failures.size(); ++i) {
+    if (!failures[i]) continue;
+    try {
+      std::rethrow_exception(failures[i]);
+    } catch (const Error& e) {
+      const std::string message = "channel " + names[i] + ": " + e.message();
+      if (e.location()) throw Error(*e.location(), message);
+      throw Error(message);
+    }
+  }
+  return result;
+}
+
+AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_source,
+                                                 const std::vector<ColumnSelector>& columns, std::string_view units,
+                                                 const AllanOptions& common, const ProgressCallback& progress) {
+  if (columns.empty()) throw Error("no channel to analyse: give --columns");
+  RateRecordSource source = given_source;
+  source.format = resolve_rate_record_format(given_source);
+  std::vector<std::string> selectors;
+  // As given: "2" or "gx".
+  for (const ColumnSelector& column : columns) {
+    selectors.push_back(column.index > 0 ? std::to_string(column.index) : column.name);
+  }
+  if (source.format == RateRecordFormat::kFloat64 || source.format == RateRecordFormat::kFloat32) {
+    throw Error(SourceLocation{source.path, 0, 0}, "a raw f64/f32 record holds one channel: use --column, not --columns");
+  }
+  if (source.format == RateRecordFormat::kCsv) {
+    if (progress) progress("reading " + source.path, 0.0);
+    TextTableOptions text;
+    text.record_row_lines = false;
+    text.columns = columns;
+    const TextTable table = read_text_table(source.path, text);
+    std::vector<std::string> names;
+    std::vector<std::span<const double>> spans;
+    for (std::size_t i = 0; i < table.columns.size(); ++i) {
+      names.push_back(table.names[i].empty() ? selectors[i] : table.names[i]);
+      spans.emplace_back(table.columns[i]);
+    }
+    return allan_variance_of_channels(spans, names, channel_options(common, names, selectors, units));
+  }
+  // A record of named channels stores each channel apart: each is streamed once, in turn.
+  const std::optional<ChannelRecordFormat> channel_format = channel_record_format_of(source.format);
+  std::vector<std::string> names;
+  {
+    const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *channel_format);
+    for (const ColumnSelector& column : columns) names.push_back(record->channels()[record->find(column)].name);
+  }
+  const std::vector<AllanOptions> options = channel_options(common, names, selectors, units);
+  AllanChannels result;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    source.column = columns[i];
+    result.channels.push_back({names[i], allan_variance_of_file(source, options[i], progress)});
+  }
+  return result;
+}
+
+nlohmann::json AllanChannels::to_json() const {
+  nlohmann::json json = nlohmann::json::object();
+  for (const AllanChannel& channel : channels) json[channel.name] = channel.result.to_json();
+  return {{"channels", json}};
+}
+
+std::string AllanChannels::report() const {
+  std::string text;
+  for (const AllanChannel& channel : channels) {
+    text += fmt::format("{}== channel {} ==\n{}", text.empty() ? "" : "\n", channel.name, channel.result.report());
+  }
+  return text;
+}
+
+}  // namespace inertest

@@ -1,0 +1,209 @@
+// The analysis of a whole IMU (issue 19) on a simulated six-axis record whose N, B, K per axis
+// follow from how it was made: every coefficient back within its uncertainty, the accelerometer's
+// names and units, the per-channel units, and the filter parameters against the truth converted by
+// hand.
+#include "inertest/allan/allan_channels.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tuple>
+
+#include "inertest/allan/filter_parameters.h"
+#include "inertest/core/error.h"
+#include "inertest/core/units.h"
+#include "inertest/sim/imu_noise.h"
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+constexpr double kRate = 10.0;          // Hz
+constexpr std::size_t kSamples = 200000;  // 20000 s: the K slope shows from ~1000 s
+constexpr double kPi = constants::kPi;
+
+// Truth per axis in the units the analysis reports. Gyro (deg/s samples): N deg/sqrt(h), B deg/h,
+// K deg/h/sqrt(h). Accelerometer (m/s^2 samples): N m/s/sqrt(h), B ug, K m/s/h/sqrt(h).
+struct AxisTruth {
+  const char* name;
+  const char* unit;
+  double n, b, k;
+};
+constexpr AxisTruth kTruth[] = {{"gx", "deg/s", 0.30, 5.0, 10.0},  {"gy", "deg/s", 0.25, 4.0, 8.0},
+                                {"gz", "deg/s", 0.35, 6.0, 12.0},  {"ax", "m/s^2", 0.06, 50.0, 4.0},
+                                {"ay", "m/s^2", 0.05, 40.0, 3.0},  {"az", "m/s^2", 0.07, 60.0, 5.0}};
+bool is_gyro(const AxisTruth& t) { return std::string(t.unit) == "deg/s"; }
+
+std::vector<sim::ImuAxisNoise> axes() {
+  std::vector<sim::ImuAxisNoise> result;
+  for (const AxisTruth& t : kTruth) {
+    sim::ImuAxisNoise axis;
+    axis.name = t.name;
+    axis.unit = t.unit;
+    // The generator takes U*sqrt(s), U, U/sqrt(s) in the samples' unit U.
+    const std::string n_unit = is_gyro(t) ? "deg/sqrt(h)" : "m/s/sqrt(h)";
+    const std::string b_unit = is_gyro(t) ? "deg/h" : "ug";
+    const std::string k_unit = is_gyro(t) ? "deg/h/sqrt(h)" : "m/s/h/sqrt(h)";
+    axis.noise.angle_random_walk = convert(t.n, n_unit, "(" + axis.unit + ")*sqrt(s)");
+    axis.noise.bias_instability = convert(t.b, b_unit, axis.unit);
+    axis.noise.rate_random_walk = convert(t.k, k_unit, "(" + axis.unit + ")/sqrt(s)");
+    axis.noise.flicker_shortest_s = 0.1;
+    axis.noise.flicker_longest_s = 1e5;
+    result.push_back(axis);
+  }
+  // A sinusoid on gz: 0.01 deg/s at 1.25 Hz.
+  result[2].sine_amplitude = 0.01;
+  result[2].sine_frequency_hz = 1.25;
+  return result;
+}
+
+const AllanChannels& analysed() {
+  static const AllanChannels channels = [] {
+    const auto columns = sim::simulate_imu_noise(axes(), kRate, kSamples, 19);
+    std::vector<std::span<const double>> spans(columns.begin(), columns.end());
+    std::vector<std::string> names;
+    for (const AxisTruth& t : kTruth) names.push_back(t.name);
+    AllanOptions common;
+    common.sample_rate_hz = kRate;
+    common.estimators = EstimatorSet::parse("oadev");
+    return allan_variance_of_channels(spans, names,
+                                      channel_options(common, names, names, "deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2"));
+  }();
+  return channels;
+}
+
+TEST(AllanChannels, EveryCoefficientOfEveryAxisComesBackWithinItsUncertainty) {
+  const AllanChannels& channels = analysed();
+  ASSERT_EQ(channels.channels.size(), 6u);
+  double sum_z2 = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const AxisTruth& t = kTruth[i];
+    const AllanResult& result = channels.channels[i].result;
+    EXPECT_EQ(channels.channels[i].name, t.name);
+    ASSERT_TRUE(result.noise.has_value()) << t.name;
+    const NoiseTerms& noise = *result.noise;
+    const std::pair<const Figure*, double> terms[] = {
+        {&noise.angle_random_walk, t.n}, {&noise.bias_instability, t.b}, {&noise.rate_random_walk, t.k}};
+    for (const auto& [figure, truth] : terms) {
+      ASSERT_TRUE(figure->uncertainty.has_value()) << t.name << " " << figure->unit << " not identified";
+      const double z = (figure->value - truth) / *figure->uncertainty;
+      EXPECT_LT(std::abs(z), 3.0) << t.name << ": " << figure->value << " ± " << *figure->uncertainty << " "
+                                  << figure->unit << ", truth " << truth;
+      sum_z2 += z * z;
+      ++count;
+    }
+  }
+  // The uncertainties are honest as a set, neither inflated nor too small.
+  const double rms_z = std::sqrt(sum_z2 / count);
+  EXPECT_GT(rms_z, 0.4);
+  EXPECT_LT(rms_z, 1.6);
+}
+
+TEST(AllanChannels, AnAccelerometerChannelHasItsOwnNoiseTermsAndUnits) {
+  const nlohmann::json json = analysed().to_json();
+  const nlohmann::json& ax = json.at("channels").at("ax").at("noise");
+  EXPECT_EQ(ax.at("velocity_random_walk").at("unit"), "m/s/sqrt(h)");
+  EXPECT_EQ(ax.at("bias_instability").at("unit"), "ug");
+  EXPECT_EQ(ax.at("acceleration_random_walk").at("unit"), "m/s/h/sqrt(h)");
+  EXPECT_FALSE(ax.contains("angle_random_walk"));
+  EXPECT_FALSE(ax.contains("random_walk_coefficient"));  // GJB eq. (31) is a gyro's
+  const nlohmann::json& gx = json.at("channels").at("gx").at("noise");
+  EXPECT_EQ(gx.at("angle_random_walk").at("unit"), "deg/sqrt(h)");
+  EXPECT_EQ(gx.at("rate_random_walk").at("unit"), "deg/h/sqrt(h)");
+  EXPECT_EQ(json.at("channels").at("gx").at("input_unit"), "deg/s");
+  EXPECT_EQ(json.at("channels").at("az").at("input_unit"), "m/s^2");
+}
+
+// Kalibr's densities are N and K in SI (imu.yaml: *_noise_density, *_random_walk), the largest of
+// the axes. The truth converted by hand: N deg/sqrt(h) * (pi/180) / 60 = rad/sqrt(s) = rad/s/sqrt(Hz);
+// K deg/h/sqrt(h) * (pi/180) / 3600 / 60 = rad/s^2/sqrt(Hz); m/s/sqrt(h) / 60 = m/s^2/sqrt(Hz);
+// m/s/h/sqrt(h) / 3600 / 60 = m/s^3/sqrt(Hz).
+TEST(FilterParameters, KalibrDensitiesEqualTheTruthConvertedByHand) {
+  const auto sensors = filter_noise_parameters(analysed());
+  const std::string yaml = format_filter_parameters(sensors, FilterFormat::kKalibr, "test");
+  const auto value_of = [&](const std::string& key) {
+    const auto at = yaml.find("\n" + key + ": ");
+    EXPECT_NE(at, std::string::npos) << key;
+    return std::stod(yaml.substr(at + key.size() + 3));
+  };
+  // The axis of the largest truth is gz (gyro) and az (accelerometer) for both N and K.
+  const double gyro_n = 0.35 * (kPi / 180.0) / 60.0;
+  const double gyro_k = 12.0 * (kPi / 180.0) / 3600.0 / 60.0;
+  const double accel_n = 0.07 / 60.0;
+  const double accel_k = 5.0 / 3600.0 / 60.0;
+  for (const auto& [key, truth, sensor, field] :
+       {std::tuple{"gyroscope_noise_density", gyro_n, 2, &SensorNoiseParameters::white_noise_density},
+        std::tuple{"gyroscope_random_walk", gyro_k, 2, &SensorNoiseParameters::random_walk_density},
+        std::tuple{"accelerometer_noise_density", accel_n, 5, &SensorNoiseParameters::white_noise_density},
+        std::tuple{"accelerometer_random_walk", accel_k, 5, &SensorNoiseParameters::random_walk_density}}) {
+    const NoiseDensity& density = sensors[static_cast<std::size_t>(sensor)].*field;
+    ASSERT_TRUE(density.identified) << key;
+    const double written = value_of(key);
+    EXPECT_NEAR(written, truth, 3.0 * density.uncertainty) << key;
+    // The file holds the largest axis's estimate, to the 6 digits written.
+    double largest = 0.0;
+    for (const auto& s : sensors) {
+      if (s.kind == sensors[static_cast<std::size_t>(sensor)].kind) largest = std::max(largest, (s.*field).value);
+    }
+    EXPECT_NEAR(written, largest, 1e-5 * largest) << key;
+  }
+  EXPECT_NE(yaml.find("update_rate: 10"), std::string::npos);
+}
+
+// The discrete-time values follow from the densities at the record's rate, and the Gauss-Markov
+// equivalent's Allan maximum is the flicker floor 0.664 B.
+TEST(FilterParameters, DiscreteValuesAndTheGaussMarkovEquivalentFollowFromTheDensities) {
+  const auto sensors = filter_noise_parameters(analysed());
+  for (const SensorNoiseParameters& s : sensors) {
+    const double dt = 1.0 / s.sample_rate_hz;
+    EXPECT_NEAR_RELATIVE(s.discrete_white_sigma, s.white_noise_density.value / std::sqrt(dt), 1e-12);
+    EXPECT_NEAR_RELATIVE(s.discrete_random_walk_sigma, s.random_walk_density.value * std::sqrt(dt), 1e-12);
+    const double t = s.gauss_markov_correlation_time_s;
+    EXPECT_NEAR_RELATIVE(s.discrete_gauss_markov_phi, std::exp(-dt / t), 1e-12);
+    // sigma_A^2(tau) of the process (El-Sheimy et al. 2008, eq. 23), at its peak tau = 1.8926 T.
+    const double x = 1.8926179;
+    const double peak = s.gauss_markov_sigma *
+                        std::sqrt((2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x)) / (x * x));
+    EXPECT_NEAR_RELATIVE(peak, kBiasInstabilityFactor * s.bias_instability.value, 1e-6);
+  }
+}
+
+TEST(FilterParameters, EveryFormatNamesItsKeysAndSaysHowEachNumberWasObtained) {
+  const auto sensors = filter_noise_parameters(analysed());
+  const std::string matlab = format_filter_parameters(sensors, FilterFormat::kMatlab, "test");
+  for (const char* key : {"gyroparams(", "accelparams(", "'NoiseDensity'", "'RandomWalk'", "'BiasInstability'"}) {
+    EXPECT_NE(matlab.find(key), std::string::npos) << key;
+  }
+  const std::string sim = format_filter_parameters(sensors, FilterFormat::kGnssInsSim, "test");
+  for (const char* key : {"'gyro_arw'", "'gyro_b_stability'", "'gyro_b_corr'", "'accel_vrw'", "'accel_b_stability'",
+                          "'accel_b_corr'"}) {
+    EXPECT_NE(sim.find(key), std::string::npos) << key;
+  }
+  // gnss-ins-sim's gyro_arw is deg/sqrt(h): gx's N back in its reported unit.
+  EXPECT_NE(sim.find(fmt::format("{:.6g}", analysed().channels[0].result.noise->angle_random_walk.value)),
+            std::string::npos);
+  const nlohmann::json json = nlohmann::json::parse(format_filter_parameters(sensors, FilterFormat::kJson, "test"));
+  EXPECT_EQ(json.at("sensors").at("ax").at("white_noise_density").at("unit"), "m/s^2/sqrt(Hz)");
+  EXPECT_EQ(json.at("sensors").at("gx").at("random_walk_density").at("unit"), "rad/s^2/sqrt(Hz)");
+  for (const std::string& text : {matlab, sim}) EXPECT_NE(text.find("GJB 2426A-2004 eq. 30"), std::string::npos);
+  EXPECT_THROW(parse_filter_format("yaml"), Error);
+}
+
+TEST(AllanChannels, PerChannelUnitsAreCheckedAgainstTheChannels) {
+  AllanOptions common;
+  common.sample_rate_hz = 10.0;
+  const std::vector<std::string> names = {"gx", "ax"};
+  const auto options = channel_options(common, names, {"2", "5"}, "deg/s, ax = m/s^2");
+  EXPECT_EQ(options[0].input_unit, "deg/s");
+  EXPECT_EQ(options[1].input_unit, "m/s^2");
+  EXPECT_EQ(channel_options(common, names, {"2", "5"}, "5=g")[1].input_unit, "g");  // by the selector as given
+  EXPECT_EQ(channel_options(common, names, {"2", "5"}, "")[0].input_unit, "deg/h");
+  EXPECT_THROW(channel_options(common, names, names, "gz=deg/s"), Error);
+  EXPECT_THROW(channel_options(common, names, names, "gx=deg/s,gx=rad/s"), Error);
+  EXPECT_THROW(channel_options(common, names, names, "deg/s,rad/s"), Error);
+  EXPECT_THROW(channel_options(common, names, names, "gx=furlong"), Error);
+}
+
+}  // namespace
+}  // namespace inertest

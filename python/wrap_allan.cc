@@ -1,17 +1,31 @@
 // allan: the Allan-family deviations with confidence bounds and the noise-term fit (GJB 2426A-2004
 // 5.12.5.4.2 eqs. (30)-(31), IEEE Std 952-1997 Annex C, NIST SP 1065).
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <variant>
 
 #include "bindings.h"
 #include "inertest/allan/allan.h"
+#include "inertest/allan/allan_channels.h"
+#include "inertest/allan/filter_parameters.h"
 #include "inertest/allan/tau_grid.h"
+#include "inertest/io/atomic_write.h"
 #include "inertest/io/text_table.h"
 
 namespace inertest::python {
 namespace {
 
 struct AllanTag {};
+struct AllanChannelsTag {};
+
+// The CLI's --export FORMAT FILE: (format, path).
+using ExportArgument = std::optional<std::pair<std::string, std::string>>;
+
+void export_filter_parameters(const AllanChannels& channels, const ExportArgument& target, const std::string& command) {
+  if (!target) return;
+  write_file_atomically(target->second, format_filter_parameters(filter_noise_parameters(channels),
+                                                                 parse_filter_format(target->first), command));
+}
 
 // `taus` as Python gives it: a grid specification (str), or taus in seconds (a list or a numpy
 // array, as allantools takes them), which become an explicit TauGrid (each tau must be a whole
@@ -56,33 +70,81 @@ RateRecordSource rate_source(const std::string& path, const std::string& format,
   return source;
 }
 
-ResultOf<AllanTag> allan_of_samples(const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit,
-                                    const Taus& taus, const std::string& estimators, double scale, double confidence,
-                                    std::size_t worker_count, const FitRangeArgument& fit_range) {
-  const auto samples = as_span(rate, "rate");
-  const AllanOptions options =
-      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count, fit_range);
-  AllanResult result;
+// A 1-D array is one channel (AllanResult); a 2-D array holds one channel per column
+// (AllanChannelsResult, named by `channels` or "1", "2", ...; input_unit as the CLI's --input-unit).
+std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
+    const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit, const Taus& taus,
+    const std::string& estimators, double scale, double confidence, std::size_t worker_count,
+    const FitRangeArgument& fit_range, const std::optional<std::vector<std::string>>& channels,
+    const ExportArgument& export_to) {
+  const AllanOptions common =
+      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range);
+  AllanChannels result;
+  if (rate.ndim() == 1) {
+    AllanOptions options = common;
+    options.input_unit = input_unit;
+    const auto samples = as_span(rate, "rate");
+    {
+      py::gil_scoped_release release;
+      result.channels.push_back({channels && !channels->empty() ? channels->front() : "rate",
+                                 allan_variance(samples, options)});
+    }
+    export_filter_parameters(result, export_to, "inertest.allan_variance");
+    return make_result<AllanTag>(result.channels.front().result);
+  }
+  if (rate.ndim() != 2) throw Error(fmt::format("rate must be a 1-D or 2-D array, not {}-D", rate.ndim()));
+  const auto rows = static_cast<std::size_t>(rate.shape(0));
+  const auto count = static_cast<std::size_t>(rate.shape(1));
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < count; ++c) names.push_back(std::to_string(c + 1));
+  const std::vector<std::string> selectors = names;
+  if (channels) {
+    if (channels->size() != count) {
+      throw Error(fmt::format("channels names {} channels but rate has {} columns", channels->size(), count));
+    }
+    names = *channels;
+  }
+  // Columns of a C-ordered array are strided: each is copied once.
+  std::vector<std::vector<double>> columns(count, std::vector<double>(rows));
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < count; ++c) columns[c][r] = rate.at(r, c);
+  }
+  const std::vector<AllanOptions> options = channel_options(common, names, selectors, input_unit);
   {
     py::gil_scoped_release release;
-    result = allan_variance(samples, options);
+    result = allan_variance_of_channels({columns.begin(), columns.end()}, names, options);
   }
-  return make_result<AllanTag>(result);
+  export_filter_parameters(result, export_to, "inertest.allan_variance");
+  return ResultOf<AllanChannelsTag>(result.to_json(), result.report());
 }
 
-ResultOf<AllanTag> allan_of_file(const std::string& path, double sample_rate_hz, const std::string& format,
-                                 const std::optional<std::string>& column, const std::string& input_unit,
-                                 const Taus& taus, const std::string& estimators, double scale, double confidence,
-                                 std::size_t worker_count, const FitRangeArgument& fit_range) {
+std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_file(
+    const std::string& path, double sample_rate_hz, const std::string& format, const std::optional<std::string>& column,
+    const std::string& input_unit, const Taus& taus, const std::string& estimators, double scale, double confidence,
+    std::size_t worker_count, const FitRangeArgument& fit_range, const std::optional<std::vector<std::string>>& columns,
+    const ExportArgument& export_to) {
   const RateRecordSource source = rate_source(path, format, column);
-  const AllanOptions options =
-      allan_options(sample_rate_hz, input_unit, taus, estimators, scale, confidence, worker_count, fit_range);
-  AllanResult result;
+  AllanOptions options =
+      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range);
+  AllanChannels result;
+  if (!columns) {
+    options.input_unit = input_unit;
+    {
+      py::gil_scoped_release release;
+      result.channels.push_back({column.value_or("rate"), allan_variance_of_file(source, options)});
+    }
+    export_filter_parameters(result, export_to, "inertest.allan_variance_of_file " + path);
+    return make_result<AllanTag>(result.channels.front().result);
+  }
+  if (column) throw Error("give column or columns, not both");
+  std::vector<ColumnSelector> selectors;
+  for (const std::string& c : *columns) selectors.push_back(ColumnSelector::parse(c));
   {
     py::gil_scoped_release release;
-    result = allan_variance_of_file(source, options);
+    result = allan_variance_of_channels_in_file(source, selectors, input_unit, options);
   }
-  return make_result<AllanTag>(result);
+  export_filter_parameters(result, export_to, "inertest.allan_variance_of_file " + path);
+  return ResultOf<AllanChannelsTag>(result.to_json(), result.report());
 }
 
 }  // namespace
@@ -122,6 +184,12 @@ void wrap_allan(py::module_& module) {
       "    # fit (GJB eq. 30: coefficients, reduced_chi_squared, verdict, fit_range), slope_method.\n"
       "    noise: Optional[Record]  # None when not fitted\n"
       "    warnings: list[str]\n");
+  bind_result<AllanChannelsTag>(
+      module, "AllanChannelsResult",
+      "Allan analysis of several channels of one record (an IMU's axes), each as AllanResult; a channel in an\n"
+      "acceleration unit has velocity_random_walk, bias_instability (ug) and acceleration_random_walk.\n"
+      "Members:\n"
+      "    channels: Record  # one AllanResult-shaped Record per channel, by name\n");
   const char* options_doc =
       "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
       "taus: 'octave', 'decade', 'all', 'N/decade', a comma list of tau in s, or a list or numpy array of tau\n"
@@ -134,15 +202,21 @@ void wrap_allan(py::module_& module) {
   module.def("allan_variance", &allan_of_samples, "rate"_a, py::kw_only(), "sample_rate_hz"_a,
              "input_unit"_a = "deg/h", "taus"_a = "octave", "estimators"_a = "all", "scale"_a = 1.0,
              "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2, "fit_range"_a = py::none(),
+             "channels"_a = py::none(), "export"_a = py::none(),
              (std::string("Allan deviations ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV of rate samples in memory (read in\n"
-                          "place, no copy) with chi-squared bounds, and the noise terms Q, N, B, K, R.\n") +
+                          "place, no copy) with chi-squared bounds, and the noise terms Q, N, B, K, R.\n"
+                          "A 2-D array holds one channel per column (an IMU's axes): the result is an\n"
+                          "AllanChannelsResult, its channels named by `channels` (default '1', '2', ...) and input_unit\n"
+                          "as the CLI's --input-unit ('deg/s,ax=m/s^2'). export: (format, path), format 'kalibr',\n"
+                          "'matlab', 'gnss-ins-sim' or 'json': the filter parameters, as the CLI's --export.\n") +
               options_doc)
                  .c_str());
   module.def("allan_variance_of_file", &allan_of_file, "path"_a, py::kw_only(), "sample_rate_hz"_a,
              "format"_a = "auto", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
              "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
-             "fit_range"_a = py::none(),
+             "fit_range"_a = py::none(), "columns"_a = py::none(), "export"_a = py::none(),
              (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
+                          "allan command; columns: several channels in one pass (an AllanChannelsResult), as --columns.\n"
                           "allan command: format 'auto' (.mat, HDF5, TDMS by magic bytes, else text), 'csv', 'f64' or\n"
                           "'f32' (raw little-endian), 'mat', 'hdf5', 'tdms'; column: header name or 1-based index, or\n"
                           "the channel ('group/channel', 'struct.field'). A sample_rate_hz that contradicts the rate the\n"
@@ -189,7 +263,7 @@ void wrap_allan(py::module_& module) {
       [](const DoubleArray& tau_s, const DoubleArray& deviation, const DoubleArray& edf, const std::string& input_unit) {
         return Record(read_noise_slopes(as_span(tau_s, "tau_s"), as_span(deviation, "deviation"), as_span(edf, "edf"),
                                         input_unit)
-                          .to_json());
+                          .to_json(input_unit));
       },
       "tau_s"_a, "deviation"_a, "edf"_a, "input_unit"_a = "deg/h",
       "Slope read-off on an Allan deviation (IEEE Std 952-1997 C.1): N at tau = 1 s on the -1/2 line, B =\n"

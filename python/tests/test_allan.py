@@ -101,3 +101,34 @@ def test_noise_type_per_tau_and_estimator():
         many = averages >= 300
         assert many.sum() >= 8
         assert all(curve.alpha[many] == 0) and all(np.array(curve.noise_type)[many] == "white_fm")
+
+
+def test_a_two_dimensional_array_is_one_channel_per_column_as_the_cli_columns(tmp_path):
+    """Channels in columns (issue 19): each channel's Record is the 1-D result of that column, the
+    accelerometer's terms come with an acceleration unit, and the export is written as by --export."""
+    rng = np.random.default_rng(11)
+    samples = 20_000
+    imu = np.column_stack([rng.normal(0.0, 1.0, samples), rng.normal(0.0, 0.01, samples)])
+    export = tmp_path / "imu.yaml"
+    both = inertest.allan_variance(imu, sample_rate_hz=SAMPLE_RATE_HZ, channels=["gx", "ax"],
+                                   input_unit="gx=deg/s,ax=m/s^2", taus="decade", export=("kalibr", str(export)))
+    assert isinstance(both, inertest.AllanChannelsResult)
+    gx = inertest.allan_variance(np.ascontiguousarray(imu[:, 0]), sample_rate_hz=SAMPLE_RATE_HZ, input_unit="deg/s",
+                                 taus="decade")
+    assert both.to_dict()["channels"]["gx"] == gx.to_dict()
+    ax = both.channels.ax.noise
+    assert ax.velocity_random_walk.unit == "m/s/sqrt(h)"
+    # White noise of 0.01 m/s^2 at 100 Hz: N = 0.01 / sqrt(100) m/s^2*sqrt(s) = 0.001 * 60 m/s/sqrt(h).
+    assert abs(ax.velocity_random_walk.value - 0.06) < 4 * ax.velocity_random_walk.uncertainty
+    text = export.read_text()
+    assert "accelerometer_noise_density: " in text and "gyroscope_noise_density: " in text
+    # The same file through the CLI, several columns in one pass.
+    record = tmp_path / "imu.csv"
+    np.savetxt(record, imu, delimiter=",", header="gx,ax", comments="", fmt="%.17g")
+    from_cli = cli_json("allan", str(record), "--rate", "100", "--columns", "gx,ax", "--input-unit",
+                        "gx=deg/s,ax=m/s^2", "--taus", "decade")
+    from_file = inertest.allan_variance_of_file(str(record), sample_rate_hz=SAMPLE_RATE_HZ, columns=["gx", "ax"],
+                                                input_unit="gx=deg/s,ax=m/s^2", taus="decade")
+    assert from_file.to_dict() == from_cli
+    with pytest.raises(inertest.Error, match="channels names 1 channels but rate has 2 columns"):
+        inertest.allan_variance(imu, sample_rate_hz=SAMPLE_RATE_HZ, channels=["gx"])

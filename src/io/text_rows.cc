@@ -346,14 +346,15 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
   return p;
 }
 
+std::size_t line_capacity(std::string_view chunk) {
+  return static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
+}
+
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result) {
-  // Every row is a line: the columns are sized for all lines and cut to the rows at the end, so
-  // that a row is stored by index, not by push_back.
-  const std::size_t lines = static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
-  result.columns.assign(layout.positions.size(), std::vector<double>(lines));
-  std::vector<double*> column_data;
-  for (auto& c : result.columns) column_data.push_back(c.data());
-  if (layout.record_row_lines) result.row_lines.reserve(lines);
+  // Every row is a line: the columns have room for all lines, so that a row is stored by index,
+  // not by push_back.
+  const std::vector<double*>& column_data = result.columns;
+  if (layout.record_row_lines) result.row_lines.reserve(line_capacity(chunk));
   std::size_t row_count = 0;
   Line row{};
   std::vector<Field> fields;
@@ -402,7 +403,6 @@ void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout&
     result.error = std::current_exception();
   }
   result.row_count = row_count;
-  for (auto& c : result.columns) c.resize(row_count);
 }
 
 }  // namespace inertest::io_detail

@@ -97,8 +97,13 @@ std::size_t first_data_offset(const RowLayout& layout, const Line& first, const 
 [[noreturn]] void fail_no_content(const std::string& source);
 void require_rows(const std::string& source, std::size_t rows, std::size_t minimum);
 
+// Lines in a chunk of text: its '\n' plus a last line without one; no chunk holds more rows.
+std::size_t line_capacity(std::string_view chunk);
+
 struct RowChunk {
-  std::vector<std::vector<double>> columns;  // one per layout position
+  // Where the chunk's rows go, one array per layout position, each with room for
+  // line_capacity(chunk) values (the caller's: the chunks of a table write into its columns).
+  std::vector<double*> columns;
   std::vector<std::size_t> row_lines;        // with RowLayout::record_row_lines
   std::size_t row_count = 0;
   std::size_t first_line = 0;                // line of the first data row, 0 if none
@@ -106,7 +111,7 @@ struct RowChunk {
 };
 
 // Parses whole lines (a last line without '\n' is taken as the record's truncated end) starting at
-// line number first_line. Never throws: an error is left in result.error.
+// line number first_line, into result.columns. Never throws: an error is left in result.error.
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result);
 
 }  // namespace inertest::io_detail

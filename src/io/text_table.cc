@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "inertest/core/error.h"
+#include "inertest/core/huge_pages.h"
 #include "inertest/io/mapped_file.h"
 #include "io/text_rows.h"
 
@@ -37,9 +38,11 @@ std::size_t thread_count(const TextTableOptions& options) {
 }
 
 // Splits data into one chunk per thread (at line boundaries; small inputs stay whole) and parses
-// them in parallel; results are in file order.
+// them in parallel, each straight into its part of `columns` (one per layout position, sized here
+// for every line and advised for huge pages); then closes the gaps left by lines that were not rows
+// (blank, comment) and cuts the columns to the rows. Results are in file order.
 std::vector<RowChunk> parse_chunks(std::string_view data, std::size_t first_line, const RowLayout& layout,
-                                   const TextTableOptions& options) {
+                                   const TextTableOptions& options, std::vector<std::vector<double>>& columns) {
   const std::size_t threads = std::clamp<std::size_t>(data.size() / std::max<std::size_t>(options.minimum_chunk_bytes, 1),
                                                       1, thread_count(options));
   std::vector<std::string_view> pieces;
@@ -53,18 +56,41 @@ std::vector<RowChunk> parse_chunks(std::string_view data, std::size_t first_line
     pieces.push_back(data.substr(begin, end - begin));
     begin = end;
   }
-  // Each chunk's first line number: lines counted in the chunks before it.
+  // Each chunk's first line number and first slot: the lines of the chunks before it, counted in
+  // parallel too (the count is the first touch of the mapped file).
+  const auto in_parallel = [&](auto&& work) {
+    std::vector<std::thread> workers;
+    for (std::size_t i = 1; i < pieces.size(); ++i) workers.emplace_back(work, i);
+    work(0);
+    for (auto& worker : workers) worker.join();
+  };
+  std::vector<std::size_t> line_counts(pieces.size());
+  in_parallel([&](std::size_t i) { line_counts[i] = io_detail::line_capacity(pieces[i]); });
   std::vector<std::size_t> first_lines(pieces.size(), first_line);
-  for (std::size_t i = 1; i < pieces.size(); ++i) {
-    first_lines[i] = first_lines[i - 1] + static_cast<std::size_t>(std::count(pieces[i - 1].begin(), pieces[i - 1].end(), '\n'));
+  std::vector<std::size_t> first_slots(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const std::size_t lines = line_counts[i];
+    first_slots[i + 1] = first_slots[i] + lines;
+    if (i + 1 < pieces.size()) first_lines[i + 1] = first_lines[i] + lines - 1;  // the '\n' of chunk i
   }
+  columns.resize(layout.positions.size());
+  for (auto& column : columns) resize_on_huge_pages(column, first_slots.back());
   std::vector<RowChunk> results(pieces.size());
-  std::vector<std::thread> workers;
-  for (std::size_t i = 1; i < pieces.size(); ++i) {
-    workers.emplace_back(io_detail::parse_rows, pieces[i], first_lines[i], std::cref(layout), std::ref(results[i]));
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (auto& column : columns) results[i].columns.push_back(column.data() + first_slots[i]);
   }
-  io_detail::parse_rows(pieces[0], first_lines[0], layout, results[0]);
-  for (auto& worker : workers) worker.join();
+  in_parallel([&](std::size_t i) { io_detail::parse_rows(pieces[i], first_lines[i], layout, results[i]); });
+  std::size_t rows = 0;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (first_slots[i] != rows) {
+      for (auto& column : columns) {
+        std::copy_n(column.begin() + static_cast<std::ptrdiff_t>(first_slots[i]), results[i].row_count,
+                    column.begin() + static_cast<std::ptrdiff_t>(rows));
+      }
+    }
+    rows += results[i].row_count;
+  }
+  for (auto& column : columns) column.resize(rows);
   return results;
 }
 
@@ -117,25 +143,14 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
   // chunk per core at line boundaries and parsed in parallel. Line numbers stay exact: each chunk
   // starts at the line count of the chunks before it.
   const std::size_t data_begin = io_detail::first_data_offset(layout, *first, cursor, text);
-  std::vector<RowChunk> chunks = parse_chunks(text.substr(data_begin), layout.first_data_line, layout, options);
-
+  const std::vector<RowChunk> chunks =
+      parse_chunks(text.substr(data_begin), layout.first_data_line, layout, options, table.columns);
   std::size_t row_count = 0;
   for (const auto& chunk : chunks) {
     if (chunk.error) std::rethrow_exception(chunk.error);
     row_count += chunk.row_count;
   }
   io_detail::require_rows(source, row_count, options.minimum_rows);
-  table.columns.resize(layout.positions.size());
-  for (std::size_t k = 0; k < layout.positions.size(); ++k) {
-    if (chunks.size() == 1) {
-      table.columns[k] = std::move(chunks.front().columns[k]);
-      continue;
-    }
-    table.columns[k].reserve(row_count);
-    for (const auto& chunk : chunks) {
-      table.columns[k].insert(table.columns[k].end(), chunk.columns[k].begin(), chunk.columns[k].end());
-    }
-  }
   for (const auto& chunk : chunks) {
     if (table.first_data_line == 0 && chunk.first_line != 0) table.first_data_line = chunk.first_line;
     table.row_lines.insert(table.row_lines.end(), chunk.row_lines.begin(), chunk.row_lines.end());

@@ -123,6 +123,15 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     std::sort(keys.begin(), keys.end());
     for (const auto& [rank, key] : keys) {
       const json& value = node.at(key);
+      if (key == "channels" && value.is_object()) {
+        // The channels of one record (an IMU's axes, issue 19): each listed as a result of its own,
+        // under its name.
+        for (const auto& [channel, result] : value.items()) {
+          collect_figures(result, pointer + "/channels/" + escape_pointer_token(channel),
+                          name.empty() ? channel : name + " · " + channel, labels, depth, headline, rows);
+        }
+        continue;
+      }
       if (!is_listed_member(key, value)) continue;
       const std::string label = labels(key);
       collect_figures(value, pointer + "/" + escape_pointer_token(key), name.empty() ? label : name + " · " + label,

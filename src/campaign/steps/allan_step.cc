@@ -3,8 +3,10 @@
 //   format = "f64"               # auto (default: .mat, HDF5, TDMS by magic bytes, else csv), csv,
 //                                # f64 or f32 (raw little-endian), mat, hdf5, tdms
 //   column = "rate"              # optional: header name or 1-based index; channel "group/channel", "struct.field"
+//   columns = ["gx", "gy", "gz", "ax", "ay", "az"]  # instead of column: every channel in one pass;
+//                                # the result is {"channels": {"gx": {...}, ...}} (issue 19)
 //   sample_rate_hz = 100         # optional: default the instrument's sample_rate_hz
-//   input_unit = "deg/h"         # optional: unit of the samples
+//   input_unit = "deg/h"         # optional: unit of the samples; with columns also "deg/s,ax=m/s^2,..."
 //   taus = "octave"              # optional: octave, decade, all, N/decade or "0.1,1,10"
 //   scale_factor = 1.2e5         # optional: output units per deg/s; the raw output is divided by it
 //                                # and converted to deg/h (input_unit must then be left out)
@@ -15,6 +17,7 @@
 
 #include "campaign/step_registry.h"
 #include "inertest/allan/allan.h"
+#include "inertest/allan/allan_channels.h"
 
 namespace inertest::campaign {
 namespace {
@@ -40,6 +43,12 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
     step.fail_at("format", e.message());
   }
   if (step.contains("column")) source.column = column_of(step);
+  std::vector<ColumnSelector> columns;
+  if (step.contains("columns")) {
+    if (step.contains("column")) step.fail_at("columns", "column and columns exclude each other");
+    for (const std::string& name : step.strings("columns")) columns.push_back(ColumnSelector::parse(name));
+    if (columns.empty()) step.fail_at("columns", "name at least one channel");
+  }
   AllanOptions options;
   const std::optional<double> rate = step.optional_number("sample_rate_hz");
   if (rate) {
@@ -57,7 +66,7 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
     // raw / (output per deg/s) = deg/s; times 3600 = deg/h.
     options.scale = 3600.0 / *scale_factor;
     options.input_unit = "deg/h";
-  } else if (unit) {
+  } else if (unit && columns.empty()) {
     options.input_unit = *unit;
   }
   if (step.contains("fit_range")) {
@@ -80,6 +89,11 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
     options.validate();
   } catch (const Error& e) {
     step.fail(e.message());
+  }
+  if (!columns.empty()) {
+    return [source, columns, units = unit.value_or(""), options](const StepRunContext& run) {
+      return allan_variance_of_channels_in_file(source, columns, units, options, run.progress).to_json();
+    };
   }
   return [source, options](const StepRunContext& run) {
     return allan_variance_of_file(source, options, run.progress).to_json();

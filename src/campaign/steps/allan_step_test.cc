@@ -1,7 +1,9 @@
 // The `allan` plan step: a binary record with the scale factor, the same figures as the library.
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "inertest/allan/allan.h"
+#include "inertest/allan/allan_channels.h"
 #include "inertest/campaign/campaign.h"
 #include "inertest/core/error.h"
 #include "test_util/test_util.h"
@@ -118,6 +120,62 @@ input_unit = "deg/h"
   EXPECT_DOUBLE_EQ(loose["value"].get<double>(), bound);
   EXPECT_FALSE(verdict_for("{ max = " + std::to_string(bound / 2.0) + " }").first["pass"].get<bool>());
   EXPECT_FALSE(verdict_for("{ min = 0 }").first["pass"].get<bool>());
+}
+
+// columns (issue 19): every channel of a record in one step, each with its unit; the result is the
+// library's {"channels": ...} for the same file.
+TEST(AllanStep, ColumnsAnalyseEveryChannelWithItsUnit) {
+  testing::ScratchDirectory dir;
+  const std::vector<double> a = testing::uniform_noise(1.0, 2000);
+  const std::vector<double> b = testing::uniform_noise(0.01, 2000);
+  std::string text = "t,gx,ax\n";
+  for (std::size_t i = 0; i < a.size(); ++i) text += fmt::format("{},{:.17g},{:.17g}\n", i, a[i], b[(i * 7) % b.size()]);
+  dir.write("imu.csv", text);
+  const std::string plan = dir.write("plan.toml", R"(
+[plan]
+title = "IMU noise"
+[instrument]
+id = "IMU-1"
+output_unit = "deg/s"
+sample_rate_hz = 100.0
+[[procedure]]
+kind = "allan"
+name = "IMU at rest"
+file = "imu.csv"
+columns = ["gx", "ax"]
+input_unit = "deg/s,ax=m/s^2"
+taus = "decade"
+)");
+  const CampaignSummary summary = run_campaign(plan, dir.path() + "/out");
+  const nlohmann::json& result = summary.results["procedures"][0]["result"];
+  AllanOptions options;
+  options.sample_rate_hz = 100.0;
+  options.taus = "decade";
+  const AllanChannels expected = allan_variance_of_channels_in_file(
+      RateRecordSource{dir.path() + "/imu.csv", RateRecordFormat::kAuto, std::nullopt},
+      {ColumnSelector::parse("gx"), ColumnSelector::parse("ax")}, "deg/s,ax=m/s^2", options);
+  EXPECT_EQ(result, expected.to_json());
+  EXPECT_EQ(result["channels"]["ax"]["noise"]["velocity_random_walk"]["unit"], "m/s/sqrt(h)");
+  const std::string both = dir.write("both.toml", R"(
+[plan]
+title = "IMU noise"
+[instrument]
+id = "IMU-1"
+output_unit = "deg/s"
+sample_rate_hz = 100.0
+[[procedure]]
+kind = "allan"
+name = "IMU at rest"
+file = "imu.csv"
+column = "gx"
+columns = ["gx", "ax"]
+)");
+  try {
+    run_campaign(both, dir.path() + "/out2");
+    FAIL() << "column and columns together were accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("column and columns exclude each other"));
+  }
 }
 
 }  // namespace

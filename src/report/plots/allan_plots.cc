@@ -5,8 +5,12 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <optional>
 
+#include "inertest/allan/noise_terms.h"
+#include "inertest/core/error.h"
 #include "report/procedure_plots.h"
 #include "report/result_access.h"
 
@@ -27,48 +31,27 @@ constexpr NoiseTerm kTerms[] = {{-2, "quantization_noise", "−1"},
                                 {1, "rate_random_walk", "+1/2"},
                                 {2, "rate_ramp", "+1"}};
 
-std::vector<ReportPlot> allan_plots(const PlotContext& context) {
-  const nlohmann::json& result = context.result;
-  const Column tau = number_array(result.value("tau", nlohmann::json::array()));
-  const nlohmann::json* curve = nullptr;
-  std::string estimator;
+// The estimator a result draws: the preferred one it holds.
+std::pair<const nlohmann::json*, std::string> drawn_curve(const nlohmann::json& result) {
   for (const char* name : kEstimators) {
     const auto* candidate = member(result, name);
-    if (candidate != nullptr && candidate->is_object() && candidate->contains("values")) {
-      curve = candidate;
-      estimator = name;
-      break;
-    }
+    if (candidate != nullptr && candidate->is_object() && candidate->contains("values")) return {candidate, name};
   }
-  if (curve == nullptr || tau.empty()) return {};
-  const Column deviation = number_array(curve->at("values"));
-  const std::string unit = curve->value("unit", result.value("input_unit", ""));
+  return {nullptr, ""};
+}
 
-  Panel panel;
-  panel.height = 420.0;
-  panel.x = make_axis(context.labels("axis.averaging_time"), "s", AxisScale::log);
-  panel.y = make_axis(context.labels("axis.allan_deviation"), pretty_unit(unit), AxisScale::log);
-  Series measured = make_series(estimator.empty() ? "" : estimator + " " + context.labels("ui.data"), tau.values,
-                                deviation.values, LineStyle::none, Marker::circle);
-  measured.color = "#1f77b4";
-  const Column lower = number_array(curve->value("lower", nlohmann::json::array()));
-  const Column upper = number_array(curve->value("upper", nlohmann::json::array()));
-  if (lower.values.size() == tau.values.size() && upper.values.size() == tau.values.size()) {
-    measured.y_low = lower.values;
-    measured.y_high = upper.values;
-    const auto* level = member(result, "confidence_level");
-    if (level != nullptr && level->is_number()) {
-      measured.name += " (" + format_number(100.0 * level->get<double>(), 3) + " %)";
-    }
-  }
-  // The y range of the measurement (bars included), so steep model terms do not stretch it.
+// The y range of the measured points (bars included), so steep model terms do not stretch it.
+void fit_y_range(Panel& panel) {
   double y_lo = std::numeric_limits<double>::infinity();
   double y_hi = 0.0;
-  for (const auto* values : {&measured.y, &measured.y_low, &measured.y_high}) {
-    for (double v : *values) {
-      if (v > 0.0 && std::isfinite(v)) {
-        y_lo = std::min(y_lo, v);
-        y_hi = std::max(y_hi, v);
+  for (const Series& series : panel.series) {
+    if (series.marker == Marker::none) continue;
+    for (const auto* values : {&series.y, &series.y_low, &series.y_high}) {
+      for (double v : *values) {
+        if (v > 0.0 && std::isfinite(v)) {
+          y_lo = std::min(y_lo, v);
+          y_hi = std::max(y_hi, v);
+        }
       }
     }
   }
@@ -78,71 +61,176 @@ std::vector<ReportPlot> allan_plots(const PlotContext& context) {
     panel.y.min = range.lo;
     panel.y.max = range.hi;
   }
-  panel.series.push_back(std::move(measured));
+}
 
-  // The fitted model over the measured τ range: coefficients in (input unit)²·s^p, rescaled to
-  // the curve's unit when the two differ.
+// The fitted model over the measured τ range: coefficients in (input unit)²·s^p, rescaled to the
+// curve's unit when the two differ. With `terms`, each term of the model too, as a line of its slope.
+std::vector<Series> model_series(const PlotContext& context, const nlohmann::json& result, const Column& tau,
+                                 const std::string& unit, bool terms) {
   const auto* coefficients = member(result, "noise") ? member(*member(result, "noise"), "fit") : nullptr;
   coefficients = coefficients ? member(*coefficients, "coefficients") : nullptr;
-  if (coefficients != nullptr && coefficients->is_array()) {
-    const double scale = converted(1.0, result.value("input_unit", unit), unit).value_or(1.0);
-    double tau_lo = std::numeric_limits<double>::infinity();
-    double tau_hi = 0.0;
-    for (double t : tau.values) {
-      if (t > 0.0) {
-        tau_lo = std::min(tau_lo, t);
-        tau_hi = std::max(tau_hi, t);
-      }
+  if (coefficients == nullptr || !coefficients->is_array()) return {};
+  const double scale = converted(1.0, result.value("input_unit", unit), unit).value_or(1.0);
+  double tau_lo = std::numeric_limits<double>::infinity();
+  double tau_hi = 0.0;
+  for (double t : tau.values) {
+    if (t > 0.0) {
+      tau_lo = std::min(tau_lo, t);
+      tau_hi = std::max(tau_hi, t);
     }
-    const std::vector<double> grid = log_spaced(tau_lo, tau_hi, 80);
-    std::vector<double> total(grid.size(), 0.0);
-    const char* colours[] = {"#9467bd", "#2ca02c", "#ff7f0e", "#8c564b", "#e377c2"};
-    for (const auto& term : kTerms) {
-      double a = 0.0;
-      for (const auto& c : *coefficients) {
-        if (c.value("power", 99) == term.power && number_of(c)) a = *number_of(c);
-      }
-      if (!(a > 0.0)) continue;
-      std::vector<double> values;
-      for (std::size_t i = 0; i < grid.size(); ++i) {
-        const double variance = a * std::pow(grid[i], term.power);
-        total[i] += variance;
-        values.push_back(std::sqrt(variance) * scale);
-      }
-      Series line =
-          make_series(context.labels(term.label_key) + " (" + context.labels("ui.slope") + " " + term.slope + ")", grid,
-                      values, LineStyle::dashed);
-      line.color = colours[term.power + 2];
-      line.line_width = 1.3;
-      panel.series.push_back(std::move(line));
-    }
-    std::vector<double> model;
-    for (double v : total) model.push_back(v > 0.0 ? std::sqrt(v) * scale : std::numeric_limits<double>::quiet_NaN());
-    Series fit = make_series(context.labels("ui.noise_model"), grid, model);
-    fit.color = "#222222";
-    fit.line_width = 1.8;
-    panel.series.push_back(std::move(fit));
   }
-  panel.legend = LegendPosition::automatic;
+  const std::vector<double> grid = log_spaced(tau_lo, tau_hi, 80);
+  std::vector<double> total(grid.size(), 0.0);
+  std::vector<Series> lines;
+  const char* colours[] = {"#9467bd", "#2ca02c", "#ff7f0e", "#8c564b", "#e377c2"};
+  for (const auto& term : kTerms) {
+    double a = 0.0;
+    for (const auto& c : *coefficients) {
+      if (c.value("power", 99) == term.power && number_of(c)) a = *number_of(c);
+    }
+    if (!(a > 0.0)) continue;
+    std::vector<double> values;
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      const double variance = a * std::pow(grid[i], term.power);
+      total[i] += variance;
+      values.push_back(std::sqrt(variance) * scale);
+    }
+    if (!terms) continue;
+    Series line = make_series(context.labels(term.label_key) + " (" + context.labels("ui.slope") + " " + term.slope + ")",
+                              grid, values, LineStyle::dashed);
+    line.color = colours[term.power + 2];
+    line.line_width = 1.3;
+    lines.push_back(std::move(line));
+  }
+  std::vector<double> model;
+  for (double v : total) model.push_back(v > 0.0 ? std::sqrt(v) * scale : std::numeric_limits<double>::quiet_NaN());
+  Series fit = make_series(context.labels("ui.noise_model"), grid, model);
+  fit.color = "#222222";
+  fit.line_width = 1.8;
+  lines.push_back(std::move(fit));
+  return lines;
+}
 
-  ReportPlot plot;
-  plot.caption = context.labels("axis.allan_deviation") +
-                 " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std "
-                 "952-1997 Annex C";
-  // The fit's verdict and range: how far the fitted model can be trusted.
+// The measured curve of a result with its confidence bars, named `name`.
+Series measured_series(const nlohmann::json& result, const nlohmann::json& curve, const Column& tau,
+                       std::string name) {
+  Series measured = make_series(std::move(name), tau.values, number_array(curve.at("values")).values, LineStyle::none,
+                                Marker::circle);
+  const Column lower = number_array(curve.value("lower", nlohmann::json::array()));
+  const Column upper = number_array(curve.value("upper", nlohmann::json::array()));
+  if (lower.values.size() == tau.values.size() && upper.values.size() == tau.values.size()) {
+    measured.y_low = lower.values;
+    measured.y_high = upper.values;
+    const auto* level = member(result, "confidence_level");
+    if (level != nullptr && level->is_number()) {
+      measured.name += " (" + format_number(100.0 * level->get<double>(), 3) + " %)";
+    }
+  }
+  return measured;
+}
+
+Panel allan_panel(const PlotContext& context, const std::string& unit) {
+  Panel panel;
+  panel.height = 420.0;
+  panel.x = make_axis(context.labels("axis.averaging_time"), "s", AxisScale::log);
+  panel.y = make_axis(context.labels("axis.allan_deviation"), pretty_unit(unit), AxisScale::log);
+  panel.legend = LegendPosition::automatic;
+  return panel;
+}
+
+// The fit's verdict and range: how far the fitted model can be trusted.
+std::string fit_caption(const PlotContext& context, const nlohmann::json& result) {
   const auto* fit = member(result, "noise") ? member(*member(result, "noise"), "fit") : nullptr;
   const auto* range = fit ? member(*fit, "fit_range") : nullptr;
   const auto* verdict = fit ? member(*fit, "verdict") : nullptr;
   const auto* chi_squared = fit ? member(*fit, "reduced_chi_squared") : nullptr;
-  if (range != nullptr && verdict != nullptr && verdict->is_string() && chi_squared != nullptr &&
-      chi_squared->is_number()) {
-    plot.caption += fmt::format(". {}: {} ({} {}), τ {}–{} s ({}: {})", context.labels("ui.noise_fit"),
-                                verdict->get<std::string>(), context.labels("ui.reduced_chi_squared"),
-                                format_number(chi_squared->get<double>(), 3),
-                                format_number(range->value("tau_min_s", 0.0), 4),
-                                format_number(range->value("tau_max_s", 0.0), 4), range->value("chosen_by", ""),
-                                range->value("reason", ""));
+  if (range == nullptr || verdict == nullptr || !verdict->is_string() || chi_squared == nullptr ||
+      !chi_squared->is_number()) {
+    return "";
   }
+  return fmt::format("{}: {} ({} {}), τ {}–{} s ({}: {})", context.labels("ui.noise_fit"), verdict->get<std::string>(),
+                     context.labels("ui.reduced_chi_squared"), format_number(chi_squared->get<double>(), 3),
+                     format_number(range->value("tau_min_s", 0.0), 4), format_number(range->value("tau_max_s", 0.0), 4),
+                     range->value("chosen_by", ""), range->value("reason", ""));
+}
+
+const std::string kCaption = " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std 952-1997 Annex C";
+
+// A record of several channels (issue 19): one figure per sensor (gyro, accelerometer, other),
+// every axis of it as one curve with its fitted model in the same colour.
+std::vector<ReportPlot> channel_plots(const PlotContext& context, const nlohmann::json& channels) {
+  constexpr SensorKind kSensors[] = {SensorKind::kGyro, SensorKind::kAccelerometer, SensorKind::kOther};
+  const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  std::vector<ReportPlot> plots;
+  for (const SensorKind sensor : kSensors) {
+    std::optional<Panel> panel;
+    std::string panel_unit;
+    std::string captions;
+    std::size_t axis = 0;
+    for (const auto& [name, result] : channels.items()) {
+      const std::string input_unit = result.value("input_unit", "");
+      SensorKind kind = SensorKind::kOther;
+      try {
+        kind = sensor_kind_of(input_unit);
+      } catch (const Error&) {
+      }
+      const auto [curve, estimator] = drawn_curve(result);
+      const Column tau = number_array(result.value("tau", nlohmann::json::array()));
+      if (kind != sensor || curve == nullptr || tau.empty()) continue;
+      const std::string unit = curve->value("unit", input_unit);
+      if (!panel) {
+        panel = allan_panel(context, unit);
+        panel_unit = unit;
+      }
+      // Axes of one sensor in different units are drawn in the first one's.
+      const std::optional<double> scale = converted(1.0, unit, panel_unit);
+      if (!scale) continue;
+      const std::string colour = colours[axis++ % std::size(colours)];
+      Series measured = measured_series(result, *curve, tau, name + " " + estimator);
+      for (auto* values : {&measured.y, &measured.y_low, &measured.y_high}) {
+        for (double& v : *values) v *= *scale;
+      }
+      measured.color = colour;
+      panel->series.push_back(std::move(measured));
+      for (Series& line : model_series(context, result, tau, panel_unit, false)) {
+        line.name = name + " " + context.labels("ui.noise_model");
+        line.color = colour;
+        line.line_width = 1.2;
+        panel->series.push_back(std::move(line));
+      }
+      const std::string fit = fit_caption(context, result);
+      if (!fit.empty()) captions += fmt::format(". {}: {}", name, fit);
+    }
+    if (!panel) continue;
+    fit_y_range(*panel);
+    ReportPlot plot;
+    plot.caption = context.labels(sensor == SensorKind::kAccelerometer ? "ui.accelerometer" : "ui.gyro") + ", " +
+                   context.labels("axis.allan_deviation") + kCaption + captions;
+    if (sensor == SensorKind::kOther) plot.caption = context.labels("axis.allan_deviation") + kCaption + captions;
+    plot.plot.panels.push_back(std::move(*panel));
+    plots.push_back(std::move(plot));
+  }
+  return plots;
+}
+
+std::vector<ReportPlot> allan_plots(const PlotContext& context) {
+  const nlohmann::json& result = context.result;
+  if (const auto* channels = member(result, "channels"); channels != nullptr && channels->is_object()) {
+    return channel_plots(context, *channels);
+  }
+  const Column tau = number_array(result.value("tau", nlohmann::json::array()));
+  const auto [curve, estimator] = drawn_curve(result);
+  if (curve == nullptr || tau.empty()) return {};
+  const std::string unit = curve->value("unit", result.value("input_unit", ""));
+  Panel panel = allan_panel(context, unit);
+  Series measured = measured_series(result, *curve, tau, estimator.empty() ? "" : estimator + " " + context.labels("ui.data"));
+  measured.color = "#1f77b4";
+  panel.series.push_back(std::move(measured));
+  fit_y_range(panel);
+  for (Series& line : model_series(context, result, tau, unit, true)) panel.series.push_back(std::move(line));
+  ReportPlot plot;
+  plot.caption = context.labels("axis.allan_deviation") + kCaption;
+  if (const std::string fit = fit_caption(context, result); !fit.empty()) plot.caption += ". " + fit;
   plot.plot.panels.push_back(std::move(panel));
   return {std::move(plot)};
 }

@@ -217,6 +217,12 @@ sample_rate_hz = 5
 "/noise/bias_instability" = { max = 0.01, unit = "deg/h" }
 
 [[test]]
+kind = "imu_noise"
+name = "imu_noise"              # a six-axis MEMS IMU at rest: every axis in one pass, gyros and accelerometers
+hours = 6
+sample_rate_hz = 10
+
+[[test]]
 kind = "centrifuge"
 name = "centrifuge"
 g_levels = [10, 20]

@@ -24,5 +24,6 @@ void generate_polarity(campaign::PlanTable& test, const std::string& name, Lab& 
 void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_temperature_model(campaign::PlanTable& test, const std::string& name, Lab& lab);
+void generate_imu_noise(campaign::PlanTable& test, const std::string& name, Lab& lab);
 
 }  // namespace inertest::sim

@@ -37,6 +37,7 @@ const std::map<std::string, TestGenerator, std::less<>>& generators() {
       {"threshold", generate_threshold},
       {"resolution", generate_resolution},
       {"temperature_model", generate_temperature_model},
+      {"imu_noise", generate_imu_noise},
   };
   return table;
 }

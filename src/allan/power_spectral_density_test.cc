@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <thread>
@@ -361,6 +362,142 @@ TEST(WelchPsd, PureNoiseShowsNoMoreFalseAlarmsThanTheThresholdPromises) {
     }
     EXPECT_LE(seeds_with_alarm, probability < 0.01 ? 0 : 21) << probability;
   }
+}
+
+// The JSON carries the band means (not every bin), in the units the header states.
+TEST(WelchPsd, JsonCarriesTheBandsTheNoiseTermsAndThePeaks) {
+  const Simulated s = white_and_random_walk();
+  std::vector<double> x = simulated_rate(s.parameters, s.dt, s.samples, 5);
+  for (std::size_t n = 0; n < x.size(); ++n) x[n] += std::sin(2.0 * kPi * 2.5 * static_cast<double>(n) * s.dt);
+  WelchOptions options;
+  options.sample_rate_hz = 1.0 / s.dt;
+  options.window = parse_spectral_window("blackman-harris");
+  const PowerSpectralDensity psd = welch_power_spectral_density(x, "deg/h", options);
+  const nlohmann::json json = psd.to_json();
+  EXPECT_EQ(json["window"], "blackman-harris");
+  EXPECT_EQ(json["segment_length"], 2048);
+  EXPECT_EQ(json["segment_count"], 31);
+  EXPECT_EQ(json["overlap"], 0.5);
+  EXPECT_DOUBLE_EQ(json["resolution_hz"].get<double>(), 10.0 / 2048);
+  EXPECT_EQ(json["bands_per_decade"], kBandsPerDecade);
+  const auto bands = json["band_frequency_hz"].size();
+  EXPECT_GT(bands, 40U);
+  EXPECT_LT(bands, 80U);
+  EXPECT_EQ(json["band_edf"].size(), bands);
+  EXPECT_EQ(json["density"]["unit"], "(deg/h)^2/Hz");
+  EXPECT_EQ(json["density"]["values"].size(), bands);
+  EXPECT_EQ(json["amplitude_spectral_density"]["unit"], "(deg/h)/sqrt(Hz)");
+  EXPECT_DOUBLE_EQ(json["amplitude_spectral_density"]["values"][3].get<double>(),
+                   std::sqrt(json["density"]["values"][3].get<double>()));
+  EXPECT_EQ(json["noise_terms"]["angle_random_walk"]["unit"], "deg/sqrt(h)");
+  EXPECT_EQ(json["noise_terms"]["rate_random_walk"]["unit"], "deg/h/sqrt(h)");
+  EXPECT_EQ(json["noise_terms"]["fit"]["verdict"], "consistent");
+  ASSERT_EQ(json["peaks"].size(), 1U);
+  EXPECT_EQ(json["peaks"][0]["frequency"]["unit"], "Hz");
+  EXPECT_NEAR(json["peaks"][0]["frequency"]["value"].get<double>(), 2.5, psd.resolution_hz);
+  EXPECT_EQ(json["peaks"][0]["amplitude"]["unit"], "deg/h");
+  EXPECT_EQ(json["peak_search"]["false_alarm_probability"], 1e-3);
+  EXPECT_TRUE(json["warnings"].empty());
+}
+
+NoiseTerms allan_terms(double n, double n_sigma, double k, double k_sigma) {
+  NoiseTerms terms;
+  terms.identified = {false, true, false, true, false};
+  terms.angle_random_walk = Figure{n, "deg/sqrt(h)", n_sigma};
+  terms.rate_random_walk = Figure{k, "deg/h/sqrt(h)", k_sigma};
+  return terms;
+}
+
+// One warning per term both identify that differs by more than 3 combined sigma, none otherwise; a
+// term only one fit identifies is not compared. The PSD's figure is converted to the Allan unit.
+TEST(WelchPsd, ComparisonWarnsOnlyBeyondThreeCombinedSigma) {
+  SpectralNoiseTerms psd;
+  psd.identified = {false, true, true, true, false};
+  psd.angle_random_walk = Figure{0.5 * 60.0, "(deg/h)*sqrt(s)", 0.03 * 60.0};  // 0.5 +- 0.03 deg/sqrt(h)
+  psd.bias_instability = Figure{3.0, "deg/h", 0.1};
+  psd.rate_random_walk = Figure{4.0, "deg/h/sqrt(h)", 0.3};
+  EXPECT_TRUE(compare_noise_terms(allan_terms(0.55, 0.04, 4.5, 0.5), psd).empty());  // 1.0 and 0.86 sigma
+  const std::vector<std::string> warnings = compare_noise_terms(allan_terms(0.7, 0.04, 4.5, 0.5), psd);
+  ASSERT_EQ(warnings.size(), 1U);  // N: 0.2 / 0.05 = 4 sigma
+  EXPECT_THAT(warnings[0], ::testing::HasSubstr("angle random walk N"));
+  EXPECT_THAT(warnings[0], ::testing::HasSubstr("4.0 combined sigma"));
+  EXPECT_THAT(warnings[0], ::testing::HasSubstr("0.5 +- 0.03 deg/sqrt(h)"));
+  EXPECT_EQ(compare_noise_terms(allan_terms(0.7, 0.04, 6.0, 0.5), psd).size(), 2U);  // and K: 2 / 0.58 = 3.4
+  psd.identified[1] = false;
+  EXPECT_EQ(compare_noise_terms(allan_terms(0.7, 0.04, 4.5, 0.5), psd).size(), 0U);
+}
+
+TEST(WelchPsd, BadOptionsAndSamplesSayWhatIsWrong) {
+  const std::vector<double> x(64, 1.0);
+  const auto message = [&](const WelchOptions& options, std::span<const double> samples) {
+    try {
+      welch_power_spectral_density(samples, "V", options);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  WelchOptions options;
+  options.sample_rate_hz = 10.0;
+  options.segment_length = 65;
+  EXPECT_THAT(message(options, x), ::testing::HasSubstr("segment length 65 is longer than the record (64 samples)"));
+  options.segment_length = 0;
+  for (double overlap : {1.0, -0.1, std::nan("")}) {
+    options.overlap = overlap;
+    EXPECT_THAT(message(options, x), ::testing::HasSubstr("overlap must lie in [0, 1)"));
+  }
+  options.overlap = 0.5;
+  for (double rate : {0.0, -10.0, std::numeric_limits<double>::infinity()}) {
+    options.sample_rate_hz = rate;
+    EXPECT_THAT(message(options, x), ::testing::HasSubstr("sample rate must be positive and finite"));
+  }
+  options.sample_rate_hz = 10.0;
+  options.false_alarm_probability = 1.0;
+  EXPECT_THAT(message(options, x), ::testing::HasSubstr("false-alarm probability"));
+  options.false_alarm_probability = 1e-3;
+  std::vector<double> with_nan = x;
+  with_nan[17] = std::nan("");
+  EXPECT_THAT(message(options, with_nan), ::testing::HasSubstr("sample 18 is not finite"));
+  EXPECT_THAT(message(options, std::span(x).first(10)), ::testing::HasSubstr("at least 16 samples (got 10)"));
+  EXPECT_THROW(parse_spectral_window("hanning"), Error);
+  try {
+    parse_spectral_window("kaiser");
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("unknown spectral window 'kaiser'"));
+  }
+  for (const char* name : {"rectangular", "hann", "hamming", "blackman-harris"}) {
+    EXPECT_EQ(spectral_window_name(parse_spectral_window(name)), name);
+  }
+  // A constant record: a PSD of zeros, no component, and no fit.
+  const PowerSpectralDensity constant = welch_power_spectral_density(x, "V", options);
+  EXPECT_TRUE(constant.peaks.empty());
+  EXPECT_EQ(constant.noise.verdict, "not fitted");
+}
+
+// FFTW's planner is called under a mutex: PSDs computed on several threads at once equal the one
+// computed alone.
+TEST(WelchPsd, ThreadsComputeTheSameDensity) {
+  const Simulated s = white_and_random_walk();
+  const std::vector<double> x = simulated_rate(s.parameters, s.dt, 1 << 13, 3);
+  WelchOptions options;
+  options.sample_rate_hz = 10.0;
+  const PowerSpectralDensity alone = welch_power_spectral_density(x, "deg/h", options);
+  std::vector<PowerSpectralDensity> results(4);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < results.size(); ++t) {
+    threads.emplace_back([&, t] {
+      WelchOptions own = options;
+      own.segment_length = 256 << (t % 2);  // plans of two sizes at once
+      results[t] = welch_power_spectral_density(x, "deg/h", own);
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (std::size_t t = 0; t < results.size(); ++t) {
+    WelchOptions own = options;
+    own.segment_length = 256 << (t % 2);
+    EXPECT_EQ(results[t].density, welch_power_spectral_density(x, "deg/h", own).density) << t;
+  }
+  EXPECT_EQ(alone.segment_length, 512U);
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ using detail::units_for;
 
 constexpr double kPi = std::numbers::pi;
 constexpr std::size_t kShortestRecord = 16;
+constexpr std::size_t kShortestAutomaticSegment = 16;
 constexpr std::size_t kLongestAutomaticSegment = std::size_t{1} << 20;
 constexpr int kTerms = 5;  // Q, N, B, K, R: index p + 2 of NoiseTerms' A_p
 constexpr int kWeightIterations = 3;
@@ -128,7 +129,7 @@ std::size_t main_lobe_half_width(SpectralWindow window) {
 
 std::size_t automatic_segment_length(std::size_t samples) {
   const std::size_t length = std::bit_floor(samples / 16);
-  if (length < kShortestRecord) return std::min(kShortestRecord, samples);
+  if (length < kShortestAutomaticSegment) return std::min(kShortestAutomaticSegment, samples);
   return std::min(length, kLongestAutomaticSegment);
 }
 
@@ -262,7 +263,7 @@ void find_peaks(PowerSpectralDensity& psd, const std::array<double, kLargestBinC
     for (std::size_t k = run_first; k <= run_last; ++k) {
       if (psd.density[k] / floor[k] > psd.density[highest] / floor[highest]) highest = k;
     }
-    const std::size_t low = std::max(std::min(run_first, highest - std::min(highest - 1, lobe)), std::size_t{1});
+    const std::size_t low = std::min(run_first, highest - std::min(highest - 1, lobe));
     const std::size_t high = std::min(std::max(run_last, highest + lobe), bins - 2);
     // The floor of the highest bin, where the bins at the component's edges have none of their own.
     const auto floor_at = [&](std::size_t k) { return floor[k] > 0.0 ? floor[k] : floor[highest]; };
@@ -300,10 +301,25 @@ void find_peaks(PowerSpectralDensity& psd, const std::array<double, kLargestBinC
             [](const PeriodicComponent& a, const PeriodicComponent& b) { return a.amplitude.value > b.amplitude.value; });
 }
 
-// The terms of the model per unit coefficient (the header): S1(f) = sum_j c_j g_j(f).
+// The terms of the model per unit coefficient, as the record sees them (the header): S1(f) =
+// sum_j c_j g_j(f), each continuous term averaged over the sample interval and aliased. Q's is the
+// discrete form, N's exactly 2 (sum_m sinc^2(pi (x + m)) = 1); B's, K's and R's alias sums are cut
+// at |m| = kAliases, which leaves out less than 1e-3 of B's at the Nyquist frequency.
+constexpr int kAliases = 16;
+
 std::array<double, kTerms> model_terms(double f, double tau0) {
-  const double w = 2.0 * kPi * f;
-  return {2.0 * w * w * tau0, 2.0, 2.0 / w, 2.0 / (w * w), 2.0 / (w * w * w)};
+  const double s = std::sin(kPi * f * tau0);
+  std::array<double, kTerms> g = {8.0 * s * s / tau0, 2.0, 0.0, 0.0, 0.0};
+  for (int m = -kAliases; m <= kAliases; ++m) {
+    const double alias = std::abs(f + m / tau0);
+    const double w = 2.0 * kPi * alias;
+    const double x = kPi * alias * tau0;
+    const double sinc_squared = std::pow(std::sin(x) / x, 2);
+    g[2] += sinc_squared * 2.0 / w;
+    g[3] += sinc_squared * 2.0 / (w * w);
+    g[4] += sinc_squared * 2.0 / (w * w * w);
+  }
+  return g;
 }
 
 std::vector<Eigen::Index> free_columns(const std::vector<bool>& free) {
@@ -368,21 +384,28 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
   // The correlation of the band means: Cov(a, b) = (2 / nu) S_a S_b sum_{i in a, j in b} |c(i - j)|^2
   // / (M_a M_b) (the header; its diagonal is 2 S_a^2 / edf_a). Bins of neighbouring bands correlate
   // too: at low frequency, where each band is a bin, Hann's neighbours by |c(1)|^2 = 4/9.
+  // Summed over the pairs of bins at most kLargestBinCorrelation apart, found through each bin's band.
+  constexpr auto kNoBand = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> band_of(bins, kNoBand);
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    for (std::size_t k : bands[b]) band_of[k] = b;
+  }
   Eigen::MatrixXd overlap = Eigen::MatrixXd::Zero(rows, rows);
-  for (Eigen::Index a = 0; a < rows; ++a) {
-    for (Eigen::Index b = a; b < rows; ++b) {
-      const std::vector<std::size_t>& band_a = bands[static_cast<std::size_t>(a)];
-      const std::vector<std::size_t>& band_b = bands[static_cast<std::size_t>(b)];
-      if (band_b.front() > band_a.back() + kLargestBinCorrelation) break;
-      double sum = 0.0;
-      for (std::size_t i : band_a) {
-        for (std::size_t j : band_b) {
-          const std::size_t d = i > j ? i - j : j - i;
-          if (d <= kLargestBinCorrelation) sum += correlation[d];
-        }
+  for (std::size_t i = 0; i < bins; ++i) {
+    if (band_of[i] == kNoBand) continue;
+    for (std::size_t j = i >= kLargestBinCorrelation ? i - kLargestBinCorrelation : 0;
+         j < bins && j <= i + kLargestBinCorrelation; ++j) {
+      if (band_of[j] != kNoBand) {
+        overlap(static_cast<Eigen::Index>(band_of[i]), static_cast<Eigen::Index>(band_of[j])) +=
+            correlation[i > j ? i - j : j - i];
       }
-      overlap(a, b) = overlap(b, a) =
-          2.0 / psd.edf[1] * sum / (static_cast<double>(band_a.size()) * static_cast<double>(band_b.size()));
+    }
+  }
+  for (Eigen::Index a = 0; a < rows; ++a) {
+    for (Eigen::Index b = 0; b < rows; ++b) {
+      overlap(a, b) *= 2.0 / psd.edf[1] /
+                       (static_cast<double>(bands[static_cast<std::size_t>(a)].size()) *
+                        static_cast<double>(bands[static_cast<std::size_t>(b)].size()));
     }
   }
   if (!(observed.minCoeff() > 0.0)) {

@@ -38,6 +38,12 @@
 // B; rate random walk K; rate ramp R). The worked consequence: white rate noise of N reads a flat
 // S1 = 2 N^2, so N = sqrt(S1 / 2), and its one-sided ASD is sqrt(2) N, not N. For white samples of
 // standard deviation sigma at fs: S1 = 2 sigma^2 / fs and N = sigma / sqrt(fs).
+// The record holds the mean rate over each sample interval tau0 (the angle increments over tau0, from
+// which the Allan variance is computed): what it shows of a term S(f) of the rate is that averaged
+// and aliased, sum_m S(|f + m fs|) sinc^2(pi (f + m fs) tau0). At low frequency that is S(f); near the
+// Nyquist frequency it is not (a 1/f term reads 12 % lower there), and the fit uses it: white noise
+// stays 2 N^2, quantization (white angle noise of Q, differenced) reads 2 Q^2 4 sin^2(pi f tau0) /
+// tau0, the (2 pi f)^2 tau0 Q^2 form times sinc^2(pi f tau0).
 // The fit is a generalised non-negative least squares (Lawson & Hanson, as the Allan fit,
 // noise_terms.h) on the PSD averaged in log-spaced bands (kBandsPerDecade per decade; each band's
 // design row is the mean of the terms over its bins), whitened by the covariance of the band means,

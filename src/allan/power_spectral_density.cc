@@ -245,7 +245,7 @@ void find_peaks(PowerSpectralDensity& psd, const std::array<double, kLargestBinC
       const boost::math::fisher_f_distribution<double> ratio(nu, floor_edf[k]);
       threshold = threshold_by_half_width.emplace(m, boost::math::quantile(boost::math::complement(ratio, bin_probability))).first;
     }
-    above[k] = psd.density[k] > threshold->second * floor[k];
+    above[k] = floor[k] > 0.0 && psd.density[k] > threshold->second * floor[k];
   }
   // Runs of bins above the threshold, closer than a main lobe, are one component.
   std::vector<std::pair<std::size_t, std::size_t>> runs;

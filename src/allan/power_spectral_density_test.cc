@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "inertest/allan/allan.h"
 #include "inertest/core/error.h"
 #include "inertest/sim/noise.h"
 #include "inertest/sim/random.h"
@@ -532,6 +533,16 @@ TEST(WelchPsd, RecordWithKnownNoiseAndASinusoidGivesEachTermBack) {
   EXPECT_NEAR(psd.peaks[0].frequency.value, f0, psd.resolution_hz);
   // The sample is the value at n dt, not the interval's mean: the amplitude is 0.5 itself.
   EXPECT_NEAR_RELATIVE(psd.peaks[0].amplitude.value, amplitude, 0.05);
+  // The Allan fit of the same record agrees within 3 combined sigma: no warning.
+  AllanOptions allan_options;
+  allan_options.sample_rate_hz = 1.0 / dt;
+  allan_options.estimators = EstimatorSet::parse("oadev");
+  allan_options.worker_count = 1;
+  const AllanResult allan = allan_variance(x, allan_options);
+  ASSERT_TRUE(allan.noise.has_value());
+  EXPECT_THAT(compare_noise_terms(*allan.noise, terms), ::testing::IsEmpty());
+  // Its units are those of the PSD's figures.
+  EXPECT_EQ(allan.noise->bias_instability.unit, terms.bias_instability.unit);
 }
 
 }  // namespace

@@ -28,22 +28,24 @@
 // the two corrections taken as separable).
 //
 // Noise terms. IEEE Std 952-1997 Annex C gives, next to each term's Allan variance (C.1, eqs.
-// C.2-C.12, the clauses include/inertest/sim/noise.h cites: Q C.2, N C.3, B C.5, K C.7, R C.8), its
+// C.2-C.12, numbered as the simulator cites them, src/sim/noise.cc: Q C.2, N C.3, B C.5, K C.7,
+// R C.8), its
 // rate PSD S2(f), TWO-sided (eq. C.1: sigma^2 = 4 int_0^inf S2 sin^4(pi f tau) / (pi f tau)^2 df):
 // quantization (2 pi f)^2 tau0 Q^2, white rate N^2, bias instability (B^2 / 2 pi) / f, rate random
-// walk (K / 2 pi)^2 / f^2, rate ramp R^2 / (2 pi f)^3. The Welch PSD is ONE-sided, S1 = 2 S2. The
-// model fitted is
+// walk (K / 2 pi)^2 / f^2, rate ramp R^2 / (2 pi f)^3. The Welch PSD is ONE-sided, S1 = 2 S2:
 //   S1(f) = 2 [ (2 pi f)^2 tau0 Q^2 + N^2 + (B^2 / 2 pi) / f + (K / 2 pi)^2 / f^2 + R^2 / (2 pi f)^3 ]
 // (quantization Q with tau0 = 1 / fs, valid below 1 / (2 tau0); angle random walk N; bias instability
 // B; rate random walk K; rate ramp R). The worked consequence: white rate noise of N reads a flat
 // S1 = 2 N^2, so N = sqrt(S1 / 2), and its one-sided ASD is sqrt(2) N, not N. For white samples of
 // standard deviation sigma at fs: S1 = 2 sigma^2 / fs and N = sigma / sqrt(fs).
+//
 // The record holds the mean rate over each sample interval tau0 (the angle increments over tau0, from
 // which the Allan variance is computed): what it shows of a term S(f) of the rate is that averaged
 // and aliased, sum_m S(|f + m fs|) sinc^2(pi (f + m fs) tau0). At low frequency that is S(f); near the
 // Nyquist frequency it is not (a 1/f term reads 12 % lower there), and the fit uses it: white noise
 // stays 2 N^2, quantization (white angle noise of Q, differenced) reads 2 Q^2 4 sin^2(pi f tau0) /
 // tau0, the (2 pi f)^2 tau0 Q^2 form times sinc^2(pi f tau0).
+//
 // The fit is a generalised non-negative least squares (Lawson & Hanson, as the Allan fit,
 // noise_terms.h) on the PSD averaged in log-spaced bands (kBandsPerDecade per decade; each band's
 // design row is the mean of the terms over its bins), whitened by the covariance of the band means,
@@ -56,16 +58,17 @@
 // uncertainties of zero. Each coefficient's 1-sigma uncertainty is from the covariance
 // (J^T V^-1 J)^-1, scaled by the reduced chi-squared when that exceeds 1; a coefficient held at zero
 // is "not identified", with the upper bound max(0, a) + 2 s of its unconstrained estimate a and
-// uncertainty s. The figures have the names
-// and units of NoiseTerms: deg/sqrt(h), deg/h, deg/h/sqrt(h) (and arcsec, deg/h/h) for an angular-rate
-// input unit; (U)*sqrt(s), U, (U)/sqrt(s) (and (U)*s, (U)/s) otherwise.
+// uncertainty s. The figures have the names and units of NoiseTerms: deg/sqrt(h), deg/h,
+// deg/h/sqrt(h) (and arcsec, deg/h/h) for an angular-rate input unit; (U)*sqrt(s), U, (U)/sqrt(s)
+// (and (U)*s, (U)/s) otherwise.
 //
 // Periodic components: a bin k whose S1 exceeds t times the local noise floor. The floor is the
 // median of the bins k-m..k+m (m up to kFloorHalfWidth beyond the guard), leaving out the guard
 // |d| <= main-lobe half-width + 1 around k, divided by the median/mean ratio of a chi-squared of the
 // bin's edf nu. The threshold t is the 1 - p quantile of the F distribution F(nu, nu_f) of a bin over
 // an estimated floor (nu_f: the edf of the mean of the floor's bins, divided by pi / 2, the variance
-// of a median relative to a mean), with p = 1 - (1 - P_FA)^(1/M) over the M bins searched (Sidak),
+// of a median relative to a mean), with p = 1 - (1 - P_FA)^(1/M) over the M bins searched (Sidak,
+// "Rectangular confidence regions for the means of multivariate normal distributions", JASA 62, 1967),
 // so that pure noise shows a component with probability at most P_FA over the whole spectrum
 // (false_alarm_probability; neighbouring bins being correlated, somewhat less). Bins above the
 // threshold closer than a main lobe are one component; it covers the main lobe around its highest

@@ -383,6 +383,25 @@ TEST(WelchPsd, QuantizationNoiseGivesQ) {
   }
 }
 
+// A rate ramp of 0.1 deg/h/s (360 deg/h/h) on white noise: R is read but understated, and a warning
+// says so; the comparison with the Allan fit leaves R out.
+TEST(WelchPsd, RateRampIsFlaggedAndNotCompared) {
+  sim::Random random(3);
+  std::vector<double> x(1 << 15);
+  for (std::size_t n = 0; n < x.size(); ++n) x[n] = std::sqrt(10.0) * random.normal() + 0.1 * static_cast<double>(n) * 0.1;
+  WelchOptions options;
+  options.sample_rate_hz = 10.0;
+  const PowerSpectralDensity psd = welch_power_spectral_density(x, "deg/h", options);
+  ASSERT_TRUE(psd.noise.identified[4]);
+  EXPECT_LT(psd.noise.rate_ramp.value, 360.0);
+  EXPECT_THAT(psd.warnings, ::testing::Contains(::testing::HasSubstr("understates a deterministic ramp")));
+  EXPECT_TRUE(covers(psd.noise.angle_random_walk, 1.0 / 60.0, 2.0));
+  NoiseTerms allan;
+  allan.identified = {false, false, false, false, true};
+  allan.rate_ramp = Figure{360.0, "deg/h/h", 1.0};
+  EXPECT_THAT(compare_noise_terms(allan, psd.noise), ::testing::IsEmpty());
+}
+
 // The JSON carries the band means (not every bin), in the units the header states.
 TEST(WelchPsd, JsonCarriesTheBandsTheNoiseTermsAndThePeaks) {
   const Simulated s = white_and_random_walk();

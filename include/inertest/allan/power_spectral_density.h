@@ -61,6 +61,11 @@
 // uncertainty s. The figures have the names and units of NoiseTerms: deg/sqrt(h), deg/h,
 // deg/h/sqrt(h) (and arcsec, deg/h/h) for an angular-rate input unit; (U)*sqrt(s), U, (U)/sqrt(s)
 // (and (U)*s, (U)/s) otherwise.
+// The rate ramp is deterministic: the form R^2 / (2 pi f)^3 does not describe what a ramp leaves in a
+// Welch PSD whose segments have their means removed (and Hann confines most of the remaining trend to
+// the bins the fit leaves out). R stays in the model so that a ramp's leakage does not bias K or B,
+// but its figure understates a ramp (a simulated 360 deg/h/h on white noise read 146 +- 19): a
+// warning says so when it is identified, and compare_noise_terms does not compare it.
 //
 // Periodic components: a bin k whose S1 exceeds t times the local noise floor. The floor is the
 // median of the bins k-m..k+m (m up to kFloorHalfWidth beyond the guard), leaving out the guard
@@ -195,9 +200,9 @@ struct PowerSpectralDensity {
 PowerSpectralDensity welch_power_spectral_density(std::span<const double> samples, const std::string& unit,
                                                   const WelchOptions& options);
 
-// One warning per term that both fits identify and whose figures differ by more than
-// kDisagreementSigma combined 1-sigma uncertainties sqrt(s_allan^2 + s_psd^2), saying by how many;
-// none otherwise.
+// One warning per term (Q, N, B, K; not R, see above) that both fits identify and whose figures
+// differ by more than kDisagreementSigma combined 1-sigma uncertainties sqrt(s_allan^2 + s_psd^2),
+// saying by how many; none otherwise.
 std::vector<std::string> compare_noise_terms(const NoiseTerms& allan, const SpectralNoiseTerms& psd);
 
 inline constexpr std::size_t kBandsPerDecade = 20;

@@ -381,6 +381,10 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
     observed(b) = mean.value() / m;
     for (int j = 0; j < kTerms; ++j) design(b, j) = row[static_cast<std::size_t>(j)] / m;
   }
+  if (!(observed.minCoeff() > 0.0)) {
+    not_fitted("a band of zero power (a constant record?)");
+    return;
+  }
   // The correlation of the band means: Cov(a, b) = (2 / nu) S_a S_b sum_{i in a, j in b} |c(i - j)|^2
   // / (M_a M_b) (the header; its diagonal is 2 S_a^2 / edf_a). Bins of neighbouring bands correlate
   // too: at low frequency, where each band is a bin, Hann's neighbours by |c(1)|^2 = 4/9.
@@ -407,10 +411,6 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
                        (static_cast<double>(bands[static_cast<std::size_t>(a)].size()) *
                         static_cast<double>(bands[static_cast<std::size_t>(b)].size()));
     }
-  }
-  if (!(observed.minCoeff() > 0.0)) {
-    not_fitted("a band of zero power (a constant record?)");
-    return;
   }
   terms.frequency_min_hz = psd.frequency_hz[bands.front().front()];
   terms.frequency_max_hz = psd.frequency_hz[bands.back().back()];

@@ -16,5 +16,7 @@ enable_language(C)
 find_package(HDF5 REQUIRED COMPONENTS C)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
+# FFTW (double precision) for the Welch power spectral density of the Allan analysis (issue 19).
+pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
 # zlib: the check of a compressed MAT variable's headers before matio reads it.
 find_package(ZLIB REQUIRED)

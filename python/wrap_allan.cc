@@ -216,11 +216,11 @@ void wrap_allan(py::module_& module) {
              "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
              "fit_range"_a = py::none(), "columns"_a = py::none(), "export"_a = py::none(),
              (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
-                          "allan command; columns: several channels in one pass (an AllanChannelsResult), as --columns.\n"
                           "allan command: format 'auto' (.mat, HDF5, TDMS by magic bytes, else text), 'csv', 'f64' or\n"
                           "'f32' (raw little-endian), 'mat', 'hdf5', 'tdms'; column: header name or 1-based index, or\n"
                           "the channel ('group/channel', 'struct.field'). A sample_rate_hz that contradicts the rate the\n"
-                          "file stores is an error.\n") +
+                          "file stores is an error. columns: several channels in one pass (an AllanChannelsResult), as\n"
+                          "the CLI's --columns.\n") +
               options_doc)
                  .c_str());
   module.def(

@@ -9,99 +9,19 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "allan/noise_figures.h"
+#include "numerics/non_negative_least_squares.h"
 
 namespace inertest {
 namespace {
 
+using detail::coefficient_covariance;
+using detail::figure_of;
+using detail::FigureUnits;
+using detail::solve_scaled_non_negative;
+using detail::units_for;
+
 constexpr int kTerms = 5;  // p = -2..2
-
-// The unit a figure is computed in from the input unit U, and the unit it is reported in.
-struct FigureUnits {
-  std::string computed;
-  std::string reported;
-};
-
-// The figure of the term p (index p + 2): computed in U times the power of s its coefficient A_p
-// (U^2 s^p) gives under the root, reported in the units of IEEE Std 952-1997 C.1 for a gyro and of
-// IEEE Std 1293-1998 (velocity in m/s, bias in ug) for an accelerometer.
-FigureUnits units_for(const std::string& input_unit, int p) {
-  static constexpr std::array<std::string_view, kTerms> kSuffix = {"*s", "*sqrt(s)", "", "/sqrt(s)", "/s"};
-  static constexpr std::array<std::string_view, kTerms> kGyro = {"arcsec", "deg/sqrt(h)", "deg/h", "deg/h/sqrt(h)",
-                                                                 "deg/h/h"};
-  static constexpr std::array<std::string_view, kTerms> kAccelerometer = {"m/s", "m/s/sqrt(h)", "ug",
-                                                                          "m/s/h/sqrt(h)", "m/s/h/h"};
-  const auto k = static_cast<std::size_t>(p + 2);
-  const std::string computed = kSuffix[k].empty() ? input_unit : "(" + input_unit + ")" + std::string(kSuffix[k]);
-  switch (sensor_kind_of(input_unit)) {
-    case SensorKind::kGyro: return {computed, std::string(kGyro[k])};
-    case SensorKind::kAccelerometer: return {computed, std::string(kAccelerometer[k])};
-    case SensorKind::kOther: break;
-  }
-  return {computed, computed};
-}
-
-// value = sqrt(c A); 1-sigma by first order, or the bound's figure for A = 0.
-Figure figure_of(double coefficient, double uncertainty, double c, const FigureUnits& units) {
-  Figure figure;
-  figure.unit = units.computed;
-  figure.value = std::sqrt(c * std::max(0.0, coefficient));
-  if (std::isfinite(uncertainty)) {
-    figure.uncertainty = coefficient > 0.0 ? std::sqrt(c) * uncertainty / (2.0 * std::sqrt(coefficient))
-                                           : std::sqrt(c * uncertainty);
-  }
-  return figure.in(units.reported);
-}
-
-// Lawson-Hanson NNLS: min ||A x - b|| subject to x >= 0. Returns x and the free set.
-Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
-                                           std::vector<bool>& free) {
-  const Eigen::Index n = a.cols();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  free.assign(static_cast<std::size_t>(n), false);
-  const double tolerance = 1e-12 * a.norm() * std::max(1.0, b.norm());
-  for (int outer = 0; outer < 3 * kTerms * kTerms; ++outer) {
-    const Eigen::VectorXd gradient = a.transpose() * (b - a * x);
-    Eigen::Index best = -1;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      if (!free[static_cast<std::size_t>(j)] && gradient(j) > tolerance && (best < 0 || gradient(j) > gradient(best))) {
-        best = j;
-      }
-    }
-    if (best < 0) break;
-    free[static_cast<std::size_t>(best)] = true;
-    for (int inner = 0; inner < 3 * kTerms; ++inner) {
-      std::vector<Eigen::Index> columns;
-      for (Eigen::Index j = 0; j < n; ++j) {
-        if (free[static_cast<std::size_t>(j)]) columns.push_back(j);
-      }
-      Eigen::MatrixXd sub(a.rows(), static_cast<Eigen::Index>(columns.size()));
-      for (std::size_t c = 0; c < columns.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = a.col(columns[c]);
-      const Eigen::VectorXd solution = sub.colPivHouseholderQr().solve(b);
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-      for (std::size_t c = 0; c < columns.size(); ++c) z(columns[c]) = solution(static_cast<Eigen::Index>(c));
-      bool feasible = true;
-      double step = 1.0;
-      for (Eigen::Index j : columns) {
-        if (z(j) <= 0.0) {
-          feasible = false;
-          step = std::min(step, x(j) / (x(j) - z(j)));
-        }
-      }
-      if (feasible) {
-        x = z;
-        break;
-      }
-      x += step * (z - x);
-      for (Eigen::Index j : columns) {
-        if (x(j) <= 1e-15 * std::max(1.0, x.cwiseAbs().maxCoeff())) {
-          x(j) = 0.0;
-          free[static_cast<std::size_t>(j)] = false;
-        }
-      }
-    }
-  }
-  return x;
-}
 
 void check_points(std::span<const double> tau_s, std::span<const double> values, std::span<const double> edf) {
   if (tau_s.size() != values.size() || tau_s.size() != edf.size()) throw Error("tau, values and edf differ in length");
@@ -257,17 +177,9 @@ struct Fit {
 // over many decades stay well conditioned.
 Coefficients solve_non_negative(const Eigen::MatrixXd& design, const Eigen::VectorXd& observed,
                                 const std::vector<bool>& allowed, std::vector<bool>& free) {
-  Eigen::MatrixXd scaled = design;
-  Eigen::VectorXd column_scale(kTerms);
-  for (int j = 0; j < kTerms; ++j) {
-    if (!allowed[static_cast<std::size_t>(j)]) scaled.col(j).setZero();  // held at zero: never enters
-    column_scale(j) = scaled.col(j).norm();
-    if (!(column_scale(j) > 0.0)) column_scale(j) = 1.0;
-    scaled.col(j) /= column_scale(j);
-  }
-  const Eigen::VectorXd x = non_negative_least_squares(scaled, observed, free);
+  const Eigen::VectorXd x = solve_scaled_non_negative(design, observed, allowed, free);
   Coefficients a{};
-  for (int j = 0; j < kTerms; ++j) a[static_cast<std::size_t>(j)] = x(j) / column_scale(j);
+  for (int j = 0; j < kTerms; ++j) a[static_cast<std::size_t>(j)] = x(j);
   return a;
 }
 
@@ -296,20 +208,6 @@ constexpr double kSignificance = 2.0;
 // Above this many points the covariance is not built (a dense grid, e.g. "all"; the cost grows as
 // the square): diagonal weights, and a warning that the uncertainties are understated.
 constexpr std::size_t kMostCorrelatedPoints = 64;
-
-// The covariance of the coefficients in `columns`, (J^T V^-1 J)^-1 on the whitened design.
-Eigen::MatrixXd coefficient_covariance(const Eigen::MatrixXd& whitened_design, const std::vector<Eigen::Index>& columns) {
-  Eigen::MatrixXd sub(whitened_design.rows(), static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t c = 0; c < columns.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = whitened_design.col(columns[c]);
-  // Scaled to unit columns for the inversion.
-  Eigen::VectorXd scale(sub.cols());
-  for (Eigen::Index c = 0; c < sub.cols(); ++c) {
-    scale(c) = sub.col(c).norm() > 0.0 ? sub.col(c).norm() : 1.0;
-    sub.col(c) /= scale(c);
-  }
-  const Eigen::MatrixXd inverse = (sub.transpose() * sub).completeOrthogonalDecomposition().pseudoInverse();
-  return scale.cwiseInverse().asDiagonal() * inverse * scale.cwiseInverse().asDiagonal();
-}
 
 std::vector<Eigen::Index> free_columns(const std::vector<bool>& free) {
   std::vector<Eigen::Index> columns;

@@ -47,10 +47,19 @@ std::optional<FitRange> fit_range_of(const FitRangeArgument& range) {
   return FitRange{range->first, range->second};
 }
 
+// psd: None, or the Welch window ('hann', ...) and segment length (0: automatic).
+using PsdArgument = std::optional<std::pair<std::string, std::size_t>>;
+
 AllanOptions allan_options(double sample_rate_hz, const std::string& input_unit, const Taus& taus,
                            const std::string& estimators, double scale, double confidence, std::size_t worker_count,
-                           const FitRangeArgument& fit_range) {
+                           const FitRangeArgument& fit_range, const PsdArgument& psd) {
   AllanOptions options;
+  if (psd) {
+    WelchOptions welch;
+    welch.window = parse_spectral_window(psd->first);
+    welch.segment_length = psd->second;
+    options.psd = welch;
+  }
   options.fit_range = fit_range_of(fit_range);
   options.sample_rate_hz = sample_rate_hz;
   options.input_unit = input_unit;
@@ -76,9 +85,9 @@ std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
     const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit, const Taus& taus,
     const std::string& estimators, double scale, double confidence, std::size_t worker_count,
     const FitRangeArgument& fit_range, const std::optional<std::vector<std::string>>& channels,
-    const ExportArgument& export_to) {
+    const ExportArgument& export_to, const PsdArgument& psd) {
   const AllanOptions common =
-      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range);
+      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range, psd);
   AllanChannels result;
   if (rate.ndim() == 1) {
     AllanOptions options = common;
@@ -122,10 +131,10 @@ std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_file(
     const std::string& path, double sample_rate_hz, const std::string& format, const std::optional<std::string>& column,
     const std::string& input_unit, const Taus& taus, const std::string& estimators, double scale, double confidence,
     std::size_t worker_count, const FitRangeArgument& fit_range, const std::optional<std::vector<std::string>>& columns,
-    const ExportArgument& export_to) {
+    const ExportArgument& export_to, const PsdArgument& psd) {
   const RateRecordSource source = rate_source(path, format, column);
   AllanOptions options =
-      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range);
+      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range, psd);
   AllanChannels result;
   if (!columns) {
     options.input_unit = input_unit;
@@ -183,6 +192,7 @@ void wrap_allan(py::module_& module) {
       "    # rate_random_walk, rate_ramp (Figures; identified False with an upper_bound when not measured),\n"
       "    # fit (GJB eq. 30: coefficients, reduced_chi_squared, verdict, fit_range), slope_method.\n"
       "    noise: Optional[Record]  # None when not fitted\n"
+      "    psd: Record  # only with psd=: the Welch PSD (band means), noise_terms, peaks (periodic components)\n"
       "    warnings: list[str]\n");
   bind_result<AllanChannelsTag>(
       module, "AllanChannelsResult",
@@ -202,19 +212,21 @@ void wrap_allan(py::module_& module) {
   module.def("allan_variance", &allan_of_samples, "rate"_a, py::kw_only(), "sample_rate_hz"_a,
              "input_unit"_a = "deg/h", "taus"_a = "octave", "estimators"_a = "all", "scale"_a = 1.0,
              "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2, "fit_range"_a = py::none(),
-             "channels"_a = py::none(), "export"_a = py::none(),
+             "channels"_a = py::none(), "export"_a = py::none(), "psd"_a = py::none(),
              (std::string("Allan deviations ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV of rate samples in memory (read in\n"
                           "place, no copy) with chi-squared bounds, and the noise terms Q, N, B, K, R.\n"
                           "A 2-D array holds one channel per column (an IMU's axes): the result is an\n"
                           "AllanChannelsResult, its channels named by `channels` (default '1', '2', ...) and input_unit\n"
                           "as the CLI's --input-unit ('deg/s,ax=m/s^2'). export: (format, path), format 'kalibr',\n"
-                          "'matlab', 'gnss-ins-sim' or 'json': the filter parameters, as the CLI's --export.\n") +
+                          "'matlab', 'gnss-ins-sim' or 'json': the filter parameters, as the CLI's --export. psd: (window,\n"
+                          "segment_length), e.g. ('hann', 0) for automatic segments: the Welch PSD beside the Allan\n"
+                          "variance, its noise terms and periodic components (the result's psd), as --psd.\n") +
               options_doc)
                  .c_str());
   module.def("allan_variance_of_file", &allan_of_file, "path"_a, py::kw_only(), "sample_rate_hz"_a,
              "format"_a = "auto", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
              "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
-             "fit_range"_a = py::none(), "columns"_a = py::none(), "export"_a = py::none(),
+             "fit_range"_a = py::none(), "columns"_a = py::none(), "export"_a = py::none(), "psd"_a = py::none(),
              (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
                           "allan command: format 'auto' (.mat, HDF5, TDMS by magic bytes, else text), 'csv', 'f64' or\n"
                           "'f32' (raw little-endian), 'mat', 'hdf5', 'tdms'; column: header name or 1-based index, or\n"

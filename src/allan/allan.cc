@@ -230,6 +230,25 @@ nlohmann::json noise_alphas(const std::vector<NoiseType>& types) {
   return alphas;
 }
 
+// The PSD of the scaled record, its warnings, and those of its comparison with the Allan fit.
+void add_power_spectral_density(AllanResult& result, std::span<const double> rate, const AllanOptions& options) {
+  WelchOptions welch = *options.psd;
+  welch.sample_rate_hz = options.sample_rate_hz;
+  std::vector<double> scaled;
+  if (options.scale != 1.0) {
+    scaled.reserve(rate.size());
+    for (double y : rate) scaled.push_back(y * options.scale);
+    rate = scaled;
+  }
+  result.psd = welch_power_spectral_density(rate, options.input_unit, welch);
+  for (const std::string& warning : result.psd->warnings) result.warnings.push_back("psd: " + warning);
+  if (result.noise) {
+    for (const std::string& warning : compare_noise_terms(*result.noise, result.psd->noise)) {
+      result.warnings.push_back(warning);
+    }
+  }
+}
+
 }  // namespace
 
 void AllanOptions::validate() const {
@@ -245,6 +264,11 @@ void AllanOptions::validate() const {
   NoiseFitOptions fit_options;
   fit_options.fit_range = fit_range;
   fit_options.validate();
+  if (psd) {
+    WelchOptions welch = *psd;
+    welch.sample_rate_hz = sample_rate_hz;
+    welch.validate();
+  }
 }
 
 AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options) {
@@ -261,7 +285,9 @@ AllanResult allan_variance(std::span<const double> rate, const AllanOptions& opt
     std::copy_n(rate.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
   });
   const double mean = offset + engine.phase_total() / static_cast<double>(rate.size());
-  return assemble(rate.size(), mean, sums, options);
+  AllanResult result = assemble(rate.size(), mean, sums, options);
+  if (options.psd) add_power_spectral_density(result, rate, options);
+  return result;
 }
 
 AllanResult allan_variance_of_file(const RateRecordSource& given_source, const AllanOptions& options,
@@ -274,6 +300,19 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
     // more than the 8 bytes a sample. Binary records stream once (below).
     if (progress) progress("reading " + source.path, 0.0);
     return allan_variance(read_text_rate_record(source), options);
+  }
+  if (options.psd) {
+    // Welch's segments need the samples at hand: the record is read into memory, 8 bytes a sample.
+    std::vector<double> samples;
+    read_rate_record(source, [&samples](std::span<const double> chunk) {
+      samples.insert(samples.end(), chunk.begin(), chunk.end());
+    });
+    if (const std::optional<ChannelRecordFormat> channel_format = channel_record_format_of(source.format)) {
+      const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *channel_format);
+      resolve_sample_rate(*record, record->find(source.column), options.sample_rate_hz);
+    }
+    if (samples.empty()) throw Error(SourceLocation{source.path, 0, 0}, "no data: the record is empty");
+    return allan_variance(samples, options);
   }
   // A record of named channels is opened once for both passes and the random reads of the second.
   std::unique_ptr<ChannelRecord> record;
@@ -384,6 +423,7 @@ nlohmann::json AllanResult::to_json() const {
   } else {
     json["noise"] = nullptr;
   }
+  if (psd) json["psd"] = psd->to_json();
   json["warnings"] = warnings;
   return json;
 }
@@ -412,7 +452,7 @@ std::string AllanResult::report() const {
     const auto term = [&](const std::string& name, const Figure& f, int p) {
       const auto k = static_cast<std::size_t>(p + 2);
       if (noise->identified[k]) return line(name, f);
-      return fmt::format("  {:<24} not identified (< {:.2g} {})\n", name, noise->upper_bounds[k]->value,
+      return fmt::format("  {:<28} not identified (< {:.2g} {})\n", name, noise->upper_bounds[k]->value,
                          noise->upper_bounds[k]->unit);
     };
     text += term(std::string(names[0].label), noise->quantization, -2);
@@ -426,11 +466,31 @@ std::string AllanResult::report() const {
   if (slopes) {
     text += "Slope read-off:\n";
     const auto reading = [&](const std::string& name, const SlopeReading& r) {
-      return r.figure ? line(name, *r.figure) : fmt::format("  {:<24} not identified (see the warnings)\n", name);
+      return r.figure ? line(name, *r.figure) : fmt::format("  {:<28} not identified (see the warnings)\n", name);
     };
     text += reading(std::string(names[1].label), slopes->angle_random_walk);
     text += reading(std::string(names[2].label), slopes->bias_instability);
     text += reading(std::string(names[3].label), slopes->rate_random_walk);
+  }
+  if (psd) {
+    text += fmt::format("Power spectral density (Welch, {} window, {} segments of {} samples, {:g} Hz resolution):\n",
+                        spectral_window_name(psd->window), psd->segment_count, psd->segment_length, psd->resolution_hz);
+    const SpectralNoiseTerms& terms = psd->noise;
+    const Figure* figures[] = {&terms.quantization, &terms.angle_random_walk, &terms.bias_instability,
+                               &terms.rate_random_walk, &terms.rate_ramp};
+    for (std::size_t k = 0; k < 5; ++k) {
+      if (terms.identified[k]) {
+        text += line(std::string(names[k].label), *figures[k]);
+      } else if (terms.upper_bounds[k]) {
+        text += fmt::format("  {:<28} not identified (< {:.2g} {})\n", names[k].label, terms.upper_bounds[k]->value,
+                            terms.upper_bounds[k]->unit);
+      }
+    }
+    for (const PeriodicComponent& peak : psd->peaks) {
+      text += fmt::format("  periodic component at {:.6g} Hz: amplitude {:.4g} ± {:.2g} {} ({:.3g} times the floor)\n",
+                          peak.frequency.value, peak.amplitude.value, peak.amplitude.uncertainty.value_or(0.0),
+                          peak.amplitude.unit, peak.peak_to_floor_ratio);
+    }
   }
   for (const std::string& warning : warnings) text += "warning: " + warning + "\n";
   return text;

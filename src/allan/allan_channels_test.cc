@@ -47,11 +47,13 @@ std::vector<sim::ImuAxisNoise> axes() {
     axis.noise.angle_random_walk = convert(t.n, n_unit, "(" + axis.unit + ")*sqrt(s)");
     axis.noise.bias_instability = convert(t.b, b_unit, axis.unit);
     axis.noise.rate_random_walk = convert(t.k, k_unit, "(" + axis.unit + ")/sqrt(s)");
-    axis.noise.flicker_shortest_s = 0.1;
+    // The flicker's Gauss-Markov processes start well below the sample interval, so that its PSD is
+    // 1/f up to the Nyquist frequency (the PSD fit reads N there).
+    axis.noise.flicker_shortest_s = 1.0 / (16.0 * kRate);
     axis.noise.flicker_longest_s = 1e5;
     result.push_back(axis);
   }
-  // A sinusoid on gz: 0.01 deg/s at 1.25 Hz.
+  // A sinusoid on gz: 0.01 deg/s at 1.25 Hz (well inside the bins searched, clear of the noise).
   result[2].sine_amplitude = 0.01;
   result[2].sine_frequency_hz = 1.25;
   return result;
@@ -66,6 +68,7 @@ const AllanChannels& analysed() {
     AllanOptions common;
     common.sample_rate_hz = kRate;
     common.estimators = EstimatorSet::parse("oadev");
+    common.psd = WelchOptions{};
     return allan_variance_of_channels(spans, names,
                                       channel_options(common, names, names, "deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2"));
   }();
@@ -95,6 +98,46 @@ TEST(AllanChannels, EveryCoefficientOfEveryAxisComesBackWithinItsUncertainty) {
     }
   }
   // The uncertainties are honest as a set, neither inflated nor too small.
+  const double rms_z = std::sqrt(sum_z2 / count);
+  EXPECT_GT(rms_z, 0.4);
+  EXPECT_LT(rms_z, 1.6);
+}
+
+// The PSD beside the Allan variance (IEEE Std 952-1997 Annex C): the same N, B, K from the spectrum
+// of every axis, the sinusoid on gz found at its frequency and amplitude, no peak on the others, and
+// no disagreement between the two fits.
+TEST(AllanChannels, ThePsdGivesTheSameCoefficientsAndFindsTheSinusoid) {
+  const AllanChannels& channels = analysed();
+  double sum_z2 = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const AxisTruth& t = kTruth[i];
+    const AllanResult& result = channels.channels[i].result;
+    ASSERT_TRUE(result.psd.has_value()) << t.name;
+    const SpectralNoiseTerms& noise = result.psd->noise;
+    const std::pair<const Figure*, double> terms[] = {
+        {&noise.angle_random_walk, t.n}, {&noise.bias_instability, t.b}, {&noise.rate_random_walk, t.k}};
+    for (const auto& [figure, truth] : terms) {
+      ASSERT_TRUE(figure->uncertainty.has_value()) << t.name << " " << figure->unit << " not identified by the PSD";
+      const double z = (figure->value - truth) / *figure->uncertainty;
+      EXPECT_LT(std::abs(z), 3.0) << t.name << " (PSD): " << figure->value << " ± " << *figure->uncertainty << " "
+                                  << figure->unit << ", truth " << truth;
+      sum_z2 += z * z;
+      ++count;
+    }
+    for (const std::string& warning : result.warnings) {
+      EXPECT_EQ(warning.find("combined sigma"), std::string::npos) << t.name << ": " << warning;
+    }
+    if (std::string(t.name) == "gz") {
+      ASSERT_EQ(result.psd->peaks.size(), 1u);
+      const PeriodicComponent& peak = result.psd->peaks.front();
+      EXPECT_NEAR(peak.frequency.value, 1.25, result.psd->resolution_hz);
+      EXPECT_NEAR(peak.amplitude.value, 0.01, 3.0 * peak.amplitude.uncertainty.value_or(0.0) + 0.0005);
+      EXPECT_EQ(peak.amplitude.unit, "deg/s");
+    } else {
+      EXPECT_TRUE(result.psd->peaks.empty()) << t.name;
+    }
+  }
   const double rms_z = std::sqrt(sum_z2 / count);
   EXPECT_GT(rms_z, 0.4);
   EXPECT_LT(rms_z, 1.6);

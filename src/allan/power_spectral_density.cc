@@ -646,15 +646,18 @@ PowerSpectralDensity welch_power_spectral_density(std::span<const double> sample
 
 std::vector<std::string> compare_noise_terms(const NoiseTerms& allan, const SpectralNoiseTerms& psd) {
   struct Term {
-    const char* name;
     const Figure& allan;
     const Figure& psd;
   };
   // Index p + 2 of A_p; the rate ramp is not compared (see the header).
-  const std::array<Term, 4> terms = {Term{"quantization Q", allan.quantization, psd.quantization},
-                                     Term{"angle random walk N", allan.angle_random_walk, psd.angle_random_walk},
-                                     Term{"bias instability B", allan.bias_instability, psd.bias_instability},
-                                     Term{"rate random walk K", allan.rate_random_walk, psd.rate_random_walk}};
+  const std::array<Term, 4> terms = {Term{allan.quantization, psd.quantization},
+                                     Term{allan.angle_random_walk, psd.angle_random_walk},
+                                     Term{allan.bias_instability, psd.bias_instability},
+                                     Term{allan.rate_random_walk, psd.rate_random_walk}};
+  // B is in the input's own dimension (deg/h, ug, ...): it tells the sensor, and so the names.
+  SensorKind kind = SensorKind::kGyro;
+  if (!allan.bias_instability.unit.empty()) kind = sensor_kind_of(allan.bias_instability.unit);
+  const auto& names = noise_term_names(kind);
   std::vector<std::string> warnings;
   for (std::size_t k = 0; k < terms.size(); ++k) {
     if (!allan.identified[k] || !psd.identified[k]) continue;
@@ -665,18 +668,19 @@ std::vector<std::string> compare_noise_terms(const NoiseTerms& allan, const Spec
     if (!(sigma > 0.0) || difference <= kDisagreementSigma * sigma) continue;
     warnings.push_back(fmt::format(
         "{}: the Allan fit gives {:.4g} +- {:.2g} {}, the PSD {:.4g} +- {:.2g} {}: they differ by {:.1f} combined sigma",
-        terms[k].name, a.value, a.uncertainty.value_or(0.0), a.unit, b.value, b.uncertainty.value_or(0.0), a.unit,
+        names[k].label, a.value, a.uncertainty.value_or(0.0), a.unit, b.value, b.uncertainty.value_or(0.0), a.unit,
         difference / sigma));
   }
   return warnings;
 }
 
-nlohmann::json SpectralNoiseTerms::to_json() const {
-  return {{"quantization", figure_or_bound(quantization, identified[0], upper_bounds[0])},
-          {"angle_random_walk", figure_or_bound(angle_random_walk, identified[1], upper_bounds[1])},
-          {"bias_instability", figure_or_bound(bias_instability, identified[2], upper_bounds[2])},
-          {"rate_random_walk", figure_or_bound(rate_random_walk, identified[3], upper_bounds[3])},
-          {"rate_ramp", figure_or_bound(rate_ramp, identified[4], upper_bounds[4])},
+nlohmann::json SpectralNoiseTerms::to_json(const std::string& input_unit) const {
+  const auto& names = noise_term_names(sensor_kind_of(input_unit));
+  return {{names[0].key, figure_or_bound(quantization, identified[0], upper_bounds[0])},
+          {names[1].key, figure_or_bound(angle_random_walk, identified[1], upper_bounds[1])},
+          {names[2].key, figure_or_bound(bias_instability, identified[2], upper_bounds[2])},
+          {names[3].key, figure_or_bound(rate_random_walk, identified[3], upper_bounds[3])},
+          {names[4].key, figure_or_bound(rate_ramp, identified[4], upper_bounds[4])},
           {"fit",
            {{"model",
              "S1(f) = 2 [(2 pi f)^2 tau0 Q^2 + N^2 + B^2 / (2 pi f) + K^2 / (2 pi f)^2 + R^2 / (2 pi f)^3] "
@@ -714,7 +718,7 @@ nlohmann::json PowerSpectralDensity::to_json() const {
           {"band_edf", band_edf},
           {"density", {{"unit", "(" + unit + ")^2/Hz"}, {"values", band_density}}},
           {"amplitude_spectral_density", {{"unit", "(" + unit + ")/sqrt(Hz)"}, {"values", band_asd}}},
-          {"noise_terms", noise.to_json()},
+          {"noise_terms", noise.to_json(unit)},
           {"peaks", peaks_json},
           {"peak_search",
            {{"false_alarm_probability", false_alarm_probability},

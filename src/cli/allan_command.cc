@@ -1,6 +1,7 @@
 // inertest allan FILE [--rate HZ] [--format auto|csv|f64|f32|mat|hdf5|tdms] [--column N | --columns A,B,..]
 //                [--taus SPEC] [--input-unit U | A=U,B=U2] [--scale-factor K] [--estimators LIST]
-//                [--fit-range TMIN:TMAX] [--export kalibr|matlab|gnss-ins-sim|json FILE] [--threads N] [--json]
+//                [--fit-range TMIN:TMAX] [--psd] [--psd-window W] [--psd-segment N]
+//                [--export kalibr|matlab|gnss-ins-sim|json FILE] [--threads N] [--json]
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,9 @@ struct Arguments {
   std::vector<std::string> columns;
   std::string input_units;
   std::vector<std::string> export_target;  // FORMAT FILE
+  bool psd = false;
+  std::string psd_window = "hann";
+  std::size_t psd_segment = 0;
   std::optional<double> sample_rate_hz;
   std::string estimators = "all";
   std::string fit_range;
@@ -82,9 +86,16 @@ CommandAction setup(CLI::App& root) {
                    "FORMAT FILE: the noise parameters a navigation filter takes, FORMAT kalibr (imu.yaml), matlab "
                    "(gyroparams/accelparams), gnss-ins-sim (IMU error dictionary) or json")
       ->expected(2);
+  command->add_flag("--psd", arguments->psd,
+                    "also the power spectral density (Welch, IEEE Std 952-1997 Annex C): its noise terms beside the "
+                    "Allan fit, periodic components (reads a streamed record into memory)");
+  command->add_option("--psd-window", arguments->psd_window, "hann, hamming, blackman-harris or rectangular (implies --psd)")
+      ->capture_default_str();
+  command->add_option("--psd-segment", arguments->psd_segment,
+                      "samples per Welch segment (default: a power of two giving 16-32 segments; implies --psd)");
   command->add_option("--threads", arguments->options.worker_count, "worker threads")->capture_default_str();
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
-  return [arguments] {
+  return [arguments, command] {
     arguments->source.format = parse_rate_record_format(arguments->format);
     if (!arguments->column.empty()) arguments->source.column = ColumnSelector::parse(arguments->column);
     if (arguments->sample_rate_hz) {
@@ -102,6 +113,12 @@ CommandAction setup(CLI::App& root) {
       // raw / (output per deg/s) = deg/s; times 3600 = deg/h (as the plan key scale_factor).
       arguments->options.scale = 3600.0 / k;
       arguments->options.input_unit = "deg/h";
+    }
+    if (arguments->psd || command->count("--psd-window") > 0 || command->count("--psd-segment") > 0) {
+      WelchOptions welch;
+      welch.window = parse_spectral_window(arguments->psd_window);
+      welch.segment_length = arguments->psd_segment;
+      arguments->options.psd = welch;
     }
     std::optional<FilterFormat> export_format;
     if (!arguments->export_target.empty()) export_format = parse_filter_format(arguments->export_target[0]);

@@ -24,6 +24,7 @@
 #include "inertest/allan/confidence.h"
 #include "inertest/allan/noise_identification.h"
 #include "inertest/allan/noise_terms.h"
+#include "inertest/allan/power_spectral_density.h"
 #include "inertest/io/rate_record.h"
 #include "inertest/core/figure.h"
 #include "inertest/core/progress.h"
@@ -46,6 +47,10 @@ struct AllanOptions {
   std::size_t ring_capacity_limit = 0;
   // The taus of the fit of GJB eq. (30); empty: chosen automatically (noise_terms.h).
   std::optional<FitRange> fit_range;
+  // The power spectral density beside the Allan variance (issue 19; power_spectral_density.h): its
+  // noise terms, compared with the fit's (a warning when they disagree), and its periodic
+  // components. Its sample rate is sample_rate_hz. A streamed record is then read into memory.
+  std::optional<WelchOptions> psd;
 
   // Throws Error saying what is wrong (rate, unit, tau grid, estimators, scale, confidence).
   void validate() const;
@@ -75,6 +80,7 @@ struct AllanResult {
   std::map<Estimator, DeviationCurve> curves;
   std::optional<NoiseTerms> noise;
   std::optional<SlopeReadOff> slopes;
+  std::optional<PowerSpectralDensity> psd;  // when AllanOptions::psd asked for it
   std::vector<std::string> warnings;
 
   nlohmann::json to_json() const;

@@ -141,7 +141,8 @@ struct SpectralNoiseTerms {
   // As NoiseTerms: each figure a Figure, one not identified {"value": null, "unit", "identified":
   // false, "upper_bound"}; and "fit": {"model", "reduced_chi_squared", "degrees_of_freedom",
   // "verdict", "band_count", "frequency_min_hz", "frequency_max_hz"}.
-  nlohmann::json to_json() const;
+  // Keys named for the sensor the input unit measures (noise_term_names).
+  nlohmann::json to_json(const std::string& input_unit) const;
 };
 
 struct PeriodicComponent {

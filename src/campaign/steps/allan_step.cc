@@ -12,6 +12,9 @@
 //                                # and converted to deg/h (input_unit must then be left out)
 //   fit_range = [1.0, 1000.0]    # optional: the taus (s) of the eq. (30) fit, or "1:1000";
 //                                # default: chosen automatically
+//   psd = true                   # optional: also the Welch PSD, its noise terms and periodic components;
+//   psd_window = "hann"          # implied by psd_window (hann, hamming, blackman-harris, rectangular)
+//   psd_segment_length = 4096    # and psd_segment_length (default automatic)
 // The result is the JSON of `inertest allan --json`.
 #include <cmath>
 
@@ -84,6 +87,18 @@ StepAction prepare(PlanTable& step, const PlanContext& context) {
       if (e.location()) throw;
       step.fail_at("fit_range", e.message());
     }
+  }
+  if (step.boolean_or("psd", false) || step.contains("psd_window") || step.contains("psd_segment_length")) {
+    WelchOptions welch;
+    try {
+      welch.window = parse_spectral_window(step.string_or("psd_window", "hann"));
+    } catch (const Error& e) {
+      step.fail_at("psd_window", e.message());
+    }
+    const double segment = step.number_or("psd_segment_length", 0.0);
+    if (!(segment >= 0.0) || segment != std::floor(segment)) step.fail_at("psd_segment_length", "a whole number of samples");
+    welch.segment_length = static_cast<std::size_t>(segment);
+    options.psd = welch;
   }
   try {
     options.validate();

@@ -3,7 +3,8 @@
 // random drift of IEEE Std 952-1997 Annex C (noise.h) and, on gz, a sinusoid (a vibration seen in
 // the record). Keys: hours = 6, sample_rate_hz = 10, sine_amplitude_deg_s = 0.01 and
 // sine_frequency_hz = 1.25 (on gz; 0 for none). Writes <name>/imu.csv (time_s,gx,gy,gz,ax,ay,az).
-// Truth: N, B and K of every axis, within 4 of the fit's reported sigma.
+// Truth: N, B and K of every axis, within 4 of the fit's reported sigma. The step asks for the PSD too,
+// so the report shows the sinusoid as a periodic component.
 #include <fmt/format.h>
 
 #include "inertest/core/units.h"
@@ -43,7 +44,9 @@ void generate_imu_noise(campaign::PlanTable& test, const std::string& name, Lab&
     axis.noise.angle_random_walk = convert(t.n, gyro ? "deg/sqrt(h)" : "m/s/sqrt(h)", "(" + axis.unit + ")*sqrt(s)");
     axis.noise.bias_instability = convert(t.b, gyro ? "deg/h" : "ug", axis.unit);
     axis.noise.rate_random_walk = convert(t.k, gyro ? "deg/h/sqrt(h)" : "m/s/h/sqrt(h)", "(" + axis.unit + ")/sqrt(s)");
-    axis.noise.flicker_shortest_s = 1.0 / rate;
+    // Gauss-Markov processes from well below the sample interval: the flicker's PSD is 1/f up to the
+    // Nyquist frequency, where the PSD fit reads N.
+    axis.noise.flicker_shortest_s = 1.0 / (16.0 * rate);
     axes.push_back(axis);
     const std::string pointer = fmt::format("/channels/{}/noise/", t.name);
     const std::string basis = "4 sigma: the fit's edf-based uncertainty (GJB 2426A eq. 30)";
@@ -73,7 +76,8 @@ void generate_imu_noise(campaign::PlanTable& test, const std::string& name, Lab&
   lab.write(file, text);
   lab.plan_steps += fmt::format(
       "[[procedure]]\nkind = \"allan\"\nname = \"{}\"\nfile = \"{}\"\nsample_rate_hz = {}\n"
-      "columns = [\"gx\", \"gy\", \"gz\", \"ax\", \"ay\", \"az\"]\ninput_unit = \"deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2\"\n\n",
+      "columns = [\"gx\", \"gy\", \"gz\", \"ax\", \"ay\", \"az\"]\ninput_unit = \"deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2\"\n"
+      "psd = true\n\n",
       name, file, exact(rate));
   lab.tests.push_back({{"name", name}, {"kind", "imu_noise"}, {"hours", hours}, {"sample_rate_hz", rate},
                        {"sine_amplitude_deg_s", sine_amplitude}, {"sine_frequency_hz", sine_frequency}});

@@ -156,6 +156,61 @@ std::string fit_caption(const PlotContext& context, const nlohmann::json& result
 
 const std::string kCaption = " — GJB 2426A-2004 5.12.5.4.2, eqs. (25)-(31); IEEE Std 952-1997 Annex C";
 
+// The amplitude spectral density of a result with a PSD (its band means, IEEE Std 952-1997 Annex C),
+// in `colour`, converted to the panel's unit; empty without one. Periodic components go to `peaks`.
+std::optional<Series> asd_series(const PlotContext& context, const nlohmann::json& result, const std::string& name,
+                                 const std::string& panel_unit, std::string& peaks) {
+  const auto* psd = member(result, "psd");
+  if (psd == nullptr || !psd->is_object()) return std::nullopt;
+  const Column frequency = number_array(psd->value("band_frequency_hz", nlohmann::json::array()));
+  const auto* asd = member(*psd, "amplitude_spectral_density");
+  if (asd == nullptr || frequency.empty()) return std::nullopt;
+  Column values = number_array(asd->value("values", nlohmann::json::array()));
+  const std::optional<double> scale = converted(1.0, asd->value("unit", ""), panel_unit);
+  if (!scale || values.values.size() != frequency.values.size()) return std::nullopt;
+  for (double& v : values.values) v *= *scale;
+  for (const auto& peak : psd->value("peaks", nlohmann::json::array())) {
+    const auto* f = member(peak, "frequency");
+    const auto* a = member(peak, "amplitude");
+    if (f == nullptr || a == nullptr || !number_of(*f) || !number_of(*a)) continue;
+    peaks += fmt::format("{}{}: {} {} Hz, {} {}", peaks.empty() ? "" : "; ", name,
+                         context.labels("ui.periodic_component"), format_number(*number_of(*f), 5),
+                         format_number(*number_of(*a), 3), pretty_unit(a->value("unit", "")));
+  }
+  return make_series(name, frequency.values, values.values);
+}
+
+// One panel of amplitude spectral densities, one line per (name, result) that has a PSD.
+std::optional<ReportPlot> asd_plot(const PlotContext& context,
+                                   const std::vector<std::pair<std::string, const nlohmann::json*>>& results,
+                                   const std::string& title) {
+  const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  Panel panel;
+  panel.height = 360.0;
+  std::string unit;
+  std::string peaks;
+  std::size_t index = 0;
+  for (const auto& [name, result] : results) {
+    const auto* psd = member(*result, "psd");
+    const auto* asd = psd ? member(*psd, "amplitude_spectral_density") : nullptr;
+    if (asd == nullptr) continue;
+    if (unit.empty()) unit = asd->value("unit", "");
+    std::optional<Series> line = asd_series(context, *result, name, unit, peaks);
+    if (!line) continue;
+    line->color = colours[index++ % std::size(colours)];
+    panel.series.push_back(std::move(*line));
+  }
+  if (panel.series.empty()) return std::nullopt;
+  panel.x = make_axis(context.labels("axis.frequency"), "Hz", AxisScale::log);
+  panel.y = make_axis(context.labels("axis.amplitude_spectral_density"), pretty_unit(unit), AxisScale::log);
+  panel.legend = LegendPosition::automatic;
+  ReportPlot plot;
+  plot.caption = title + context.labels("axis.amplitude_spectral_density") +
+                 " — Welch; IEEE Std 952-1997 Annex C (band means)" + (peaks.empty() ? "" : ". " + peaks);
+  plot.plot.panels.push_back(std::move(panel));
+  return plot;
+}
+
 // A record of several channels (issue 19): one figure per sensor (gyro, accelerometer, other),
 // every axis of it as one curve with its fitted model in the same colour.
 std::vector<ReportPlot> channel_plots(const PlotContext& context, const nlohmann::json& channels) {
@@ -167,6 +222,7 @@ std::vector<ReportPlot> channel_plots(const PlotContext& context, const nlohmann
     std::string panel_unit;
     std::string captions;
     std::size_t axis = 0;
+    std::vector<std::pair<std::string, const nlohmann::json*>> drawn;
     for (const auto& [name, result] : channels.items()) {
       const std::string input_unit = result.value("input_unit", "");
       SensorKind kind = SensorKind::kOther;
@@ -186,6 +242,7 @@ std::vector<ReportPlot> channel_plots(const PlotContext& context, const nlohmann
       const std::optional<double> scale = converted(1.0, unit, panel_unit);
       if (!scale) continue;
       const std::string colour = colours[axis++ % std::size(colours)];
+      drawn.emplace_back(name, &result);
       Series measured = measured_series(result, *curve, tau, name + " " + estimator);
       for (auto* values : {&measured.y, &measured.y_low, &measured.y_high}) {
         for (double& v : *values) v *= *scale;
@@ -203,12 +260,15 @@ std::vector<ReportPlot> channel_plots(const PlotContext& context, const nlohmann
     }
     if (!panel) continue;
     fit_y_range(*panel);
+    const std::string title =
+        sensor == SensorKind::kOther
+            ? ""
+            : context.labels(sensor == SensorKind::kAccelerometer ? "ui.accelerometer" : "ui.gyro") + ", ";
     ReportPlot plot;
-    plot.caption = context.labels(sensor == SensorKind::kAccelerometer ? "ui.accelerometer" : "ui.gyro") + ", " +
-                   context.labels("axis.allan_deviation") + kCaption + captions;
-    if (sensor == SensorKind::kOther) plot.caption = context.labels("axis.allan_deviation") + kCaption + captions;
+    plot.caption = title + context.labels("axis.allan_deviation") + kCaption + captions;
     plot.plot.panels.push_back(std::move(*panel));
     plots.push_back(std::move(plot));
+    if (std::optional<ReportPlot> spectrum = asd_plot(context, drawn, title)) plots.push_back(std::move(*spectrum));
   }
   return plots;
 }
@@ -232,7 +292,12 @@ std::vector<ReportPlot> allan_plots(const PlotContext& context) {
   plot.caption = context.labels("axis.allan_deviation") + kCaption;
   if (const std::string fit = fit_caption(context, result); !fit.empty()) plot.caption += ". " + fit;
   plot.plot.panels.push_back(std::move(panel));
-  return {std::move(plot)};
+  std::vector<ReportPlot> plots;
+  plots.push_back(std::move(plot));
+  if (std::optional<ReportPlot> spectrum = asd_plot(context, {{context.labels("ui.data"), &result}}, "")) {
+    plots.push_back(std::move(*spectrum));
+  }
+  return plots;
 }
 
 const bool registered = register_plots("allan", allan_plots);

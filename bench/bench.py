@@ -12,6 +12,8 @@ machine may be shared, so only ratios within the run mean anything):
     and numpy.loadtxt;
   - Allan on --hdf5-samples f64 samples (10^8) from an HDF5 dataset written by h5py against the
     same samples as raw f64 (hdf5_compare.py): time at most 1.3x, peak memory at most 1.5x the dataset;
+  - a whole IMU (imu_compare.py): `allan --columns` on six channels of a --imu-rows CSV against one
+    channel of the same file (the issue's bound: at most 1.5x);
   - with --huge: 10^9 f32 samples (4 GB, written to --huge-dir and deleted after), all six
     estimators, its time and peak resident memory.
 The read bandwidth: one pass over 1 GiB in memory on 1 and 2 threads (memory_read_benchmark) and
@@ -33,6 +35,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import allan_compare  # noqa: E402
 import csv_compare  # noqa: E402
 import hdf5_compare  # noqa: E402
+import imu_compare  # noqa: E402
 
 WRITE_F32 = r"""
 import sys, numpy as np
@@ -94,6 +97,7 @@ def main():
     parser.add_argument("--build-dir", default="build")
     parser.add_argument("--samples", type=int, default=30_000_000, help="f64 samples of the Allan record")
     parser.add_argument("--csv-rows", type=int, default=5_000_000)
+    parser.add_argument("--imu-rows", type=int, default=2_000_000, help="rows of the six-channel IMU CSV")
     parser.add_argument("--runs", type=int, default=3, help="runs of each program, fastest kept")
     parser.add_argument("--hdf5-samples", type=int, default=10**8,
                         help="f64 samples of the HDF5 record (written twice, HDF5 and raw, deleted after)")
@@ -114,6 +118,7 @@ def main():
         os.remove(record)
         csv, csv_mb = csv_compare.measure(inertest, args.csv_rows, args.runs, True, os.path.join(tmp, "record.csv"))
         hdf5 = hdf5_compare.measure(inertest, args.hdf5_samples, args.runs, tmp)
+        imu, imu_mb = imu_compare.measure(inertest, args.imu_rows, args.runs, os.path.join(tmp, "imu.csv"))
     huge = None
     if args.huge:
         with tempfile.TemporaryDirectory(dir=args.huge_dir) as tmp:
@@ -147,6 +152,9 @@ def main():
                  hdf5["size_mb"] / 1e3 / hdf5["hdf5"][0]))
     rows.append(("peak RSS of the same from HDF5", hdf5["hdf5"][0], f"the dataset, {hdf5['size_mb']:.0f} MB", None,
                  f"{hdf5['hdf5'][1] / hdf5['size_mb']:.2f}x the dataset", "<= 1.5x", None))
+    rows.append((f"allan, 6 channels of a {args.imu_rows:.0e}-row CSV ({imu_mb:.0f} MB)", imu["six"],
+                 "inertest, one channel of it", imu["one"], f"{imu['six'] / imu['one']:.2f}x the time", "<= 1.5x",
+                 imu_mb / 1e3 / imu["six"]))
     if huge:
         huge_gb = 4 * args.huge_samples / 1e9
         rows.append((f"all six + bounds + fit, {args.huge_samples:.0e} f32 ({huge_gb:.2g} GB)", huge[0],

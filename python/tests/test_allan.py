@@ -130,5 +130,11 @@ def test_a_two_dimensional_array_is_one_channel_per_column_as_the_cli_columns(tm
     from_file = inertest.allan_variance_of_file(str(record), sample_rate_hz=SAMPLE_RATE_HZ, columns=["gx", "ax"],
                                                 input_unit="gx=deg/s,ax=m/s^2", taus="decade")
     assert from_file.to_dict() == from_cli
+    # The PSD beside it: white noise of 1 deg/s at 100 Hz has N = 0.1 deg/sqrt(s) = 6 deg/sqrt(h) in both fits.
+    spectral = inertest.allan_variance(imu, sample_rate_hz=SAMPLE_RATE_HZ, channels=["gx", "ax"],
+                                       input_unit="gx=deg/s,ax=m/s^2", taus="decade", psd=("hann", 0))
+    arw = spectral.channels.gx.psd.noise_terms.angle_random_walk
+    assert arw.unit == "deg/sqrt(h)" and abs(arw.value - 6.0) < 4 * arw.uncertainty
+    assert spectral.channels.ax.psd.noise_terms.velocity_random_walk.unit == "m/s/sqrt(h)"
     with pytest.raises(inertest.Error, match="channels names 1 channels but rate has 2 columns"):
         inertest.allan_variance(imu, sample_rate_hz=SAMPLE_RATE_HZ, channels=["gx"])

@@ -22,7 +22,9 @@ MappedFile::MappedFile(const std::string& path) : path_(path) {
   }
   size_ = static_cast<std::size_t>(info.st_size);
   if (size_ > 0) {
-    void* address = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    // MAP_POPULATE: the page tables are filled in one call rather than by a fault per 4 KB page as
+    // the parser first touches them (the file is read whole anyway; faults cost microseconds on a VM).
+    void* address = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
     if (address == MAP_FAILED) {
       const int saved = errno;
       ::close(fd);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fast_float/fast_float.h>
 
 #include "inertest/core/error.h"
@@ -347,7 +349,22 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
 }
 
 std::size_t line_capacity(std::string_view chunk) {
-  return static_cast<std::size_t>(std::count(chunk.begin(), chunk.end(), '\n')) + 1;
+  // The '\n' bytes counted eight at a time: a zero byte of w ^ 0x0a..0a is one, marked 0x80 by the
+  // exact SWAR test of Hacker's Delight, 2nd ed., 6-1; the marks summed by a multiplication (no
+  // popcount instruction in the x86-64 baseline). The tail byte by byte.
+  constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
+  constexpr std::uint64_t kLow7 = 0x7f7f7f7f7f7f7f7fULL;
+  std::size_t count = 0;
+  std::size_t i = 0;
+  for (; i + 8 <= chunk.size(); i += 8) {
+    std::uint64_t word = 0;
+    std::memcpy(&word, chunk.data() + i, 8);
+    const std::uint64_t x = word ^ (kOnes * '\n');
+    const std::uint64_t zero = ~(((x & kLow7) + kLow7) | x | kLow7);
+    count += static_cast<std::size_t>(((zero >> 7) * kOnes) >> 56);  // the sum of the marks' bytes
+  }
+  for (; i < chunk.size(); ++i) count += chunk[i] == '\n' ? 1 : 0;
+  return count + 1;
 }
 
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result) {

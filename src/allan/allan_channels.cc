@@ -12,38 +12,28 @@
 #include "inertest/core/units.h"
 
 namespace inertest {
-namespace {
-
-std::string trimmed(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = text.find_last_not_of(" \t");
-  return std::string(text.substr(first, last - first + 1));
-}
-
-}  // namespace
 
 std::vector<AllanOptions> channel_options(const AllanOptions& common, const std::vector<std::string>& names,
                                           const std::vector<std::string>& selectors, std::string_view units) {
   std::string fallback = common.input_unit;
   std::map<std::size_t, std::string> named;
   bool bare_seen = false;
-  std::size_t start = 0;
-  while (start <= units.size() && !units.empty()) {
-    const std::size_t comma = std::min(units.find(',', start), units.size());
-    const std::string item = trimmed(units.substr(start, comma - start));
-    start = comma + 1;
-    if (item.empty()) continue;
-    const std::size_t equals = item.find('=');
-    if (equals == std::string::npos) {
-      if (bare_seen) throw Error("--input-unit: two units without a channel name ('" + fallback + "', '" + item + "')");
+  // Split as the record readers split a line: blanks around each part trimmed.
+  for (const TextField& item : split_text_line(units, ',', "--input-unit", 1)) {
+    if (item.text.empty()) continue;
+    const std::vector<TextField> parts = split_text_line(item.text, '=', "--input-unit", 1);
+    if (parts.size() == 1) {
+      if (bare_seen) {
+        throw Error("--input-unit: two units without a channel name ('" + fallback + "', '" + item.text + "')");
+      }
       bare_seen = true;
-      Unit::parse(item);
-      fallback = item;
+      Unit::parse(item.text);
+      fallback = item.text;
       continue;
     }
-    const std::string name = trimmed(std::string_view(item).substr(0, equals));
-    const std::string unit = trimmed(std::string_view(item).substr(equals + 1));
+    if (parts.size() != 2) throw Error("--input-unit: '" + item.text + "' is not NAME=UNIT");
+    const std::string& name = parts[0].text;
+    const std::string& unit = parts[1].text;
     std::size_t channel = names.size();
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (names[i] == name || (i < selectors.size() && selectors[i] == name)) channel = i;

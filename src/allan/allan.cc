@@ -109,7 +109,20 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
   // identified from the data (lag-1 autocorrelation, SP 1065 section 5.6, which also sets the
   // reported bounds) finds the model, the second fit uses the model's edf. Identification from the
   // data scatters where few terms remain (B1, R(n)) and would weigh those points by the scatter.
-  const NoiseTerms first = fit_noise_terms(result.tau_s, variances(), basis->edf, result.input_unit, fit_options);
+  // In the model of GJB eq. (30) the dominant noise only reddens as tau grows (quantisation, white,
+  // flicker, random walk FM, IEEE 952 C.1: alpha 2, 0, -1, -2), so for the first fit a type bluer
+  // than the one at the shorter tau is taken as a misidentification and replaced by it: a white-FM
+  // record whose B1 ratio read "flicker PM" at two long taus (edf 15x too large) otherwise makes the
+  // whole curve look inconsistent, and the automatic range then drops every short tau (measured: N
+  // 26 sigma off the truth on 2e6 samples of white noise).
+  std::vector<double> first_edf;
+  NoiseType reddest = basis->noise_types.empty() ? NoiseType::kWhitePhase : basis->noise_types.front();
+  for (std::size_t i = 0; i < result.tau_s.size(); ++i) {
+    reddest = static_cast<NoiseType>(std::min(static_cast<int>(reddest), static_cast<int>(basis->noise_types[i])));
+    first_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count,
+                                                      result.averaging_factors[i], reddest));
+  }
+  const NoiseTerms first = fit_noise_terms(result.tau_s, variances(), first_edf, result.input_unit, fit_options);
   std::vector<double> model_edf;
   for (std::size_t i = 0; i < result.tau_s.size(); ++i) {
     model_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count, result.averaging_factors[i],

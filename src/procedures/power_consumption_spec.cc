@@ -27,6 +27,7 @@
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
 #include "inertest/numerics/statistics.h"
+#include "io/text_rows.h"
 
 namespace inertest {
 namespace {
@@ -75,14 +76,11 @@ std::vector<SupplyReadings> read_supply_readings(const std::string& path) {
   std::array<std::size_t, kColumns> index{};
   std::size_t header_fields = 0;
   std::vector<SupplyReadings> supplies;
-  std::size_t line_number = 0;
-  for (std::size_t start = 0; start < text.size();) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  io_detail::LineCursor cursor(text);
+  std::size_t line_number = 0;  // of the last line read, for the message of a file without readings
+  for (io_detail::Line row{}; cursor.next(row);) {
+    const std::string_view line = row.text;
+    line_number = row.number;
     const std::size_t first = line.find_first_not_of(" \t");
     if (first == std::string_view::npos || line[first] == '#') continue;
     const std::vector<TextField> cells = split_text_line(line, ',', path, line_number);

@@ -29,15 +29,10 @@ ProcedureSpec temperature_apply_spec() {
       .input(InputSpec("record", "record: time, output and temperature columns").read_from_file("RECORD", "file"))
       .input(InputSpec("coefficients", "the exported coefficients (.json or .csv)").read_from_file("--coefficients", "coefficients"));
   thermal::record_parameters(definition);
+  definition.parameter(ParameterSpec("temperature_column", "the temperature column (default: the exported sensor)"),
+                       &Options::temperature_columns);
+  thermal::stability_fields(definition);
   return definition
-      .parameter(ParameterSpec("temperature_column", "the temperature column (default: the exported sensor)"),
-                 &Options::temperature_columns)
-      .field({"residual_bias_stability", FieldRole::headline, "bias stability after compensation", "补偿后零偏稳定性",
-              "GJB 2426A-2004 eq. (20)"},
-             &Result::residual_bias_stability)
-      .field({"raw_bias_stability", FieldRole::headline, "bias stability before compensation", "补偿前零偏稳定性",
-              "GJB 2426A-2004 eq. (20)"},
-             &Result::raw_bias_stability)
       .field({"residual_rms", FieldRole::detail, "residual rms of the interval means", "区间平均残差均方根", ""},
              &Result::residual_rms)
       .field({"residual_mean", FieldRole::detail, "mean residual", "残差均值", ""}, &Result::residual_mean)

@@ -13,6 +13,7 @@
 #include "inertest/io/text_table.h"
 #include "inertest/numerics/least_squares.h"
 #include "inertest/numerics/statistics.h"
+#include "io/text_rows.h"
 #include "procedures/temperature_model_internal.h"
 
 namespace inertest {
@@ -511,14 +512,11 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
     }
     return compensation;
   }
-  std::size_t line_number = 0;
-  for (std::size_t start = 0; start < text.size();) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  io_detail::LineCursor cursor(text);
+  std::size_t line_number = 0;  // of the last line read, for the message of a file without coefficients
+  for (io_detail::Line row{}; cursor.next(row);) {
+    const std::string_view line = row.text;
+    line_number = row.number;
     if (line.empty() || line_number == 1) continue;
     const std::vector<TextField> cells = split_text_line(line, ',', path, line_number);
     if (cells.size() != 4) throw Error(SourceLocation{path, line_number, 1}, "expected name,value,unit,uncertainty");

@@ -1,6 +1,6 @@
 // The steps that temperature_model and temperature_apply share (procedures/temperature_model.h):
-// averaging intervals, their smoothed temperature rate and leg, the compensated bias and the bias
-// record parameters. Private to src/procedures.
+// averaging intervals, their smoothed temperature rate and leg, the compensated bias, the bias
+// record parameters and the stability figures. Private to src/procedures.
 #pragma once
 
 #include <span>
@@ -48,6 +48,19 @@ void record_parameters(ProcedureDefinition<TemperatureModelOptions, Result>& def
                      .unit_is("s")
                      .command_line_name_is("stability-window"),
                  &Options::stability_window_s);
+}
+
+// The headline figures of both: the bias stability (GJB 2426A-2004 eq. (20)) after compensation and,
+// over the same windows, before it.
+template <typename Result>
+void stability_fields(ProcedureDefinition<TemperatureModelOptions, Result>& definition) {
+  definition
+      .field({"residual_bias_stability", FieldRole::headline, "bias stability after compensation", "补偿后零偏稳定性",
+              "GJB 2426A-2004 eq. (20)"},
+             &Result::residual_bias_stability)
+      .field({"raw_bias_stability", FieldRole::headline, "bias stability before compensation", "补偿前零偏稳定性",
+              "GJB 2426A-2004 eq. (20)"},
+             &Result::raw_bias_stability);
 }
 
 }  // namespace inertest::thermal

@@ -94,13 +94,9 @@ ProcedureSpec temperature_model_spec() {
       .parameter(ParameterSpec("rate_terms", "fit the terms in dT/dt (false: a model in T alone)")
                      .command_line_flag("no-rate-terms", false),
                  &Options::rate_terms)
-      .parameter(ParameterSpec("export", "write the coefficients to FILE (.json or .csv)"), &Options::export_file)
-      .field({"residual_bias_stability", FieldRole::headline, "bias stability after compensation", "补偿后零偏稳定性",
-              "GJB 2426A-2004 eq. (20)"},
-             &Result::residual_bias_stability)
-      .field({"raw_bias_stability", FieldRole::headline, "bias stability before compensation", "补偿前零偏稳定性",
-              "GJB 2426A-2004 eq. (20)"},
-             &Result::raw_bias_stability)
+      .parameter(ParameterSpec("export", "write the coefficients to FILE (.json or .csv)"), &Options::export_file);
+  thermal::stability_fields(definition);
+  definition
       .field_from({"bias_coefficients", FieldRole::detail, "model coefficients", "模型系数", "IEEE Std 952-1997 Annex B"},
                   [](const Result& result) {
                     nlohmann::json coefficients = nlohmann::json::object();

@@ -18,4 +18,9 @@ inline constexpr const char* kCentrifugePaper =
     "the paper on drift-coefficient calibration of a gyro on a precision centrifuge with a counter-rotating "
     "platform";
 
+// The IMU triad calibration without external equipment (implemented in procedures/imu_calibration).
+inline constexpr const char* kImuCalibrationPaper =
+    "D. Tedaldi, A. Pretto, E. Menegatti, \"A robust and easy to implement method for IMU calibration without "
+    "external equipments\", IEEE International Conference on Robotics and Automation (ICRA), 2014";
+
 }  // namespace inertest::citations

@@ -1,0 +1,610 @@
+// IMU triad calibration (issue 18); the method and the model are in procedures/imu_calibration.h
+// (Tedaldi, Pretto and Menegatti, ICRA 2014).
+#include "inertest/procedures/imu_calibration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
+#include "inertest/io/channel_record.h"
+#include "inertest/io/mapped_file.h"
+#include "inertest/io/text_table.h"
+#include "inertest/numerics/least_squares.h"
+
+namespace inertest {
+namespace {
+
+using Parameters = std::vector<double>;
+
+SourceLocation at_file(const std::string& path) { return SourceLocation{path, 0, 0}; }
+
+Vector3 multiply(const Matrix3& m, const Vector3& v) {
+  return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2], m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+          m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]};
+}
+
+double dot(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const Vector3& v) { return std::sqrt(dot(v, v)); }
+Vector3 normalised(const Vector3& v) {
+  const double n = norm(v);
+  return {v[0] / n, v[1] / n, v[2] / n};
+}
+Vector3 cross(const Vector3& a, const Vector3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double median_of(std::vector<double> values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// A Gauss-Newton fit of `residuals` over `parameters` scaled by `scales` (the size of a step worth
+// taking in each parameter, so that the design's columns are commensurate), with step halving
+// when the sum of squares grows. The covariance is that of the last linearised step at the
+// solution: s^2 (J^T J)^-1 with s^2 the residual variance (numerics/least_squares.h).
+struct GaussNewtonFit {
+  Parameters parameters;
+  Matrix covariance;
+  std::vector<double> residuals;
+  std::size_t degrees_of_freedom = 0;
+};
+
+using ResidualFunction = std::function<std::vector<double>(const Parameters&)>;
+
+double sum_of_squares(const std::vector<double>& r) {
+  return std::inner_product(r.begin(), r.end(), r.begin(), 0.0);
+}
+
+// The Jacobian by central differences, each column scaled by its parameter's scale.
+Matrix scaled_jacobian(const ResidualFunction& residuals, const Parameters& p, const Parameters& scales, std::size_t rows) {
+  Matrix jacobian(rows, p.size());
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    const double step = 1e-6 * scales[j];
+    Parameters plus = p, minus = p;
+    plus[j] += step;
+    minus[j] -= step;
+    const std::vector<double> up = residuals(plus), down = residuals(minus);
+    for (std::size_t i = 0; i < rows; ++i) jacobian(i, j) = (up[i] - down[i]) / 2e-6;
+  }
+  return jacobian;
+}
+
+GaussNewtonFit gauss_newton(const ResidualFunction& residuals, Parameters p, const Parameters& scales,
+                            const std::vector<std::string>& names) {
+  LeastSquaresOptions options;
+  options.parameter_names = names;
+  options.rank_tolerance = 1e-9;
+  std::vector<double> r = residuals(p);
+  LeastSquaresResult step;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const Matrix jacobian = scaled_jacobian(residuals, p, scales, r.size());
+    std::vector<double> negative(r.size());
+    std::transform(r.begin(), r.end(), negative.begin(), [](double v) { return -v; });
+    step = solve_least_squares(jacobian, negative, options);
+    double length = 1.0;
+    Parameters next = p;
+    std::vector<double> next_r;
+    for (int halving = 0; halving < 30; ++halving, length /= 2.0) {
+      for (std::size_t j = 0; j < p.size(); ++j) next[j] = p[j] + length * step.parameters[j] * scales[j];
+      next_r = residuals(next);
+      if (sum_of_squares(next_r) <= sum_of_squares(r)) break;
+    }
+    const double largest = std::abs(*std::max_element(step.parameters.begin(), step.parameters.end(),
+                                                      [](double a, double b) { return std::abs(a) < std::abs(b); }));
+    if (sum_of_squares(next_r) <= sum_of_squares(r)) {
+      p = next;
+      r = next_r;
+    }
+    if (largest < 1e-9 || length < 1e-8) break;
+  }
+  const Matrix jacobian = scaled_jacobian(residuals, p, scales, r.size());
+  std::vector<double> negative(r.size());
+  std::transform(r.begin(), r.end(), negative.begin(), [](double v) { return -v; });
+  step = solve_least_squares(jacobian, negative, options);
+  GaussNewtonFit fit{p, Matrix(p.size(), p.size()), r, step.degrees_of_freedom};
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    for (std::size_t k = 0; k < p.size(); ++k) fit.covariance(j, k) = step.covariance(j, k) * scales[j] * scales[k];
+  }
+  return fit;
+}
+
+// Warnings for pairs of parameters the orientations hardly separate (|correlation| > 0.95).
+void warn_correlated(const GaussNewtonFit& fit, const std::vector<std::string>& names, const std::string& triad,
+                     std::vector<std::string>& warnings) {
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    for (std::size_t k = j + 1; k < names.size(); ++k) {
+      const double variance = fit.covariance(j, j) * fit.covariance(k, k);
+      if (!(variance > 0.0)) continue;
+      const double correlation = fit.covariance(j, k) / std::sqrt(variance);
+      if (std::abs(correlation) > 0.95) {
+        warnings.push_back(fmt::format("{}: the orientations hardly separate {} from {} (correlation {:.3f}); add "
+                                       "orientations that turn every axis up and down",
+                                       triad, names[j], names[k], correlation));
+      }
+    }
+  }
+}
+
+// The accelerometer's parameters: b (3), k = 1/scale_factor (3), then M[0][1], M[0][2], M[1][2].
+const std::vector<std::string> kAccelerometerNames = {"bias x", "bias y", "bias z", "scale x", "scale y", "scale z",
+                                                      "misalignment xy", "misalignment xz", "misalignment yz"};
+// The gyro's (after its bias): k (3), then M[0][1], M[0][2], M[1][0], M[1][2], M[2][0], M[2][1].
+const std::vector<std::string> kGyroNames = {"scale x", "scale y", "scale z", "misalignment xy", "misalignment xz",
+                                             "misalignment yx", "misalignment yz", "misalignment zx", "misalignment zy"};
+constexpr std::array<std::pair<int, int>, 3> kAccelerometerOffDiagonal = {{{0, 1}, {0, 2}, {1, 2}}};
+constexpr std::array<std::pair<int, int>, 6> kGyroOffDiagonal = {{{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}}};
+
+// T K of a triad from k (p[first..first+2]) and the off-diagonals of M that follow.
+template <std::size_t N>
+Matrix3 triad_matrix(const Parameters& p, std::size_t first, const std::array<std::pair<int, int>, N>& off_diagonal) {
+  Matrix3 t{};
+  for (int i = 0; i < 3; ++i) t[i][i] = 1.0;
+  for (std::size_t n = 0; n < N; ++n) t[off_diagonal[n].first][off_diagonal[n].second] = p[first + 3 + n];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) t[i][j] *= p[first + j];
+  }
+  return t;
+}
+
+// The calibration of a triad from the fitted k and off-diagonals (p[first..]) and their covariance.
+template <std::size_t N>
+void set_triad(TriadCalibration& triad, const GaussNewtonFit& fit, std::size_t first,
+               const std::array<std::pair<int, int>, N>& off_diagonal) {
+  for (std::size_t j = 0; j < 3; ++j) {
+    const double k = fit.parameters[first + j];
+    triad.scale_factor[j] = 1.0 / k;
+    triad.scale_factor_uncertainty[j] = std::sqrt(fit.covariance(first + j, first + j)) / (k * k);
+  }
+  for (std::size_t n = 0; n < N; ++n) {
+    const auto [i, j] = off_diagonal[n];
+    triad.misalignment[i][j] = fit.parameters[first + 3 + n];
+    triad.misalignment_uncertainty[i][j] = std::sqrt(fit.covariance(first + 3 + n, first + 3 + n));
+  }
+}
+
+// An axis-aligned ellipsoid through the static means, sum_j k_j^2 (a_j - b_j)^2 = g^2, by linear
+// least squares on centred and scaled coordinates: the starting point of the accelerometer's fit.
+Parameters ellipsoid_start(const std::vector<Vector3>& means, double gravity, const std::string& source) {
+  Vector3 centre{};
+  for (const Vector3& m : means) {
+    for (int j = 0; j < 3; ++j) centre[j] += m[j] / static_cast<double>(means.size());
+  }
+  double spread = 0.0;
+  for (const Vector3& m : means) {
+    for (int j = 0; j < 3; ++j) spread = std::max(spread, std::abs(m[j] - centre[j]));
+  }
+  if (!(spread > 0.0)) throw Error(at_file(source), "the accelerometer reads the same in every static interval");
+  Matrix design(means.size(), 6);
+  std::vector<double> ones(means.size(), 1.0);
+  for (std::size_t i = 0; i < means.size(); ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double x = (means[i][j] - centre[j]) / spread;
+      design(i, j) = x * x;
+      design(i, 3 + j) = x;
+    }
+  }
+  LeastSquaresOptions options;
+  options.parameter_names = {"x^2", "y^2", "z^2", "x", "y", "z"};
+  const LeastSquaresResult fit = solve_least_squares(design, ones, options);
+  Parameters start(9, 0.0);
+  double level = 1.0;
+  for (int j = 0; j < 3; ++j) {
+    const double a = fit.parameters[j];
+    if (!(a > 0.0)) {
+      throw Error(at_file(source), "the static intervals do not lie on an ellipsoid around the accelerometer's bias: "
+                                   "turn every axis up and down");
+    }
+    const double offset = -fit.parameters[3 + j] / (2.0 * a);
+    level += a * offset * offset;
+    start[j] = centre[j] + spread * offset;
+  }
+  for (int j = 0; j < 3; ++j) start[3 + j] = gravity * std::sqrt(fit.parameters[j] / level) / spread;
+  return start;
+}
+
+// The attitude change over samples [from, to] of the calibrated rate (body to the body at `from`):
+// dq/dt = q (x) (0, w) / 2 by RK4, the rate linear between samples.
+using Quaternion = std::array<double, 4>;
+
+Quaternion derivative(const Quaternion& q, const Vector3& w) {
+  return {0.5 * (-q[1] * w[0] - q[2] * w[1] - q[3] * w[2]), 0.5 * (q[0] * w[0] + q[2] * w[2] - q[3] * w[1]),
+          0.5 * (q[0] * w[1] + q[3] * w[0] - q[1] * w[2]), 0.5 * (q[0] * w[2] + q[1] * w[1] - q[2] * w[0])};
+}
+
+Quaternion plus(const Quaternion& q, double h, const Quaternion& d) {
+  return {q[0] + h * d[0], q[1] + h * d[1], q[2] + h * d[2], q[3] + h * d[3]};
+}
+
+// v expressed in the body frame at the end: R(q)^T v.
+Vector3 rotate_back(const Quaternion& q, const Vector3& v) {
+  const Vector3 u{-q[1], -q[2], -q[3]};
+  const Vector3 t = cross(u, v);
+  const Vector3 t2{2 * t[0], 2 * t[1], 2 * t[2]};
+  const Vector3 c = cross(u, t2);
+  return {v[0] + q[0] * t2[0] + c[0], v[1] + q[0] * t2[1] + c[1], v[2] + q[0] * t2[2] + c[2]};
+}
+
+struct Motion {
+  std::size_t from = 0;  // the last sample of a static
+  std::size_t to = 0;    // the first sample of the next
+  Vector3 gravity_before{};  // the unit gravity direction in the body frame, from the accelerometer
+  Vector3 gravity_after{};
+  Vector3 tangent_1{};  // orthonormal to gravity_after: the directions of the residual
+  Vector3 tangent_2{};
+};
+
+Quaternion integrate(const ImuRecord& record, const Motion& motion, const Matrix3& tk, const Vector3& bias) {
+  const auto rate = [&](std::size_t i) {
+    return multiply(tk, Vector3{record.gyro[0][i] - bias[0], record.gyro[1][i] - bias[1], record.gyro[2][i] - bias[2]});
+  };
+  Quaternion q{1.0, 0.0, 0.0, 0.0};
+  Vector3 w0 = rate(motion.from);
+  for (std::size_t i = motion.from; i < motion.to; ++i) {
+    const double h = record.time_s[i + 1] - record.time_s[i];
+    const Vector3 w1 = rate(i + 1);
+    const Vector3 wm{(w0[0] + w1[0]) / 2, (w0[1] + w1[1]) / 2, (w0[2] + w1[2]) / 2};
+    const Quaternion k1 = derivative(q, w0);
+    const Quaternion k2 = derivative(plus(q, h / 2, k1), wm);
+    const Quaternion k3 = derivative(plus(q, h / 2, k2), wm);
+    const Quaternion k4 = derivative(plus(q, h, k3), w1);
+    for (int c = 0; c < 4; ++c) q[c] += h / 6 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
+    const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (double& c : q) c /= n;
+    w0 = w1;
+  }
+  return q;
+}
+
+std::vector<double> direction_residuals(const ImuRecord& record, const std::vector<Motion>& motions, const Parameters& p,
+                                        const Vector3& bias) {
+  const Matrix3 tk = triad_matrix(p, 0, kGyroOffDiagonal);
+  std::vector<double> r;
+  r.reserve(2 * motions.size());
+  for (const Motion& motion : motions) {
+    const Vector3 predicted = rotate_back(integrate(record, motion, tk, bias), motion.gravity_before);
+    r.push_back(dot(predicted, motion.tangent_1));
+    r.push_back(dot(predicted, motion.tangent_2));
+  }
+  return r;
+}
+
+Vector3 interval_mean(const std::array<std::vector<double>, 3>& columns, const StaticInterval& interval) {
+  Vector3 mean{};
+  for (int j = 0; j < 3; ++j) {
+    double sum = 0.0;
+    for (std::size_t i = interval.first; i < interval.last; ++i) sum += columns[j][i] - columns[j][interval.first];
+    mean[j] = columns[j][interval.first] + sum / static_cast<double>(interval.last - interval.first);
+  }
+  return mean;
+}
+
+// The centred moving variance over 2 half + 1 samples, summed over the three axes, from prefix sums
+// of each axis less its mean; infinite where the window does not fit.
+std::vector<double> moving_variance(const std::array<std::vector<double>, 3>& columns, std::size_t half) {
+  const std::size_t n = columns[0].size();
+  const double width = static_cast<double>(2 * half + 1);
+  std::vector<double> variance(n, std::numeric_limits<double>::infinity());
+  for (std::size_t i = half; i + half < n; ++i) variance[i] = 0.0;
+  for (const std::vector<double>& x : columns) {
+    const double mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(n);
+    std::vector<double> s1(n + 1, 0.0), s2(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      s1[i + 1] = s1[i] + (x[i] - mean);
+      s2[i + 1] = s2[i] + (x[i] - mean) * (x[i] - mean);
+    }
+    for (std::size_t i = half; i + half < n; ++i) {
+      const double sum = s1[i + half + 1] - s1[i - half];
+      const double squares = s2[i + half + 1] - s2[i - half];
+      variance[i] += std::max(0.0, (squares - sum * sum / width) / (width - 1.0));
+    }
+  }
+  return variance;
+}
+
+// The median of the quietest tenth of the windows: the record's own noise.
+double quietest(const std::vector<double>& variance, std::size_t half) {
+  std::vector<double> defined(variance.begin() + static_cast<std::ptrdiff_t>(half),
+                              variance.end() - static_cast<std::ptrdiff_t>(half));
+  std::sort(defined.begin(), defined.end());
+  defined.resize(std::max<std::size_t>(1, defined.size() / 10));
+  return median_of(defined);
+}
+
+std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals) {
+  std::vector<StaticInterval*> accepted;
+  for (StaticInterval& interval : intervals) {
+    if (interval.accepted) accepted.push_back(&interval);
+  }
+  return accepted;
+}
+
+}  // namespace
+
+void ImuCalibrationOptions::validate() const {
+  if (!(gravity_m_s2 > 9.7 && gravity_m_s2 < 9.9)) {
+    throw ParameterError("gravity_m_s2", fmt::format("{} m/s^2 is not a gravity on the Earth's surface", gravity_m_s2));
+  }
+  if (!(static_window_s > 0.0)) throw ParameterError("static_window_s", "the moving-variance window must be positive");
+  if (!(static_threshold > 1.0)) {
+    throw ParameterError("static_threshold", "the threshold is a multiple of the quietest variance: more than 1");
+  }
+  if (!(static_minimum_s >= static_window_s)) {
+    throw ParameterError("static_minimum_s", "a static interval must last at least one moving-variance window");
+  }
+  if (!(outlier_factor > 2.0)) throw ParameterError("outlier_factor", "an outlier lies more than 2 robust sigmas out");
+  if (minimum_statics < 9) {
+    throw ParameterError("minimum_statics", "each triad has nine parameters: at least 9 static intervals");
+  }
+}
+
+Vector3 TriadCalibration::apply(const Vector3& output) const {
+  Matrix3 t{};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) t[i][j] = ((i == j ? 1.0 : 0.0) + misalignment[i][j]) / scale_factor[j];
+  }
+  return multiply(t, Vector3{output[0] - bias[0], output[1] - bias[1], output[2] - bias[2]});
+}
+
+nlohmann::json triad_json(const TriadCalibration& triad) {
+  return {{"bias", {{"value", triad.bias}, {"unit", triad.output_unit}, {"uncertainty", triad.bias_uncertainty}}},
+          {"scale_factor",
+           {{"value", triad.scale_factor},
+            {"unit", fmt::format("{}/({})", triad.output_unit, triad.input_unit)},
+            {"uncertainty", triad.scale_factor_uncertainty}}},
+          {"misalignment",
+           {{"value", triad.misalignment}, {"unit", "rad"}, {"uncertainty", triad.misalignment_uncertainty}}}};
+}
+
+nlohmann::json calibration_file_json(const ImuCalibrationResult& result) {
+  return {{"procedure", "imu_calibration"},
+          {"model", "input = (I + misalignment) diag(1 / scale_factor) (output - bias); accelerometer input in m/s^2, "
+                    "gyro input in rad/s"},
+          {"accelerometer", triad_json(result.accelerometer)},
+          {"gyro", triad_json(result.gyro)}};
+}
+
+std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
+  const MappedFile file(path);
+  std::array<TriadCalibration, 2> triads;
+  try {
+    const nlohmann::json json = nlohmann::json::parse(file.bytes());
+    for (std::size_t t = 0; t < 2; ++t) {
+      const nlohmann::json& triad = json.at(t == 0 ? "accelerometer" : "gyro");
+      TriadCalibration& calibration = triads[t];
+      calibration.input_unit = t == 0 ? "m/s^2" : "rad/s";
+      calibration.output_unit = triad.at("bias").at("unit").get<std::string>();
+      calibration.bias = triad.at("bias").at("value").get<Vector3>();
+      calibration.bias_uncertainty = triad.at("bias").at("uncertainty").get<Vector3>();
+      calibration.scale_factor = triad.at("scale_factor").at("value").get<Vector3>();
+      calibration.scale_factor_uncertainty = triad.at("scale_factor").at("uncertainty").get<Vector3>();
+      calibration.misalignment = triad.at("misalignment").at("value").get<Matrix3>();
+      calibration.misalignment_uncertainty = triad.at("misalignment").at("uncertainty").get<Matrix3>();
+      for (double scale : calibration.scale_factor) {
+        if (!(std::abs(scale) > 0.0)) throw Error(at_file(path), "a scale factor of 0 cannot be applied");
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(at_file(path), fmt::format("not an IMU calibration (inertest imu-calibration --export): {}", e.what()));
+  }
+  return triads;
+}
+
+ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
+  TextTableOptions options;
+  std::string_view rest = columns;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    options.columns.push_back(ColumnSelector::parse(rest.substr(0, comma)));
+    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+  }
+  if (options.columns.size() != 7) {
+    throw ParameterError("columns", fmt::format("{} columns named; an IMU record needs seven: time, ax, ay, az, gx, gy, "
+                                                "gz (e.g. time_s,ax,ay,az,gx,gy,gz)",
+                                                options.columns.size()));
+  }
+  if (const auto format = detect_channel_record_format(path)) {
+    const std::unique_ptr<ChannelRecord> channels = open_channel_record(path, *format);
+    std::array<std::vector<double>, 7> samples;
+    for (std::size_t c = 0; c < 7; ++c) samples[c] = read_channel(*channels, channels->find(options.columns[c]));
+    for (std::size_t i = 1; i < samples[0].size(); ++i) {
+      if (!(samples[0][i] > samples[0][i - 1])) {
+        throw Error(at_file(path), fmt::format("the time does not increase at sample {}", i + 1));
+      }
+    }
+    return {path, std::move(samples[0]), {std::move(samples[1]), std::move(samples[2]), std::move(samples[3])},
+            {std::move(samples[4]), std::move(samples[5]), std::move(samples[6])}};
+  }
+  options.minimum_rows = 2;
+  TextTable table = read_text_table(path, options);
+  for (std::size_t i = 1; i < table.rows(); ++i) {
+    if (!(table.columns[0][i] > table.columns[0][i - 1])) {
+      throw Error(locate_cell(table, i, 0), "the time does not increase");
+    }
+  }
+  ImuRecord record;
+  record.source = path;
+  record.time_s = std::move(table.columns[0]);
+  for (int j = 0; j < 3; ++j) {
+    record.accelerometer[j] = std::move(table.columns[1 + j]);
+    record.gyro[j] = std::move(table.columns[4 + j]);
+  }
+  return record;
+}
+
+StaticDetection detect_static_intervals(const ImuRecord& record, const ImuCalibrationOptions& options) {
+  const std::size_t n = record.time_s.size();
+  std::vector<double> steps(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) steps[i] = record.time_s[i + 1] - record.time_s[i];
+  const double step = median_of(steps);
+  const std::size_t half = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(options.static_window_s / step / 2)));
+  const std::size_t width = 2 * half + 1;
+  if (n < 2 * width) {
+    throw Error(at_file(record.source), fmt::format("{} samples: too short for a {} s moving-variance window of {} samples",
+                                                    n, options.static_window_s, width));
+  }
+  StaticDetection detection;
+  const std::vector<double> accelerometer = moving_variance(record.accelerometer, half);
+  const std::vector<double> gyro = moving_variance(record.gyro, half);
+  detection.accelerometer_noise_variance = quietest(accelerometer, half);
+  detection.gyro_noise_variance = quietest(gyro, half);
+  const auto still = [&](std::size_t i) {
+    return accelerometer[i] <= options.static_threshold * detection.accelerometer_noise_variance &&
+           gyro[i] <= options.static_threshold * detection.gyro_noise_variance;
+  };
+  for (std::size_t i = half; i + half < n;) {
+    if (!still(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end + half < n && still(end)) ++end;
+    // The samples whose whole window is still: a window's edge may graze the motion's slow start.
+    StaticInterval interval;
+    interval.first = i;
+    interval.last = end;
+    interval.start_s = record.time_s[interval.first];
+    interval.end_s = record.time_s[interval.last - 1];
+    const double duration = interval.end_s - interval.start_s;
+    interval.accepted = duration >= options.static_minimum_s;
+    if (!interval.accepted) {
+      interval.reason = fmt::format("still for {:.3g} s, shorter than the minimum {} s", duration, options.static_minimum_s);
+    }
+    interval.accelerometer_mean = interval_mean(record.accelerometer, interval);
+    interval.gyro_mean = interval_mean(record.gyro, interval);
+    detection.intervals.push_back(std::move(interval));
+    i = end;
+  }
+  return detection;
+}
+
+ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibrationOptions& options) {
+  ImuCalibrationResult result;
+  StaticDetection detection = detect_static_intervals(record, options);
+  result.static_intervals = std::move(detection.intervals);
+  result.accelerometer_noise_variance = detection.accelerometer_noise_variance;
+  result.gyro_noise_variance = detection.gyro_noise_variance;
+  const auto require_enough = [&](const std::vector<StaticInterval*>& accepted) {
+    if (accepted.size() >= options.minimum_statics) return;
+    throw Error(at_file(record.source),
+                fmt::format("{} static intervals accepted of {} found (still: the moving variance of both triads "
+                            "below {} times their quietest windows'): the calibration needs at least {} orientations "
+                            "held still for {} s or more",
+                            accepted.size(), result.static_intervals.size(), options.static_threshold,
+                            options.minimum_statics, options.static_minimum_s));
+  };
+  const double g = options.gravity_m_s2;
+
+  // The accelerometer: |T K (a_i - b)| = g over the static means; outliers refused, then refitted.
+  GaussNewtonFit accelerometer;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::vector<StaticInterval*> accepted = accepted_of(result.static_intervals);
+    require_enough(accepted);
+    std::vector<Vector3> means;
+    for (const StaticInterval* interval : accepted) means.push_back(interval->accelerometer_mean);
+    const ResidualFunction residuals = [&means, g](const Parameters& p) {
+      const Matrix3 tk = triad_matrix(p, 3, kAccelerometerOffDiagonal);
+      std::vector<double> r(means.size());
+      for (std::size_t i = 0; i < means.size(); ++i) {
+        r[i] = norm(multiply(tk, Vector3{means[i][0] - p[0], means[i][1] - p[1], means[i][2] - p[2]})) - g;
+      }
+      return r;
+    };
+    const Parameters start = ellipsoid_start(means, g, record.source);
+    const double bias_scale = 1.0 / std::max({start[3], start[4], start[5]});
+    accelerometer = gauss_newton(residuals, start,
+                                 {bias_scale, bias_scale, bias_scale, start[3], start[4], start[5], 1.0, 1.0, 1.0},
+                                 kAccelerometerNames);
+    std::vector<double> magnitudes(accelerometer.residuals.size());
+    std::transform(accelerometer.residuals.begin(), accelerometer.residuals.end(), magnitudes.begin(),
+                   [](double r) { return std::abs(r); });
+    const double robust_sigma = 1.4826 * median_of(magnitudes);
+    bool refused = false;
+    for (std::size_t i = 0; i < accepted.size(); ++i) {
+      accepted[i]->gravity_residual_m_s2 = accelerometer.residuals[i];
+      if (pass == 0 && std::abs(accelerometer.residuals[i]) > options.outlier_factor * robust_sigma) {
+        accepted[i]->accepted = false;
+        accepted[i]->reason = fmt::format("its gravity residual {:.3g} m/s^2 is more than {} robust sigmas ({:.3g} "
+                                          "m/s^2) of the fit: the IMU moved or was touched",
+                                          accelerometer.residuals[i], options.outlier_factor, robust_sigma);
+        refused = true;
+      }
+    }
+    if (!refused) break;
+  }
+  TriadCalibration& a = result.accelerometer;
+  a.output_unit = options.accelerometer_unit;
+  a.input_unit = "m/s^2";
+  for (std::size_t j = 0; j < 3; ++j) {
+    a.bias[j] = accelerometer.parameters[j];
+    a.bias_uncertainty[j] = std::sqrt(accelerometer.covariance(j, j));
+  }
+  set_triad(a, accelerometer, 3, kAccelerometerOffDiagonal);
+  result.accelerometer_residual_rms_m_s2 =
+      std::sqrt(sum_of_squares(accelerometer.residuals) / static_cast<double>(accelerometer.residuals.size()));
+  warn_correlated(accelerometer, kAccelerometerNames, "accelerometer", result.warnings);
+
+  // The gyro: its bias from the statics, then T K from the gravity directions across each rotation.
+  const std::vector<StaticInterval*> accepted = accepted_of(result.static_intervals);
+  TriadCalibration& w = result.gyro;
+  w.output_unit = options.gyro_unit;
+  w.input_unit = "rad/s";
+  for (std::size_t j = 0; j < 3; ++j) {
+    std::vector<double> means;
+    for (const StaticInterval* interval : accepted) means.push_back(interval->gyro_mean[j]);
+    const double mean = std::accumulate(means.begin(), means.end(), 0.0) / static_cast<double>(means.size());
+    double squares = 0.0;
+    for (double m : means) squares += (m - mean) * (m - mean);
+    w.bias[j] = mean;
+    w.bias_uncertainty[j] = std::sqrt(squares / static_cast<double>(means.size() - 1) / static_cast<double>(means.size()));
+  }
+  std::vector<Motion> motions;
+  for (std::size_t i = 0; i + 1 < accepted.size(); ++i) {
+    Motion motion;
+    motion.from = accepted[i]->last - 1;
+    motion.to = accepted[i + 1]->first;
+    motion.gravity_before = normalised(a.apply(accepted[i]->accelerometer_mean));
+    motion.gravity_after = normalised(a.apply(accepted[i + 1]->accelerometer_mean));
+    const Vector3 other = std::abs(motion.gravity_after[0]) < 0.9 ? Vector3{1, 0, 0} : Vector3{0, 1, 0};
+    motion.tangent_1 = normalised(cross(motion.gravity_after, other));
+    motion.tangent_2 = cross(motion.gravity_after, motion.tangent_1);
+    motions.push_back(motion);
+  }
+  const ResidualFunction residuals = [&](const Parameters& p) { return direction_residuals(record, motions, p, w.bias); };
+  // The common scale that best turns each gravity direction into the next, searched over nine
+  // decades of output unit per rad/s, starts the fit.
+  Parameters start(9, 0.0);
+  double best = std::numeric_limits<double>::infinity();
+  for (double k = 1e-8; k < 10.0; k *= 1.1) {
+    const Parameters trial = {k, k, k, 0, 0, 0, 0, 0, 0};
+    const double cost = sum_of_squares(residuals(trial));
+    if (cost < best) {
+      best = cost;
+      start = trial;
+    }
+  }
+  const GaussNewtonFit gyro =
+      gauss_newton(residuals, start, {start[0], start[0], start[0], 1.0, 1.0, 1.0, 1.0, 1.0, 1.0}, kGyroNames);
+  set_triad(w, gyro, 0, kGyroOffDiagonal);
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    accepted[i + 1]->direction_residual_rad = std::hypot(gyro.residuals[2 * i], gyro.residuals[2 * i + 1]);
+  }
+  result.gyro_residual_rms_rad = std::sqrt(sum_of_squares(gyro.residuals) / static_cast<double>(motions.size()));
+  warn_correlated(gyro, kGyroNames, "gyro", result.warnings);
+  if (accelerometer.degrees_of_freedom == 0 || gyro.degrees_of_freedom == 0) {
+    result.warnings.emplace_back("as many observations as parameters: the fit is exact and gives no uncertainty (hold "
+                                 "more orientations)");
+  }
+  return result;
+}
+
+}  // namespace inertest

@@ -69,11 +69,20 @@ bool is_figure(const nlohmann::json& value) {
   return value.is_object() && value.contains("value") && value.contains("unit");
 }
 
-// A figure ({"value", "unit", "uncertainty"}) as "v ± u unit"; other values as they read.
+// A number to `digits` significant digits, or an array of them (a vector or matrix figure) as "[a, b, c]".
+std::string numbers_text(const nlohmann::json& value, int digits) {
+  if (!value.is_array()) return fmt::format("{:.{}g}", value.get<double>(), digits);
+  std::string text;
+  for (const auto& element : value) text += (text.empty() ? "[" : ", ") + numbers_text(element, digits);
+  return text + "]";
+}
+
+// A figure ({"value", "unit", "uncertainty"}, the value a number or an array of them) as
+// "v ± u unit"; other values as they read.
 std::string value_text(const nlohmann::json& value) {
   if (is_figure(value)) {
-    std::string text = fmt::format("{:.9g}", value.at("value").get<double>());
-    if (value.contains("uncertainty")) text += fmt::format(" ± {:.3g}", value.at("uncertainty").get<double>());
+    std::string text = numbers_text(value.at("value"), 9);
+    if (value.contains("uncertainty")) text += " ± " + numbers_text(value.at("uncertainty"), 3);
     const auto unit = value.at("unit").get<std::string>();
     if (unit != "1") text += " " + unit;
     return text;

@@ -344,8 +344,9 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields);
 
 // The text report of a result, the same shape for every procedure: a title line with the clause,
-// then one line per headline and detail field, "label  value ± uncertainty unit" for a figure,
-// then the warnings.
+// then one line per headline and detail field, "label  value ± uncertainty unit" for a figure
+// ("[a, b, c] ± [ua, ub, uc] unit" for a figure whose value and uncertainty are arrays: a vector or
+// a matrix), then the warnings.
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields);
 
 template <typename T>

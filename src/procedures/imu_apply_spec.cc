@@ -1,0 +1,115 @@
+// Applying an IMU triad calibration (issue 18), declared once (issue 22): `inertest imu-apply CALIB
+// RECORD`, the plan kind "imu_apply", its JSON, text, report and Python function come from this
+// file. The model is that of procedures/imu_calibration.h (Tedaldi, Pretto and Menegatti, ICRA 2014).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/core/citations.h"
+#include "inertest/core/procedure_spec.h"
+#include "inertest/io/atomic_write.h"
+#include "inertest/procedures/imu_calibration.h"
+
+namespace inertest {
+namespace {
+
+struct ImuApplyOptions {
+  std::string columns = ImuCalibrationOptions().columns;
+  double gravity_m_s2 = constants::kStandardGravity;
+  std::string output_file;  // "" : the calibrated record is not written
+
+  // The options of the static intervals' detection: imu-calibration's defaults at this gravity.
+  ImuCalibrationOptions detection() const {
+    ImuCalibrationOptions options;
+    options.gravity_m_s2 = gravity_m_s2;
+    return options;
+  }
+  void validate() const { detection().validate(); }
+};
+
+struct ImuApplyResult {
+  std::size_t samples = 0;
+  std::size_t static_intervals = 0;
+  Figure gravity_residual_rms;  // | calibrated specific force | - g over the statics
+  Figure rest_rate_rms;         // | calibrated rate | over the statics
+  std::vector<std::string> warnings;
+};
+
+ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& calibration, const ImuRecord& record,
+                                     const ImuApplyOptions& options) {
+  const auto sample = [&](const std::array<std::vector<double>, 3>& columns, std::size_t i) {
+    return Vector3{columns[0][i], columns[1][i], columns[2][i]};
+  };
+  if (!options.output_file.empty()) {
+    std::string text = "time_s,ax_m_s2,ay_m_s2,az_m_s2,gx_rad_s,gy_rad_s,gz_rad_s\n";
+    for (std::size_t i = 0; i < record.time_s.size(); ++i) {
+      const Vector3 a = calibration[0].apply(sample(record.accelerometer, i));
+      const Vector3 w = calibration[1].apply(sample(record.gyro, i));
+      text += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", record.time_s[i], a[0], a[1], a[2], w[0],
+                          w[1], w[2]);
+    }
+    write_file_atomically(options.output_file, text);
+  }
+  ImuApplyResult result;
+  result.samples = record.time_s.size();
+  double gravity_squares = 0.0, rate_squares = 0.0;
+  for (const StaticInterval& interval : detect_static_intervals(record, options.detection()).intervals) {
+    if (!interval.accepted) continue;
+    ++result.static_intervals;
+    const Vector3 a = calibration[0].apply(interval.accelerometer_mean);
+    const Vector3 w = calibration[1].apply(interval.gyro_mean);
+    gravity_squares += std::pow(std::hypot(a[0], a[1], a[2]) - options.gravity_m_s2, 2);
+    rate_squares += w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  }
+  const double statics = static_cast<double>(std::max<std::size_t>(result.static_intervals, 1));
+  result.gravity_residual_rms = {std::sqrt(gravity_squares / statics), "m/s^2", std::nullopt};
+  result.rest_rate_rms = {std::sqrt(rate_squares / statics), "rad/s", std::nullopt};
+  if (result.static_intervals == 0) {
+    result.warnings.emplace_back("no static interval in the record: the calibration is applied but not checked");
+  }
+  return result;
+}
+
+}  // namespace
+
+ProcedureSpec imu_apply_spec() {
+  using Options = ImuApplyOptions;
+  using Result = ImuApplyResult;
+  return ProcedureDefinition<Options, Result>(
+             "imu_apply", "IMU triad calibration applied", citations::kImuCalibrationPaper,
+             "applies the calibration that `inertest imu-calibration --export` wrote (CALIB, or its --json\n"
+             "output) to an IMU record: input = (I + M) diag(1/scale_factor) (output - bias) for each triad,\n"
+             "written to --output FILE as time_s,ax_m_s2,ay_m_s2,az_m_s2,gx_rad_s,gy_rad_s,gz_rad_s, and\n"
+             "checked on the record's static intervals: the rms of |specific force| - g and of |rate|.")
+      .chinese_title("惯性测量单元标定结果应用")
+      .example({"examples/imu_calibration/calibration.json", "examples/imu_calibration/tumble.csv"})
+      .input(InputSpec("calibration", "the calibration (imu-calibration --export)").read_from_file("CALIB", "calibration"))
+      .input(InputSpec("record", "IMU record: time and six outputs").read_from_file("RECORD", "file"))
+      .parameter(ParameterSpec("columns", "time, ax, ay, az, gx, gy, gz: header names or 1-based positions"),
+                 &Options::columns)
+      .parameter(ParameterSpec("gravity_m_s2", "local gravity")
+                     .unit_is("m/s^2")
+                     .command_line_name_is("gravity")
+                     .site_gives("gravity_m_s2"),
+                 &Options::gravity_m_s2)
+      .parameter(ParameterSpec("output", "write the calibrated record to FILE (.csv)"), &Options::output_file)
+      .field({"gravity_residual_rms", FieldRole::headline, "rms of |specific force| - g over the statics",
+              "静止区间比力模与重力之差均方根", ""},
+             &Result::gravity_residual_rms)
+      .field({"rest_rate_rms", FieldRole::headline, "rms of |rate| over the statics", "静止区间角速度模均方根", ""},
+             &Result::rest_rate_rms)
+      .field({"samples", FieldRole::detail, "samples", "样本数", ""}, &Result::samples)
+      .field({"static_intervals", FieldRole::detail, "static intervals", "静止区间数", ""}, &Result::static_intervals)
+      .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
+      .compute([](const ProcedureCall& call, const Options& options) {
+        return apply_imu_calibration(read_imu_calibration(call.files.at("calibration")),
+                                     read_imu_record(call.files.at("record"), options.columns), options);
+      });
+}
+
+}  // namespace inertest

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
 #include <fmt/format.h>
 
 #include "inertest/campaign/campaign.h"
@@ -21,12 +24,28 @@ const nlohmann::json* find_result(const nlohmann::json& results, const std::stri
   return nullptr;
 }
 
-const nlohmann::json* find_figure(const nlohmann::json& result, const std::string& figure) {
-  if (!figure.empty() && figure.front() == '/') {
-    const nlohmann::json::json_pointer pointer(figure);
-    return result.contains(pointer) ? &result.at(pointer) : nullptr;
+// The figure at `figure`, a key or a JSON pointer; a pointer to an element of the value of a
+// vector or matrix figure (".../scale_factor/value/0", ".../misalignment/value/0/1") reads as that
+// element's figure: the figure's unit and the uncertainty at the same place. nullopt: none there.
+std::optional<nlohmann::json> find_figure(const nlohmann::json& result, const std::string& figure) {
+  if (figure.empty() || figure.front() != '/') {
+    return result.contains(figure) ? std::optional<nlohmann::json>(result.at(figure)) : std::nullopt;
   }
-  return result.contains(figure) ? &result.at(figure) : nullptr;
+  const nlohmann::json::json_pointer pointer(figure);
+  if (!result.contains(pointer)) return std::nullopt;
+  nlohmann::json::json_pointer owner = pointer;
+  std::vector<std::string> place;
+  while (!owner.empty() && owner.back() != "value") {
+    place.insert(place.begin(), owner.back());
+    owner.pop_back();
+  }
+  if (!result.at(pointer).is_number() || owner.empty()) return result.at(pointer);
+  owner.pop_back();
+  nlohmann::json element = {{"value", result.at(pointer)}, {"unit", result.at(owner).at("unit")}};
+  nlohmann::json::json_pointer uncertainty = owner / "uncertainty";
+  for (const std::string& index : place) uncertainty /= index;
+  if (result.contains(uncertainty)) element["uncertainty"] = result.at(uncertainty);
+  return element;
 }
 
 std::string report_text(const nlohmann::json& results, const std::string& campaign_report) {
@@ -89,8 +108,8 @@ DemoSummary run_demo(const std::string& out_dir, const DemoOptions& options) {
       continue;
     }
     const std::string figure_key = truth.at("figure");
-    const nlohmann::json* node = find_figure(*result, figure_key);
-    if (node == nullptr) throw Error("demo: procedure '" + procedure + "' reports no figure '" + figure_key + "'");
+    const std::optional<nlohmann::json> node = find_figure(*result, figure_key);
+    if (!node) throw Error("demo: procedure '" + procedure + "' reports no figure '" + figure_key + "'");
     const std::string unit = truth.at("unit");
     if (node->value("identified", true) == false) {
       // Not identified (e.g. a noise term the fit holds at zero): the truth must lie below the bound.

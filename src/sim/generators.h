@@ -25,5 +25,6 @@ void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab&
 void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_temperature_model(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_imu_noise(campaign::PlanTable& test, const std::string& name, Lab& lab);
+void generate_imu_tumble(campaign::PlanTable& test, const std::string& name, Lab& lab);
 
 }  // namespace inertest::sim

@@ -121,6 +121,9 @@ sample_rate_hz = 5
 [[test]]
 kind = "centrifuge"
 revolutions = 5
+[[test]]
+kind = "imu_tumble"
+orientations = 14
 )";
 
 TEST(SimGenerators, EveryKindRecoversItsTruthInAShortCase) {
@@ -139,7 +142,7 @@ TEST(SimGenerators, EveryKindRecoversItsTruthInAShortCase) {
                            "maximum_input_rate", "bias", "bias_repeatability", "bias_temperature", "turn_on_time",
                            "warm_up_time", "polarity", "threshold", "resolution", "bandwidth", "input_axis_misalignment",
                            "gyro_misalignment",
-                           "accelerometer_misalignment", "allan", "centrifuge"}) {
+                           "accelerometer_misalignment", "allan", "centrifuge", "imu_tumble"}) {
     EXPECT_TRUE(procedures.count(kind)) << kind << " has no truth check";
   }
   EXPECT_TRUE(summary.results.at("not_checked").empty()) << summary.results.at("not_checked").dump();

@@ -3,20 +3,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "inertest/sim/geometry.h"
 #include "inertest/sim/random.h"
 
 namespace inertest::sim {
 namespace {
-
-Matrix3 product(const Matrix3& a, const Matrix3& b) {
-  Matrix3 c{};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      for (int k = 0; k < 3; ++k) c[i][j] += a[i][k] * b[k][j];
-    }
-  }
-  return c;
-}
 
 // Rodrigues' rotation about the unit `axis` by `angle`.
 Matrix3 rotation(const Vector3& axis, double angle) {
@@ -83,7 +74,7 @@ ImuRecord simulate_imu_tumble(const ImuTumbleOptions& options, std::uint64_t see
     for (long i = 1; i <= samples; ++i) {
       const double s = static_cast<double>(i) / static_cast<double>(samples);
       const double speed = angle * std::numbers::pi / (2.0 * duration) * std::sin(std::numbers::pi * s);
-      attitude = product(start, rotation(axis, angle * (1.0 - std::cos(std::numbers::pi * s)) / 2.0));
+      attitude = multiply(start, rotation(axis, angle * (1.0 - std::cos(std::numbers::pi * s)) / 2.0));
       emit({axis[0] * speed, axis[1] * speed, axis[2] * speed});
     }
     hold(options.still_s);

@@ -38,6 +38,7 @@ const std::map<std::string, TestGenerator, std::less<>>& generators() {
       {"resolution", generate_resolution},
       {"temperature_model", generate_temperature_model},
       {"imu_noise", generate_imu_noise},
+      {"imu_tumble", generate_imu_tumble},
   };
   return table;
 }

@@ -29,9 +29,21 @@
 // A2 only (sin 2t vanishes and cos 3t equals cos t at 0, 90, 180 and 270 deg), so K3 and K_x are
 // then not identified, taken as 0, and said so; eight positions or more identify all six.
 //
-// The positions: a CSV with the header 'angle_deg,output' and an optional 'run' column (repeated
-// tumbles, fitted together), one row per head position, the output being the mean of the
-// accelerometer's output at that position in the instrument's output unit.
+// The mounting error. The fixture's reference for IA may itself lean by an angle e toward the
+// head's cross direction (the direction of increasing theta); then a_i = gamma cos(theta - e), which
+// adds K1 e gamma sin t to B1: one mounting measures c + e, not c. As the misalignment paper
+// separates the instrument's misalignment from its fixture's (and GJB 2426A 5.15's four-position
+// method, eq. 50 as corrected in the reference notes: delta = (delta_1 - delta_3) / 2), the tumble is
+// repeated with the accelerometer turned 180 deg about its IA in the fixture (`mounting_deg` 180):
+// the cross axis then points against the head's cross direction, so c and K_x change sign while e
+// does not. With both mountings the fit takes B1 and B2 on s sin t and s sin 2t (s = +1 at 0 deg,
+// -1 at 180 deg) and the mounting error E on sin t: c = B1 / (K1 gamma), e = E / (K1 gamma). (The
+// error's second-order terms, K2 e and e^2, are left out.)
+//
+// The positions: a CSV with the header 'angle_deg,output', an optional 'run' column (repeated
+// tumbles, fitted together) and an optional 'mounting_deg' column (0 or 180, above), one row per
+// head position, the output being the mean of the accelerometer's output at that position in the
+// instrument's output unit.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -68,6 +80,7 @@ struct TumblePosition {
   double angle_deg = 0.0;
   double output = 0.0;
   std::optional<double> run;
+  bool turned = false;  // mounted turned 180 deg about IA (mounting_deg 180)
 };
 
 struct TumbleResidual {
@@ -84,6 +97,7 @@ struct AccelerometerTumbleResult {
   std::optional<Figure> misalignment_about_pendulous_axis;  // delta_p, rad (head along PA)
   std::optional<Figure> cross_coupling_ip;                  // K_ip, g/g^2 (head along OA)
   std::optional<Figure> cross_coupling_io;                  // K_io, g/g^2 (head along PA)
+  std::optional<Figure> mounting_error;                     // e, rad (both mountings)
   Figure residual_rms;                                      // output unit
   std::size_t positions = 0;
   std::size_t degrees_of_freedom = 0;
@@ -107,27 +121,43 @@ std::vector<TumblePosition> read_tumble_positions(const std::string& path) {
   const auto& angles = table.column("angle_deg");
   const auto& outputs = table.column("output");
   const std::vector<double>* runs = table.has_column("run") ? &table.column("run") : nullptr;
+  const std::vector<double>* mountings = table.has_column("mounting_deg") ? &table.column("mounting_deg") : nullptr;
   std::vector<TumblePosition> positions(table.rows());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     positions[i] = {angles[i], outputs[i], runs ? std::optional<double>((*runs)[i]) : std::nullopt};
+    if (!mountings) continue;
+    const double mounting = (*mountings)[i];
+    if (mounting != 0.0 && mounting != 180.0) {
+      const auto column = static_cast<std::size_t>(
+          std::find(table.names.begin(), table.names.end(), "mounting_deg") - table.names.begin());
+      throw Error(locate_cell(table, i, column),
+                  fmt::format("mounting_deg is {}: 0 (as mounted) or 180 (turned about the input axis)", mounting));
+    }
+    positions[i].turned = mounting == 180.0;
   }
   return positions;
 }
 
-// The harmonics' columns, in the order of the header comment; `fitted` says which are in the design.
-constexpr std::size_t kHarmonics = 6;
-enum Harmonic : std::size_t { kA0, kA1, kB1, kA2, kB2, kA3 };
-constexpr std::array<const char*, kHarmonics> kHarmonicNames = {"A0", "A1 (cos)", "B1 (sin)", "A2 (cos 2)",
-                                                                 "B2 (sin 2)", "A3 (cos 3)"};
+// The harmonics' columns, in the order of the header comment, then the mounting error's E; `fitted`
+// says which are in the design.
+constexpr std::size_t kHarmonics = 7;
+enum Harmonic : std::size_t { kA0, kA1, kB1, kA2, kB2, kA3, kE };
+constexpr std::array<const char*, kHarmonics> kHarmonicNames = {"A0",         "A1 (cos)",   "B1 (sin)",
+                                                                 "A2 (cos 2)", "B2 (sin 2)", "A3 (cos 3)",
+                                                                 "E (mounting, sin)"};
 
-double harmonic_at(std::size_t h, double theta) {
+// B1 and B2 follow the instrument's cross axis (s = -1 when turned), E the fixture's (header comment).
+double harmonic_at(std::size_t h, const TumblePosition& position) {
+  const double theta = position.angle_deg * constants::kDegree;
+  const double s = position.turned ? -1.0 : 1.0;
   switch (h) {
     case kA0: return 1.0;
     case kA1: return std::cos(theta);
-    case kB1: return std::sin(theta);
+    case kB1: return s * std::sin(theta);
     case kA2: return std::cos(2.0 * theta);
-    case kB2: return std::sin(2.0 * theta);
-    default: return std::cos(3.0 * theta);
+    case kB2: return s * std::sin(2.0 * theta);
+    case kA3: return std::cos(3.0 * theta);
+    default: return std::sin(theta);
   }
 }
 
@@ -146,8 +176,7 @@ HarmonicFit fit_harmonics(const std::vector<TumblePosition>& positions, std::arr
   Matrix design(positions.size(), columns.size());
   std::vector<double> outputs(positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) {
-    const double theta = positions[i].angle_deg * constants::kDegree;
-    for (std::size_t j = 0; j < columns.size(); ++j) design(i, j) = harmonic_at(columns[j], theta);
+    for (std::size_t j = 0; j < columns.size(); ++j) design(i, j) = harmonic_at(columns[j], positions[i]);
     outputs[i] = positions[i].output;
   }
   LeastSquaresOptions options;
@@ -168,11 +197,16 @@ HarmonicFit fit_harmonics(const std::vector<TumblePosition>& positions, std::arr
 }
 
 // The harmonics of the fullest model the positions identify: all six, else without A3 (K3), else
-// without B2 (K_x) too. Throws Error when even A0, A1, B1 and A2 are not identified.
+// without B2 (K_x) too; E besides when both mountings are there. Throws Error when even A0, A1, B1
+// and A2 are not identified.
 HarmonicFit identified_harmonics(const std::vector<TumblePosition>& positions, const std::string& path) {
-  for (const std::array<bool, kHarmonics>& fitted : {std::array<bool, kHarmonics>{true, true, true, true, true, true},
-                                                     std::array<bool, kHarmonics>{true, true, true, true, true, false},
-                                                     std::array<bool, kHarmonics>{true, true, true, true, false, false}}) {
+  const auto turned = [](const TumblePosition& p) { return p.turned; };
+  const bool both_mountings = std::any_of(positions.begin(), positions.end(), turned) &&
+                              !std::all_of(positions.begin(), positions.end(), turned);
+  for (std::array<bool, kHarmonics> fitted : {std::array<bool, kHarmonics>{true, true, true, true, true, true},
+                                              std::array<bool, kHarmonics>{true, true, true, true, true, false},
+                                              std::array<bool, kHarmonics>{true, true, true, true, false, false}}) {
+    fitted[kE] = both_mountings;
     if (positions.size() < static_cast<std::size_t>(std::count(fitted.begin(), fitted.end(), true))) continue;
     HarmonicFit fit = fit_harmonics(positions, fitted);
     if (fit.fit.unidentifiable.empty()) return fit;
@@ -218,17 +252,18 @@ AccelerometerTumbleResult accelerometer_tumble(const std::vector<TumblePosition>
   AccelerometerTumbleResult result;
   result.output_unit = options.output_unit;
   result.scale_factor = propagated(k1, k1_gradient, fit, options.output_unit + "/g");
-  result.bias = ratio({1.0, 0.0, 0.0, -1.0, 0.0, 0.0}, "g");
-  result.second_order = ratio({0.0, 0.0, 0.0, 2.0 / gamma2, 0.0, 0.0}, "1/g");
-  if (fit.fitted[kA3]) result.third_order = ratio({0.0, 0.0, 0.0, 0.0, 0.0, 4.0 / (gamma2 * gamma)}, "1/g^2");
+  result.bias = ratio({1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0}, "g");
+  result.second_order = ratio({0.0, 0.0, 0.0, 2.0 / gamma2, 0.0, 0.0, 0.0}, "1/g");
+  if (fit.fitted[kA3]) result.third_order = ratio({0.0, 0.0, 0.0, 0.0, 0.0, 4.0 / (gamma2 * gamma), 0.0}, "1/g^2");
   const bool head_along_output = options.head_axis == "output";
   // The model's cross-axis term is +delta_o a_p with the head along OA, -delta_p a_o along PA.
-  const Figure misalignment = ratio({0.0, 0.0, (head_along_output ? 1.0 : -1.0) / gamma, 0.0, 0.0, 0.0}, "rad");
+  const Figure misalignment = ratio({0.0, 0.0, (head_along_output ? 1.0 : -1.0) / gamma, 0.0, 0.0, 0.0, 0.0}, "rad");
   (head_along_output ? result.misalignment_about_output_axis : result.misalignment_about_pendulous_axis) = misalignment;
   if (fit.fitted[kB2]) {
     (head_along_output ? result.cross_coupling_ip : result.cross_coupling_io) =
-        ratio({0.0, 0.0, 0.0, 0.0, 2.0 / gamma2, 0.0}, "1/g");
+        ratio({0.0, 0.0, 0.0, 0.0, 2.0 / gamma2, 0.0, 0.0}, "1/g");
   }
+  if (fit.fitted[kE]) result.mounting_error = ratio({0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 / gamma}, "rad");
   result.positions = positions.size();
   result.degrees_of_freedom = fit.fit.degrees_of_freedom;
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -258,6 +293,7 @@ nlohmann::json positions_json(const AccelerometerTumbleResult& result) {
                           {"model", Figure{r.model, result.output_unit, std::nullopt}},
                           {"residual", Figure{r.position.output - r.model, result.output_unit, std::nullopt}}};
     if (r.position.run) row["run"] = *r.position.run;
+    if (r.position.turned) row["mounting"] = Figure{180.0, "deg", std::nullopt};
     rows.push_back(std::move(row));
   }
   return rows;
@@ -274,17 +310,22 @@ ProcedureSpec accelerometer_tumble_spec() {
              "accelerometer_tumble", "Accelerometer multipoint tumble", "IEEE Std 1293-1998 8.3",
              "the model equation's bias K0, scale factor K1, second- and third-order coefficients K2,\n"
              "K3, input-axis misalignment and cross-coupling, by least squares on the harmonics of the\n"
-             "output over the dividing head's angle. POSITIONS is a CSV 'angle_deg,output[,run]', one\n"
-             "row per head position (4, 8, 12, 16 or 24 per turn); angle 0: input axis up, the angle\n"
-             "turning the upward vertical from the input axis toward the cross axis.")
+             "output over the dividing head's angle. POSITIONS is a CSV 'angle_deg,output[,run]\n"
+             "[,mounting_deg]', one row per head position (4, 8, 12, 16 or 24 per turn); angle 0: input\n"
+             "axis up, the angle turning the upward vertical from the input axis toward the cross axis.\n"
+             "Tumbles at mounting_deg 0 and 180 (turned about the input axis in the fixture) separate the\n"
+             "fixture's mounting error from the misalignment.")
       .chinese_title("加速度计多位置翻滚试验")
       .report_method(
           "The accelerometer is mounted on a dividing head whose axis is horizontal and along its output (or "
           "pendulous) axis, and its output is read at equally spaced head angles over a full turn. The output is "
           "fitted by least squares with the harmonics of the head angle that the model equation produces (cos θ, "
-          "sin θ, cos 2θ, sin 2θ, cos 3θ), and the model's coefficients follow from the harmonics.",
+          "sin θ, cos 2θ, sin 2θ, cos 3θ), and the model's coefficients follow from the harmonics. When the tumble is "
+          "repeated with the accelerometer turned 180° about its input axis in the fixture, the misalignment changes "
+          "sign and the fixture's mounting error does not, which separates the two.",
           "将加速度计安装在水平轴分度头上，分度头轴沿输出轴（或摆轴），在一周内等间隔的分度头角位置读取输出。"
-          "以模型方程产生的各次谐波（cos θ、sin θ、cos 2θ、sin 2θ、cos 3θ）对输出作最小二乘拟合，由谐波系数求得模型方程各系数。")
+          "以模型方程产生的各次谐波（cos θ、sin θ、cos 2θ、sin 2θ、cos 3θ）对输出作最小二乘拟合，由谐波系数求得模型方程各系数。"
+          "将加速度计在夹具中绕输入轴转180°重复翻滚时，失准角变号而夹具安装误差不变，由此将二者分离。")
       .example({"examples/accelerometer_tumble/positions.csv", "--output-unit", "mA", "--gravity", "9.7936"})
       .input(InputSpec("positions", "CSV of head angles and outputs").read_from_file("POSITIONS", "file"))
       .parameter(ParameterSpec("output_unit", "accelerometer output unit").instrument_gives("output_unit"),
@@ -318,6 +359,9 @@ ProcedureSpec accelerometer_tumble_spec() {
       .field({"cross_coupling_io", FieldRole::detail, "cross-coupling coefficient K_io", "交叉耦合系数 K_io",
               "IEEE Std 1293-1998 8.3"},
              &Result::cross_coupling_io)
+      .field({"mounting_error", FieldRole::headline, "mounting error of the fixture (both mountings)",
+              "安装误差（正反两种安装）", "IEEE Std 1293-1998 8.3; GJB 2426A-2004 5.15 eq. (50)"},
+             &Result::mounting_error)
       .field({"residual_rms", FieldRole::detail, "rms residual of the fit", "拟合残差均方根", ""}, &Result::residual_rms)
       .field({"positions", FieldRole::detail, "positions", "位置数", ""}, &Result::positions)
       .field({"degrees_of_freedom", FieldRole::detail, "degrees of freedom", "自由度", ""}, &Result::degrees_of_freedom)

@@ -26,5 +26,6 @@ void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab
 void generate_temperature_model(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_imu_noise(campaign::PlanTable& test, const std::string& name, Lab& lab);
 void generate_imu_tumble(campaign::PlanTable& test, const std::string& name, Lab& lab);
+void generate_accelerometer_tumble(campaign::PlanTable& test, const std::string& name, Lab& lab);
 
 }  // namespace inertest::sim

@@ -124,6 +124,8 @@ revolutions = 5
 [[test]]
 kind = "imu_tumble"
 orientations = 14
+[[test]]
+kind = "accelerometer_tumble"
 )";
 
 TEST(SimGenerators, EveryKindRecoversItsTruthInAShortCase) {
@@ -142,7 +144,7 @@ TEST(SimGenerators, EveryKindRecoversItsTruthInAShortCase) {
                            "maximum_input_rate", "bias", "bias_repeatability", "bias_temperature", "turn_on_time",
                            "warm_up_time", "polarity", "threshold", "resolution", "bandwidth", "input_axis_misalignment",
                            "gyro_misalignment",
-                           "accelerometer_misalignment", "allan", "centrifuge", "imu_tumble"}) {
+                           "accelerometer_misalignment", "allan", "centrifuge", "imu_tumble", "accelerometer_tumble"}) {
     EXPECT_TRUE(procedures.count(kind)) << kind << " has no truth check";
   }
   EXPECT_TRUE(summary.results.at("not_checked").empty()) << summary.results.at("not_checked").dump();

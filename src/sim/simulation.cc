@@ -39,6 +39,7 @@ const std::map<std::string, TestGenerator, std::less<>>& generators() {
       {"temperature_model", generate_temperature_model},
       {"imu_noise", generate_imu_noise},
       {"imu_tumble", generate_imu_tumble},
+      {"accelerometer_tumble", generate_accelerometer_tumble},
   };
   return table;
 }

@@ -23,7 +23,8 @@
 //   step, figure = { min, max, unit } as in a processing plan's [procedure.limits]. Kinds: scale_factor, scale_factor_repeatability,
 //   scale_factor_temperature, maximum_input_rate, bias, bias_repeatability, bias_temperature,
 //   turn_on_time, polarity, threshold, resolution, bandwidth, input_axis_misalignment,
-//   gyro_misalignment, accelerometer_misalignment, allan, centrifuge.
+//   gyro_misalignment, accelerometer_misalignment, allan, centrifuge, imu_noise, imu_tumble,
+//   accelerometer_tumble.
 //
 // truth.json "truth": one entry per figure a plan step reports, {"procedure", "quantity", "figure"
 // (result key or JSON pointer), "true", "systematic" (a known effect of the rigs or the method,

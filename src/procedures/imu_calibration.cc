@@ -278,6 +278,56 @@ std::vector<double> direction_residuals(const ImuRecord& record, const std::vect
   return r;
 }
 
+// The gyro's fit leans on two estimates that every rotation shares: the accelerometer's calibration
+// (the gravity directions at either end) and the gyro's bias (integrated over each rotation). Their
+// errors do not show in the scatter of the residuals, so s^2 (J^T J)^-1 alone understates the gyro's
+// covariance. Each is carried in by the fit's linear sensitivity to it, dp = -(J^T J)^-1 J^T (dr/dx)
+// dx, and added: C_gyro += S C_x S^T (the first-order covariance of a two-step estimate: Murphy and
+// Topel, J. Bus. Econ. Stat. 3 (1985), theorem 1). dr/dx by central differences of a tenth of a sigma.
+void add_shared_covariance(GaussNewtonFit& gyro, const ResidualFunction& residuals, const Parameters& scales,
+                           const GaussNewtonFit& accelerometer, const TriadCalibration& gyro_triad,
+                           const std::function<std::vector<double>(const Parameters&, const Vector3&)>& residuals_at) {
+  const std::size_t n = gyro.parameters.size();
+  const std::size_t calibration_size = accelerometer.parameters.size();
+  const std::size_t shared = calibration_size + 3;
+  Matrix shared_covariance(shared, shared);
+  for (std::size_t j = 0; j < calibration_size; ++j) {
+    for (std::size_t k = 0; k < calibration_size; ++k) shared_covariance(j, k) = accelerometer.covariance(j, k);
+  }
+  for (std::size_t j = 0; j < 3; ++j) {
+    shared_covariance(calibration_size + j, calibration_size + j) =
+        gyro_triad.bias_uncertainty[j] * gyro_triad.bias_uncertainty[j];
+  }
+  const Matrix jacobian = scaled_jacobian(residuals, gyro.parameters, scales, gyro.residuals.size());
+  LeastSquaresOptions options;
+  options.rank_tolerance = 1e-9;
+  Matrix sensitivity(n, shared);  // d p_gyro / d x
+  for (std::size_t x = 0; x < shared; ++x) {
+    const double step = 0.1 * std::sqrt(shared_covariance(x, x));
+    if (!(step > 0.0)) continue;
+    const auto at = [&](double sign) {
+      Parameters calibration = accelerometer.parameters;
+      Vector3 bias = gyro_triad.bias;
+      (x < calibration_size ? calibration[x] : bias[x - calibration_size]) += sign * step;
+      return residuals_at(calibration, bias);
+    };
+    const std::vector<double> up = at(1.0), down = at(-1.0);
+    std::vector<double> negative(up.size());
+    for (std::size_t i = 0; i < up.size(); ++i) negative[i] = -(up[i] - down[i]) / (2.0 * step);
+    const LeastSquaresResult change = solve_least_squares(jacobian, negative, options);
+    for (std::size_t j = 0; j < n; ++j) sensitivity(j, x) = change.parameters[j] * scales[j];
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t k = 0; k < n; ++k) {
+      double added = 0.0;
+      for (std::size_t a = 0; a < shared; ++a) {
+        for (std::size_t b = 0; b < shared; ++b) added += sensitivity(j, a) * shared_covariance(a, b) * sensitivity(k, b);
+      }
+      gyro.covariance(j, k) += added;
+    }
+  }
+}
+
 Vector3 interval_mean(const std::array<std::vector<double>, 3>& columns, const StaticInterval& interval) {
   Vector3 mean{};
   for (int j = 0; j < 3; ++j) {
@@ -567,18 +617,28 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
     w.bias[j] = mean;
     w.bias_uncertainty[j] = std::sqrt(squares / static_cast<double>(means.size() - 1) / static_cast<double>(means.size()));
   }
-  std::vector<Motion> motions;
-  for (std::size_t i = 0; i + 1 < accepted.size(); ++i) {
-    Motion motion;
-    motion.from = accepted[i]->last - 1;
-    motion.to = accepted[i + 1]->first;
-    motion.gravity_before = normalised(a.apply(accepted[i]->accelerometer_mean));
-    motion.gravity_after = normalised(a.apply(accepted[i + 1]->accelerometer_mean));
-    const Vector3 other = std::abs(motion.gravity_after[0]) < 0.9 ? Vector3{1, 0, 0} : Vector3{0, 1, 0};
-    motion.tangent_1 = normalised(cross(motion.gravity_after, other));
-    motion.tangent_2 = cross(motion.gravity_after, motion.tangent_1);
-    motions.push_back(motion);
-  }
+  // The rotations between consecutive statics, with the gravity directions that the accelerometer's
+  // calibration (parameters as its fit's) gives at either end.
+  const auto motions_of = [&](const Parameters& calibration) {
+    const Matrix3 tk = triad_matrix(calibration, 3, kAccelerometerOffDiagonal);
+    const auto gravity = [&](const Vector3& mean) {
+      return normalised(multiply(tk, Vector3{mean[0] - calibration[0], mean[1] - calibration[1], mean[2] - calibration[2]}));
+    };
+    std::vector<Motion> motions;
+    for (std::size_t i = 0; i + 1 < accepted.size(); ++i) {
+      Motion motion;
+      motion.from = accepted[i]->last - 1;
+      motion.to = accepted[i + 1]->first;
+      motion.gravity_before = gravity(accepted[i]->accelerometer_mean);
+      motion.gravity_after = gravity(accepted[i + 1]->accelerometer_mean);
+      const Vector3 other = std::abs(motion.gravity_after[0]) < 0.9 ? Vector3{1, 0, 0} : Vector3{0, 1, 0};
+      motion.tangent_1 = normalised(cross(motion.gravity_after, other));
+      motion.tangent_2 = cross(motion.gravity_after, motion.tangent_1);
+      motions.push_back(motion);
+    }
+    return motions;
+  };
+  const std::vector<Motion> motions = motions_of(accelerometer.parameters);
   const ResidualFunction residuals = [&](const Parameters& p) { return direction_residuals(record, motions, p, w.bias); };
   // The common scale that best turns each gravity direction into the next, searched over nine
   // decades of output unit per rad/s, starts the fit.
@@ -592,8 +652,11 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
       start = trial;
     }
   }
-  const GaussNewtonFit gyro =
-      gauss_newton(residuals, start, {start[0], start[0], start[0], 1.0, 1.0, 1.0, 1.0, 1.0, 1.0}, kGyroNames);
+  const Parameters gyro_scales = {start[0], start[0], start[0], 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  GaussNewtonFit gyro = gauss_newton(residuals, start, gyro_scales, kGyroNames);
+  add_shared_covariance(gyro, residuals, gyro_scales, accelerometer, w, [&](const Parameters& calibration, const Vector3& bias) {
+    return direction_residuals(record, motions_of(calibration), gyro.parameters, bias);
+  });
   set_triad(w, gyro, 0, kGyroOffDiagonal);
   for (std::size_t i = 0; i < motions.size(); ++i) {
     accepted[i + 1]->direction_residual_rad = std::hypot(gyro.residuals[2 * i], gyro.residuals[2 * i + 1]);

@@ -165,21 +165,41 @@ bool is_iso_date(const std::string& text) {
   return true;
 }
 
-// Every {"value": number, "unit": string} object under result, named by its path of keys.
+// One figure's value (a number, or the numbers of an array figure, e.g. a triad's [x, y, z] or a 3x3,
+// each named by its path and its place in "value": "accelerometer/bias/value/0"), with the
+// uncertainty at the same place.
+void collect_values(const nlohmann::json& value, const nlohmann::json* uncertainty, const std::string& unit,
+                    const std::string& procedure, const std::string& path, const std::string& source,
+                    std::vector<FigureRow>& out) {
+  if (value.is_null()) return;  // a figure the procedure could not compute (NaN is written null)
+  if (value.is_array() && !value.empty()) {
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      const nlohmann::json* element =
+          uncertainty != nullptr && uncertainty->is_array() && i < uncertainty->size() ? &(*uncertainty)[i] : nullptr;
+      collect_values(value[i], element, unit, procedure, fmt::format("{}/{}", path, i), source, out);
+    }
+    return;
+  }
+  if (!value.is_number()) malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
+  FigureRow row;
+  row.procedure = procedure;
+  row.figure = path;
+  row.value = value.get<double>();
+  row.unit = unit;
+  if (uncertainty != nullptr && uncertainty->is_number()) row.uncertainty = uncertainty->get<double>();
+  out.push_back(std::move(row));
+}
+
+// Every {"value": number (or array of numbers), "unit": string} object under result, named by its
+// path of keys.
 void collect_figures(const nlohmann::json& node, const std::string& procedure, const std::string& path,
                      const std::string& source, std::vector<FigureRow>& out) {
   if (!node.is_object()) return;
   if (node.contains("value") && node.contains("unit") && node.at("unit").is_string()) {
     const auto& value = node.at("value");
-    if (value.is_null()) return;  // a figure the procedure could not compute (NaN is written null)
-    if (!value.is_number()) malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
-    FigureRow row;
-    row.procedure = procedure;
-    row.figure = path;
-    row.value = value.get<double>();
-    row.unit = node.at("unit").get<std::string>();
-    if (const auto it = node.find("uncertainty"); it != node.end() && it->is_number()) row.uncertainty = it->get<double>();
-    out.push_back(std::move(row));
+    const auto uncertainty = node.find("uncertainty");
+    collect_values(value, uncertainty == node.end() ? nullptr : &*uncertainty, node.at("unit").get<std::string>(),
+                   procedure, value.is_array() ? path + "/value" : path, source, out);
     return;
   }
   for (const auto& [key, child] : node.items()) {

@@ -136,6 +136,30 @@ TEST_P(ArchiveBackend, AddListHistoryGiveBackExactlyWhatWasStored) {
   EXPECT_EQ(archive->results(first.id), campaign("FOG-0417", "2026-03-02", k2, u1));
 }
 
+// A triad's figures ({"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}, issue 18)
+// are stored element by element, each named by its place in "value".
+TEST_P(ArchiveBackend, ArrayFiguresAreStoredElementByElement) {
+  auto archive = open();
+  nlohmann::json results = campaign("IMU-7", "2026-03-02", 36000.0);
+  results["procedures"].push_back(
+      {{"name", "imu"},
+       {"kind", "imu_calibration"},
+       {"result",
+        {{"accelerometer",
+          {{"bias", {{"value", {32864.0, 33275.0, 32364.0}}, {"unit", "count"}, {"uncertainty", {0.1, 0.2, 0.3}}}},
+           {"misalignment", {{"value", {{0.0, 1e-3}, {0.0, 0.0}}}, {"unit", "rad"}}}}}}}});
+  archive->add(results, "imu.json");
+  const auto bias = archive->history("IMU-7", "imu/accelerometer/bias/value/1");
+  ASSERT_EQ(bias.points.size(), 1u);
+  EXPECT_EQ(bias.points[0].value, 33275.0);
+  EXPECT_EQ(bias.points[0].uncertainty, 0.2);
+  EXPECT_EQ(bias.unit, "count");
+  const auto misalignment = archive->history("IMU-7", "imu/accelerometer/misalignment/value/0/1");
+  ASSERT_EQ(misalignment.points.size(), 1u);
+  EXPECT_EQ(misalignment.points[0].value, 1e-3);
+  EXPECT_FALSE(misalignment.points[0].uncertainty);
+}
+
 TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
   auto archive = open();
   const auto once = archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");

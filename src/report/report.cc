@@ -109,10 +109,53 @@ bool is_unidentified_figure(const json& node) {
          bound->is_number() && unit != nullptr && unit->is_string();
 }
 
+// A figure of a triad (issue 18): {"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}.
+bool is_array_figure(const json& node) {
+  const auto* value = member(node, "value");
+  const auto* unit = member(node, "unit");
+  return value != nullptr && value->is_array() && !value->empty() && unit != nullptr && unit->is_string();
+}
+
+// One row per element of an array figure, named by its axes ("x", "xy"), its pointer the element's
+// value; a matrix's elements held at zero by the figure's convention (zero with zero uncertainty,
+// e.g. a misalignment's diagonal) are left out.
+void collect_array_figure(const json& node, const std::string& pointer, const std::string& name, int depth,
+                          bool headline, std::vector<FigureRow>& rows) {
+  constexpr std::string_view kAxes = "xyz";
+  const json& values = node.at("value");
+  const json* uncertainties = member(node, "uncertainty");
+  const auto add = [&](const json& value, const json* uncertainty, const std::string& axes, const std::string& path,
+                       bool skip_fixed) {
+    if (!value.is_number()) return;
+    json figure = {{"value", value}, {"unit", node.at("unit")}};
+    if (uncertainty != nullptr && uncertainty->is_number()) figure["uncertainty"] = *uncertainty;
+    if (skip_fixed && value.get<double>() == 0.0 && figure.value("uncertainty", 0.0) == 0.0) return;
+    rows.push_back({pointer + "/value" + path, name + " " + axes, std::move(figure), depth + 1, headline && depth + 1 <= 2});
+  };
+  const auto element = [](const json* array, std::size_t i) -> const json* {
+    return array != nullptr && array->is_array() && i < array->size() ? &(*array)[i] : nullptr;
+  };
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::string row_axis = i < kAxes.size() ? std::string(1, kAxes[i]) : std::to_string(i + 1);
+    if (!values[i].is_array()) {
+      add(values[i], element(uncertainties, i), row_axis, fmt::format("/{}", i), false);
+      continue;
+    }
+    for (std::size_t j = 0; j < values[i].size(); ++j) {
+      const std::string column_axis = j < kAxes.size() ? std::string(1, kAxes[j]) : std::to_string(j + 1);
+      add(values[i][j], element(element(uncertainties, i), j), row_axis + column_axis, fmt::format("/{}/{}", i, j), true);
+    }
+  }
+}
+
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
   if (is_figure(node) || is_unidentified_figure(node)) {
     rows.push_back({pointer, name, node, depth, headline && depth <= 2});
+    return;
+  }
+  if (is_array_figure(node)) {
+    collect_array_figure(node, pointer, name, depth, headline, rows);
     return;
   }
   if (depth >= 3) return;

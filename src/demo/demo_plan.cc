@@ -223,6 +223,17 @@ hours = 6
 sample_rate_hz = 10
 
 [[test]]
+kind = "imu_tumble"
+name = "imu_tumble"             # a MEMS IMU turned by hand, raw counts: both triads without a table
+orientations = 36               # the method's paper asks for about 36 to 50
+
+[[test]]
+kind = "accelerometer_tumble"
+name = "accelerometer_tumble"   # the accelerometer on the dividing head: 8 positions, two turns, mounted both ways
+[test.limits]
+misalignment_about_output_axis = { min = -120, max = 120, unit = "arcsec" }
+
+[[test]]
 kind = "centrifuge"
 name = "centrifuge"
 g_levels = [10, 20]

@@ -10,6 +10,7 @@
 #include <numeric>
 #include <string_view>
 
+#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -391,7 +392,9 @@ void ImuCalibrationOptions::validate() const {
   if (!(static_minimum_s >= static_window_s)) {
     throw ParameterError("static_minimum_s", "a static interval must last at least one moving-variance window");
   }
-  if (!(outlier_factor > 2.0)) throw ParameterError("outlier_factor", "an outlier lies more than 2 robust sigmas out");
+  if (!(outlier_false_alarm > 0.0 && outlier_false_alarm < 0.5)) {
+    throw ParameterError("outlier_false_alarm", "a probability between 0 and 0.5");
+  }
   if (minimum_statics < 9) {
     throw ParameterError("minimum_statics", "each triad has nine parameters: at least 9 static intervals");
   }
@@ -554,13 +557,8 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
   };
   const double g = options.gravity_m_s2;
 
-  // The accelerometer: |T K (a_i - b)| = g over the static means; outliers refused, then refitted.
-  GaussNewtonFit accelerometer;
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::vector<StaticInterval*> accepted = accepted_of(result.static_intervals);
-    require_enough(accepted);
-    std::vector<Vector3> means;
-    for (const StaticInterval* interval : accepted) means.push_back(interval->accelerometer_mean);
+  // The accelerometer: |T K (a_i - b)| = g over the static means.
+  const auto fit_accelerometer = [&](const std::vector<Vector3>& means) {
     const ResidualFunction residuals = [&means, g](const Parameters& p) {
       const Matrix3 tk = triad_matrix(p, 3, kAccelerometerOffDiagonal);
       std::vector<double> r(means.size());
@@ -571,25 +569,72 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
     };
     const Parameters start = ellipsoid_start(means, g, record.source);
     const double bias_scale = 1.0 / std::max({start[3], start[4], start[5]});
-    accelerometer = gauss_newton(residuals, start,
-                                 {bias_scale, bias_scale, bias_scale, start[3], start[4], start[5], 1.0, 1.0, 1.0},
-                                 kAccelerometerNames);
-    std::vector<double> magnitudes(accelerometer.residuals.size());
-    std::transform(accelerometer.residuals.begin(), accelerometer.residuals.end(), magnitudes.begin(),
-                   [](double r) { return std::abs(r); });
-    const double robust_sigma = 1.4826 * median_of(magnitudes);
-    bool refused = false;
-    for (std::size_t i = 0; i < accepted.size(); ++i) {
-      accepted[i]->gravity_residual_m_s2 = accelerometer.residuals[i];
-      if (pass == 0 && std::abs(accelerometer.residuals[i]) > options.outlier_factor * robust_sigma) {
-        accepted[i]->accepted = false;
-        accepted[i]->reason = fmt::format("its gravity residual {:.3g} m/s^2 is more than {} robust sigmas ({:.3g} "
-                                          "m/s^2) of the fit: the IMU moved or was touched",
-                                          accelerometer.residuals[i], options.outlier_factor, robust_sigma);
-        refused = true;
+    return gauss_newton(residuals, start, {bias_scale, bias_scale, bias_scale, start[3], start[4], start[5], 1.0, 1.0, 1.0},
+                        kAccelerometerNames);
+  };
+  // Outliers (the IMU touched or moving while "still"): one bad static drags a least-squares fit
+  // toward it and hides among the residuals, so each static is judged by the fit without it. The
+  // static whose removal leaves the smallest sum of squares is the candidate; its externally
+  // studentised residual t = r / sqrt(s^2 + j^T C j) (r its residual from the fit without it, s^2
+  // and C that fit's residual variance and covariance, j the gradient of r; Student's t with that
+  // fit's degrees of freedom for a good static: Cook and Weisberg, "Residuals and Influence in
+  // Regression", 1982, 2.2.2) is refused when P(|t| larger) times the number of statics is below
+  // outlier_false_alarm (Bonferroni); then the next, until none is.
+  const auto means_of = [](const std::vector<StaticInterval*>& statics) {
+    std::vector<Vector3> means;
+    for (const StaticInterval* interval : statics) means.push_back(interval->accelerometer_mean);
+    return means;
+  };
+  const auto gravity_residual = [g](const Vector3& mean, const Parameters& p) {
+    return norm(multiply(triad_matrix(p, 3, kAccelerometerOffDiagonal), Vector3{mean[0] - p[0], mean[1] - p[1], mean[2] - p[2]})) - g;
+  };
+  GaussNewtonFit accelerometer;
+  while (true) {
+    const std::vector<StaticInterval*> accepted = accepted_of(result.static_intervals);
+    require_enough(accepted);
+    const std::vector<Vector3> means = means_of(accepted);
+    accelerometer = fit_accelerometer(means);
+    for (std::size_t i = 0; i < accepted.size(); ++i) accepted[i]->gravity_residual_m_s2 = accelerometer.residuals[i];
+    if (accepted.size() <= std::max(options.minimum_statics, kAccelerometerNames.size() + 1)) break;
+    std::size_t candidate = 0;
+    GaussNewtonFit without;
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < means.size(); ++i) {
+      std::vector<Vector3> others = means;
+      others.erase(others.begin() + static_cast<std::ptrdiff_t>(i));
+      GaussNewtonFit fit = fit_accelerometer(others);
+      const double squares = sum_of_squares(fit.residuals);
+      if (squares < least) {
+        least = squares;
+        candidate = i;
+        without = std::move(fit);
       }
     }
-    if (!refused) break;
+    const double residual = gravity_residual(means[candidate], without.parameters);
+    const std::size_t n = without.parameters.size();
+    Parameters gradient(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double step = 1e-3 * std::sqrt(without.covariance(k, k));
+      if (!(step > 0.0)) continue;
+      Parameters up = without.parameters, down = without.parameters;
+      up[k] += step;
+      down[k] -= step;
+      gradient[k] = (gravity_residual(means[candidate], up) - gravity_residual(means[candidate], down)) / (2.0 * step);
+    }
+    const double degrees = static_cast<double>(without.degrees_of_freedom);
+    double variance = least / degrees;
+    for (std::size_t j = 0; j < n; ++j) {
+      for (std::size_t k = 0; k < n; ++k) variance += gradient[j] * without.covariance(j, k) * gradient[k];
+    }
+    const double t = std::abs(residual) / std::sqrt(variance);
+    const double probability = 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(degrees), t));
+    if (!(probability * static_cast<double>(means.size()) < options.outlier_false_alarm)) break;
+    accepted[candidate]->accepted = false;
+    accepted[candidate]->gravity_residual_m_s2 = residual;
+    accepted[candidate]->reason =
+        fmt::format("its gravity residual {:.3g} m/s^2 from the fit without it is {:.1f} of its sigmas ({:.3g} m/s^2; "
+                    "a good static lies that far out with probability {:.2g}): the IMU moved or was touched",
+                    residual, t, std::sqrt(variance), probability);
   }
   TriadCalibration& a = result.accelerometer;
   a.output_unit = options.accelerometer_unit;

@@ -97,9 +97,9 @@ ProcedureSpec imu_calibration_spec() {
       .parameter(ParameterSpec("static_minimum_s", "a static interval lasts at least").unit_is("s").command_line_name_is(
                      "static-minimum"),
                  &Options::static_minimum_s)
-      .parameter(ParameterSpec("outlier_factor", "a static whose gravity residual exceeds this many robust sigmas is "
-                                                 "refused"),
-                 &Options::outlier_factor)
+      .parameter(ParameterSpec("outlier_false_alarm", "chance that a record of good statics loses one to the outlier test "
+                                                      "(studentised residual from the fit without it)"),
+                 &Options::outlier_false_alarm)
       .parameter(ParameterSpec("minimum_statics", "fewer accepted static intervals is an error"), &Options::minimum_statics)
       .parameter(ParameterSpec("export", "write the calibration to FILE (.json) for imu-apply"), &Options::export_file)
       .field_from({"accelerometer", FieldRole::detail, "accelerometer triad", "加速度计组件", "Tedaldi et al. 2014"},

@@ -49,6 +49,26 @@ TEST(ImuCalibration, RefusesAShortStillAndSaysWhy) {
   EXPECT_NE(intervals.back().reason.find("shorter than the minimum 7 s"), std::string::npos) << intervals.back().reason;
 }
 
+// A static whose mean is off (the IMU touched while still: 200 counts, ~0.5 m/s^2, on x) is refused
+// by the fit without it, says why, and the rest calibrate as without it.
+TEST(ImuCalibration, RefusesATouchedStaticAndSaysWhy) {
+  ImuRecord record = tumble(4, 20);
+  const StaticInterval touched = detect_static_intervals(record, {}).intervals.at(5);
+  for (std::size_t i = touched.first; i < touched.last; ++i) record.accelerometer[0][i] += 200.0;
+  const ImuCalibrationResult result = calibrate_imu(record, {});
+  const StaticInterval& refused = result.static_intervals.at(5);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_NE(refused.reason.find("the IMU moved or was touched"), std::string::npos) << refused.reason;
+  std::size_t accepted = 0;
+  for (const StaticInterval& interval : result.static_intervals) accepted += interval.accepted ? 1 : 0;
+  EXPECT_EQ(accepted, result.static_intervals.size() - 1);
+  const sim::ImuTumbleOptions made;
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(result.accelerometer.scale_factor[j], made.accelerometer.scale_factor[j],
+                4.5 * result.accelerometer.scale_factor_uncertainty[j]);
+  }
+}
+
 TEST(ImuCalibration, TooFewOrientationsIsAnErrorThatSaysSo) {
   try {
     calibrate_imu(tumble(3, 6), {});

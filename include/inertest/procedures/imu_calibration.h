@@ -57,7 +57,7 @@ struct ImuCalibrationOptions {
   double static_window_s = 1.0;      // the moving-variance window
   double static_threshold = 6.0;     // the threshold, as a multiple of the quietest windows' variance
   double static_minimum_s = 3.0;     // a shorter still interval is refused
-  double outlier_factor = 6.0;       // a static whose gravity residual exceeds this many robust sigmas is refused
+  double outlier_false_alarm = 1e-3;  // the chance that a record of good statics loses one to the outlier test
   std::size_t minimum_statics = 9;   // fewer accepted statics is an error
   std::string export_file;           // "" : no calibration file written
 

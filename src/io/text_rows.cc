@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fast_float/fast_float.h>
 
 #include "inertest/core/error.h"
+#include "io/decimal.h"
 
 namespace inertest::io_detail {
 namespace {
@@ -52,7 +52,7 @@ std::optional<double> parse_number(std::string_view text) {
   const char* end = begin + text.size();
   if (*begin == '+') ++begin;  // fast_float rejects a leading '+'
   double value = 0.0;
-  const auto result = fast_float::from_chars(begin, end, value);
+  const auto result = parse_decimal(begin, end, value);
   if (result.ec != std::errc() || result.ptr != end) return std::nullopt;
   return value;
 }
@@ -322,7 +322,7 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
     if (slots[field] >= 0) {
       if (p < end && *p == '+') ++p;  // as parse_number: fast_float rejects a leading '+'
       double value = 0.0;
-      const auto parsed = fast_float::from_chars(p, end, value);
+      const auto parsed = parse_decimal(p, end, value);
       if (parsed.ec != std::errc() || !std::isfinite(value)) return nullptr;
       p = parsed.ptr;
       values[slots[field]] = value;

@@ -1,13 +1,14 @@
 #include "io/text_rows.h"
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fast_float/fast_float.h>
 
 #include "inertest/core/error.h"
+#include "io/decimal.h"
 
 namespace inertest::io_detail {
 namespace {
@@ -52,7 +53,7 @@ std::optional<double> parse_number(std::string_view text) {
   const char* end = begin + text.size();
   if (*begin == '+') ++begin;  // fast_float rejects a leading '+'
   double value = 0.0;
-  const auto result = fast_float::from_chars(begin, end, value);
+  const auto result = parse_decimal(begin, end, value);
   if (result.ec != std::errc() || result.ptr != end) return std::nullopt;
   return value;
 }
@@ -306,6 +307,39 @@ std::vector<int> plain_slots(const RowLayout& layout) {
   return slots;
 }
 
+namespace {
+
+constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
+
+// 0x80 in each byte of x that is zero, 0 in every other: the exact SWAR test of Hacker's Delight,
+// 2nd ed., 6-1 (no carry from one byte reaches the next).
+std::uint64_t zero_bytes(std::uint64_t x) {
+  constexpr std::uint64_t kLow7 = 0x7f7f7f7f7f7f7f7fULL;
+  return ~(((x & kLow7) + kLow7) | x | kLow7);
+}
+
+// The end of an unselected field of the plain path: the first byte from p on that is a line end, a
+// quote or the field's end (the delimiter; with delimiter ' ', a blank), or `end`. Eight bytes a step
+// while eight remain: the bytes equal to each stop marked by zero_bytes, the lowest mark first.
+template <bool kBlankSeparated>
+const char* skip_field(const char* p, const char* end, char delimiter) {
+  const auto marks = [](std::uint64_t word, unsigned char stop) { return zero_bytes(word ^ (kOnes * stop)); };
+  for (; end - p >= 8; p += 8) {
+    const std::uint64_t word = load_eight_bytes(p);
+    std::uint64_t stops = marks(word, '\n') | marks(word, '"');
+    if constexpr (kBlankSeparated) {
+      stops |= marks(word, ' ') | marks(word, '\t') | marks(word, '\r');
+    } else {
+      stops |= marks(word, static_cast<unsigned char>(delimiter));
+    }
+    if (stops != 0) return p + std::countr_zero(stops) / 8;
+  }
+  while (p < end && *p != '\n' && *p != '"' && (kBlankSeparated ? !is_blank(*p) : *p != delimiter)) ++p;
+  return p;
+}
+
+}  // namespace
+
 // The plain path of a data row: unquoted fields, each selected one exactly one finite number, the
 // row as wide as the layout. It reads from `p` to the row's '\n' (or the chunk's end) once, with no
 // line search and no field list, and returns where it stopped. It accepts exactly the rows that
@@ -322,15 +356,13 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
     if (slots[field] >= 0) {
       if (p < end && *p == '+') ++p;  // as parse_number: fast_float rejects a leading '+'
       double value = 0.0;
-      const auto parsed = fast_float::from_chars(p, end, value);
+      const auto parsed = parse_decimal(p, end, value);
       if (parsed.ec != std::errc() || !std::isfinite(value)) return nullptr;
       p = parsed.ptr;
       values[slots[field]] = value;
     } else {
-      while (p < end && *p != '\n' && (blank_separated ? !is_blank(*p) : *p != delimiter)) {
-        if (*p == '"') return nullptr;
-        ++p;
-      }
+      p = blank_separated ? skip_field<true>(p, end, delimiter) : skip_field<false>(p, end, delimiter);
+      if (p < end && *p == '"') return nullptr;
     }
     const bool last = field + 1 == layout.width;
     if (blank_separated) {
@@ -349,18 +381,15 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
 }
 
 std::size_t line_capacity(std::string_view chunk) {
-  // The '\n' bytes counted eight at a time: a zero byte of w ^ 0x0a..0a is one, marked 0x80 by the
-  // exact SWAR test of Hacker's Delight, 2nd ed., 6-1; the marks summed by a multiplication (no
-  // popcount instruction in the x86-64 baseline). The tail byte by byte.
-  constexpr std::uint64_t kOnes = 0x0101010101010101ULL;
-  constexpr std::uint64_t kLow7 = 0x7f7f7f7f7f7f7f7fULL;
+  // The '\n' bytes counted eight at a time: a zero byte of w ^ 0x0a..0a is one, marked 0x80 by
+  // zero_bytes; the marks summed by a multiplication (no popcount instruction in the x86-64
+  // baseline). The tail byte by byte.
   std::size_t count = 0;
   std::size_t i = 0;
   for (; i + 8 <= chunk.size(); i += 8) {
     std::uint64_t word = 0;
     std::memcpy(&word, chunk.data() + i, 8);
-    const std::uint64_t x = word ^ (kOnes * '\n');
-    const std::uint64_t zero = ~(((x & kLow7) + kLow7) | x | kLow7);
+    const std::uint64_t zero = zero_bytes(word ^ (kOnes * '\n'));
     count += static_cast<std::size_t>(((zero >> 7) * kOnes) >> 56);  // the sum of the marks' bytes
   }
   for (; i < chunk.size(); ++i) count += chunk[i] == '\n' ? 1 : 0;

@@ -228,12 +228,12 @@ namespace {
 // Plain data rows are read by a one-pass path (io_detail::parse_plain_row) and every other row by
 // the general one (split, then parse_number); a layout that selects a field twice is always read by
 // the general one. On rows at the edge of "plain", both must give the same values or the same
-// error: columns 1 and 2 selected as {1, 2}, then as {1, 2, 1}.
-void expect_plain_as_general(const std::string& text) {
+// error: columns `first` and `second` selected as {first, second}, then as {first, second, first}.
+void expect_plain_as_general(const std::string& text, const char* first = "1", const char* second = "2") {
   TextTableOptions plain;
-  plain.columns = {ColumnSelector::parse("1"), ColumnSelector::parse("2")};
+  plain.columns = {ColumnSelector::parse(first), ColumnSelector::parse(second)};
   TextTableOptions general = plain;
-  general.columns.push_back(ColumnSelector::parse("1"));
+  general.columns.push_back(ColumnSelector::parse(first));
   const auto read = [&](const TextTableOptions& options, TextTable& table) {
     try {
       table = parse(text, options);
@@ -273,6 +273,26 @@ INSTANTIATE_TEST_SUITE_P(
                       "1 2,3\n", "nan,1\n", "1,inf\n", "0x10,1\n", "\"1\",2\n", "1,\"2\"\n", "1,2\"\n",
                       "1,2\n\n# note\n3,4\n", "1,2\n   \n3,4\n", "a,b\n1,2\n", "1;2\n", "1,2\n3\n", "1,2\n3,4,5\n",
                       "1,0,5\n", "1e400,1\n", "1,-0\n", "--1,2\n", "1 ,2 #\n", "1,2\r\r\n"));
+
+// The fields the plain path skips (eight bytes at a time): of every length up to 20, with a quote,
+// a blank, a line end or a delimiter at each place; within a line and last on it, the text ending
+// with a line end or not.
+TEST(PlainAndGeneralRows, SkippedFieldsGiveTheSameValuesOrTheSameError) {
+  for (std::size_t length = 0; length <= 20; ++length) {
+    for (std::size_t place = 0; place <= length; ++place) {
+      for (const char* odd : {"", "\"", " ", "\t", "\r", ";", ",", "\n5,6,"}) {
+        std::string field(length, 'x');
+        field.insert(place, odd);
+        for (const char* end : {"\n", "\r\n", ""}) {
+          expect_plain_as_general("a,b,c,d\n1," + field + ",2," + field + end + "3," + field + ",4," + field + end,
+                                  "1", "3");
+          expect_plain_as_general("a b c d\n1 " + field + " 2 " + field + end + "3 " + field + " 4 " + field + end,
+                                  "1", "3");
+        }
+      }
+    }
+  }
+}
 
 }  // namespace
 }  // namespace inertest

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
@@ -359,6 +362,20 @@ void read_floor(SlopeReadOff& result, std::span<const double> tau_s, std::span<c
   reading.figure = Figure{value, units.computed, value / std::sqrt(2.0 * edf[i])}.in(units.reported);
 }
 
+// lag_moments depends on t0 and the two spans only, and the channels of one record (issue 19), fitted
+// side by side, share their tau grid: each (t0, m_i, m_j) is computed once per process. Deterministic,
+// so a channel's fit is the same whether it comes first or not.
+LagMoments shared_lag_moments(double t0, std::int64_t m_i, std::int64_t m_j) {
+  static std::mutex mutex;
+  static std::map<std::tuple<double, std::int64_t, std::int64_t>, LagMoments> known;
+  constexpr std::size_t kMostKept = 1 << 16;  // a long Python session fitting many grids stays bounded
+  const std::lock_guard lock(mutex);
+  if (known.size() >= kMostKept) known.clear();
+  const auto [entry, added] = known.try_emplace({t0, m_i, m_j});
+  if (added) entry->second = lag_moments(t0, m_i, m_j);
+  return entry->second;
+}
+
 }  // namespace
 
 SensorKind sensor_kind_of(const std::string& input_unit) {
@@ -431,7 +448,7 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
   if (tau_s.size() <= kMostCorrelatedPoints) {
     for (std::size_t i = 0; i < tau_s.size(); ++i) {
       all.moments.emplace_back();
-      for (std::size_t j = 0; j <= i; ++j) all.moments[i].push_back(lag_moments(t0, all.spans[i], all.spans[j]));
+      for (std::size_t j = 0; j <= i; ++j) all.moments[i].push_back(shared_lag_moments(t0, all.spans[i], all.spans[j]));
     }
   }
   NoiseTerms terms;

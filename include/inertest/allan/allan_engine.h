@@ -12,7 +12,7 @@
 //                    X*_{-j} = 2X_0 - X_j, X*_{N+j} = 2X_N - X_{N-j}                     (N-1 terms)
 // and, for the noise identification (noise_identification.h), the lag-1 sums of the
 // non-overlapping averages of the rate ȳ_j = (X_{jm} - X_{(j-1)m}) / m, j = 1..floor(N/m), and of
-// their first and second differences (AveragedFrequencySeries, over its bounded prefix of 2^20
+// their first and second differences (AveragedFrequencySeries, over its bounded prefix of 2^16
 // averages): a few values per m-th anchor, so the averaged series is never stored, whatever N and m.
 // The IEEE Std 952-1997 Annex C / IEEE Std 1139 overlapping Allan variance of the reference
 // (section 3) is OADEV. The engine uses worker threads (std::thread) for the factors and runs the

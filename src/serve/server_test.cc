@@ -29,7 +29,7 @@ struct Reply {
 };
 
 // Sends request (its bytes exactly, so hostile paths reach the server unchanged) and reads the
-// answer until the server closes the connection.
+// answer.
 Reply http_exchange(int port, const std::string& request) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
@@ -45,9 +45,18 @@ Reply http_exchange(int port, const std::string& request) {
     if (n <= 0) break;
     sent += static_cast<std::size_t>(n);
   }
+  // Until the body is complete (Content-Length), or the server closes the connection.
   std::string text;
+  const auto complete = [&text] {
+    const auto end = text.find("\r\n\r\n");
+    const auto length = text.find("Content-Length: ");
+    return end != std::string::npos && length != std::string::npos && length < end &&
+           text.size() >= end + 4 + std::stoul(text.substr(length + 16));
+  };
   char buffer[65536];
-  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
+  for (ssize_t n; !complete() && (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) {
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
   ::close(fd);
   Reply reply;
   if (text.rfind("HTTP/1.1 ", 0) == 0) reply.status = std::stoi(text.substr(9, 3));

@@ -20,3 +20,7 @@ pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
 # zlib: the check of a compressed MAT variable's headers before matio reads it.
 find_package(ZLIB REQUIRED)
+# cpp-httplib for `inertest serve` (issue 17). Debian's is a compiled library whose pkg-config file
+# carries the feature macros (OpenSSL, zlib, Brotli) it was built with: every source including
+# httplib.h must define the same ones, since they change its classes' layout.
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)

@@ -10,6 +10,7 @@ packages=(
   libsqlite3-dev libpq-dev postgresql
   libmatio-dev libhdf5-dev zlib1g-dev
   libfftw3-dev
+  libcpp-httplib-dev
   libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-pandas python3-scipy python3-h5py python3-pytest python3-dev pybind11-dev
   chromium

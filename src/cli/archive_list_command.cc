@@ -25,16 +25,13 @@ CommandAction setup(CLI::App& archive) {
     const auto store = open_archive_option(arguments->db);
     const auto entries =
         store->list(arguments->instrument.empty() ? std::nullopt : std::optional<std::string>(arguments->instrument));
-    nlohmann::json campaigns = nlohmann::json::array();
     std::string report = fmt::format("{:<16}  {:<16}  {:<10}  {:<20}  {:<7}  {}\n", "id", "instrument", "tested on",
                                      "processed at", "verdict", "title");
     for (const auto& e : entries) {
-      campaigns.push_back({{"id", e.id}, {"instrument", e.instrument}, {"title", e.title}, {"tested_on", e.tested_on},
-                           {"processed_at", e.processed_at}, {"verdict", e.verdict}});
       report += fmt::format("{:<16}  {:<16}  {:<10}  {:<20}  {:<7}  {}\n", e.id, e.instrument, e.tested_on,
                             e.processed_at, e.verdict, e.title);
     }
-    print_result({{"campaigns", campaigns}}, report, arguments->json);
+    print_result(archive::campaign_list_json(entries), report, arguments->json);
     return 0;
   };
 }

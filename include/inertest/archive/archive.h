@@ -117,6 +117,15 @@ class Archive {
 // The chart and indices: numerics/control_chart.h.
 nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since);
 
+// The campaigns as `inertest archive list --json` prints them: {"campaigns": [{"id", "instrument",
+// "title", "tested_on", "processed_at", "verdict"}]}, in the order given.
+nlohmann::json campaign_list_json(const std::vector<CampaignEntry>& campaigns);
+
+// The instruments of campaigns (given oldest test first, as Archive::list returns them) as
+// `inertest archive instruments --json` prints them: {"instruments": [{"instrument", "campaigns",
+// "latest": {the latest campaign, as in campaign_list_json}}]}, sorted by instrument id.
+nlohmann::json instrument_list_json(const std::vector<CampaignEntry>& campaigns);
+
 // What the archive's report pages show (report/archive_pages.h): {"histories": [{"instrument",
 // "figures": [FigureHistory::to_json() of each of figures the instrument has]}], "fleet":
 // [fleet_summary of each figure]}.

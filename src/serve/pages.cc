@@ -1,0 +1,83 @@
+// The instrument list page of inertest serve: a table and a few lines of plain JavaScript.
+#include "serve/pages.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/report/svg_plot.h"
+#include "report/report_style.h"
+
+namespace inertest::serve {
+using report::escape_xml;
+
+namespace {
+
+// Filters the rows by the search box (case-insensitive substring of the id), keeps ?q= in step
+// and says how many rows are shown.
+constexpr std::string_view search_script = R"(
+(function () {
+  var box = document.getElementById('search');
+  var rows = Array.prototype.slice.call(document.querySelectorAll('#instruments tbody tr'));
+  var shown = document.getElementById('shown');
+  function apply() {
+    var text = box.value.trim().toLowerCase();
+    var count = 0;
+    rows.forEach(function (row) {
+      var match = row.getAttribute('data-instrument').toLowerCase().indexOf(text) >= 0;
+      row.hidden = !match;
+      if (match) count += 1;
+    });
+    shown.textContent = count + ' / ' + rows.length;
+  }
+  box.value = new URLSearchParams(window.location.search).get('q') || '';
+  box.addEventListener('input', apply);
+  apply();
+})();
+)";
+
+struct Words {
+  const char* title;
+  const char* search;
+  const char* instrument;
+  const char* campaigns;
+  const char* latest;
+  const char* verdict;
+  const char* report;
+  const char* fleet;
+};
+
+const Words english{"Instruments", "Search by id", "Instrument", "Campaigns", "Latest test", "Verdict",
+                    "Latest report", "Fleet"};
+// GJB 2426A's words: 产品 for the instrument under test, 试验 for a test campaign, 结论 for the verdict.
+const Words chinese{"产品", "按编号搜索", "产品编号", "试验次数", "最近试验", "结论", "最近试验报告", "批次"};
+
+}  // namespace
+
+std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language) {
+  const bool zh = language == report::Language::chinese;
+  const Words& w = zh ? chinese : english;
+  const std::string lang_query = zh ? "?lang=zh" : "";
+  std::string rows;
+  for (const auto& i : instruments.at("instruments")) {
+    const std::string id = escape_xml(i.at("instrument").get<std::string>());
+    const auto& latest = i.at("latest");
+    const std::string verdict = latest.at("verdict").get<std::string>();
+    rows += fmt::format(
+        "<tr data-instrument=\"{0}\"><td><a href=\"/instruments/{0}{1}\">{0}</a></td><td class=\"num\">{2}</td>"
+        "<td>{3}</td><td class=\"verdict {4}\">{5}</td><td><a href=\"/campaigns/{6}{1}\">{7}</a></td></tr>\n",
+        id, lang_query, i.at("campaigns").get<std::size_t>(), escape_xml(latest.at("tested_on").get<std::string>()),
+        verdict == "PASS" ? "pass" : verdict == "FAIL" ? "fail" : "none", escape_xml(verdict),
+        escape_xml(latest.at("id").get<std::string>()), escape_xml(latest.at("title").get<std::string>()));
+  }
+  return fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"{0}\">\n<head>\n<meta charset=\"utf-8\">\n<title>inertest · {1}</title>\n"
+      "<style>{2}\n#search {{ font: inherit; padding: 0.3em; width: 20em; }} @media print {{ #search {{ display: none; }} }}"
+      "</style>\n</head>\n<body>\n<h1>{1}</h1>\n<p><a href=\"/fleet{3}\">{4}</a> · <a href=\"/{5}\">{6}</a></p>\n"
+      "<p><input id=\"search\" type=\"search\" placeholder=\"{7}\" aria-label=\"{7}\"> <span id=\"shown\"></span></p>\n"
+      "<table id=\"instruments\">\n<thead><tr><th>{8}</th><th>{9}</th><th>{10}</th><th>{11}</th><th>{12}</th></tr></thead>\n"
+      "<tbody>\n{13}</tbody>\n</table>\n<script>{14}</script>\n</body>\n</html>\n",
+      zh ? "zh-CN" : "en", w.title, report::report_css(), lang_query, w.fleet, zh ? "" : "?lang=zh", zh ? "English" : "中文",
+      w.search, w.instrument, w.campaigns, w.latest, w.verdict, w.report, rows, search_script);
+}
+
+}  // namespace inertest::serve

@@ -1,0 +1,253 @@
+// inertest serve's HTTP side: cpp-httplib routes onto the archive's queries; every object it
+// returns is made by the library function the CLI's --json prints (archive/archive.h).
+#include "inertest/serve/server.h"
+
+#include <httplib.h>
+
+#include <filesystem>
+#include <mutex>
+#include <random>
+#include <regex>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/archive/archive.h"
+#include "inertest/core/error.h"
+#include "inertest/report/archive_pages.h"
+#include "inertest/report/report.h"
+#include "serve/pages.h"
+
+namespace inertest::serve {
+namespace {
+
+// A request the server refuses: its status (4xx) and what it says.
+struct Refusal {
+  int status;
+  std::string message;
+};
+
+// Names are checked before any query: an instrument id as results.json writers use them, a
+// campaign id (16 hex digits, the archive's content hash), PROCEDURE/FIGURE keys (no segment can
+// be "." or ".."), an ISO date.
+const std::regex instrument_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]{0,127})");
+const std::regex campaign_pattern(R"([0-9a-f]{16})");
+const std::regex figure_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]*(/[A-Za-z0-9_][A-Za-z0-9_.+\-]*)+)");
+const std::regex date_pattern(R"(\d{4}-\d{2}-\d{2})");
+
+const std::string& checked(const std::string& value, const std::regex& pattern, const char* what) {
+  if (value.size() > 256 || !std::regex_match(value, pattern)) {
+    throw Refusal{400, fmt::format("{} is malformed", what)};
+  }
+  return value;
+}
+
+std::string required_parameter(const httplib::Request& request, const char* name) {
+  if (!request.has_param(name)) throw Refusal{400, fmt::format("the query parameter '{}' is missing", name)};
+  return request.get_param_value(name);
+}
+
+const char* reason(int status) {
+  switch (status) {
+    case 400: return "bad request";
+    case 401: return "the token is missing";
+    case 403: return "forbidden";
+    case 404: return "no such resource";
+    case 413: return "the request body is too large";
+    case 414: return "the request URI is too long";
+    default: return "the request was refused";
+  }
+}
+
+void send_json(httplib::Response& response, int status, const nlohmann::json& json) {
+  response.status = status;
+  response.set_content(json.dump(), "application/json");
+}
+
+// ?lang=en (the default) or zh.
+report::Language language_of(const httplib::Request& request) {
+  if (!request.has_param("lang")) return report::Language::english;
+  const std::string code = request.get_param_value("lang");
+  if (code != "en" && code != "zh") throw Refusal{400, "lang must be en or zh"};
+  return report::parse_language(code);
+}
+
+std::string random_token() {
+  std::random_device device;
+  std::string token;
+  for (int i = 0; i < 4; ++i) token += fmt::format("{:08x}", device());
+  return token;
+}
+
+}  // namespace
+
+struct Server::Impl {
+  ServerOptions options;
+  std::unique_ptr<archive::Archive> store;
+  std::mutex store_mutex;  // the archive serves one request at a time
+  std::string token = random_token();
+  httplib::Server http;
+  int port = 0;
+
+  // Runs answer under the archive's lock: it returns the JSON to send with 200, or fills in the
+  // response itself (a page) and returns null. A Refusal becomes its 4xx, and an archive Error
+  // (an unknown instrument, figure or campaign) a 404.
+  template <typename Answer>
+  httplib::Server::Handler route(Answer answer) {
+    return [this, answer](const httplib::Request& request, httplib::Response& response) {
+      try {
+        nlohmann::json json;
+        {
+          std::lock_guard lock(store_mutex);
+          json = answer(request, response);
+        }
+        if (!json.is_null()) send_json(response, 200, json);
+      } catch (const Refusal& refusal) {
+        send_json(response, refusal.status, {{"error", refusal.message}});
+      } catch (const Error& e) {
+        send_json(response, 404, {{"error", e.message()}});
+      }
+    };
+  }
+
+  // The figures the history and fleet pages show: those some plan set limits on (every figure
+  // when none has limits), as `archive report` chooses them.
+  std::vector<std::string> page_figures() {
+    std::vector<std::string> figures = store->figures(true);
+    return figures.empty() ? store->figures(false) : figures;
+  }
+
+  // What the history page of instrument shows: {"instrument", "figures": [FigureHistory JSON]}.
+  nlohmann::json history_page_data(const std::string& instrument) {
+    if (store->list(instrument).empty()) throw Refusal{404, "instrument '" + instrument + "' has no campaign in the archive"};
+    nlohmann::json figures = nlohmann::json::array();
+    for (const auto& figure : page_figures()) {
+      try {
+        figures.push_back(store->history(instrument, figure).to_json());
+      } catch (const Error&) {
+        // this instrument's campaigns do not report the figure: nothing to plot
+      }
+    }
+    return {{"instrument", instrument}, {"figures", std::move(figures)}};
+  }
+
+  nlohmann::json add_campaign(const httplib::Request& request) {
+    if (!options.allow_add) throw Refusal{403, "the server is read-only (start it with --allow-add)"};
+    const std::string authorization = request.get_header_value("Authorization");
+    if (authorization.empty()) throw Refusal{401, "the token is missing (Authorization: Bearer TOKEN)"};
+    if (authorization != "Bearer " + token) throw Refusal{403, "the token is wrong"};
+    nlohmann::json results;
+    try {
+      results = nlohmann::json::parse(request.body);
+    } catch (const nlohmann::json::parse_error&) {
+      throw Refusal{400, "the body is not valid JSON"};
+    }
+    try {
+      archive::check_results(results, "request body");
+    } catch (const Error& e) {
+      throw Refusal{400, e.message()};
+    }
+    const archive::AddOutcome outcome = store->add(results, "request body");
+    return {{"added", nlohmann::json::array({{{"id", outcome.id},
+                                              {"instrument", outcome.instrument},
+                                              {"file", "request body"},
+                                              {"added", outcome.added}}})}};
+  }
+
+  void add_routes() {
+    http.Get("/api/campaigns", route([this](const httplib::Request&, httplib::Response&) {
+      return archive::campaign_list_json(store->list(std::nullopt));
+    }));
+    http.Get(R"(/api/campaigns/([^/]+))", route([this](const httplib::Request& request, httplib::Response&) {
+      return store->results(checked(request.matches[1].str(), campaign_pattern, "the campaign id"));
+    }));
+    http.Get("/api/instruments", route([this](const httplib::Request&, httplib::Response&) {
+      return archive::instrument_list_json(store->list(std::nullopt));
+    }));
+    http.Get(R"(/api/instruments/([^/]+)/history)", route([this](const httplib::Request& request, httplib::Response&) {
+      const std::string instrument = checked(request.matches[1].str(), instrument_pattern, "the instrument id");
+      const std::string figure = checked(required_parameter(request, "figure"), figure_pattern, "the figure");
+      return store->history(instrument, figure).to_json();
+    }));
+    http.Get("/api/fleet", route([this](const httplib::Request& request, httplib::Response&) {
+      const std::string figure = checked(required_parameter(request, "figure"), figure_pattern, "the figure");
+      std::optional<std::string> since;
+      if (request.has_param("since")) since = checked(request.get_param_value("since"), date_pattern, "since");
+      return archive::fleet_summary(store->fleet(figure, since), since);
+    }));
+    http.Post("/api/campaigns", route([this](const httplib::Request& request, httplib::Response&) {
+      return add_campaign(request);
+    }));
+
+    // The pages, in English or (?lang=zh) Chinese.
+    http.Get("/", route([this](const httplib::Request& request, httplib::Response& response) {
+      response.set_content(render_instrument_list_page(archive::instrument_list_json(store->list(std::nullopt)),
+                                                       language_of(request)),
+                           "text/html; charset=utf-8");
+      return nlohmann::json();
+    }));
+    http.Get(R"(/campaigns/([^/]+))", route([this](const httplib::Request& request, httplib::Response& response) {
+      const auto results = store->results(checked(request.matches[1].str(), campaign_pattern, "the campaign id"));
+      response.set_content(report::render_report(results, {language_of(request), report::current_date()}),
+                           "text/html; charset=utf-8");
+      return nlohmann::json();
+    }));
+    http.Get(R"(/instruments/([^/]+))", route([this](const httplib::Request& request, httplib::Response& response) {
+      const std::string instrument = checked(request.matches[1].str(), instrument_pattern, "the instrument id");
+      response.set_content(report::render_history_page(history_page_data(instrument),
+                                                       {language_of(request), report::current_date()}),
+                           "text/html; charset=utf-8");
+      return nlohmann::json();
+    }));
+    http.Get("/fleet", route([this](const httplib::Request& request, httplib::Response& response) {
+      response.set_content(report::render_fleet_page(archive::report_data(*store, page_figures()).at("fleet"),
+                                                     {language_of(request), report::current_date()}),
+                           "text/html; charset=utf-8");
+      return nlohmann::json();
+    }));
+
+    // Any 4xx without a body of its own (an unknown route, a body over the limit, a malformed
+    // request line) gets the JSON error too.
+    http.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& response) {
+      if (!response.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+      send_json(response, response.status, {{"error", reason(response.status)}});
+      return httplib::Server::HandlerResponse::Handled;
+    }));
+    http.set_exception_handler([](const httplib::Request&, httplib::Response& response, std::exception_ptr) {
+      send_json(response, 500, {{"error", "internal error"}});
+    });
+    http.set_payload_max_length(options.max_body_bytes);
+    http.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
+  }
+};
+
+Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  const bool is_url = options.db.rfind("postgresql://", 0) == 0 || options.db.rfind("postgres://", 0) == 0;
+  if (!is_url && !std::filesystem::is_regular_file(options.db)) {
+    throw Error("serve: no archive at '" + options.db + "' (inertest archive add creates one)");
+  }
+  impl_->store = archive::open_archive(options.db);
+  impl_->add_routes();
+  if (options.port == 0) {
+    impl_->port = impl_->http.bind_to_any_port(options.bind);
+    if (impl_->port < 0) impl_->port = 0;
+  } else if (impl_->http.bind_to_port(options.bind, options.port)) {
+    impl_->port = options.port;
+  }
+  if (impl_->port <= 0) throw Error(fmt::format("serve: cannot listen on {}:{}", options.bind, options.port));
+}
+
+Server::~Server() = default;
+
+int Server::port() const { return impl_->port; }
+
+std::string Server::url() const { return fmt::format("http://{}:{}/", impl_->options.bind, impl_->port); }
+
+const std::string& Server::token() const { return impl_->token; }
+
+void Server::run() { impl_->http.listen_after_bind(); }
+
+void Server::stop() { impl_->http.stop(); }
+
+}  // namespace inertest::serve

@@ -1,0 +1,270 @@
+// inertest serve over loopback: each API route gives exactly the CLI's --json object, and hostile
+// requests get a 4xx JSON error and leave the archive file byte for byte as it was.
+#include "inertest/serve/server.h"
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <iterator>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "inertest/archive/archive.h"
+#include "inertest/core/error.h"
+#include "test_util/test_util.h"
+
+namespace inertest::serve {
+namespace {
+
+// An HTTP answer read off the socket.
+struct Reply {
+  int status = 0;
+  std::string body;
+  nlohmann::json json() const { return nlohmann::json::parse(body); }
+};
+
+// Sends request (its bytes exactly, so hostile paths reach the server unchanged) and reads the
+// answer.
+Reply http_exchange(int port, const std::string& request) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+    ::close(fd);
+    return {};
+  }
+  for (std::size_t sent = 0; sent < request.size();) {
+    const auto n = ::send(fd, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;
+    sent += static_cast<std::size_t>(n);
+  }
+  // Until the body is complete (Content-Length), or the server closes the connection.
+  std::string text;
+  const auto complete = [&text] {
+    const auto end = text.find("\r\n\r\n");
+    const auto length = text.find("Content-Length: ");
+    return end != std::string::npos && length != std::string::npos && length < end &&
+           text.size() >= end + 4 + std::stoul(text.substr(length + 16));
+  };
+  char buffer[65536];
+  for (ssize_t n; !complete() && (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) {
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  Reply reply;
+  if (text.rfind("HTTP/1.1 ", 0) == 0) reply.status = std::stoi(text.substr(9, 3));
+  if (const auto end = text.find("\r\n\r\n"); end != std::string::npos) reply.body = text.substr(end + 4);
+  return reply;
+}
+
+Reply get(int port, const std::string& target) {
+  return http_exchange(port, "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+}
+
+Reply post(int port, const std::string& target, const std::string& body, const std::string& headers = "") {
+  return http_exchange(port, "POST " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" + headers +
+                            "Content-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+                            "\r\n\r\n" + body);
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), {}};
+}
+
+// A results.json of one scale factor test, as inertest run writes it.
+nlohmann::json campaign(const std::string& instrument, const std::string& tested_on, double scale_factor) {
+  return {{"results_schema_version", 1},
+          {"inertest_version", "0.1.0"},
+          {"tested_on", tested_on},
+          {"processed_at", tested_on + "T12:00:00Z"},
+          {"plan", {{"title", "acceptance " + instrument}}},
+          {"instrument", {{"id", instrument}, {"type", "gyro"}}},
+          {"site", nlohmann::json::object()},
+          {"procedures",
+           {{{"name", "scale_factor"},
+             {"kind", "scale_factor"},
+             {"result", {{"scale_factor", {{"value", scale_factor}, {"unit", "pulse/s/(deg/s)"}, {"uncertainty", 0.03}}}}}}}},
+          {"verdicts",
+           {{{"procedure", "scale_factor"}, {"figure", "scale_factor"}, {"value", scale_factor},
+             {"unit", "pulse/s/(deg/s)"}, {"pass", true}, {"min", 35999.0}, {"max", 36001.0}}}},
+          {"verdict", "PASS"}};
+}
+
+// An archive of the golden demo campaign (FOG-SIM-NAV, every procedure) and three scale factor
+// tests of two more gyros, served on a free loopback port for the test's lifetime.
+class ServeApi : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    db_ = scratch_.path() + "/archive.sqlite";
+    nlohmann::json demo = archive::read_results_file(testing::source_path("tests/golden/demo_results.json"));
+    demo["tested_on"] = "2026-03-02";
+    demo["processed_at"] = "2026-03-02T08:00:00Z";
+    {
+      const auto store = archive::open_archive(db_);
+      store->add(demo, "demo_results.json");
+      store->add(campaign("FOG-2", "2026-03-01", 36000.4), "FOG-2");
+      store->add(campaign("FOG-3", "2026-03-01", 35999.8), "FOG-3");
+      store->add(campaign("FOG-3", "2026-03-03", 35999.9), "FOG-3");
+      demo_id_ = store->list(std::string("FOG-SIM-NAV")).at(0).id;
+    }
+    demo_ = demo;
+  }
+  void TearDown() override { stop(); }
+
+  void start(bool allow_add) {
+    ServerOptions options;
+    options.db = db_;
+    options.port = 0;
+    options.allow_add = allow_add;
+    options.max_body_bytes = 64 * 1024;
+    server_ = std::make_unique<Server>(options);
+    thread_ = std::thread([this] { server_->run(); });
+  }
+  void stop() {
+    if (!server_) return;
+    server_->stop();
+    thread_.join();
+    server_.reset();
+  }
+  int port() const { return server_->port(); }
+  nlohmann::json cli_json(std::vector<std::string> arguments) const {
+    arguments.insert(arguments.end(), {"--db", db_, "--json"});
+    const auto run = testing::run_cli(arguments);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out);
+  }
+
+  testing::ScratchDirectory scratch_;
+  std::string db_;
+  std::string demo_id_;
+  nlohmann::json demo_;
+  std::unique_ptr<Server> server_;
+  std::thread thread_;
+};
+
+TEST_F(ServeApi, EveryRouteGivesTheCommandLinesJson) {
+  start(false);
+  EXPECT_EQ(server_->url(), "http://127.0.0.1:" + std::to_string(port()) + "/");
+
+  const auto campaigns = get(port(), "/api/campaigns");
+  ASSERT_EQ(campaigns.status, 200) << campaigns.body;
+  EXPECT_EQ(campaigns.json(), cli_json({"archive", "list"}));
+  EXPECT_EQ(campaigns.json()["campaigns"].size(), 4u);
+
+  const auto instruments = get(port(), "/api/instruments");
+  ASSERT_EQ(instruments.status, 200) << instruments.body;
+  EXPECT_EQ(instruments.json(), cli_json({"archive", "instruments"}));
+  const nlohmann::json instrument_list = instruments.json();
+  const auto& fog3 = instrument_list["instruments"][1];
+  EXPECT_EQ(fog3["instrument"], "FOG-3");
+  EXPECT_EQ(fog3["campaigns"], 2);
+  EXPECT_EQ(fog3["latest"]["tested_on"], "2026-03-03");
+  EXPECT_EQ(instrument_list["instruments"][2]["latest"]["verdict"], "FAIL");  // the demo's
+
+  for (const std::string figure : {"scale_factor/scale_factor", "bias_static/bias"}) {
+    const auto history = get(port(), "/api/instruments/FOG-SIM-NAV/history?figure=" + figure);
+    ASSERT_EQ(history.status, 200) << history.body;
+    EXPECT_EQ(history.json(), cli_json({"archive", "history", "FOG-SIM-NAV", "--figure", figure}));
+  }
+
+  const auto fleet = get(port(), "/api/fleet?figure=scale_factor/scale_factor");
+  ASSERT_EQ(fleet.status, 200) << fleet.body;
+  EXPECT_EQ(fleet.json(), cli_json({"archive", "fleet", "--figure", "scale_factor/scale_factor"}));
+  EXPECT_EQ(fleet.json()["instruments"].size(), 3u);
+  const auto since = get(port(), "/api/fleet?figure=scale_factor/scale_factor&since=2026-03-02");
+  ASSERT_EQ(since.status, 200) << since.body;
+  EXPECT_EQ(since.json(),
+            cli_json({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--since", "2026-03-02"}));
+
+  const auto results = get(port(), "/api/campaigns/" + demo_id_);
+  ASSERT_EQ(results.status, 200) << results.body;
+  EXPECT_EQ(results.json(), demo_);
+}
+
+// Each hostile request gets a 4xx with {"error": ...}; the server goes on serving and the
+// archive file is byte-identical afterwards.
+TEST_F(ServeApi, HostileRequestsGet4xxAndChangeNothing) {
+  const std::string before = file_bytes(db_);
+  start(false);
+  const std::vector<std::pair<std::string, int>> targets = {
+      {"/api/instruments/FOG-2'%20OR%20'1'='1/history?figure=scale_factor/scale_factor", 400},
+      {"/api/instruments/FOG-2%27%3B%20DROP%20TABLE%20campaign%3B--/history?figure=scale_factor/scale_factor", 400},
+      {"/api/instruments/FOG-2/history?figure=scale_factor/x'%20OR%201=1--", 400},
+      {"/api/fleet?figure=scale_factor/scale_factor'%3BDELETE%20FROM%20figure%3B--", 400},
+      {"/api/fleet?figure=scale_factor/scale_factor&since=2026'--", 400},
+      {"/api/campaigns/0'%20OR%20'1'='1", 400},
+      {"/api/campaigns/" + std::string(16, 'x'), 400},
+      {"/api/campaigns/0123456789abcdef", 404},
+      {"/api/instruments/NO-SUCH/history?figure=scale_factor/scale_factor", 404},
+      {"/api/instruments/FOG-2/history?figure=scale_factor/no_such", 404},
+      {"/api/instruments/FOG-2/history", 400},
+      {"/api/instruments/%2e%2e/history?figure=scale_factor/scale_factor", 400},
+      {"/api/instruments/FOG-2/history?figure=../../etc/passwd", 400},
+      {"/api/instruments/FOG-2/history?figure=scale_factor/%2e%2e", 400},
+      {"/api/fleet", 400},
+      {"/../../etc/passwd", 404},
+      {"/api/%2e%2e/%2e%2e/etc/passwd", 404},
+      {"/api/", 404},
+      {"/api/nothing", 404},
+      {"/campaigns/..%2f..%2fetc%2fpasswd", 404},
+      {"/instruments/%2e%2e", 400},
+  };
+  for (const auto& [target, status] : targets) {
+    const auto reply = get(port(), target);
+    EXPECT_EQ(reply.status, status) << target << ": " << reply.body;
+    ASSERT_NO_THROW(EXPECT_TRUE(reply.json().at("error").is_string()) << target) << target << ": " << reply.body;
+  }
+  // Adding is refused by a read-only server, token or not, and a malformed request line too.
+  EXPECT_EQ(post(port(), "/api/campaigns", campaign("FOG-9", "2026-04-01", 36000.0).dump()).status, 403);
+  const auto garbage = http_exchange(port(), "NONSENSE\r\n\r\n");
+  EXPECT_EQ(garbage.status, 400);
+  EXPECT_TRUE(garbage.json().contains("error"));
+  EXPECT_EQ(get(port(), "/api/campaigns").status, 200);
+  stop();
+  EXPECT_EQ(file_bytes(db_), before);
+}
+
+// With --allow-add a results.json is added by POST only with the token, within the size limit,
+// valid JSON and valid results; anything else is refused and changes nothing.
+TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
+  const std::string before = file_bytes(db_);
+  start(true);
+  ASSERT_EQ(server_->token().size(), 32u);
+  const std::string token = "Authorization: Bearer " + server_->token() + "\r\n";
+  const std::string good = campaign("FOG-9", "2026-04-01", 36000.0).dump();
+  EXPECT_EQ(post(port(), "/api/campaigns", good).status, 401);
+  EXPECT_EQ(post(port(), "/api/campaigns", good, "Authorization: Bearer 0123\r\n").status, 403);
+  EXPECT_EQ(post(port(), "/api/campaigns", std::string(70 * 1024, ' ') + good, token).status, 413);
+  EXPECT_EQ(post(port(), "/api/campaigns", "{\"instrument\": ", token).status, 400);
+  EXPECT_EQ(post(port(), "/api/campaigns", "[1, 2, 3]", token).status, 400);
+  nlohmann::json not_a_number = campaign("FOG-9", "2026-04-01", 36000.0);
+  not_a_number["procedures"][0]["result"]["scale_factor"]["value"] = "36000";
+  EXPECT_EQ(post(port(), "/api/campaigns", not_a_number.dump(), token).status, 400);
+  EXPECT_EQ(file_bytes(db_), before);
+
+  const auto added = post(port(), "/api/campaigns", good, token);
+  ASSERT_EQ(added.status, 200) << added.body;
+  EXPECT_EQ(added.json()["added"][0]["instrument"], "FOG-9");
+  EXPECT_TRUE(added.json()["added"][0]["added"].get<bool>());
+  EXPECT_FALSE(post(port(), "/api/campaigns", good, token).json()["added"][0]["added"].get<bool>());
+  EXPECT_EQ(get(port(), "/api/campaigns").json()["campaigns"].size(), 5u);
+}
+
+TEST(Serve, MissingArchiveIsAnError) {
+  testing::ScratchDirectory scratch;
+  ServerOptions options;
+  options.db = scratch.path() + "/none.sqlite";
+  options.port = 0;
+  EXPECT_THROW(Server server(options), Error);
+}
+
+}  // namespace
+}  // namespace inertest::serve

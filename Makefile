@@ -43,9 +43,10 @@ sanitize-build: deps
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS)
 
 # Left out: find_package_downstream (it links an uninstrumented program against the library) and
-# report_in_chromium (it tests the browser's rendering, not our memory safety).
+# report_in_chromium and serve_in_chromium (they test the browser's rendering, not our memory safety;
+# the server's own code runs under the sanitizers in server_test).
 test-sanitize: sanitize-build
-	@cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS) -E '^(find_package_downstream|report_in_chromium)$$'
+	@cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS) -E '^(find_package_downstream|report_in_chromium|serve_in_chromium)$$'
 
 # Each target runs FUZZ_SECONDS on its seed corpus (fuzz/corpus/<target>/, read only); new inputs
 # go to $(SANITIZE_DIR)/fuzz/<target>/, and a crash, hang (FUZZ_TIMEOUT s) or leak fails the run

@@ -56,6 +56,7 @@ double median_of(std::vector<double> values) {
 struct GaussNewtonFit {
   Parameters parameters;
   Matrix covariance;
+  Matrix scaled_jacobian;  // at the solution, each column times its parameter's scale
   std::vector<double> residuals;
   std::size_t degrees_of_freedom = 0;
 };
@@ -112,7 +113,7 @@ GaussNewtonFit gauss_newton(const ResidualFunction& residuals, Parameters p, con
   std::vector<double> negative(r.size());
   std::transform(r.begin(), r.end(), negative.begin(), [](double v) { return -v; });
   step = solve_least_squares(jacobian, negative, options);
-  GaussNewtonFit fit{p, Matrix(p.size(), p.size()), r, step.degrees_of_freedom};
+  GaussNewtonFit fit{p, Matrix(p.size(), p.size()), jacobian, r, step.degrees_of_freedom};
   for (std::size_t j = 0; j < p.size(); ++j) {
     for (std::size_t k = 0; k < p.size(); ++k) fit.covariance(j, k) = step.covariance(j, k) * scales[j] * scales[k];
   }
@@ -285,8 +286,7 @@ std::vector<double> direction_residuals(const ImuRecord& record, const std::vect
 // covariance. Each is carried in by the fit's linear sensitivity to it, dp = -(J^T J)^-1 J^T (dr/dx)
 // dx, and added: C_gyro += S C_x S^T (the first-order covariance of a two-step estimate: Murphy and
 // Topel, J. Bus. Econ. Stat. 3 (1985), theorem 1). dr/dx by central differences of a tenth of a sigma.
-void add_shared_covariance(GaussNewtonFit& gyro, const ResidualFunction& residuals, const Parameters& scales,
-                           const GaussNewtonFit& accelerometer, const TriadCalibration& gyro_triad,
+void add_shared_covariance(GaussNewtonFit& gyro, const Parameters& scales, const GaussNewtonFit& accelerometer, const TriadCalibration& gyro_triad,
                            const std::function<std::vector<double>(const Parameters&, const Vector3&)>& residuals_at) {
   const std::size_t n = gyro.parameters.size();
   const std::size_t calibration_size = accelerometer.parameters.size();
@@ -299,7 +299,6 @@ void add_shared_covariance(GaussNewtonFit& gyro, const ResidualFunction& residua
     shared_covariance(calibration_size + j, calibration_size + j) =
         gyro_triad.bias_uncertainty[j] * gyro_triad.bias_uncertainty[j];
   }
-  const Matrix jacobian = scaled_jacobian(residuals, gyro.parameters, scales, gyro.residuals.size());
   LeastSquaresOptions options;
   options.rank_tolerance = 1e-9;
   Matrix sensitivity(n, shared);  // d p_gyro / d x
@@ -315,7 +314,7 @@ void add_shared_covariance(GaussNewtonFit& gyro, const ResidualFunction& residua
     const std::vector<double> up = at(1.0), down = at(-1.0);
     std::vector<double> negative(up.size());
     for (std::size_t i = 0; i < up.size(); ++i) negative[i] = -(up[i] - down[i]) / (2.0 * step);
-    const LeastSquaresResult change = solve_least_squares(jacobian, negative, options);
+    const LeastSquaresResult change = solve_least_squares(gyro.scaled_jacobian, negative, options);
     for (std::size_t j = 0; j < n; ++j) sensitivity(j, x) = change.parameters[j] * scales[j];
   }
   for (std::size_t j = 0; j < n; ++j) {
@@ -558,13 +557,13 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
   const double g = options.gravity_m_s2;
 
   // The accelerometer: |T K (a_i - b)| = g over the static means.
+  const auto gravity_residual = [g](const Vector3& mean, const Parameters& p) {
+    return norm(multiply(triad_matrix(p, 3, kAccelerometerOffDiagonal), Vector3{mean[0] - p[0], mean[1] - p[1], mean[2] - p[2]})) - g;
+  };
   const auto fit_accelerometer = [&](const std::vector<Vector3>& means) {
-    const ResidualFunction residuals = [&means, g](const Parameters& p) {
-      const Matrix3 tk = triad_matrix(p, 3, kAccelerometerOffDiagonal);
+    const ResidualFunction residuals = [&](const Parameters& p) {
       std::vector<double> r(means.size());
-      for (std::size_t i = 0; i < means.size(); ++i) {
-        r[i] = norm(multiply(tk, Vector3{means[i][0] - p[0], means[i][1] - p[1], means[i][2] - p[2]})) - g;
-      }
+      for (std::size_t i = 0; i < means.size(); ++i) r[i] = gravity_residual(means[i], p);
       return r;
     };
     const Parameters start = ellipsoid_start(means, g, record.source);
@@ -584,9 +583,6 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
     std::vector<Vector3> means;
     for (const StaticInterval* interval : statics) means.push_back(interval->accelerometer_mean);
     return means;
-  };
-  const auto gravity_residual = [g](const Vector3& mean, const Parameters& p) {
-    return norm(multiply(triad_matrix(p, 3, kAccelerometerOffDiagonal), Vector3{mean[0] - p[0], mean[1] - p[1], mean[2] - p[2]})) - g;
   };
   GaussNewtonFit accelerometer;
   while (true) {
@@ -699,7 +695,7 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
   }
   const Parameters gyro_scales = {start[0], start[0], start[0], 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   GaussNewtonFit gyro = gauss_newton(residuals, start, gyro_scales, kGyroNames);
-  add_shared_covariance(gyro, residuals, gyro_scales, accelerometer, w, [&](const Parameters& calibration, const Vector3& bias) {
+  add_shared_covariance(gyro, gyro_scales, accelerometer, w, [&](const Parameters& calibration, const Vector3& bias) {
     return direction_residuals(record, motions_of(calibration), gyro.parameters, bias);
   });
   set_triad(w, gyro, 0, kGyroOffDiagonal);

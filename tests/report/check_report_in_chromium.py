@@ -19,6 +19,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from chromium import chromium_command, console_problems, run_chromium  # noqa: E402
+
 SKIP = 77
 # Kinds whose section must show at least one plot when they are in the campaign.
 PLOTTED_KINDS = {
@@ -87,31 +90,6 @@ class ReportParser(html.parser.HTMLParser):
             self._svg = None
         elif tag == "section":
             self._section = None
-
-
-def chromium_command():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    return None
-
-
-def run_chromium(browser, profile, extra, url):
-    command = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-               "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-extensions",
-               "--disable-default-apps", "--hide-scrollbars", f"--user-data-dir={profile}",
-               "--enable-logging=stderr", "--log-level=0", "--v=0"] + extra + [url]
-    return subprocess.run(command, capture_output=True, text=True, timeout=180)
-
-
-def console_problems(stderr):
-    """Console messages and failed loads in Chromium's log (the dbus noise of a container is not)."""
-    problems = []
-    for line in stderr.splitlines():
-        if "CONSOLE" in line or "Uncaught" in line or "Failed to load resource" in line or "net::ERR_" in line:
-            problems.append(line.strip())
-    return problems
 
 
 def check_report(browser, report, label, work, failures):

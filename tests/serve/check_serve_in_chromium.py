@@ -18,27 +18,16 @@ import sys
 import tempfile
 import urllib.request
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from chromium import chromium_command, console_problems, run_chromium  # noqa: E402
+
 SKIP = 77
-
-
-def chromium_command():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    return None
 
 
 def dump_dom(browser, work, url):
     with tempfile.TemporaryDirectory(dir=work) as profile:
-        command = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                   "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-extensions",
-                   "--disable-default-apps", f"--user-data-dir={profile}", "--enable-logging=stderr",
-                   "--log-level=0", "--v=0", "--dump-dom", url]
-        run = subprocess.run(command, capture_output=True, text=True, timeout=180)
-    problems = [line.strip() for line in run.stderr.splitlines()
-                if "CONSOLE" in line or "Uncaught" in line or "Failed to load resource" in line or "net::ERR_" in line]
-    return run.stdout, problems
+        run = run_chromium(browser, profile, ["--dump-dom"], url)
+    return run.stdout, console_problems(run.stderr)
 
 
 def scale_factor_campaign(instrument, tested_on, value):

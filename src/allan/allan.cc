@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <type_traits>
 
 #include "inertest/allan/tau_grid.h"
 #include "inertest/core/error.h"
@@ -243,8 +245,9 @@ nlohmann::json noise_alphas(const std::vector<NoiseType>& types) {
   return alphas;
 }
 
-// The PSD of the scaled record, its warnings, and those of its comparison with the Allan fit.
-void add_power_spectral_density(AllanResult& result, std::span<const double> rate, const AllanOptions& options) {
+// The PSD of the scaled record (when the options ask for it).
+std::optional<PowerSpectralDensity> power_spectral_density_of(std::span<const double> rate, const AllanOptions& options) {
+  if (!options.psd) return std::nullopt;
   WelchOptions welch = *options.psd;
   welch.sample_rate_hz = options.sample_rate_hz;
   std::vector<double> scaled;
@@ -253,7 +256,13 @@ void add_power_spectral_density(AllanResult& result, std::span<const double> rat
     for (double y : rate) scaled.push_back(y * options.scale);
     rate = scaled;
   }
-  result.psd = welch_power_spectral_density(rate, options.input_unit, welch);
+  return welch_power_spectral_density(rate, options.input_unit, welch);
+}
+
+// The PSD, its warnings, and those of its comparison with the Allan fit.
+void add_power_spectral_density(AllanResult& result, std::optional<PowerSpectralDensity> psd) {
+  if (!psd) return;
+  result.psd = std::move(psd);
   for (const std::string& warning : result.psd->warnings) result.warnings.push_back("psd: " + warning);
   if (result.noise) {
     for (const std::string& warning : compare_noise_terms(*result.noise, result.psd->noise)) {
@@ -284,23 +293,43 @@ void AllanOptions::validate() const {
   }
 }
 
-AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options) {
+// allan_variance, with the record pushed into the engine's ring (a span of const samples) or with
+// the engine in place on the samples (a span of samples it may overwrite).
+template <typename Sample>
+AllanResult analyse_samples(std::span<Sample> rate, const AllanOptions& options) {
   options.validate();
   for (std::size_t i = 0; i < rate.size(); ++i) {
     if (!std::isfinite(rate[i])) throw Error("sample " + std::to_string(i + 1) + " is not a finite number");
   }
   auto factors = averaging_factors_for(rate.size(), options);
+  std::optional<PowerSpectralDensity> psd = power_spectral_density_of(rate, options);  // before the samples go
   // One pass: the phase is integrated about a provisional offset, and the mean is offset + X_N / N.
   const double offset = provisional_offset(rate);
-  AllanEngine engine(rate.size(), offset, engine_options(std::move(factors), options));
-  engine.push(rate);
-  const auto sums = engine.finish([rate](std::size_t first, std::span<double> out) {
-    std::copy_n(rate.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
-  });
-  const double mean = offset + engine.phase_total() / static_cast<double>(rate.size());
-  AllanResult result = assemble(rate.size(), mean, sums, options);
-  if (options.psd) add_power_spectral_density(result, rate, options);
+  std::vector<AllanSums> sums;
+  double phase_total = 0.0;
+  if constexpr (std::is_const_v<Sample>) {
+    AllanEngine engine(rate.size(), offset, engine_options(std::move(factors), options));
+    engine.push(rate);
+    sums = engine.finish([rate](std::size_t first, std::span<double> out) {
+      std::copy_n(rate.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
+    });
+    phase_total = engine.phase_total();
+  } else {
+    AllanEngine engine(rate, offset, engine_options(std::move(factors), options));
+    sums = engine.finish();
+    phase_total = engine.phase_total();
+  }
+  AllanResult result = assemble(rate.size(), offset + phase_total / static_cast<double>(rate.size()), sums, options);
+  add_power_spectral_density(result, std::move(psd));
   return result;
+}
+
+AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options) {
+  return analyse_samples(rate, options);
+}
+
+AllanResult allan_variance_in_place(std::span<double> rate, const AllanOptions& options) {
+  return analyse_samples(rate, options);
 }
 
 AllanResult allan_variance_of_file(const RateRecordSource& given_source, const AllanOptions& options,
@@ -312,7 +341,8 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
     // Text is parsed once, in parallel, into memory and analysed there: a second parse would cost
     // more than the 8 bytes a sample. Binary records stream once (below).
     if (progress) progress("reading " + source.path, 0.0);
-    return allan_variance(read_text_rate_record(source), options);
+    std::vector<double> samples = read_text_rate_record(source);
+    return allan_variance_in_place(samples, options);
   }
   if (options.psd) {
     // Welch's segments need the samples at hand: the record is read into memory, 8 bytes a sample.
@@ -325,7 +355,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
       resolve_sample_rate(*record, record->find(source.column), options.sample_rate_hz);
     }
     if (samples.empty()) throw Error(SourceLocation{source.path, 0, 0}, "no data: the record is empty");
-    return allan_variance(samples, options);
+    return allan_variance_in_place(samples, options);
   }
   // A record of named channels is opened once for both passes and the random reads of the second.
   std::unique_ptr<ChannelRecord> record;

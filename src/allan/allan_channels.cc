@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <type_traits>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -54,9 +55,13 @@ std::vector<AllanOptions> channel_options(const AllanOptions& common, const std:
   return options;
 }
 
-AllanChannels allan_variance_of_channels(const std::vector<std::span<const double>>& columns,
-                                         const std::vector<std::string>& names,
-                                         const std::vector<AllanOptions>& options) {
+namespace {
+
+// allan_variance_of_channels on columns it may overwrite (std::span<double>: each analysed in
+// place, allan_variance_in_place) or not (std::span<const double>).
+template <typename Sample>
+AllanChannels analyse_channels(const std::vector<std::span<Sample>>& columns, const std::vector<std::string>& names,
+                               const std::vector<AllanOptions>& options) {
   if (columns.empty()) throw Error("no channel to analyse");
   if (names.size() != columns.size() || options.size() != columns.size()) {
     throw Error("one name and one set of options per channel are needed");
@@ -77,7 +82,11 @@ AllanChannels allan_variance_of_channels(const std::vector<std::span<const doubl
       try {
         AllanOptions own = options[i];
         if (threads > 1) own.worker_count = 1;
-        result.channels[i] = {names[i], allan_variance(columns[i], own)};
+        if constexpr (std::is_const_v<Sample>) {
+          result.channels[i] = {names[i], allan_variance(columns[i], own)};
+        } else {
+          result.channels[i] = {names[i], allan_variance_in_place(columns[i], own)};
+        }
       } catch (...) {
         failures[i] = std::current_exception();
       }
@@ -101,6 +110,14 @@ AllanChannels allan_variance_of_channels(const std::vector<std::span<const doubl
   return result;
 }
 
+}  // namespace
+
+AllanChannels allan_variance_of_channels(const std::vector<std::span<const double>>& columns,
+                                         const std::vector<std::string>& names,
+                                         const std::vector<AllanOptions>& options) {
+  return analyse_channels(columns, names, options);
+}
+
 AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_source,
                                                  const std::vector<ColumnSelector>& columns, std::string_view units,
                                                  const AllanOptions& common, const ProgressCallback& progress) {
@@ -120,14 +137,14 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
     TextTableOptions text;
     text.record_row_lines = false;
     text.columns = columns;
-    const TextTable table = read_text_table(source.path, text);
+    TextTable table = read_text_table(source.path, text);
     std::vector<std::string> names;
-    std::vector<std::span<const double>> spans;
+    std::vector<std::span<double>> spans;  // read only to be analysed: in place
     for (std::size_t i = 0; i < table.columns.size(); ++i) {
       names.push_back(table.names[i].empty() ? selectors[i] : table.names[i]);
       spans.emplace_back(table.columns[i]);
     }
-    return allan_variance_of_channels(spans, names, channel_options(common, names, selectors, units));
+    return analyse_channels(spans, names, channel_options(common, names, selectors, units));
   }
   // A record of named channels stores each channel apart: each is streamed once, in turn.
   const std::optional<ChannelRecordFormat> channel_format = channel_record_format_of(source.format);

@@ -44,8 +44,9 @@ class PhaseBuffer {
   std::unique_ptr<double[], Free> data_;
 };
 
-// Where the phase values X_j live: the ring of the streaming pass (X_j at slot j mod capacity) or,
-// for the factors of the second pass, a few windows [start, start + values.size()) of the phase.
+// Where the phase values X_j live: the ring of the streaming pass (X_j at slot j mod capacity), the
+// samples' own memory of an engine working in place (X_j, j >= 1, where sample j was; X_0 = 0 apart)
+// or, for the factors of the second pass, a few windows [start, start + values.size()) of the phase.
 class PhaseStore {
  public:
   struct Window {
@@ -54,11 +55,26 @@ class PhaseStore {
   };
 
   PhaseStore(const double* ring, std::size_t capacity) : ring_(ring), capacity_(capacity) {}
+  static PhaseStore in_place(const double* samples, std::size_t sample_count) {
+    PhaseStore store(samples, sample_count + 1);
+    store.in_place_ = true;
+    return store;
+  }
   explicit PhaseStore(std::span<const Window> windows) : windows_(windows), windowed_(true) {}
 
   // A pointer to X_index; `forward` values X_index, X_index+1, ... and `backward` values X_index,
   // X_index-1, ... are contiguous from it.
   const double* locate(std::size_t index, std::size_t& forward, std::size_t& backward) const {
+    if (in_place_) {
+      static constexpr double kOrigin = 0.0;  // X_0
+      if (index == 0) {
+        forward = backward = 1;
+        return &kOrigin;
+      }
+      forward = capacity_ - index;
+      backward = index;
+      return ring_ + index - 1;
+    }
     if (!windowed_) {
       const std::size_t slot = index % capacity_;
       forward = capacity_ - slot;
@@ -86,6 +102,7 @@ class PhaseStore {
   std::size_t capacity_ = 0;
   std::span<const Window> windows_;
   bool windowed_ = false;
+  bool in_place_ = false;
 };
 
 // One stream of phase values along the anchors k: X_{k - lag}, or mirrored X_{base - k}.
@@ -627,6 +644,7 @@ struct AllanEngine::State {
 
   std::size_t capacity = 0;
   PhaseBuffer ring;
+  double* samples_in_place = nullptr;  // the caller's samples, when the engine works in place
   std::size_t written = 0;     // phase values written: X_0 .. X_{written-1}
   std::size_t dispatched = 0;  // phase indices below this were handed to the workers
   std::size_t integrated = 1;  // phase values integrated: X_0 .. X_{integrated-1} (the slots above hold samples)
@@ -666,9 +684,31 @@ struct AllanEngine::State {
 
   std::size_t span_of(std::size_t m) const { return (third ? 3 : 2) * m; }
 
+  // Where X_index is, or its sample waits to be integrated.
+  double* slot_of(std::size_t index) {
+    return samples_in_place != nullptr ? samples_in_place + index - 1 : ring.data() + index % capacity;
+  }
+  PhaseStore store() const {
+    return samples_in_place != nullptr ? PhaseStore::in_place(samples_in_place, sample_count)
+                                       : PhaseStore(ring.data(), capacity);
+  }
+
   void write_phase(double value) {
     ring.data()[written % capacity] = value;
     ++written;
+  }
+
+  // Hands every whole block to the workers once it is integrated, as push() does (the same blocks,
+  // so the same bits), and leaves the last part to finish().
+  void hand_over_in_place() {
+    const std::size_t block = options.block_size;
+    while (sample_count + 1 - dispatched >= block) {
+      written = dispatched + block;
+      integrate_written();
+      dispatch({JobKind::kBlock, dispatched, written});
+      dispatched = written;
+    }
+    written = sample_count + 1;
   }
 
   // Block b holds the phase indices [b * block, (b + 1) * block) (X_0 = 0 is not integrated);
@@ -679,7 +719,7 @@ struct AllanEngine::State {
   // Integrates the samples written since the last call (a whole block, or the record's last part).
   void integrate_written() {
     if (integrated == written) return;
-    integrate_block(ring.data() + integrated % capacity, written - integrated, offset, phase);
+    integrate_block(slot_of(integrated), written - integrated, offset, phase);
     integrated = written;
     if (!deferred.empty()) checkpoints.push_back(phase);
   }
@@ -695,7 +735,7 @@ struct AllanEngine::State {
   static constexpr std::size_t kSweep = 16384;
 
   void run(const Job& work, std::size_t worker) {
-    const PhaseStore store(ring.data(), capacity);
+    const PhaseStore store = this->store();
     const std::size_t first = worker_factors[worker];
     const std::size_t last = worker_factors[worker + 1];
     if (work.kind != JobKind::kBlock) {
@@ -989,6 +1029,12 @@ struct AllanEngine::State {
 };
 
 AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOptions options)
+    : AllanEngine(sample_count, offset, std::move(options), nullptr) {}
+
+AllanEngine::AllanEngine(std::span<double> samples, double offset, AllanEngineOptions options)
+    : AllanEngine(samples.size(), offset, std::move(options), samples.data()) {}
+
+AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOptions options, double* samples_in_place)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
   if (options.estimators.empty()) throw Error("no estimator selected");
@@ -1012,8 +1058,10 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
   s.totdev = options.estimators.contains(Estimator::kTotdev);
   // While workers read X_{k0 - span} .. X_{k1 - 1}, the caller writes up to X_{k1 + block - 1}:
   // span + 2 blocks of capacity keep the two apart. A record shorter than that is held whole.
-  // Factors whose span does not fit the ring limit go to the second pass.
-  const std::size_t limit = options.ring_capacity_limit == 0 ? sample_count + 1 : options.ring_capacity_limit;
+  // Factors whose span does not fit the ring limit go to the second pass (in place, none: the
+  // whole record is there).
+  const std::size_t limit =
+      options.ring_capacity_limit == 0 || samples_in_place != nullptr ? sample_count + 1 : options.ring_capacity_limit;
   std::size_t ring_span = 0;
   for (std::size_t m : options.averaging_factors) {
     FactorState f;
@@ -1030,12 +1078,17 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
   // A multiple of the block, so that a block never wraps (integrate_block works on contiguous blocks).
   const std::size_t blocks_in_ring = (ring_span + 2 * options.block_size + options.block_size - 1) / options.block_size;
   s.capacity = std::min(sample_count + 1, blocks_in_ring * options.block_size);
-  s.ring.reset(s.capacity);
+  s.samples_in_place = samples_in_place;
+  if (samples_in_place == nullptr) s.ring.reset(s.capacity);
   options.worker_count = std::max<std::size_t>(1, std::min(options.worker_count, s.factors.size()));
   s.scratch.assign(options.worker_count, std::vector<double>(options.block_size));
   s.options = std::move(options);
   s.assign_factors();
-  s.write_phase(0.0);  // X_0 = 0
+  if (samples_in_place == nullptr) {
+    s.write_phase(0.0);  // X_0 = 0
+  } else {
+    s.written = 1;  // X_0 = 0 is the store's
+  }
   if (s.options.worker_count > 1) {
     for (std::size_t w = 0; w < s.options.worker_count; ++w) {
       s.workers.emplace_back([&s, w] { s.worker_loop(w); });
@@ -1055,6 +1108,7 @@ AllanEngine::~AllanEngine() {
 
 void AllanEngine::push(std::span<const double> samples) {
   State& s = *state_;
+  if (s.samples_in_place != nullptr) throw Error("internal: an engine in place has its samples already");
   if (s.written - 1 + samples.size() > s.sample_count) {
     throw Error("more samples than the " + std::to_string(s.sample_count) + " announced");
   }
@@ -1079,6 +1133,7 @@ void AllanEngine::push(std::span<const double> samples) {
 
 std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {
   State& s = *state_;
+  if (s.samples_in_place != nullptr && s.dispatched == 0) s.hand_over_in_place();
   if (s.written != s.sample_count + 1) {
     throw Error("only " + std::to_string(s.written - 1) + " of " + std::to_string(s.sample_count) +
                 " samples were pushed");
@@ -1140,7 +1195,9 @@ double AllanEngine::phase_total() const {
   return s.phase.value();
 }
 
-std::size_t AllanEngine::ring_bytes() const { return state_->capacity * sizeof(double); }
+std::size_t AllanEngine::ring_bytes() const {
+  return state_->samples_in_place != nullptr ? 0 : state_->capacity * sizeof(double);
+}
 
 std::size_t AllanEngine::deferred_factor_count() const { return state_->deferred.size(); }
 

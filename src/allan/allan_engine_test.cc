@@ -130,6 +130,9 @@ double mean_of(const std::vector<double>& y) {
   return static_cast<double>(s / static_cast<Real>(y.size()));
 }
 
+// The chunk size that runs the engine in place, on a copy of the samples, instead of pushing them.
+constexpr std::size_t kInPlace = 0;
+
 std::vector<AllanSums> run_engine(const std::vector<double>& y, std::vector<std::size_t> factors,
                                   std::size_t workers, std::size_t block, std::size_t chunk,
                                   EstimatorSet estimators = EstimatorSet::all(), std::size_t ring_limit = 0,
@@ -140,6 +143,13 @@ std::vector<AllanSums> run_engine(const std::vector<double>& y, std::vector<std:
   options.worker_count = workers;
   options.block_size = block;
   options.ring_capacity_limit = ring_limit;
+  if (chunk == kInPlace) {
+    std::vector<double> samples = y;
+    AllanEngine engine(samples, mean_of(y), options);
+    if (deferred != nullptr) *deferred = engine.deferred_factor_count();
+    EXPECT_EQ(engine.ring_bytes(), 0U);
+    return engine.finish();
+  }
   AllanEngine engine(y.size(), mean_of(y), options);
   for (std::size_t i = 0; i < y.size(); i += chunk) {
     engine.push(std::span<const double>(y).subspan(i, std::min(chunk, y.size() - i)));
@@ -178,16 +188,19 @@ TEST(AllanEngine, AgreesWithDefinitionsToOnePartInTenToTheNine) {
   const std::vector<double> y = white_and_random_walk(3001, 5.0, 0.05, 7);
   const Reference reference(y);
   const std::vector<std::size_t> factors = {1, 2, 3, 5, 16, 100, 333, 640, 1000};
-  // Small blocks and odd chunks make the ring wrap and the pieces split; 1 and 2 workers.
-  for (std::size_t workers : {1u, 2u}) {
-    for (std::size_t block : {7u, 64u, 1u << 15}) {
-      const auto sums = run_engine(y, factors, workers, block, 97);
-      ASSERT_EQ(sums.size(), factors.size());
-      for (const AllanSums& s : sums) {
-        for (Estimator e : kAllEstimators) {
-          const double expected = static_cast<double>(reference.variance(e, s.averaging_factor));
-          EXPECT_NEAR_RELATIVE(s.variance(e), expected, 1e-9)
-              << estimator_name(e) << " m=" << s.averaging_factor << " block=" << block;
+  // Small blocks and odd chunks make the ring wrap and the pieces split; 1 and 2 workers; pushed
+  // or in place.
+  for (std::size_t chunk : {std::size_t{97}, kInPlace}) {
+    for (std::size_t workers : {1u, 2u}) {
+      for (std::size_t block : {7u, 64u, 1u << 15}) {
+        const auto sums = run_engine(y, factors, workers, block, chunk);
+        ASSERT_EQ(sums.size(), factors.size());
+        for (const AllanSums& s : sums) {
+          for (Estimator e : kAllEstimators) {
+            const double expected = static_cast<double>(reference.variance(e, s.averaging_factor));
+            EXPECT_NEAR_RELATIVE(s.variance(e), expected, 1e-9)
+                << estimator_name(e) << " m=" << s.averaging_factor << " block=" << block << " chunk=" << chunk;
+          }
         }
       }
     }
@@ -293,12 +306,13 @@ TEST(AllanEngine, SameBitsOnEveryThreadCount) {
   for (std::size_t m = 1; m <= y.size() / 3; m *= 2) factors.push_back(m);
   factors.push_back(y.size() / 3);
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
-  for (std::size_t ring_limit : {std::size_t{0}, std::size_t{30000}}) {
+  // Pushed (with and without a second pass) and in place.
+  for (const auto& [chunk, ring_limit] : {std::pair<std::size_t, std::size_t>{1000, 0}, {1000, 30000}, {kInPlace, 0}}) {
     std::size_t deferred = 0;
-    const auto one = run_engine(y, factors, 1, 4096, 1000, EstimatorSet::all(), ring_limit, &deferred);
+    const auto one = run_engine(y, factors, 1, 4096, chunk, EstimatorSet::all(), ring_limit, &deferred);
     EXPECT_EQ(deferred > 0, ring_limit > 0);
     for (std::size_t workers : {2u, 3u, 40u}) {
-      const auto many = run_engine(y, factors, workers, 4096, 1000, EstimatorSet::all(), ring_limit);
+      const auto many = run_engine(y, factors, workers, 4096, chunk, EstimatorSet::all(), ring_limit);
       ASSERT_EQ(many.size(), one.size());
       for (std::size_t i = 0; i < one.size(); ++i) {
         for (Estimator e : kAllEstimators) {
@@ -386,12 +400,15 @@ TEST(AllanEngine, BlockedIntegrationOnAwkwardLengths) {
     if (n / 3 > 1) factors.push_back(n / 3);
     for (std::size_t block : {1u, 5u, 256u, 300u, 1024u, 4096u, 5000u}) {
       for (std::size_t workers : {1u, 2u}) {
-        const auto sums = run_engine(y, factors, workers, block, 333);
-        ASSERT_EQ(sums.size(), factors.size());
-        for (const AllanSums& s : sums) {
-          for (Estimator e : kAllEstimators) {
-            EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9)
-                << estimator_name(e) << " n=" << n << " m=" << s.averaging_factor << " block=" << block;
+        for (std::size_t chunk : {std::size_t{333}, kInPlace}) {
+          const auto sums = run_engine(y, factors, workers, block, chunk);
+          ASSERT_EQ(sums.size(), factors.size());
+          for (const AllanSums& s : sums) {
+            for (Estimator e : kAllEstimators) {
+              EXPECT_NEAR_RELATIVE(s.variance(e), static_cast<double>(reference.variance(e, s.averaging_factor)), 1e-9)
+                  << estimator_name(e) << " n=" << n << " m=" << s.averaging_factor << " block=" << block
+                  << " chunk=" << chunk;
+            }
           }
         }
       }

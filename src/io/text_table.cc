@@ -69,9 +69,12 @@ std::vector<RowChunk> parse_chunks(std::string_view data, std::size_t first_line
   std::vector<std::size_t> first_lines(pieces.size(), first_line);
   std::vector<std::size_t> first_slots(pieces.size() + 1, 0);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const std::size_t lines = line_counts[i];
+    // line_capacity counts a last line without '\n'; every chunk but the last ends with one, so
+    // its rows fill exactly its '\n' count of slots, and the next chunk's rows follow with no gap
+    // to close (moving the rest of every column by one slot was a serial copy of the record).
+    const std::size_t lines = line_counts[i] - (pieces[i].ends_with('\n') ? 1 : 0);
     first_slots[i + 1] = first_slots[i] + lines;
-    if (i + 1 < pieces.size()) first_lines[i + 1] = first_lines[i] + lines - 1;  // the '\n' of chunk i
+    if (i + 1 < pieces.size()) first_lines[i + 1] = first_lines[i] + lines;
   }
   // The columns sized side by side, a column to a thread: the zero fill is the first touch of their
   // pages (each fault a page the kernel clears), a tenth of the six-channel run's CPU time when the

@@ -89,10 +89,14 @@ struct AllanResult {
 
 // On samples in memory. Throws Error for too few samples, a bad tau grid or bad options.
 AllanResult allan_variance(std::span<const double> rate, const AllanOptions& options);
+// The same, computed in the samples' own memory: they are overwritten (with the integrated phase)
+// instead of copied into the engine's ring. For a record read only to be analysed.
+AllanResult allan_variance_in_place(std::span<double> rate, const AllanOptions& options);
 
 // Streams a binary file once (the engine integrates about the mean of the first chunk and the mean
-// comes from the phase total); text is parsed once into memory. Memory is the engine's ring
-// buffer, at most 8 (N + 1) bytes plus a few MB, and for raw f64/f32 records and records of named
+// comes from the phase total); text is parsed once into memory and analysed there in place (8 N
+// bytes, no ring). Memory for a binary record is the engine's ring buffer, at most 8 (N + 1) bytes
+// plus a few MB, and for raw f64/f32 records and records of named
 // channels (.mat, HDF5, TDMS) at most 1.5 times the file size: the largest averaging factors are
 // then computed in a second, partial pass that re-reads the file. A record that stores its sample rate (HDF5
 // sample_rate_hz, TDMS wf_increment) must agree with options.sample_rate_hz, else an Error naming both.

@@ -127,6 +127,13 @@ class AllanEngine {
   // sample (the record's mean or an estimate of it, so that the integrated phase stays near zero). Throws Error when a
   // factor is not supported by N samples.
   AllanEngine(std::size_t sample_count, double offset, AllanEngineOptions options);
+  // The engine in place, for a record already in memory: the N samples (which must outlive the
+  // engine) become the phase, X_k where sample k was, integrated and handed to the workers block by
+  // block as push() would; no ring is allocated and no sample copied (a ring of N values is that
+  // much fresh memory for the kernel to clear, per channel). The sums equal those of pushing the
+  // samples to within rounding (X_0 is kept apart, which cuts the first runs of each factor where a
+  // ring keeps them whole). ring_capacity_limit does not apply. Call finish() next; push() throws.
+  AllanEngine(std::span<double> samples, double offset, AllanEngineOptions options);
   ~AllanEngine();
   AllanEngine(const AllanEngine&) = delete;
   AllanEngine& operator=(const AllanEngine&) = delete;
@@ -151,6 +158,7 @@ class AllanEngine {
   std::size_t deferred_factor_count() const;
 
  private:
+  AllanEngine(std::size_t sample_count, double offset, AllanEngineOptions options, double* samples_in_place);
   struct State;
   std::unique_ptr<State> state_;
 };

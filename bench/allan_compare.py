@@ -41,7 +41,10 @@ with open(path, "wb") as out:
 ALLANTOOLS = r"""
 import sys, json, numpy as np
 path, rate, which = sys.argv[1], float(sys.argv[2]), sys.argv[3].split(",")
-y = np.fromfile(path, dtype='<f8')
+if path.endswith(".csv"):                           # a text record's `output` column, as a script reads it
+    y = np.loadtxt(path, delimiter=",", skiprows=1, usecols=1)
+else:
+    y = np.fromfile(path, dtype='<f8')
 tau0 = 1.0 / rate
 x = np.concatenate(([0.0], np.cumsum(y) * tau0))   # allantools frequency2phase
 del y

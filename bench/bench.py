@@ -9,7 +9,8 @@ machine may be shared, so only ratios within the run mean anything):
   - all six estimators with bounds and the noise fit against the same algorithm's five (no TOTDEV
     there), and against inertest's own OADEV alone (the issue's bound: at most 2x);
   - CSV ingestion of --csv-rows rows (csv_compare.py): inertest inspect against pandas.read_csv
-    and numpy.loadtxt;
+    and numpy.loadtxt, and the same record end to end to its OADEV: `inertest allan` against
+    numpy.loadtxt + the allantools algorithm (the issue's bound: at least 5x);
   - Allan on --hdf5-samples f64 samples (10^8) from an HDF5 dataset written by h5py against the
     same samples as raw f64 (hdf5_compare.py): time at most 1.3x, peak memory at most 1.5x the dataset;
   - a whole IMU (imu_compare.py): `allan --columns` on six channels of a --imu-rows CSV against one
@@ -146,6 +147,9 @@ def main():
     for reader in ("pandas.read_csv", "numpy.loadtxt"):
         rows.append((f"CSV ingestion, {args.csv_rows:.0e} rows ({csv_mb:.0f} MB)", base, reader, csv[reader][0],
                      f"{csv[reader][0] / base:.1f}x faster", "", csv_mb / 1e3 / base))
+    ours, theirs = (csv[name][0] for name in csv_compare.END_TO_END)
+    rows.append((f"CSV {args.csv_rows:.0e} rows ({csv_mb:.0f} MB) to OADEV", ours, "numpy.loadtxt + allantools algorithm",
+                 theirs, f"{theirs / ours:.1f}x faster", ">= 5x", csv_mb / 1e3 / ours))
     hdf5_text = f"{args.hdf5_samples:.0e} f64 ({hdf5['size_mb']:.0f} MB)"
     rows.append((f"all six + bounds + fit, {hdf5_text} from HDF5", hdf5["hdf5"][0], "inertest, the same as raw f64",
                  hdf5["raw"][0], f"{hdf5['hdf5'][0] / hdf5['raw'][0]:.2f}x the time", "<= 1.3x",

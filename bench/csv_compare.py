@@ -5,7 +5,9 @@ Writes a two-column CSV record (time, output) of --rows rows, then times, in thi
 machine, each reader turning it into numeric columns:
   - inertest: `inertest inspect FILE --json` (memory-mapped, fast_float; also computes per-column
     statistics, which only adds to its time);
-  - pandas.read_csv (C engine) and numpy.loadtxt, as a user's script would read it.
+  - pandas.read_csv (C engine) and numpy.loadtxt, as a user's script would read it;
+and, end to end, the record to its OADEV at octave taus: `inertest allan` against numpy.loadtxt
+followed by the allantools algorithm (allan_compare.py's numpy program).
 Each is run --repeat times in a fresh process; the best wall time counts. Prints MB/s, peak RSS
 and the ratios. Run with Debian's Python: /usr/bin/python3 bench/csv_compare.py.
 """
@@ -17,6 +19,12 @@ import tempfile
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import allan_compare  # noqa: E402
+
+
+END_TO_END = ("inertest allan, OADEV", "numpy.loadtxt + OADEV")  # the record to its OADEV, not ingestion alone
 
 
 def write_record(path, rows):
@@ -53,6 +61,11 @@ def measure(inertest, rows, repeat, with_loadtxt, path):
     }
     if with_loadtxt:
         readers["numpy.loadtxt"] = [python, "-c", f"import numpy; numpy.loadtxt({path!r}, delimiter=',', skiprows=1)"]
+        # End to end, the record to its OADEV at octave taus: inertest allan against numpy.loadtxt
+        # followed by the allantools algorithm (allan_compare.py).
+        readers[END_TO_END[0]] = [inertest, "allan", path, "--rate", "100", "--column", "output",
+                                  "--taus", "octave", "--estimators", "oadev", "--json"]
+        readers[END_TO_END[1]] = [python, "-c", allan_compare.ALLANTOOLS, path, "100", "oadev"]
     return {name: best(command, repeat) for name, command in readers.items()}, megabytes
 
 
@@ -71,9 +84,14 @@ def main():
 
     print(f"CSV ingestion: {args.rows} rows x 2 columns, {megabytes:.0f} MB, best of {args.repeat}")
     print(f"{'reader':<18}{'time s':>10}{'MB/s':>10}{'peak MiB':>10}{'inertest faster':>17}")
+    end_to_end = {name: results.pop(name) for name in END_TO_END if name in results}
     base_time = results["inertest"][0]
     for name, (seconds, peak) in results.items():
         print(f"{name:<18}{seconds:>10.3f}{megabytes / seconds:>10.0f}{peak:>10.0f}{seconds / base_time:>16.1f}x")
+    if end_to_end:
+        ours, theirs = (end_to_end[name][0] for name in END_TO_END)
+        print(f"to OADEV at octave taus: {END_TO_END[0]} {ours:.3f} s, {END_TO_END[1]} {theirs:.3f} s, "
+              f"{theirs / ours:.1f}x faster")
 
 
 if __name__ == "__main__":

@@ -2,6 +2,7 @@
 // (IEEE Std 952-1997 specification format), as `inertest run`.
 #include "bindings.h"
 #include "inertest/campaign/campaign.h"
+#include "inertest/report/report.h"
 
 namespace inertest::python {
 namespace {
@@ -30,7 +31,7 @@ void wrap_campaign(py::module_& module) {
           py::gil_scoped_release release;
           summary = run_campaign(plan_path, out_dir);
         }
-        return ResultOf<CampaignTag>(summary.results, summary.report());
+        return ResultOf<CampaignTag>(summary.results, report::render_text_report(summary.results, {}));
       },
       "plan_path"_a, "out_dir"_a,
       "Runs a test plan as `inertest run`: validates the whole plan first (nothing runs on an error), runs\n"

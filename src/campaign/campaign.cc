@@ -310,30 +310,6 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   return summary;
 }
 
-std::string CampaignSummary::report() const {
-  std::string text = fmt::format("Campaign: instrument {}\n", results.at("instrument").at("id").get<std::string>());
-  for (const auto& procedure : results.at("procedures")) {
-    text += fmt::format("\n{} ({})\n", procedure.at("name").get<std::string>(), procedure.at("kind").get<std::string>());
-    for (const auto& [key, value] : procedure.at("result").items()) {
-      if (value.is_object() && value.contains("value") && value.contains("unit")) {
-        const Figure f = value.get<Figure>();
-        text += f.uncertainty ? fmt::format("  {:<32} {:.6g} ± {:.2g} {}\n", key, f.value, *f.uncertainty, f.unit)
-                              : fmt::format("  {:<32} {:.6g} {}\n", key, f.value, f.unit);
-      }
-    }
-  }
-  if (!results.at("verdicts").empty()) {
-    text += "\nSpecification limits\n";
-    for (const auto& v : results.at("verdicts")) {
-      text += fmt::format("  {:<5} {} / {} = {:.6g} {}\n", v.at("pass").get<bool>() ? "PASS" : "FAIL",
-                          v.at("procedure").get<std::string>(), v.at("figure").get<std::string>(),
-                          v.at("value").get<double>(), v.at("unit").get<std::string>());
-    }
-  }
-  text += fmt::format("\nVerdict: {}\n", results.at("verdict").get<std::string>());
-  return text;
-}
-
 std::vector<std::string> plan_kinds() { return campaign::registered_step_kinds(); }
 
 }  // namespace inertest

@@ -38,14 +38,14 @@ CommandAction setup(CLI::App& root) {
     CampaignOptions options;
     options.progress = terminal_progress();
     const CampaignSummary summary = run_campaign(arguments->plan, arguments->out, options);
-    const std::string report_path = report::write_report(
-        summary.results, arguments->out, {report::parse_language(arguments->lang), report::current_date()});
+    const report::ReportOptions report_options{report::parse_language(arguments->lang), report::current_date()};
+    const std::string report_path = report::write_report(summary.results, arguments->out, report_options);
     if (archive_option->count() > 0) {
       const auto outcome =
           open_archive_option(arguments->archive)->add(summary.results, summary.written_files.front());
       fmt::print(stderr, "{} the archive as campaign {}\n", outcome.added ? "added to" : "already in", outcome.id);
     }
-    print_result(summary.results, summary.report(), arguments->json);
+    print_result(summary.results, report::render_text_report(summary.results, report_options), arguments->json);
     if (!arguments->json) fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(), report_path);
     return 0;
   };

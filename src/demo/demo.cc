@@ -144,7 +144,7 @@ DemoSummary run_demo(const std::string& out_dir, const DemoOptions& options) {
   summary.all_within = all_within;
   summary.results_path = (out / "results.json").string();
   summary.report_path = (out / "report.txt").string();
-  summary.report = report_text(summary.results, processed.report());
+  summary.report = report_text(summary.results, report::render_text_report(summary.results, options.report));
   write_file_atomically(summary.results_path, summary.results.dump(2) + "\n");
   write_file_atomically(summary.report_path, summary.report);
   summary.html_report_path = report::write_report(summary.results, out_dir, options.report);

@@ -281,6 +281,31 @@ class ReportWriter {
     return std::move(out_);
   }
 
+  // The same figures as plain text: the instrument, each procedure's figure rows (value ± 1-sigma
+  // uncertainty and unit), the specification limits and the overall verdict.
+  std::string render_text() {
+    check_shape();
+    std::string text = fmt::format("{}: {} {}\n", labels_("ui.test_report"), labels_("ui.instrument"), instrument_id());
+    for (const json& procedure : results_.at("procedures")) {
+      text += fmt::format("\n{} ({})\n", procedure_title(procedure), procedure.value("kind", ""));
+      for (const FigureRow& row : figures_of(procedure)) {
+        const auto [value, uncertainty] = format_figure(row.figure, labels_);
+        const std::string unit = pretty_unit(row.figure.value("unit", ""));
+        text += fmt::format("  {:<56} {}{}{}\n", row.name, value, uncertainty.empty() ? "" : " ± " + uncertainty,
+                            unit.empty() ? "" : " " + unit);
+      }
+    }
+    if (!verdicts().empty()) {
+      text += "\nSpecification limits\n";
+      for (const json& v : verdicts()) {
+        text += fmt::format("  {:<5} {} / {} = {} {} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
+                            v.value("procedure", ""), v.value("figure", ""), format_number(v.value("value", 0.0)),
+                            pretty_unit(v.value("unit", "")), limit_text(v));
+      }
+    }
+    return text + fmt::format("\nVerdict: {}\n", overall_verdict());
+  }
+
  private:
   void check_shape() const {
     if (!results_.is_object()) throw Error("report: the results are not a JSON object");
@@ -650,6 +675,10 @@ Language parse_language(const std::string& code) {
 
 std::string render_report(const json& results, const ReportOptions& options) {
   return ReportWriter(results, options).render();
+}
+
+std::string render_text_report(const json& results, const ReportOptions& options) {
+  return ReportWriter(results, options).render_text();
 }
 
 std::string write_report(const json& results, const std::string& out_dir, const ReportOptions& options) {

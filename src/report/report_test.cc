@@ -304,6 +304,30 @@ TEST(Report, ChecklistsAndTheDemoTruthCheckAreTabulated) {
   EXPECT_THAT(page, HasSubstr("<td class=\"num\">36000.2</td><td class=\"num\">± 0.1</td>"));
 }
 
+// The text report (what `inertest run` prints, the demo's report.txt) lists the figures the HTML
+// report lists: nested ones (the Allan noise terms), an IMU's channels and a triad's elements too,
+// each with its uncertainty and unit, then every limit's verdict and the overall verdict.
+TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  const nlohmann::json results = nlohmann::json::parse(in);
+  const std::string text = render_text_report(results, {Language::english, ""});
+  EXPECT_THAT(text, HasSubstr("Test report: Instrument FOG-SIM-NAV\n"));
+  const std::regex sections[] = {
+      std::regex(R"(\nScale factor \(scale_factor\)\n  Scale factor K +[0-9.]+ ± [0-9.]+ pulse/s/\(°/s\)\n)"),
+      std::regex(R"(\nallan_long_static \(allan\)\n  Noise terms · Random walk coefficient +[0-9.]+ ± [0-9.]+ °/√h\n)"),
+      std::regex(R"(\n  ax · Noise terms · Velocity random walk +[0-9.]+ ± [0-9.]+ m/s/√h\n)"),
+      std::regex(R"(\n  Gyro triad · Scale factor x +[0-9.]+ ± [0-9.]+ count/\(rad/s\)\n)"),
+      std::regex(R"(\n  Gyro triad · Misalignment zy +-?[0-9.]+ ± [0-9.]+ rad\n)"),
+  };
+  for (const std::regex& section : sections) EXPECT_TRUE(std::regex_search(text, section)) << text;
+  EXPECT_THAT(text, HasSubstr("\nSpecification limits\n  PASS  scale_factor / nonlinearity = "));
+  std::size_t limits = 0;
+  for (auto at = text.find("\n  PASS  "); at != std::string::npos; at = text.find("\n  PASS  ", at + 1)) ++limits;
+  for (auto at = text.find("\n  FAIL  "); at != std::string::npos; at = text.find("\n  FAIL  ", at + 1)) ++limits;
+  EXPECT_EQ(limits, results.at("verdicts").size());
+  EXPECT_THAT(text, HasSubstr("\nVerdict: " + results.at("verdict").get<std::string>() + "\n"));
+}
+
 TEST(Report, LanguageCodes) {
   EXPECT_EQ(parse_language("en"), Language::english);
   EXPECT_EQ(parse_language("zh"), Language::chinese);

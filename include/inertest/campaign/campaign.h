@@ -20,8 +20,6 @@ struct CampaignOptions {
 struct CampaignSummary {
   nlohmann::json results;                 // what results.json holds
   std::vector<std::string> written_files; // paths written under the output directory
-  // A readable summary: each procedure's figures and every limit's verdict.
-  std::string report() const;
 };
 
 // Loads and validates the plan; throws Error naming the plan file and line on any problem.

@@ -29,6 +29,11 @@ struct ReportOptions {
 // generically. Throws Error when results lacks the campaign's top-level keys.
 std::string render_report(const nlohmann::json& results, const ReportOptions& options);
 
+// The same figures as plain text (what `inertest run` prints and the demo's report.txt holds): per
+// procedure the rows of the HTML report's figure table (value ± 1-sigma uncertainty, unit), then the
+// specification limits with each verdict and the overall verdict.
+std::string render_text_report(const nlohmann::json& results, const ReportOptions& options);
+
 // Renders the report and writes out_dir/report.html atomically; returns the path written.
 std::string write_report(const nlohmann::json& results, const std::string& out_dir, const ReportOptions& options);
 

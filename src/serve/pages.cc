@@ -1,4 +1,5 @@
-// The instrument list page of inertest serve: a table and a few lines of plain JavaScript.
+// The instrument list page of inertest serve (a table and a few lines of plain JavaScript), and the
+// interactive plots and the history switcher the server adds to the report's pages.
 #include "serve/pages.h"
 
 #include <fmt/format.h>
@@ -6,6 +7,7 @@
 
 #include "inertest/report/svg_plot.h"
 #include "report/report_style.h"
+#include "serve/plot_script.h"
 
 namespace inertest::serve {
 using report::escape_xml;
@@ -78,6 +80,69 @@ std::string render_instrument_list_page(const nlohmann::json& instruments, repor
       "<tbody>\n{13}</tbody>\n</table>\n<script>{14}</script>\n</body>\n</html>\n",
       zh ? "zh-CN" : "en", w.title, report::report_css(), lang_query, w.fleet, zh ? "" : "?lang=zh", zh ? "English" : "中文",
       w.search, w.instrument, w.campaigns, w.latest, w.verdict, w.report, rows, search_script);
+}
+
+namespace {
+
+// The plots' tool bar and tooltip; neither is printed.
+constexpr std::string_view plot_style = R"(
+.plot-box { position: relative; }
+.plot-box svg { cursor: crosshair; user-select: none; }
+.plot-tools { display: flex; gap: 0.3em; justify-content: flex-end; margin-bottom: 0.2em; }
+.plot-tools button { font: inherit; font-size: 0.85em; padding: 0.1em 0.6em; border: 1px solid #999; border-radius: 3px;
+  background: #f6f6f6; cursor: pointer; }
+.plot-tools button[aria-pressed="true"] { background: #dde8f8; border-color: #1f6feb; }
+.plot-tip { position: absolute; pointer-events: none; background: #fffff4; border: 1px solid #888; border-radius: 3px;
+  padding: 0.25em 0.5em; font-size: 0.85em; white-space: nowrap; box-shadow: 0 1px 3px rgba(0, 0, 0, 0.2); }
+.plot-tip .tip-series { font-weight: bold; }
+nav.switch { margin: 0.5em 0 1em; }
+nav.switch select { font: inherit; margin-right: 1em; max-width: 30em; }
+@media print { .plot-tools, .plot-tip, nav.switch { display: none; } }
+)";
+
+void insert_before_body_end(std::string& page, const std::string& text) {
+  const std::size_t at = page.rfind("</body>");
+  page.insert(at == std::string::npos ? page.size() : at, text);
+}
+
+}  // namespace
+
+std::string with_interactive_plots(std::string page) {
+  insert_before_body_end(page, fmt::format("<style>{}</style>\n<script>{}</script>\n", plot_style, plot_script()));
+  return page;
+}
+
+std::string with_history_switcher(std::string page, const std::vector<std::string>& instruments,
+                                  const std::string& instrument, const std::vector<std::string>& figures,
+                                  const std::string& figure, report::Language language) {
+  const bool zh = language == report::Language::chinese;
+  const std::string lang_query = zh ? "lang=zh" : "";
+  auto href = [&](const std::string& id, const std::string& f) {
+    std::string query = f.empty() ? "" : "figure=" + f;
+    if (!lang_query.empty()) query += (query.empty() ? "" : "&") + lang_query;
+    return escape_xml("/instruments/" + id + (query.empty() ? "" : "?" + query));
+  };
+  std::string instrument_options;
+  for (const auto& id : instruments) {
+    instrument_options += fmt::format("<option value=\"{}\"{}>{}</option>", href(id, figure),
+                                      id == instrument ? " selected" : "", escape_xml(id));
+  }
+  std::string figure_options = fmt::format("<option value=\"{}\"{}>{}</option>", href(instrument, ""),
+                                           figure.empty() ? " selected" : "", zh ? "全部参数" : "All figures");
+  for (const auto& f : figures) {
+    figure_options += fmt::format("<option value=\"{}\"{}>{}</option>", href(instrument, f),
+                                  f == figure ? " selected" : "", escape_xml(f));
+  }
+  const std::string nav = fmt::format(
+      "<nav class=\"switch\"><a href=\"/{0}\">{1}</a> · <label>{2} <select id=\"instrument-switch\" "
+      "onchange=\"window.location.href = this.value\">{3}</select></label><label>{4} <select id=\"figure-switch\" "
+      "onchange=\"window.location.href = this.value\">{5}</select></label></nav>\n",
+      zh ? "?lang=zh" : "", zh ? "产品" : "Instruments", zh ? "产品编号" : "Instrument", instrument_options,
+      zh ? "参数" : "Figure", figure_options);
+  const std::string header_end = "</header>\n";
+  const std::size_t at = page.find(header_end);
+  page.insert(at == std::string::npos ? 0 : at + header_end.size(), nav);
+  return page;
 }
 
 }  // namespace inertest::serve

@@ -258,6 +258,42 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_EQ(get(port(), "/api/campaigns").json()["campaigns"].size(), 5u);
 }
 
+std::size_t count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The report's pages carry each plot's data and the plots' script; the history page its switcher,
+// and ?figure= narrows it to one figure. (tests/serve/check_serve_in_chromium.py runs the script.)
+TEST_F(ServeApi, PagesCarryThePlotsDataAndScript) {
+  start(false);
+  for (const std::string& page : std::vector<std::string>{"/campaigns/" + demo_id_, "/instruments/FOG-SIM-NAV", "/fleet"}) {
+    const auto reply = get(port(), page);
+    ASSERT_EQ(reply.status, 200) << page;
+    EXPECT_GT(count(reply.body, "<svg class=\"plot\""), 0u) << page;
+    EXPECT_EQ(count(reply.body, "<svg class=\"plot\""), count(reply.body, "class=\"plot-data\"")) << page;
+    EXPECT_EQ(count(reply.body, "window.inertestPlots = {"), 1u) << page;
+    EXPECT_NE(reply.body.find("@media print { .plot-tools"), std::string::npos) << page;
+  }
+
+  const auto history = get(port(), "/instruments/FOG-3?lang=zh");
+  ASSERT_EQ(history.status, 200);
+  EXPECT_NE(history.body.find("<option value=\"/instruments/FOG-2?lang=zh\">FOG-2</option>"), std::string::npos);
+  EXPECT_NE(history.body.find("<option value=\"/instruments/FOG-3?lang=zh\" selected>FOG-3</option>"), std::string::npos);
+  EXPECT_NE(history.body.find("<option value=\"/instruments/FOG-3?figure=scale_factor/scale_factor&amp;lang=zh\">"),
+            std::string::npos);
+
+  const auto all = get(port(), "/instruments/FOG-SIM-NAV");
+  const auto one = get(port(), "/instruments/FOG-SIM-NAV?figure=scale_factor/scale_factor");
+  ASSERT_EQ(one.status, 200);
+  EXPECT_GT(count(all.body, "<section class=\"procedure\">"), 1u);
+  EXPECT_EQ(count(one.body, "<section class=\"procedure\">"), 1u);
+  EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=bias_static/bias").status, 404);
+  EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=..%2Fx").status, 400);
+  EXPECT_EQ(get(port(), "/favicon.ico").status, 204);
+}
+
 TEST(Serve, MissingArchiveIsAnError) {
   testing::ScratchDirectory scratch;
   ServerOptions options;

@@ -262,6 +262,9 @@ struct Server::Impl {
       send_json(response, 500, {{"error", "internal error"}});
     });
     http.set_payload_max_length(options.max_body_bytes);
+    // An answer goes out as headers then body: without TCP_NODELAY the body waits for the client's
+    // delayed ACK of the headers on a keep-alive connection (about 40 ms a request on Linux).
+    http.set_tcp_nodelay(true);
     http.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
   }
 };

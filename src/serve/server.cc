@@ -101,8 +101,8 @@ struct Server::Impl {
   int port = 0;
 
   // Runs answer under the archive's lock: it returns the JSON to send with 200, or fills in the
-  // response itself (a page) and returns null. A Refusal becomes its 4xx, and an archive Error
-  // (an unknown instrument, figure or campaign) a 404.
+  // response itself (a page) and returns null. A Refusal becomes its 4xx, a failure of the
+  // database a 500, and any other archive Error (an unknown instrument, figure or campaign) a 404.
   template <typename Answer>
   httplib::Server::Handler route(Answer answer) {
     return [this, answer](const httplib::Request& request, httplib::Response& response) {
@@ -115,6 +115,8 @@ struct Server::Impl {
         if (!json.is_null()) send_json(response, 200, json);
       } catch (const Refusal& refusal) {
         send_json(response, refusal.status, {{"error", refusal.message}});
+      } catch (const archive::DatabaseError& e) {
+        send_json(response, 500, {{"error", "the archive's database failed: " + e.message()}});
       } catch (const Error& e) {
         send_json(response, 404, {{"error", e.message()}});
       }
@@ -136,6 +138,8 @@ struct Server::Impl {
     for (const auto& figure : page_figures()) {
       try {
         figures.push_back(store->history(instrument, figure).to_json());
+      } catch (const archive::DatabaseError&) {
+        throw;
       } catch (const Error&) {
         // this instrument's campaigns do not report the figure: nothing to plot
       }

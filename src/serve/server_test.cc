@@ -8,6 +8,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <thread>
@@ -292,6 +293,28 @@ TEST_F(ServeApi, PagesCarryThePlotsDataAndScript) {
   EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=bias_static/bias").status, 404);
   EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=..%2Fx").status, 400);
   EXPECT_EQ(get(port(), "/favicon.ico").status, 204);
+}
+
+// The database failing under the running server (its file and WAL index overwritten with zeros, so
+// that SQLite drops its cached pages and finds no database) is the server's failure, a 500 with a
+// JSON error, not a 404 as if the instrument or campaign were unknown.
+TEST_F(ServeApi, ADatabaseFailureIsA500NotA404) {
+  start(false);
+  ASSERT_EQ(get(port(), "/api/instruments").status, 200);
+  for (const std::string& path : {db_, db_ + "-shm"}) {
+    ASSERT_TRUE(std::filesystem::exists(path)) << path;
+    const auto size = std::filesystem::file_size(path);
+    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+    const std::string zeros(size, '\0');
+    file.write(zeros.data(), static_cast<std::streamsize>(zeros.size()));
+  }
+  for (const std::string& target : std::vector<std::string>{"/api/instruments", "/api/campaigns/" + demo_id_,
+                                                            "/api/instruments/FOG-3/history?figure=scale_factor/scale_factor",
+                                                            "/instruments/FOG-3", "/"}) {
+    const auto reply = get(port(), target);
+    EXPECT_EQ(reply.status, 500) << target << ": " << reply.body;
+    EXPECT_NE(reply.json().value("error", "").find("the archive's database failed"), std::string::npos) << reply.body;
+  }
 }
 
 TEST(Serve, MissingArchiveIsAnError) {

@@ -37,6 +37,48 @@ constexpr std::string_view search_script = R"(
 })();
 )";
 
+// Sends the chosen results.json with the token and shows the server's answer.
+constexpr std::string_view add_script = R"(
+(function () {
+  var form = document.getElementById('add-form');
+  if (!form) return;
+  var answer = document.getElementById('add-answer');
+  form.addEventListener('submit', function (event) {
+    event.preventDefault();
+    var file = document.getElementById('add-file').files[0];
+    var token = document.getElementById('add-token').value.trim();
+    if (!file) { answer.className = 'fail'; answer.textContent = form.getAttribute('data-no-file'); return; }
+    answer.className = '';
+    answer.textContent = '…';
+    file.text().then(function (body) {
+      return fetch('/api/campaigns', {method: 'POST', body: body,
+                                      headers: {'Content-Type': 'application/json', 'Authorization': 'Bearer ' + token}});
+    }).then(function (response) {
+      return response.json().then(function (json) { return {status: response.status, json: json}; });
+    }).then(function (reply) {
+      answer.textContent = '';
+      if (reply.status !== 200) {
+        answer.className = 'fail';
+        answer.textContent = reply.status + ': ' + reply.json.error;
+        return;
+      }
+      answer.className = 'pass';
+      reply.json.added.forEach(function (added) {
+        var link = document.createElement('a');
+        link.href = '/campaigns/' + added.id;
+        link.textContent = added.id;
+        answer.appendChild(document.createTextNode(form.getAttribute(added.added ? 'data-added' : 'data-already') + ' '));
+        answer.appendChild(link);
+        answer.appendChild(document.createTextNode(' (' + added.instrument + ')'));
+      });
+    }).catch(function (error) {
+      answer.className = 'fail';
+      answer.textContent = String(error);
+    });
+  });
+})();
+)";
+
 struct Words {
   const char* title;
   const char* search;
@@ -46,16 +88,38 @@ struct Words {
   const char* verdict;
   const char* report;
   const char* fleet;
+  const char* add;          // the form's heading
+  const char* add_file;     // the file input's label
+  const char* add_token;    // the token input's label
+  const char* add_send;     // the button
+  const char* add_no_file;  // the answer when no file is chosen
+  const char* added;        // before the new campaign's id
+  const char* already;      // before the id of a campaign the archive already held
 };
 
 const Words english{"Instruments", "Search by id", "Instrument", "Campaigns", "Latest test", "Verdict",
-                    "Latest report", "Fleet"};
+                    "Latest report", "Fleet", "Add a campaign", "results.json", "Token (printed by inertest serve)",
+                    "Add", "choose a results.json file", "added", "already in the archive:"};
 // GJB 2426A's words: 产品 for the instrument under test, 试验 for a test campaign, 结论 for the verdict.
-const Words chinese{"产品", "按编号搜索", "产品编号", "试验次数", "最近试验", "结论", "最近试验报告", "批次"};
+const Words chinese{"产品", "按编号搜索", "产品编号", "试验次数", "最近试验", "结论", "最近试验报告", "批次",
+                    "添加试验结果", "results.json 文件", "令牌（inertest serve 启动时显示）", "添加",
+                    "请选择 results.json 文件", "已添加", "档案中已有："};
+
+// The form of --allow-add and its script (add_script); not printed.
+std::string add_form(const Words& w) {
+  return fmt::format(
+      "<section id=\"add\"><h2>{0}</h2>\n"
+      "<form id=\"add-form\" data-no-file=\"{4}\" data-added=\"{5}\" data-already=\"{6}\">\n"
+      "<p><label>{1} <input id=\"add-file\" type=\"file\" accept=\".json,application/json\"></label></p>\n"
+      "<p><label>{2} <input id=\"add-token\" type=\"password\" autocomplete=\"off\" size=\"34\"></label> "
+      "<button type=\"submit\">{3}</button></p>\n<p id=\"add-answer\" role=\"status\"></p>\n</form>\n</section>\n"
+      "<script>{7}</script>\n",
+      w.add, w.add_file, w.add_token, w.add_send, w.add_no_file, w.added, w.already, add_script);
+}
 
 }  // namespace
 
-std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language) {
+std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language, bool allow_add) {
   const bool zh = language == report::Language::chinese;
   const Words& w = zh ? chinese : english;
   const std::string lang_query = zh ? "?lang=zh" : "";
@@ -73,13 +137,15 @@ std::string render_instrument_list_page(const nlohmann::json& instruments, repor
   }
   return fmt::format(
       "<!DOCTYPE html>\n<html lang=\"{0}\">\n<head>\n<meta charset=\"utf-8\">\n<title>inertest · {1}</title>\n"
-      "<style>{2}\n#search {{ font: inherit; padding: 0.3em; width: 20em; }} @media print {{ #search {{ display: none; }} }}"
+      "<style>{2}\n#search {{ font: inherit; padding: 0.3em; width: 20em; }} #add-answer.pass {{ color: var(--pass); }} #add-answer.fail {{ color: var(--fail); }}"
+      " @media print {{ #search, #add {{ display: none; }} }}"
       "</style>\n</head>\n<body>\n<h1>{1}</h1>\n<p><a href=\"/fleet{3}\">{4}</a> · <a href=\"/{5}\">{6}</a></p>\n"
       "<p><input id=\"search\" type=\"search\" placeholder=\"{7}\" aria-label=\"{7}\"> <span id=\"shown\"></span></p>\n"
       "<table id=\"instruments\">\n<thead><tr><th>{8}</th><th>{9}</th><th>{10}</th><th>{11}</th><th>{12}</th></tr></thead>\n"
-      "<tbody>\n{13}</tbody>\n</table>\n<script>{14}</script>\n</body>\n</html>\n",
+      "<tbody>\n{13}</tbody>\n</table>\n{15}<script>{14}</script>\n</body>\n</html>\n",
       zh ? "zh-CN" : "en", w.title, report::report_css(), lang_query, w.fleet, zh ? "" : "?lang=zh", zh ? "English" : "中文",
-      w.search, w.instrument, w.campaigns, w.latest, w.verdict, w.report, rows, search_script);
+      w.search, w.instrument, w.campaigns, w.latest, w.verdict, w.report, rows, search_script,
+      allow_add ? add_form(w) : std::string());
 }
 
 namespace {

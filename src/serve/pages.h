@@ -16,7 +16,11 @@ namespace inertest::serve {
 // (each linked to its history page, /instruments/ID, and its latest campaign's report,
 // /campaigns/ID) with their latest verdicts, and a search box filtering the rows by id (inline
 // script, no outside resource; ?q=TEXT fills it in). Links keep the page's language (?lang=zh).
-std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language);
+// With allow_add (the server's --allow-add), a form under the table sends a results.json file with
+// the token the user types (POST /api/campaigns, Authorization: Bearer TOKEN) and shows the answer:
+// the campaign added (linked to its report) or the error. Without it, no form.
+std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language,
+                                        bool allow_add);
 
 // The page (a report, history or fleet page rendered with ReportOptions::embed_plot_data) with the
 // interactive plots' script (plot_script.h) and style added before its </body>: zoom, pan, hover

@@ -230,7 +230,7 @@ struct Server::Impl {
     // The pages, in English or (?lang=zh) Chinese.
     http.Get("/", route([this](const httplib::Request& request, httplib::Response& response) {
       response.set_content(render_instrument_list_page(archive::instrument_list_json(store->list(std::nullopt)),
-                                                       language_of(request)),
+                                                       language_of(request), options.allow_add),
                            "text/html; charset=utf-8");
       return nlohmann::json();
     }));

@@ -239,6 +239,9 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   const std::string before = file_bytes(db_);
   start(true);
   ASSERT_EQ(server_->token().size(), 32u);
+  const auto list = get(port(), "/");
+  EXPECT_NE(list.body.find("<form id=\"add-form\""), std::string::npos);
+  EXPECT_EQ(list.body.find(server_->token()), std::string::npos);  // the page never holds the token
   const std::string token = "Authorization: Bearer " + server_->token() + "\r\n";
   const std::string good = campaign("FOG-9", "2026-04-01", 36000.0).dump();
   EXPECT_EQ(post(port(), "/api/campaigns", good).status, 401);
@@ -293,6 +296,7 @@ TEST_F(ServeApi, PagesCarryThePlotsDataAndScript) {
   EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=bias_static/bias").status, 404);
   EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=..%2Fx").status, 400);
   EXPECT_EQ(get(port(), "/favicon.ico").status, 204);
+  EXPECT_EQ(get(port(), "/").body.find("add-form"), std::string::npos);  // read-only: no form to add
 }
 
 // The database failing under the running server (its file and WAL index overwritten with zeros, so

@@ -15,6 +15,8 @@ then, driving Chromium over the DevTools protocol (tests/chromium.py DevTools), 
     zoomed point reads its value and interval; the wheel zooms, Reset restores, #zoom=N:x0:x1 opens
     zoomed; the CSV downloaded by its button holds exactly the plotted data, the SVG the plot shown;
     in print the buttons are hidden;
+  * with --allow-add, the list page's form adds a results.json with the token typed in (and shows a
+    wrong token's 403);
 and fails on any console message or failed load. Exits 77 (ctest SKIP) without chromium.
 """
 import argparse
@@ -311,6 +313,51 @@ def check_allan_plot(tools, url, page, downloads):
     return failures
 
 
+# Sends file through the list page's form with token; the answer shown once it is in.
+ADD = """(function (token) {
+  document.getElementById('add-token').value = token;
+  document.querySelector('#add-form button[type=submit]').click();
+  return new Promise(function (resolve) {
+    (function poll() {
+      var text = document.getElementById('add-answer').textContent;
+      if (text && text !== '\u2026') resolve([text, document.getElementById('add-answer').className]); else setTimeout(poll, 50);
+    })();
+  });
+})(%r)"""
+
+
+def check_add_form(tools, inertest, db, campaign_file):
+    """A server with --allow-add: the list page's form sends a results.json with the token typed in and
+    shows the campaign added (linked to its report); with a wrong token it shows the 403."""
+    failures = []
+    server = subprocess.Popen([inertest, "serve", "--db", db, "--port", "0", "--allow-add"], stdout=subprocess.PIPE,
+                              text=True)
+    try:
+        url = re.search(r"(http://127\.0\.0\.1:\d+/)", server.stdout.readline()).group(1)
+        token = server.stdout.readline().split()[-1]
+        tools.open(url)
+        document = tools.call("DOM.getDocument", session=True)["root"]["nodeId"]
+        node = tools.call("DOM.querySelector", {"nodeId": document, "selector": "#add-file"}, session=True)["nodeId"]
+        tools.call("DOM.setFileInputFiles", {"nodeId": node, "files": [campaign_file]}, session=True)
+        text, verdict = tools.evaluate(ADD % ("0" * 32))
+        if verdict != "fail" or not text.startswith("403: "):
+            failures.append(f"add with a wrong token: {text!r} ({verdict})")
+        # The browser logs the refused POST; that one is expected.
+        tools.problems = [p for p in tools.problems if not ("status of 403" in p and p.endswith("/api/campaigns"))]
+        text, verdict = tools.evaluate(ADD % token)
+        link = tools.evaluate("(document.querySelector('#add-answer a') || {}).href || null")
+        campaigns = json.load(urllib.request.urlopen(url + "api/campaigns"))["campaigns"]
+        added = [c["id"] for c in campaigns if c["instrument"] == "FOG-4"]
+        if verdict != "pass" or len(added) != 1 or link != f"{url}campaigns/{added[0]}":
+            failures.append(f"add: {text!r} ({verdict}), link {link}, archived {added}")
+        else:
+            print(f"add through the page: {text}")
+    finally:
+        server.terminate()
+        server.wait(timeout=30)
+    return failures
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--inertest", required=True)
@@ -337,6 +384,11 @@ def main():
                 json.dump(results, f)
         db = os.path.join(work, "archive.sqlite")
         subprocess.run([options.inertest, "archive", "add", *files, "--db", db], check=True, capture_output=True)
+        add_db = os.path.join(work, "add.sqlite")
+        shutil.copy(db, add_db)
+        fog4 = os.path.join(work, "fog4.json")
+        with open(fog4, "w") as f:
+            json.dump(scale_factor_campaign("FOG-4", "2026-03-04", 36000.1), f)
 
         server = subprocess.Popen([options.inertest, "serve", "--db", db, "--port", "0"], stdout=subprocess.PIPE,
                                   text=True)
@@ -379,6 +431,7 @@ def main():
                 tools.allow_downloads(downloads)
                 failures += check_history_page(tools, url)
                 failures += check_allan_plot(tools, url, f"campaigns/{demo_id}", downloads)
+                failures += check_add_form(tools, options.inertest, add_db, fog4)
                 failures += [f"interactive plots: console: {p}" for p in tools.problems]
         finally:
             server.terminate()

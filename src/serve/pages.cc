@@ -100,10 +100,18 @@ struct Words {
 const Words english{"Instruments", "Search by id", "Instrument", "Campaigns", "Latest test", "Verdict",
                     "Latest report", "Fleet", "Add a campaign", "results.json", "Token (printed by inertest serve)",
                     "Add", "choose a results.json file", "added", "already in the archive:"};
-// GJB 2426A's words: 产品 for the instrument under test, 试验 for a test campaign, 结论 for the verdict.
-const Words chinese{"产品", "按编号搜索", "产品编号", "试验次数", "最近试验", "结论", "最近试验报告", "批次",
-                    "添加试验结果", "results.json 文件", "令牌（inertest serve 启动时显示）", "添加",
+// GJB 2426A's words, as the report uses them (report/labels.cc, archive_pages.cc): 测试 for a test
+// (the standard's "5 测试项目与方法", the report's 测试报告; 试验 is its word for test conditions, as a
+// test temperature), 被测仪表 for the instrument under test, 结论 with 合格 / 不合格 for the verdict.
+const Words chinese{"被测仪表", "按编号搜索", "仪表编号", "测试次数", "最近测试", "结论", "最近测试报告", "批次统计",
+                    "添加测试结果", "results.json 文件", "令牌（inertest serve 启动时显示）", "添加",
                     "请选择 results.json 文件", "已添加", "档案中已有："};
+
+// The verdict as the report words it: 合格, 不合格, 无 in Chinese.
+std::string verdict_word(const std::string& verdict, bool zh) {
+  if (!zh) return verdict;
+  return verdict == "PASS" ? "合格" : verdict == "FAIL" ? "不合格" : "无";
+}
 
 // The form of --allow-add and its script (add_script); not printed.
 std::string add_form(const Words& w) {
@@ -132,7 +140,7 @@ std::string render_instrument_list_page(const nlohmann::json& instruments, repor
         "<tr data-instrument=\"{0}\"><td><a href=\"/instruments/{0}{1}\">{0}</a></td><td class=\"num\">{2}</td>"
         "<td>{3}</td><td class=\"verdict {4}\">{5}</td><td><a href=\"/campaigns/{6}{1}\">{7}</a></td></tr>\n",
         id, lang_query, i.at("campaigns").get<std::size_t>(), escape_xml(latest.at("tested_on").get<std::string>()),
-        verdict == "PASS" ? "pass" : verdict == "FAIL" ? "fail" : "none", escape_xml(verdict),
+        verdict == "PASS" ? "pass" : verdict == "FAIL" ? "fail" : "none", escape_xml(verdict_word(verdict, zh)),
         escape_xml(latest.at("id").get<std::string>()), escape_xml(latest.at("title").get<std::string>()));
   }
   return fmt::format(
@@ -194,7 +202,7 @@ std::string with_history_switcher(std::string page, const std::vector<std::strin
                                       id == instrument ? " selected" : "", escape_xml(id));
   }
   std::string figure_options = fmt::format("<option value=\"{}\"{}>{}</option>", href(instrument, ""),
-                                           figure.empty() ? " selected" : "", zh ? "全部参数" : "All figures");
+                                           figure.empty() ? " selected" : "", zh ? "全部指标" : "All figures");
   for (const auto& f : figures) {
     figure_options += fmt::format("<option value=\"{}\"{}>{}</option>", href(instrument, f),
                                   f == figure ? " selected" : "", escape_xml(f));
@@ -203,8 +211,8 @@ std::string with_history_switcher(std::string page, const std::vector<std::strin
       "<nav class=\"switch\"><a href=\"/{0}\">{1}</a> · <label>{2} <select id=\"instrument-switch\" "
       "onchange=\"window.location.href = this.value\">{3}</select></label><label>{4} <select id=\"figure-switch\" "
       "onchange=\"window.location.href = this.value\">{5}</select></label></nav>\n",
-      zh ? "?lang=zh" : "", zh ? "产品" : "Instruments", zh ? "产品编号" : "Instrument", instrument_options,
-      zh ? "参数" : "Figure", figure_options);
+      zh ? "?lang=zh" : "", zh ? "被测仪表" : "Instruments", zh ? "仪表编号" : "Instrument", instrument_options,
+      zh ? "指标" : "Figure", figure_options);
   const std::string header_end = "</header>\n";
   const std::size_t at = page.find(header_end);
   page.insert(at == std::string::npos ? 0 : at + header_end.size(), nav);

@@ -411,7 +411,7 @@ def main():
 
             dom, problems = dump_dom(browser, work, url + "?lang=zh")
             failures += [f"/?lang=zh: console: {p}" for p in problems]
-            if "<th>产品编号</th>" not in dom or '<span id="shown">3 / 3</span>' not in dom:
+            if "<th>仪表编号</th>" not in dom or "合格</td>" not in dom or '<span id="shown">3 / 3</span>' not in dom:
                 failures.append("/?lang=zh: no Chinese headings or not every row shown")
 
             campaigns = json.load(urllib.request.urlopen(url + "api/campaigns"))["campaigns"]

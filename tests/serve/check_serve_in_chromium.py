@@ -12,7 +12,8 @@ then, driving Chromium over the DevTools protocol (tests/chromium.py DevTools), 
     "value ± uncertainty unit"; the instrument and figure <select>s go to the chosen history;
   * the demo report's Allan deviation (log-log, with confidence intervals): the curve's vertices are
     its data; a dragged zoom shows fewer points, new ticks inside the new range; the tooltip of a
-    zoomed point reads its value and interval; the wheel zooms, Reset restores, #zoom=N:x0:x1 opens
+    zoomed point reads its value and interval; the wheel zooms, Reset restores, Pan moves the view by
+    the distance dragged, #zoom=N:x0:x1 opens
     zoomed; the CSV downloaded by its button holds exactly the plotted data, the SVG the plot shown;
     in print the buttons are hidden;
   * with --allow-add, the list page's form adds a results.json with the token typed in (and shows a
@@ -297,6 +298,21 @@ def check_allan_plot(tools, url, page, downloads):
     wheeled = tools.evaluate(GEOMETRY % n)
     if not before[0]["x"][0] < wheeled[0]["x"][0] < wheeled[0]["x"][1] < before[0]["x"][1]:
         failures.append(f"{where}: the wheel zoomed x to {wheeled[0]['x']} from {before[0]['x']}")
+
+    # Pan: dragging right by a tenth of the area moves the view left by a tenth of its (log) span.
+    tools.evaluate(f"document.querySelector('#plot-{n} .plot-tools button:nth-child(2)').click()")
+    start = tools.evaluate(CLIENT % (n, 0.5 * (left + right), 0.5 * (top + bottom)))
+    end = tools.evaluate(CLIENT % (n, 0.5 * (left + right) + 0.1 * (right - left), 0.5 * (top + bottom)))
+    tools.mouse("pressed", *start)
+    tools.mouse("moved", (start[0] + end[0]) / 2, start[1])
+    tools.mouse("moved", *end)
+    tools.mouse("released", *end)
+    tools.evaluate(f"document.querySelector('#plot-{n} .plot-tools button:nth-child(1)').click()")
+    panned = tools.evaluate(GEOMETRY % n)
+    w0, w1 = (math.log10(v) for v in wheeled[0]["x"])
+    p0, p1 = (math.log10(v) for v in panned[0]["x"])
+    if abs((p1 - p0) - (w1 - w0)) > 1e-6 * (w1 - w0) or abs((w0 - p0) - 0.1 * (w1 - w0)) > 0.01 * (w1 - w0):
+        failures.append(f"{where}: panning moved x from {wheeled[0]['x']} to {panned[0]['x']}")
 
     tools.call("Emulation.setEmulatedMedia", {"media": "print"}, session=True)
     hidden = tools.evaluate("Array.prototype.every.call(document.querySelectorAll('.plot-tools'), function (t) { "

@@ -192,7 +192,8 @@ std::string with_history_switcher(std::string page, const std::vector<std::strin
   const bool zh = language == report::Language::chinese;
   const std::string lang_query = zh ? "lang=zh" : "";
   auto href = [&](const std::string& id, const std::string& f) {
-    std::string query = f.empty() ? "" : "figure=" + f;
+    std::string query = f.empty() ? "" : "figure=";
+    for (char c : f) query += c == '+' ? std::string("%2B") : std::string(1, c);  // '+' would read as a space
     if (!lang_query.empty()) query += (query.empty() ? "" : "&") + lang_query;
     return escape_xml("/instruments/" + id + (query.empty() ? "" : "?" + query));
   };

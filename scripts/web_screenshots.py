@@ -12,12 +12,12 @@ starts `inertest serve --db demo/archive.sqlite --port 0` and, in headless Chrom
 """
 import argparse
 import base64
+import json
 import os
 import re
 import subprocess
 import sys
 import tempfile
-import json
 import urllib.request
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

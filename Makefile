@@ -73,7 +73,11 @@ demo: build
 	  echo "demo: report in demo/report.html (text: demo/report.txt), results with truth_check in demo/results.json"; \
 	  [ $$status -eq 0 ] || exit $$status; \
 	  $(BUILD_DIR)/bin/inertest demo --fleet --out demo/fleet > /dev/null && \
-	  echo "demo: fleet archive in demo/fleet/archive.sqlite, pages demo/fleet/fleet.html and demo/fleet/history-*.html"
+	  echo "demo: fleet archive in demo/fleet/archive.sqlite, pages demo/fleet/fleet.html and demo/fleet/history-*.html" && \
+	  rm -f demo/archive.sqlite demo/archive.sqlite-wal demo/archive.sqlite-shm && \
+	  cp demo/fleet/archive.sqlite demo/archive.sqlite && \
+	  $(BUILD_DIR)/bin/inertest archive add demo/results.json --db demo/archive.sqlite > /dev/null && \
+	  echo "demo: the fleet and the demo campaign in demo/archive.sqlite (inertest serve --db demo/archive.sqlite)"
 
 bench: deps
 	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DINERTEST_BUILD_BENCHMARKS=ON > /dev/null

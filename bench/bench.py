@@ -16,7 +16,10 @@ machine may be shared, so only ratios within the run mean anything):
   - a whole IMU (imu_compare.py): `allan --columns` on six channels of a --imu-rows CSV against one
     channel of the same file (the issue's bound: at most 1.5x);
   - with --huge: 10^9 f32 samples (4 GB, written to --huge-dir and deleted after), all six
-    estimators, its time and peak resident memory.
+    estimators, its time and peak resident memory;
+  - inertest serve under load (the ServeLoad test of inertest_tests, when the tests are built): the
+    second batch of 10 000 requests over 8 connections, its throughput and p99 latency, its errors
+    and the resident size's growth between the batches.
 The read bandwidth: one pass over 1 GiB in memory on 1 and 2 threads (memory_read_benchmark) and
 one read(2) of the f64 record from the page cache. The GB/s column is the record's raw size over
 inertest's time: how close the engine runs to those.
@@ -27,6 +30,7 @@ import datetime
 import json
 import os
 import platform
+import re
 import subprocess
 import sys
 import tempfile
@@ -93,6 +97,23 @@ def machine():
     return f"{model}, {os.cpu_count()} cores, {memory:.0f} GiB"
 
 
+def serve_load(build_dir):
+    """The second batch of the serve load test (src/serve/server_load_test.cc: 10 000 requests over 8
+    keep-alive connections on loopback): its seconds, requests/s, p99 ms, errors and the resident size's
+    growth between the batches (MiB); None when the tests are not built (configure with
+    -DINERTEST_BUILD_TESTS=ON, as make test does)."""
+    tests = os.path.join(build_dir, "bin", "inertest_tests")
+    if not os.path.exists(tests):
+        return None
+    run = subprocess.run([tests, "--gtest_filter=ServeLoad.*"], capture_output=True, text=True, check=False)
+    batch = re.search(r"batch 2: .* in ([0-9.]+) s: ([0-9.]+) requests/s, .* p99 ([0-9.]+) ms, .*; (\d+) errors", run.stdout)
+    growth = re.search(r"resident size ([-+0-9.]+) MiB", run.stdout)
+    if run.returncode != 0 or not batch or not growth:
+        return {"failed": run.stdout[-2000:]}
+    return {"seconds": float(batch.group(1)), "rate": float(batch.group(2)), "p99_ms": float(batch.group(3)),
+            "errors": int(batch.group(4)), "growth_mib": float(growth.group(1))}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default="build")
@@ -131,6 +152,7 @@ def main():
             finally:
                 os.remove(path)
             huge = (seconds, peak_mb)
+    serve = serve_load(args.build_dir)
     load_after = os.getloadavg()
 
     size_mb = allan["size_mb"]
@@ -164,6 +186,11 @@ def main():
         rows.append((f"all six + bounds + fit, {args.huge_samples:.0e} f32 ({huge_gb:.2g} GB)", huge[0],
                      f"peak RSS {huge[1] / 1024:.1f} GiB", None, "", "within 24 GiB", huge_gb / huge[0]))
 
+    if serve and "failed" not in serve:
+        rows.append(("inertest serve: 10 000 requests over 8 connections", serve["seconds"],
+                     f"{serve['errors']} errors, RSS {serve['growth_mib']:+.2f} MiB", None,
+                     f"{serve['rate']:.0f} req/s, p99 {serve['p99_ms']:.1f} ms", "no error, flat", None))
+
     print(f"inertest bench, {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, {machine()}")
     print(f"load average {load_before[0]:.2f} before, {load_after[0]:.2f} after (a shared machine slows every column)")
     print(f"read bandwidth: memory {bandwidth.get('1', float('nan')):.1f} GB/s on 1 thread, "
@@ -179,6 +206,10 @@ def main():
         cells = (work, f"{ours:.3f}", against, "" if theirs is None else f"{theirs:.3f}", ratio, target,
                  "" if gbps is None else f"{gbps:.2f}")
         print("| " + " | ".join(c.ljust(w) for c, w in zip(cells, widths)) + " |")
+    if serve is None:
+        print("\ninertest serve's load test: not built (configure with -DINERTEST_BUILD_TESTS=ON, as make test does)")
+    elif "failed" in serve:
+        print("\ninertest serve's load test FAILED:\n" + serve["failed"])
 
 
 if __name__ == "__main__":

@@ -38,9 +38,9 @@ double Row::real(std::size_t i) const {
     double value = 0.0;
     const auto [end, error] = fast_float::from_chars(s->data(), s->data() + s->size(), value);
     if (error == std::errc() && end == s->data() + s->size()) return value;
-    throw Error("archive: '" + *s + "' is not a number");
+    throw DatabaseError("archive: '" + *s + "' is not a number");
   }
-  throw Error("archive: a number is missing");
+  throw DatabaseError("archive: a number is missing");
 }
 
 std::optional<double> Row::optional_real(std::size_t i) const {
@@ -52,7 +52,7 @@ std::int64_t Row::integer(std::size_t i) const {
   const Value& v = columns.at(i);
   if (const auto* n = std::get_if<std::int64_t>(&v)) return *n;
   if (const auto* s = std::get_if<std::string>(&v)) return std::stoll(*s);
-  throw Error("archive: an integer is missing");
+  throw DatabaseError("archive: an integer is missing");
 }
 
 namespace {

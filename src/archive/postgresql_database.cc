@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "archive/database.h"
+#include "inertest/archive/archive.h"
 #include "inertest/core/error.h"
 
 namespace inertest::archive {
@@ -31,7 +32,7 @@ class PostgresqlDatabase final : public Database {
     if (connection_ == nullptr || PQstatus(connection_) != CONNECTION_OK) {
       const std::string message = connection_ ? PQerrorMessage(connection_) : "out of memory";
       PQfinish(connection_);
-      throw Error(SourceLocation{where_, 0, 0}, "cannot open the archive: " + trim(message));
+      throw DatabaseError(SourceLocation{where_, 0, 0}, "cannot open the archive: " + trim(message));
     }
     // CREATE ... IF NOT EXISTS and the like send notices; they are not the user's business.
     PQsetNoticeProcessor(connection_, [](void*, const char*) {}, nullptr);
@@ -62,7 +63,7 @@ class PostgresqlDatabase final : public Database {
         PQclear);
     const ExecStatusType status = result ? PQresultStatus(result.get()) : PGRES_FATAL_ERROR;
     if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
-      throw Error(SourceLocation{where_, 0, 0}, "archive: " + trim(PQerrorMessage(connection_)));
+      throw DatabaseError(SourceLocation{where_, 0, 0}, "archive: " + trim(PQerrorMessage(connection_)));
     }
     std::vector<Row> rows;
     for (int r = 0; r < PQntuples(result.get()); ++r) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "archive/database.h"
+#include "inertest/archive/archive.h"
 #include "inertest/core/error.h"
 
 namespace inertest::archive {
@@ -27,7 +28,7 @@ class SqliteDatabase final : public Database {
                         nullptr) != SQLITE_OK) {
       const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
       sqlite3_close(db_);
-      throw Error(SourceLocation{path, 0, 0}, "cannot open the archive: " + message);
+      throw DatabaseError(SourceLocation{path, 0, 0}, "cannot open the archive: " + message);
     }
     try {
       sqlite3_busy_timeout(db_, busy_timeout_ms);
@@ -106,7 +107,9 @@ class SqliteDatabase final : public Database {
     }
   }
 
-  [[noreturn]] void fail() const { throw Error(SourceLocation{path_, 0, 0}, std::string("archive: ") + sqlite3_errmsg(db_)); }
+  [[noreturn]] void fail() const {
+    throw DatabaseError(SourceLocation{path_, 0, 0}, std::string("archive: ") + sqlite3_errmsg(db_));
+  }
 
   std::string path_;
   sqlite3* db_ = nullptr;

@@ -74,6 +74,8 @@ class Page {
         options_.language == Language::chinese ? "zh-CN" : "en", escape_xml(title), report_css(), escape_xml(kicker),
         escape_xml(title));
   }
+  bool embed_plot_data() const { return options_.embed_plot_data; }
+
   std::string close() {
     out_ += fmt::format("<footer>{}{}</footer>\n</body>\n</html>\n", escape_xml(labels_("ui.generated")),
                         options_.run_date.empty() ? "" : " · " + escape_xml(options_.run_date));
@@ -136,7 +138,7 @@ std::string render_history_page(const json& history, const ReportOptions& option
     panel.series.push_back(std::move(series));
     add_limits(panel, figure, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
-                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}}));
+                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
     page.out() += fmt::format("<table><tr><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
                               escape_xml(page.word("tested_on")), escape_xml(page.labels()("ui.value")),
                               escape_xml(page.labels()("ui.uncertainty")), escape_xml(page.word("campaign")));
@@ -215,7 +217,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
     }
     add_limits(panel, f, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
-                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}}));
+                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
     page.out() += fmt::format("<table><tr><th>#</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
                               escape_xml(page.labels()("ui.instrument")), escape_xml(page.word("tested_on")),
                               escape_xml(page.labels()("ui.value")), escape_xml(page.word("tests")),

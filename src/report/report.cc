@@ -646,8 +646,9 @@ class ReportWriter {
       if (v.value("procedure", "") == procedure.value("name", "")) procedure_verdicts.push_back(v);
     }
     const PlotContext context{result, labels_, procedure_verdicts, find_procedure_spec(kind)};
-    for (const auto& plot : procedure_plots(kind, context)) {
+    for (auto& plot : procedure_plots(kind, context)) {
       if (plot.plot.panels.empty()) continue;
+      plot.plot.embed_data = options_.embed_plot_data;
       ++figure_number_;
       out_ += fmt::format("<figure{}>\n{}<figcaption>{} {}. {}</figcaption>\n</figure>\n",
                           plot.field.empty() ? "" : fmt::format(" data-curve=\"{}\"", html(plot.field)),

@@ -1,6 +1,7 @@
 #include "inertest/report/svg_plot.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -596,7 +597,114 @@ std::string render_svg(const Plot& plot) {
     top += panel.height;
   }
   svg.line("</svg>");
+  if (plot.embed_data) {
+    // "</" could end the script element early; JSON allows "<\/" for it.
+    const std::string data = plot_data(plot).dump();
+    std::string escaped;
+    escaped.reserve(data.size());
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      escaped += data[i];
+      if (data[i] == '<' && i + 1 < data.size() && data[i + 1] == '/') escaped += '\\';
+    }
+    svg.line("<script type=\"application/json\" class=\"plot-data\">" + escaped + "</script>");
+  }
   return svg.take();
+}
+
+namespace {
+
+nlohmann::json numbers(const std::vector<double>& values) {
+  nlohmann::json out = nlohmann::json::array();
+  for (double v : values) out.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json());
+  return out;
+}
+
+nlohmann::json number_or_null(std::optional<double> value) {
+  return value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json();
+}
+
+nlohmann::json axis_data(const Axis& axis) {
+  return {{"label", axis.label},
+          {"unit", axis.unit},
+          {"scale", axis.scale == AxisScale::log ? "log" : "linear"},
+          {"min", number_or_null(axis.min)},
+          {"max", number_or_null(axis.max)},
+          {"include_zero", axis.include_zero},
+          {"ticks", numbers(axis.ticks)}};
+}
+
+const char* line_name(LineStyle style) {
+  switch (style) {
+    case LineStyle::none: return "none";
+    case LineStyle::dashed: return "dashed";
+    case LineStyle::dotted: return "dotted";
+    case LineStyle::solid: break;
+  }
+  return "solid";
+}
+
+const char* marker_name(Marker marker) {
+  switch (marker) {
+    case Marker::circle: return "circle";
+    case Marker::square: return "square";
+    case Marker::triangle: return "triangle";
+    case Marker::diamond: return "diamond";
+    case Marker::none: break;
+  }
+  return "none";
+}
+
+const char* legend_name(LegendPosition position) {
+  switch (position) {
+    case LegendPosition::none: return "none";
+    case LegendPosition::top_right: return "top_right";
+    case LegendPosition::top_left: return "top_left";
+    case LegendPosition::bottom_right: return "bottom_right";
+    case LegendPosition::bottom_left: return "bottom_left";
+    case LegendPosition::automatic: break;
+  }
+  return "automatic";
+}
+
+}  // namespace
+
+nlohmann::json plot_data(const Plot& plot) {
+  nlohmann::json panels = nlohmann::json::array();
+  std::size_t palette_index = 0;  // as draw_panel takes the palette's colours
+  for (const auto& panel : plot.panels) {
+    nlohmann::json series = nlohmann::json::array();
+    for (const auto& s : panel.series) {
+      series.push_back({{"name", s.name},
+                        {"color", s.color.empty() ? kPalette[palette_index++ % std::size(kPalette)] : s.color},
+                        {"line", line_name(s.line)},
+                        {"marker", marker_name(s.marker)},
+                        {"line_width", s.line_width},
+                        {"x", numbers(s.x)},
+                        {"y", numbers(s.y)},
+                        {"y_low", numbers(s.y_low)},
+                        {"y_high", numbers(s.y_high)}});
+    }
+    nlohmann::json references = nlohmann::json::array();
+    for (const auto& r : panel.references) {
+      references.push_back({{"direction", r.direction == ReferenceLine::Direction::horizontal ? "horizontal" : "vertical"},
+                            {"value", number_or_null(r.value)},
+                            {"label", r.label},
+                            {"color", r.color}});
+    }
+    nlohmann::json notes = nlohmann::json::array();
+    for (const auto& n : panel.notes) {
+      notes.push_back({{"x", number_or_null(n.x)}, {"y", number_or_null(n.y)}, {"text", n.text}, {"color", n.color}});
+    }
+    panels.push_back({{"title", panel.title},
+                      {"height", panel.height},
+                      {"legend", legend_name(panel.legend)},
+                      {"x", axis_data(panel.x)},
+                      {"y", axis_data(panel.y)},
+                      {"series", std::move(series)},
+                      {"references", std::move(references)},
+                      {"notes", std::move(notes)}});
+  }
+  return {{"width", plot.width}, {"panels", std::move(panels)}};
 }
 
 std::string escape_xml(const std::string& text) {

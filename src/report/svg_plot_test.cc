@@ -5,6 +5,8 @@
 #include <sstream>
 #include <limits>
 
+#include <nlohmann/json.hpp>
+
 #include "test_util/test_util.h"
 
 namespace inertest::report {
@@ -362,6 +364,51 @@ TEST(SvgPlotRender, AutomaticLegendAvoidsTheData) {
   ASSERT_TRUE(std::regex_search(svg, match, std::regex("<g class=\"legend\"><rect x=\"([0-9.]+)\" y=\"([0-9.]+)\"")));
   EXPECT_NEAR(std::stod(match[1].str()), area.left + 8.0, 0.05);
   EXPECT_NEAR(std::stod(match[2].str()), area.top + 8.0, 0.05);
+}
+
+// The data a plot carries for the web view's script: only when asked, after the <svg>, with the
+// palette's colours resolved as drawn, non-finite numbers as null, and no "</" to end the script.
+TEST(SvgPlotData, EmbeddedOnlyOnRequestWithColoursAndEscapes) {
+  Panel panel;
+  panel.x = make_axis("Averaging time", "s", AxisScale::log);
+  panel.y = make_axis("Allan deviation", "deg/h", AxisScale::log);
+  Series measured = make_series("</script><b>", {1.0, 10.0, 100.0}, {0.1, std::nan(""), 0.01});
+  measured.y_low = {0.09, 0.0, 0.008};
+  measured.y_high = {0.11, 0.0, 0.012};
+  measured.marker = Marker::circle;
+  panel.series.push_back(measured);
+  Series model = make_series("model", {1.0, 100.0}, {0.1, 0.01});
+  model.line = LineStyle::dashed;
+  model.color = "#123456";
+  panel.series.push_back(model);
+  panel.references.push_back({ReferenceLine::Direction::horizontal, 0.05, "limit", "#b3261e"});
+  Plot plot{600.0, {panel}};
+
+  const std::string plain = render_svg(plot);
+  EXPECT_THAT(plain, Not(HasSubstr("<script")));
+  plot.embed_data = true;
+  const std::string with_data = render_svg(plot);
+  EXPECT_EQ(with_data.substr(0, plain.size()), plain);  // the drawing is the same
+  const std::string open = "<script type=\"application/json\" class=\"plot-data\">";
+  const auto start = with_data.find(open);
+  ASSERT_NE(start, std::string::npos);
+  const std::string text = with_data.substr(start + open.size(), with_data.rfind("</script>") - start - open.size());
+  EXPECT_THAT(text, Not(HasSubstr("</")));
+  const auto data = nlohmann::json::parse(text);
+  EXPECT_EQ(data, plot_data(plot));
+  EXPECT_EQ(data["width"], 600.0);
+  const auto& p = data["panels"][0];
+  EXPECT_EQ(p["x"]["scale"], "log");
+  EXPECT_EQ(p["y"]["unit"], "deg/h");
+  EXPECT_EQ(p["series"][0]["name"], "</script><b>");
+  EXPECT_EQ(p["series"][0]["color"], "#1f77b4");  // the palette's first, as drawn
+  EXPECT_EQ(p["series"][0]["marker"], "circle");
+  EXPECT_TRUE(p["series"][0]["y"][1].is_null());
+  EXPECT_EQ(p["series"][0]["y_high"][2], 0.012);
+  EXPECT_EQ(p["series"][1]["color"], "#123456");
+  EXPECT_EQ(p["series"][1]["line"], "dashed");
+  EXPECT_EQ(p["references"][0]["value"], 0.05);
+  EXPECT_TRUE(p["x"]["min"].is_null());
 }
 
 TEST(SvgPlotText, EscapesMarkup) { EXPECT_EQ(escape_xml("a<b & \"c\"'"), "a&lt;b &amp; &quot;c&quot;&#39;"); }

@@ -101,8 +101,8 @@ struct Server::Impl {
   int port = 0;
 
   // Runs answer under the archive's lock: it returns the JSON to send with 200, or fills in the
-  // response itself (a page) and returns null. A Refusal becomes its 4xx, and an archive Error
-  // (an unknown instrument, figure or campaign) a 404.
+  // response itself (a page) and returns null. A Refusal becomes its 4xx, a failure of the
+  // database a 500, and any other archive Error (an unknown instrument, figure or campaign) a 404.
   template <typename Answer>
   httplib::Server::Handler route(Answer answer) {
     return [this, answer](const httplib::Request& request, httplib::Response& response) {
@@ -115,6 +115,8 @@ struct Server::Impl {
         if (!json.is_null()) send_json(response, 200, json);
       } catch (const Refusal& refusal) {
         send_json(response, refusal.status, {{"error", refusal.message}});
+      } catch (const archive::DatabaseError& e) {
+        send_json(response, 500, {{"error", "the archive's database failed: " + e.message()}});
       } catch (const Error& e) {
         send_json(response, 404, {{"error", e.message()}});
       }
@@ -128,18 +130,53 @@ struct Server::Impl {
     return figures.empty() ? store->figures(false) : figures;
   }
 
-  // What the history page of instrument shows: {"instrument", "figures": [FigureHistory JSON]}.
+  // What the history page of instrument shows: {"instrument", "figures": [FigureHistory JSON]},
+  // every page figure the instrument's campaigns report.
   nlohmann::json history_page_data(const std::string& instrument) {
     if (store->list(instrument).empty()) throw Refusal{404, "instrument '" + instrument + "' has no campaign in the archive"};
     nlohmann::json figures = nlohmann::json::array();
     for (const auto& figure : page_figures()) {
       try {
         figures.push_back(store->history(instrument, figure).to_json());
+      } catch (const archive::DatabaseError&) {
+        throw;
       } catch (const Error&) {
         // this instrument's campaigns do not report the figure: nothing to plot
       }
     }
     return {{"instrument", instrument}, {"figures", std::move(figures)}};
+  }
+
+  // The history page: every figure, or (?figure=P/F) the one chosen, under the switcher.
+  std::string history_page(const httplib::Request& request, const std::string& instrument) {
+    nlohmann::json data = history_page_data(instrument);
+    std::vector<std::string> figures;
+    for (const auto& f : data.at("figures")) figures.push_back(f.at("figure").get<std::string>());
+    std::string figure;
+    if (request.has_param("figure")) {
+      figure = checked(request.get_param_value("figure"), figure_pattern, "the figure");
+      nlohmann::json chosen = nlohmann::json::array();
+      for (const auto& f : data.at("figures")) {
+        if (f.at("figure") == figure) chosen.push_back(f);
+      }
+      if (chosen.empty()) throw Refusal{404, "instrument '" + instrument + "' has no history of figure '" + figure + "'"};
+      data["figures"] = std::move(chosen);
+    }
+    std::vector<std::string> instruments;
+    const nlohmann::json listed = archive::instrument_list_json(store->list(std::nullopt));
+    for (const auto& i : listed.at("instruments")) {
+      instruments.push_back(i.at("instrument").get<std::string>());
+    }
+    const report::Language language = language_of(request);
+    return with_interactive_plots(with_history_switcher(report::render_history_page(data, page_options(request)),
+                                                        instruments, instrument, figures, figure, language));
+  }
+
+  // The report's options for a page: its language, today, and the plots' data for their script.
+  static report::ReportOptions page_options(const httplib::Request& request) {
+    report::ReportOptions options{language_of(request), report::current_date()};
+    options.embed_plot_data = true;
+    return options;
   }
 
   nlohmann::json add_campaign(const httplib::Request& request) {
@@ -193,29 +230,30 @@ struct Server::Impl {
     // The pages, in English or (?lang=zh) Chinese.
     http.Get("/", route([this](const httplib::Request& request, httplib::Response& response) {
       response.set_content(render_instrument_list_page(archive::instrument_list_json(store->list(std::nullopt)),
-                                                       language_of(request)),
+                                                       language_of(request), options.allow_add),
                            "text/html; charset=utf-8");
       return nlohmann::json();
     }));
     http.Get(R"(/campaigns/([^/]+))", route([this](const httplib::Request& request, httplib::Response& response) {
       const auto results = store->results(checked(request.matches[1].str(), campaign_pattern, "the campaign id"));
-      response.set_content(report::render_report(results, {language_of(request), report::current_date()}),
+      response.set_content(with_interactive_plots(report::render_report(results, page_options(request))),
                            "text/html; charset=utf-8");
       return nlohmann::json();
     }));
     http.Get(R"(/instruments/([^/]+))", route([this](const httplib::Request& request, httplib::Response& response) {
       const std::string instrument = checked(request.matches[1].str(), instrument_pattern, "the instrument id");
-      response.set_content(report::render_history_page(history_page_data(instrument),
-                                                       {language_of(request), report::current_date()}),
-                           "text/html; charset=utf-8");
+      response.set_content(history_page(request, instrument), "text/html; charset=utf-8");
       return nlohmann::json();
     }));
     http.Get("/fleet", route([this](const httplib::Request& request, httplib::Response& response) {
-      response.set_content(report::render_fleet_page(archive::report_data(*store, page_figures()).at("fleet"),
-                                                     {language_of(request), report::current_date()}),
+      response.set_content(with_interactive_plots(report::render_fleet_page(
+                               archive::report_data(*store, page_figures()).at("fleet"), page_options(request))),
                            "text/html; charset=utf-8");
       return nlohmann::json();
     }));
+
+    // No icon: an empty answer rather than a 404 in every browser's console.
+    http.Get("/favicon.ico", [](const httplib::Request&, httplib::Response& response) { response.status = 204; });
 
     // Any 4xx without a body of its own (an unknown route, a body over the limit, a malformed
     // request line) gets the JSON error too.
@@ -228,6 +266,9 @@ struct Server::Impl {
       send_json(response, 500, {{"error", "internal error"}});
     });
     http.set_payload_max_length(options.max_body_bytes);
+    // An answer goes out as headers then body: without TCP_NODELAY the body waits for the client's
+    // delayed ACK of the headers on a keep-alive connection (about 40 ms a request on Linux).
+    http.set_tcp_nodelay(true);
     http.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
   }
 };

@@ -8,6 +8,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <thread>
@@ -238,6 +239,9 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   const std::string before = file_bytes(db_);
   start(true);
   ASSERT_EQ(server_->token().size(), 32u);
+  const auto list = get(port(), "/");
+  EXPECT_NE(list.body.find("<form id=\"add-form\""), std::string::npos);
+  EXPECT_EQ(list.body.find(server_->token()), std::string::npos);  // the page never holds the token
   const std::string token = "Authorization: Bearer " + server_->token() + "\r\n";
   const std::string good = campaign("FOG-9", "2026-04-01", 36000.0).dump();
   EXPECT_EQ(post(port(), "/api/campaigns", good).status, 401);
@@ -256,6 +260,65 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_TRUE(added.json()["added"][0]["added"].get<bool>());
   EXPECT_FALSE(post(port(), "/api/campaigns", good, token).json()["added"][0]["added"].get<bool>());
   EXPECT_EQ(get(port(), "/api/campaigns").json()["campaigns"].size(), 5u);
+}
+
+std::size_t count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// The report's pages carry each plot's data and the plots' script; the history page its switcher,
+// and ?figure= narrows it to one figure. (tests/serve/check_serve_in_chromium.py runs the script.)
+TEST_F(ServeApi, PagesCarryThePlotsDataAndScript) {
+  start(false);
+  for (const std::string& page : std::vector<std::string>{"/campaigns/" + demo_id_, "/instruments/FOG-SIM-NAV", "/fleet"}) {
+    const auto reply = get(port(), page);
+    ASSERT_EQ(reply.status, 200) << page;
+    EXPECT_GT(count(reply.body, "<svg class=\"plot\""), 0u) << page;
+    EXPECT_EQ(count(reply.body, "<svg class=\"plot\""), count(reply.body, "class=\"plot-data\"")) << page;
+    EXPECT_EQ(count(reply.body, "window.inertestPlots = {"), 1u) << page;
+    EXPECT_NE(reply.body.find("@media print { .plot-tools"), std::string::npos) << page;
+  }
+
+  const auto history = get(port(), "/instruments/FOG-3?lang=zh");
+  ASSERT_EQ(history.status, 200);
+  EXPECT_NE(history.body.find("<option value=\"/instruments/FOG-2?lang=zh\">FOG-2</option>"), std::string::npos);
+  EXPECT_NE(history.body.find("<option value=\"/instruments/FOG-3?lang=zh\" selected>FOG-3</option>"), std::string::npos);
+  EXPECT_NE(history.body.find("<option value=\"/instruments/FOG-3?figure=scale_factor/scale_factor&amp;lang=zh\">"),
+            std::string::npos);
+
+  const auto all = get(port(), "/instruments/FOG-SIM-NAV");
+  const auto one = get(port(), "/instruments/FOG-SIM-NAV?figure=scale_factor/scale_factor");
+  ASSERT_EQ(one.status, 200);
+  EXPECT_GT(count(all.body, "<section class=\"procedure\">"), 1u);
+  EXPECT_EQ(count(one.body, "<section class=\"procedure\">"), 1u);
+  EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=bias_static/bias").status, 404);
+  EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=..%2Fx").status, 400);
+  EXPECT_EQ(get(port(), "/favicon.ico").status, 204);
+  EXPECT_EQ(get(port(), "/").body.find("add-form"), std::string::npos);  // read-only: no form to add
+}
+
+// The database failing under the running server (its file and WAL index overwritten with zeros, so
+// that SQLite drops its cached pages and finds no database) is the server's failure, a 500 with a
+// JSON error, not a 404 as if the instrument or campaign were unknown.
+TEST_F(ServeApi, ADatabaseFailureIsA500NotA404) {
+  start(false);
+  ASSERT_EQ(get(port(), "/api/instruments").status, 200);
+  for (const std::string& path : {db_, db_ + "-shm"}) {
+    ASSERT_TRUE(std::filesystem::exists(path)) << path;
+    const auto size = std::filesystem::file_size(path);
+    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+    const std::string zeros(size, '\0');
+    file.write(zeros.data(), static_cast<std::streamsize>(zeros.size()));
+  }
+  for (const std::string& target : std::vector<std::string>{"/api/instruments", "/api/campaigns/" + demo_id_,
+                                                            "/api/instruments/FOG-3/history?figure=scale_factor/scale_factor",
+                                                            "/instruments/FOG-3", "/"}) {
+    const auto reply = get(port(), target);
+    EXPECT_EQ(reply.status, 500) << target << ": " << reply.body;
+    EXPECT_NE(reply.json().value("error", "").find("the archive's database failed"), std::string::npos) << reply.body;
+  }
 }
 
 TEST(Serve, MissingArchiveIsAnError) {

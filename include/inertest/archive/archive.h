@@ -21,7 +21,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "inertest/core/error.h"
+
 namespace inertest::archive {
+
+// The database itself failed (it cannot be opened, read or written: a file gone bad or unreadable,
+// a lost connection, a full disk, a stored value that is not what the schema holds), as opposed to
+// a question it answers with "not there" (an unknown instrument, figure or campaign: plain Error).
+class DatabaseError : public Error {
+ public:
+  using Error::Error;
+};
 
 // The schema version this inertest writes and reads (migrations bring older archives up to it).
 inline constexpr int schema_version = 1;

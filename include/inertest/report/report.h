@@ -22,6 +22,9 @@ struct ReportOptions {
   // The date shown when the plan's [plan] table gives none (the run date, e.g. "2024-05-01"), and
   // the date the footer says the report was made. results.json stays free of it (deterministic).
   std::string run_date;
+  // Whether each plot carries its data (report::Plot::embed_data) for the web view's script to
+  // redraw it zoomed; the page looks the same without that script.
+  bool embed_plot_data = false;
 };
 
 // Renders the campaign's results (the content of results.json, see campaign.h) as one HTML page.

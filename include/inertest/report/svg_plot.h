@@ -1,7 +1,8 @@
 // A small SVG plotting module for the test report: linear and log axes with readable ticks,
 // line and marker series with error bars, reference lines, text notes, legends, and several
 // panels stacked on one x axis (Bode magnitude over phase). The output is an inline <svg>
-// element (no script, no external fonts or files), so a report stays one self-contained file.
+// element (no script, no external fonts or files), so a report stays one self-contained file;
+// on request it carries its data too (Plot::embed_data), for the web view's interactive plots.
 //
 // Geometry is exposed for tests: tick generation, data-to-pixel maps, range selection and
 // segment clipping are plain functions.
@@ -11,6 +12,8 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 namespace inertest::report {
 
@@ -150,13 +153,26 @@ struct Panel {
 struct Plot {
   double width = 900.0;
   std::vector<Panel> panels;
+  // Whether render_svg follows the <svg> with the plot's data (plot_data) in a
+  // <script type="application/json" class="plot-data"> element, which the web view's script
+  // (inertest serve) redraws the plot from when zoomed. The drawing itself is the same either way.
+  bool embed_data = false;
 };
 
 // The plot area of a panel whose frame (margins included) is the box: what the axes map onto.
 Box plot_area(const Panel& panel, const Box& frame);
 
-// Renders the plot as one <svg> element with a viewBox (it scales to its container).
+// Renders the plot as one <svg> element with a viewBox (it scales to its container), followed by
+// its data when plot.embed_data.
 std::string render_svg(const Plot& plot);
+
+// Everything the plot is drawn from, for a script to draw it again: {"width", "panels": [{"title",
+// "height", "legend" (the LegendPosition's name), "x" and "y": {"label", "unit", "scale" ("linear" or
+// "log"), "min", "max" (null when from the data), "include_zero", "ticks"}, "series": [{"name",
+// "color" (the palette's colour when the series has none), "line", "marker", "line_width", "x", "y",
+// "y_low", "y_high"}], "references": [{"direction", "value", "label", "color"}], "notes": [{"x",
+// "y", "text", "color"}]}]}. Non-finite numbers are null.
+nlohmann::json plot_data(const Plot& plot);
 
 // Escapes &, <, >, " and ' for XML text and attribute values.
 std::string escape_xml(const std::string& text);

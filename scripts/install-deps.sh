@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages inertest builds, tests and benchmarks with.
 # Skips apt entirely when everything is already present, so a second `make test` is fast.
+# chromium renders the reports and the web view in the tests; fonts-wqy-microhei gives it the CJK
+# glyphs of the Chinese (zh) pages and the docs/ screenshots.
 set -euo pipefail
 
 packages=(
@@ -13,7 +15,7 @@ packages=(
   libcpp-httplib-dev
   libgtest-dev googletest libbenchmark-dev
   python3-numpy python3-pandas python3-scipy python3-h5py python3-pytest python3-dev pybind11-dev
-  chromium
+  chromium fonts-wqy-microhei
 )
 
 missing=()

@@ -1,5 +1,5 @@
 // inertest serve under a bounded load (issue 17): two batches of 10 000 requests over 8 keep-alive
-// connections on loopback. It passes on no error and the process's memory flat between the batches
+// connections on loopback (one under AddressSanitizer). It passes on no error and the process's memory flat between the batches
 // (resident size after the second within a few MiB of after the first); throughput and p99 latency
 // are printed, never asserted (they depend on the machine).
 #include <arpa/inet.h>
@@ -36,6 +36,13 @@ namespace {
 
 constexpr int kConnections = 8;
 constexpr int kRequestsPerBatch = 10000;
+// The second batch is there to compare the resident size with the first's. Under AddressSanitizer
+// freed memory waits in its quarantine and the size says nothing, so one batch is run there.
+#ifdef INERTEST_UNDER_ASAN
+constexpr int kBatches = 1;
+#else
+constexpr int kBatches = 2;
+#endif
 // The resident size may grow this much from the first batch's end to the second's.
 constexpr double kFlatBytes = 4.0 * 1024 * 1024;
 
@@ -186,7 +193,7 @@ TEST(ServeLoad, TenThousandRequestsOverEightConnectionsWithoutErrorAndWithFlatMe
 
   std::vector<Batch> batches;
   std::vector<double> resident;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < kBatches; ++b) {
     batches.push_back(run_batch(server.port(), targets));
     resident.push_back(resident_bytes());
     const Batch& batch = batches.back();
@@ -199,13 +206,12 @@ TEST(ServeLoad, TenThousandRequestsOverEightConnectionsWithoutErrorAndWithFlatMe
   server.stop();
   thread.join();
 
-  EXPECT_EQ(batches[0].errors, 0);
-  EXPECT_EQ(batches[1].errors, 0);
-  std::printf("serve load: resident size %+.2f MiB from the first batch's end to the second's\n",
-              (resident[1] - resident[0]) / (1024.0 * 1024.0));
-#ifndef INERTEST_UNDER_ASAN
-  EXPECT_LT(resident[1] - resident[0], kFlatBytes);
-#endif  // under AddressSanitizer the freed memory waits in its quarantine: the size says nothing
+  for (const Batch& batch : batches) EXPECT_EQ(batch.errors, 0);
+  if constexpr (kBatches == 2) {
+    std::printf("serve load: resident size %+.2f MiB from the first batch's end to the second's\n",
+                (resident[1] - resident[0]) / (1024.0 * 1024.0));
+    EXPECT_LT(resident[1] - resident[0], kFlatBytes);
+  }
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 
 #include "inertest/archive/archive.h"
 #include "inertest/serve/server.h"
+#include "test_util/scale_factor_campaign.h"
 #include "test_util/test_util.h"
 
 #if defined(__has_feature)
@@ -156,24 +157,9 @@ TEST(ServeLoad, TenThousandRequestsOverEightConnectionsWithoutErrorAndWithFlatMe
   {
     const auto store = archive::open_archive(db);
     for (int i = 0; i < 12; ++i) {
-      for (const char* day : {"2026-03-02", "2026-03-09", "2026-03-16"}) {
+      for (const std::string day : {"2026-03-02", "2026-03-09", "2026-03-16"}) {
         const std::string instrument = fmt::format("FOG-{:02}", i);
-        store->add({{"results_schema_version", 1},
-                    {"inertest_version", "0.1.0"},
-                    {"tested_on", day},
-                    {"processed_at", std::string(day) + "T12:00:00Z"},
-                    {"plan", {{"title", "acceptance " + instrument}}},
-                    {"instrument", {{"id", instrument}, {"type", "gyro"}}},
-                    {"site", nlohmann::json::object()},
-                    {"procedures",
-                     {{{"name", "scale_factor"},
-                       {"kind", "scale_factor"},
-                       {"result",
-                        {{"scale_factor",
-                          {{"value", 36000.0 + 0.1 * i + day[9] * 0.01}, {"unit", "pulse/s/(deg/s)"}, {"uncertainty", 0.03}}}}}}}},
-                    {"verdicts", nlohmann::json::array()},
-                    {"verdict", "NONE"}},
-                   instrument);
+        store->add(testing::scale_factor_campaign(instrument, day, 36000.0 + 0.1 * i + day[9] * 0.01), instrument);
       }
     }
   }

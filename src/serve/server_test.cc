@@ -17,6 +17,7 @@
 
 #include "inertest/archive/archive.h"
 #include "inertest/core/error.h"
+#include "test_util/scale_factor_campaign.h"
 #include "test_util/test_util.h"
 
 namespace inertest::serve {
@@ -80,24 +81,6 @@ std::string file_bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(file), {}};
 }
 
-// A results.json of one scale factor test, as inertest run writes it.
-nlohmann::json campaign(const std::string& instrument, const std::string& tested_on, double scale_factor) {
-  return {{"results_schema_version", 1},
-          {"inertest_version", "0.1.0"},
-          {"tested_on", tested_on},
-          {"processed_at", tested_on + "T12:00:00Z"},
-          {"plan", {{"title", "acceptance " + instrument}}},
-          {"instrument", {{"id", instrument}, {"type", "gyro"}}},
-          {"site", nlohmann::json::object()},
-          {"procedures",
-           {{{"name", "scale_factor"},
-             {"kind", "scale_factor"},
-             {"result", {{"scale_factor", {{"value", scale_factor}, {"unit", "pulse/s/(deg/s)"}, {"uncertainty", 0.03}}}}}}}},
-          {"verdicts",
-           {{{"procedure", "scale_factor"}, {"figure", "scale_factor"}, {"value", scale_factor},
-             {"unit", "pulse/s/(deg/s)"}, {"pass", true}, {"min", 35999.0}, {"max", 36001.0}}}},
-          {"verdict", "PASS"}};
-}
 
 // An archive of the golden demo campaign (FOG-SIM-NAV, every procedure) and three scale factor
 // tests of two more gyros, served on a free loopback port for the test's lifetime.
@@ -111,9 +94,9 @@ class ServeApi : public ::testing::Test {
     {
       const auto store = archive::open_archive(db_);
       store->add(demo, "demo_results.json");
-      store->add(campaign("FOG-2", "2026-03-01", 36000.4), "FOG-2");
-      store->add(campaign("FOG-3", "2026-03-01", 35999.8), "FOG-3");
-      store->add(campaign("FOG-3", "2026-03-03", 35999.9), "FOG-3");
+      store->add(testing::scale_factor_campaign("FOG-2", "2026-03-01", 36000.4), "FOG-2");
+      store->add(testing::scale_factor_campaign("FOG-3", "2026-03-01", 35999.8), "FOG-3");
+      store->add(testing::scale_factor_campaign("FOG-3", "2026-03-03", 35999.9), "FOG-3");
       demo_id_ = store->list(std::string("FOG-SIM-NAV")).at(0).id;
     }
     demo_ = demo;
@@ -224,7 +207,7 @@ TEST_F(ServeApi, HostileRequestsGet4xxAndChangeNothing) {
     ASSERT_NO_THROW(EXPECT_TRUE(reply.json().at("error").is_string()) << target) << target << ": " << reply.body;
   }
   // Adding is refused by a read-only server, token or not, and a malformed request line too.
-  EXPECT_EQ(post(port(), "/api/campaigns", campaign("FOG-9", "2026-04-01", 36000.0).dump()).status, 403);
+  EXPECT_EQ(post(port(), "/api/campaigns", testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0).dump()).status, 403);
   const auto garbage = http_exchange(port(), "NONSENSE\r\n\r\n");
   EXPECT_EQ(garbage.status, 400);
   EXPECT_TRUE(garbage.json().contains("error"));
@@ -243,13 +226,13 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_NE(list.body.find("<form id=\"add-form\""), std::string::npos);
   EXPECT_EQ(list.body.find(server_->token()), std::string::npos);  // the page never holds the token
   const std::string token = "Authorization: Bearer " + server_->token() + "\r\n";
-  const std::string good = campaign("FOG-9", "2026-04-01", 36000.0).dump();
+  const std::string good = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0).dump();
   EXPECT_EQ(post(port(), "/api/campaigns", good).status, 401);
   EXPECT_EQ(post(port(), "/api/campaigns", good, "Authorization: Bearer 0123\r\n").status, 403);
   EXPECT_EQ(post(port(), "/api/campaigns", std::string(70 * 1024, ' ') + good, token).status, 413);
   EXPECT_EQ(post(port(), "/api/campaigns", "{\"instrument\": ", token).status, 400);
   EXPECT_EQ(post(port(), "/api/campaigns", "[1, 2, 3]", token).status, 400);
-  nlohmann::json not_a_number = campaign("FOG-9", "2026-04-01", 36000.0);
+  nlohmann::json not_a_number = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0);
   not_a_number["procedures"][0]["result"]["scale_factor"]["value"] = "36000";
   EXPECT_EQ(post(port(), "/api/campaigns", not_a_number.dump(), token).status, 400);
   EXPECT_EQ(file_bytes(db_), before);

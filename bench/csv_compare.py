@@ -9,9 +9,11 @@ machine, each reader turning it into numeric columns:
 and, end to end, the record to its OADEV at octave taus: `inertest allan` against numpy.loadtxt
 followed by the allantools algorithm (allan_compare.py's numpy program).
 Each is run --repeat times in a fresh process; the best wall time counts. Prints MB/s, peak RSS
-and the ratios. Run with Debian's Python: /usr/bin/python3 bench/csv_compare.py.
+and the ratios. Then the row parser alone (parser_in_memory): the same bytes already in memory,
+inertest's text_table_benchmark against pandas.read_csv on an io.BytesIO, each best of --repeat. Run with Debian's Python: /usr/bin/python3 bench/csv_compare.py.
 """
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -69,6 +71,33 @@ def measure(inertest, rows, repeat, with_loadtxt, path):
     return {name: best(command, repeat) for name, command in readers.items()}, megabytes
 
 
+PANDAS_IN_MEMORY = r"""
+import io, sys, time, pandas
+data = open(sys.argv[1], "rb").read()
+best = float("inf")
+for _ in range(int(sys.argv[2])):
+    start = time.perf_counter()
+    pandas.read_csv(io.BytesIO(data))
+    best = min(best, time.perf_counter() - start)
+print(best)
+"""
+
+
+def parser_in_memory(inertest, path, repeat):
+    """The row parser alone on the record at `path`, already in memory, columns allocated included:
+    (inertest seconds, pandas.read_csv seconds), each the best of `repeat`. inertest's is the
+    parse_record case of text_table_benchmark (built beside inertest by make bench), on 2 threads
+    as inertest runs it; pandas' C parser runs on one."""
+    program = os.path.join(os.path.dirname(inertest), "text_table_benchmark")
+    out = subprocess.run([program, f"--record={path}", "--benchmark_filter=parse_record", "--benchmark_format=json",
+                          f"--benchmark_repetitions={repeat}"], check=True, capture_output=True, text=True).stdout
+    runs = [b for b in json.loads(out)["benchmarks"] if b.get("run_type") == "iteration"]
+    ours = min(b["real_time"] for b in runs) / 1e3  # reported in ms
+    theirs = float(subprocess.run([sys.executable, "-c", PANDAS_IN_MEMORY, path, str(repeat)], check=True,
+                                  capture_output=True, text=True).stdout)
+    return ours, theirs
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default="build")
@@ -79,8 +108,9 @@ def main():
 
     inertest = os.path.join(args.build_dir, "bin", "inertest")
     with tempfile.TemporaryDirectory() as scratch:
-        results, megabytes = measure(inertest, args.rows, args.repeat, not args.skip_loadtxt,
-                                     os.path.join(scratch, "record.csv"))
+        path = os.path.join(scratch, "record.csv")
+        results, megabytes = measure(inertest, args.rows, args.repeat, not args.skip_loadtxt, path)
+        parser_ours, parser_pandas = parser_in_memory(inertest, path, args.repeat)
 
     print(f"CSV ingestion: {args.rows} rows x 2 columns, {megabytes:.0f} MB, best of {args.repeat}")
     print(f"{'reader':<18}{'time s':>10}{'MB/s':>10}{'peak MiB':>10}{'inertest faster':>17}")
@@ -92,6 +122,8 @@ def main():
         ours, theirs = (end_to_end[name][0] for name in END_TO_END)
         print(f"to OADEV at octave taus: {END_TO_END[0]} {ours:.3f} s, {END_TO_END[1]} {theirs:.3f} s, "
               f"{theirs / ours:.1f}x faster")
+    print(f"row parser, in memory: inertest {parser_ours:.3f} s ({megabytes / 1e3 / parser_ours:.2f} GB/s), "
+          f"pandas.read_csv {parser_pandas:.3f} s, {parser_pandas / parser_ours:.1f}x faster")
 
 
 if __name__ == "__main__":

@@ -10,7 +10,8 @@ and, end to end, the record to its OADEV at octave taus: `inertest allan` agains
 followed by the allantools algorithm (allan_compare.py's numpy program).
 Each is run --repeat times in a fresh process; the best wall time counts. Prints MB/s, peak RSS
 and the ratios. Then the row parser alone (parser_in_memory): the same bytes already in memory,
-inertest's text_table_benchmark against pandas.read_csv on an io.BytesIO, each best of --repeat. Run with Debian's Python: /usr/bin/python3 bench/csv_compare.py.
+inertest's text_table_benchmark against pandas.read_csv on an io.BytesIO, each best of --repeat.
+Run with Debian's Python: /usr/bin/python3 bench/csv_compare.py.
 """
 import argparse
 import json

@@ -647,6 +647,11 @@ struct AllanEngine::State {
   double* samples_in_place = nullptr;  // the caller's samples, when the engine works in place
   std::size_t written = 0;     // phase values written: X_0 .. X_{written-1}
   std::size_t dispatched = 0;  // phase indices below this were handed to the workers
+  // Whole blocks handed to the workers at a time: each hand-over is a wake-up and a wait on both
+  // sides (futex calls, costly on a virtual machine: an eighth of the CPU time of OADEV alone with
+  // one block a job). kJobBlocks, fewer where the ring limit leaves no room for twice as many.
+  static constexpr std::size_t kJobBlocks = 8;
+  std::size_t job_blocks = 1;
   std::size_t integrated = 1;  // phase values integrated: X_0 .. X_{integrated-1} (the slots above hold samples)
   PhaseState phase;            // the state after X_{integrated-1}
   std::vector<PhaseState> checkpoints;  // the state after each block b, for the second pass
@@ -702,13 +707,21 @@ struct AllanEngine::State {
   // so the same bits), and leaves the last part to finish().
   void hand_over_in_place() {
     const std::size_t block = options.block_size;
-    while (sample_count + 1 - dispatched >= block) {
-      written = dispatched + block;
-      integrate_written();
+    for (std::size_t end = (written / block + 1) * block; end <= sample_count + 1; end += block) {
+      written = end;
+      block_written();
+    }
+    written = sample_count + 1;
+  }
+
+  // A block is whole (written is at its end): it is integrated, and handed to the workers with the
+  // blocks before it once there are kJobBlocks of them.
+  void block_written() {
+    integrate_written();
+    if (written - dispatched == job_blocks * options.block_size) {
       dispatch({JobKind::kBlock, dispatched, written});
       dispatched = written;
     }
-    written = sample_count + 1;
   }
 
   // Block b holds the phase indices [b * block, (b + 1) * block) (X_0 = 0 is not integrated);
@@ -742,9 +755,13 @@ struct AllanEngine::State {
       for (std::size_t i = first; i < last; ++i) process_end(factors[i], sample_count + 1 - factors[i].m, sample_count, store);
       return;
     }
-    for (std::size_t k = work.begin; k < work.end; k += kSweep) {
-      const std::size_t k1 = std::min(work.end, k + kSweep);
-      for (std::size_t i = first; i < last; ++i) process_block(factors[i], k, k1, store, scratch[worker]);
+    // Block by block, each in its sweeps: the same sub-blocks as one block a job would give.
+    for (std::size_t b = work.begin; b < work.end; b = std::min(work.end, (b / options.block_size + 1) * options.block_size)) {
+      const std::size_t b1 = std::min(work.end, (b / options.block_size + 1) * options.block_size);
+      for (std::size_t k = b; k < b1; k += kSweep) {
+        const std::size_t k1 = std::min(b1, k + kSweep);
+        for (std::size_t i = first; i < last; ++i) process_block(factors[i], k, k1, store, scratch[worker]);
+      }
     }
   }
 
@@ -1075,8 +1092,12 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
       s.deferred.push_back(f);
     }
   }
-  // A multiple of the block, so that a block never wraps (integrate_block works on contiguous blocks).
-  const std::size_t blocks_in_ring = (ring_span + 2 * options.block_size + options.block_size - 1) / options.block_size;
+  // A multiple of the block, so that a block never wraps (integrate_block works on contiguous blocks),
+  // with room for the job the workers sum and the one being written.
+  s.job_blocks = State::kJobBlocks;
+  while (s.job_blocks > 1 && ring_span + 2 * s.job_blocks * options.block_size > limit) --s.job_blocks;
+  const std::size_t blocks_in_ring =
+      (ring_span + 2 * s.job_blocks * options.block_size + options.block_size - 1) / options.block_size;
   s.capacity = std::min(sample_count + 1, blocks_in_ring * options.block_size);
   s.samples_in_place = samples_in_place;
   if (samples_in_place == nullptr) s.ring.reset(s.capacity);
@@ -1117,17 +1138,13 @@ void AllanEngine::push(std::span<const double> samples) {
   while (i < samples.size()) {
     // The piece ends at the block's end, the samples' end or the ring's end, whichever is first.
     const std::size_t slot = s.written % s.capacity;
-    const std::size_t room = std::min(s.dispatched + block - s.written, s.capacity - slot);
+    const std::size_t room = std::min((s.written / block + 1) * block - s.written, s.capacity - slot);
     const std::size_t piece = std::min(room, samples.size() - i);
     // The samples wait in their slots; the block is integrated in place once it is whole.
     std::copy_n(samples.begin() + static_cast<std::ptrdiff_t>(i), piece, s.ring.data() + slot);
     s.written += piece;
     i += piece;
-    if (s.written - s.dispatched == block) {
-      s.integrate_written();
-      s.dispatch({State::JobKind::kBlock, s.dispatched, s.written});
-      s.dispatched = s.written;
-    }
+    if (s.written % block == 0) s.block_written();
   }
 }
 

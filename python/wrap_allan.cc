@@ -204,7 +204,7 @@ void wrap_allan(py::module_& module) {
       "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
       "taus: 'octave', 'decade', 'all', 'N/decade', a comma list of tau in s, or a list or numpy array of tau\n"
       "in s (each a whole number of sample intervals to 1e-6, else an error; taus beyond the record are left\n"
-      "out); estimators: 'all' or a comma\n"
+      "out; the noise terms are fitted on the taus an octave or more apart); estimators: 'all' or a comma\n"
       "list of adev, oadev, mdev, hdev, ohdev, totdev; confidence: of the chi-squared bounds (1 sigma).\n"
       "Noise terms by the weighted fit of sigma^2 = sum A_p tau^p (GJB eq. 30; RWC = N, eq. 31) and by\n"
       "slope read-off; fit_range: (tau_min, tau_max) in s of that fit, None: chosen automatically (the\n"

@@ -73,6 +73,26 @@ NoiseType dominant_noise(const NoiseTerms& fit, double tau) {
   }
 }
 
+// The points the noise terms are fitted on: every tau of an octave or decade grid, but of a denser
+// one (--taus all) only those an octave or more apart, the octave grid's own points where it holds
+// them. The fit's covariance has a row and a column per point and its decomposition grows as the cube
+// of their count: 25 000 samples at every tau (8333 points) took 390 s and 1.4 GB. And the fit is
+// validated on octave grids: on eight points an octave the angle random walk of 6000 white-noise
+// samples came out 3.3 % off the truth with a 0.6 % uncertainty (allan_test.cc). The curves and
+// their bounds keep every tau.
+std::vector<std::size_t> noise_fit_points(const std::vector<double>& tau_s) {
+  std::vector<std::size_t> points;
+  double next = 0.0;
+  for (std::size_t i = 0; i < tau_s.size(); ++i) {
+    const double octave = std::log2(tau_s[i]);
+    if (points.empty() || octave >= next) {
+      points.push_back(i);
+      next = octave + (1.0 - 1e-9);  // the next tau of an octave grid is kept whatever its rounding
+    }
+  }
+  return points;
+}
+
 void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_range) {
   const DeviationCurve* basis = nullptr;
   Estimator basis_estimator = Estimator::kOadev;
@@ -97,11 +117,15 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
       return;
     }
   }
-  const auto variances = [&] {
+  const std::vector<std::size_t> points = noise_fit_points(result.tau_s);
+  const auto at_points = [&points](const std::vector<double>& all) {
     std::vector<double> v;
-    for (double d : basis->values) v.push_back(d * d);
+    for (std::size_t i : points) v.push_back(all[i]);
     return v;
   };
+  const std::vector<double> tau_s = at_points(result.tau_s);
+  std::vector<double> variances;
+  for (std::size_t i : points) variances.push_back(basis->values[i] * basis->values[i]);
   NoiseFitOptions fit_options;
   fit_options.fit_range = fit_range;
   fit_options.sample_count = result.sample_count;
@@ -124,13 +148,13 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
     first_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count,
                                                       result.averaging_factors[i], reddest));
   }
-  const NoiseTerms first = fit_noise_terms(result.tau_s, variances(), first_edf, result.input_unit, fit_options);
+  const NoiseTerms first = fit_noise_terms(tau_s, variances, at_points(first_edf), result.input_unit, fit_options);
   std::vector<double> model_edf;
-  for (std::size_t i = 0; i < result.tau_s.size(); ++i) {
+  for (std::size_t i : points) {
     model_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count, result.averaging_factors[i],
                                                       dominant_noise(first, result.tau_s[i])));
   }
-  result.noise = fit_noise_terms(result.tau_s, variances(), model_edf, result.input_unit, fit_options);
+  result.noise = fit_noise_terms(tau_s, variances, model_edf, result.input_unit, fit_options);
   result.warnings.insert(result.warnings.end(), result.noise->warnings.begin(), result.noise->warnings.end());
   result.slopes = read_noise_slopes(result.tau_s, basis->values, basis->edf, result.input_unit);
   result.warnings.insert(result.warnings.end(), result.slopes->warnings.begin(), result.slopes->warnings.end());

@@ -201,6 +201,30 @@ TEST(AllanVariance, ConfidenceBoundsFollowChiSquared) {
   EXPECT_NEAR_RELATIVE(edf_total(1000, 10, NoiseType::kFlickerFrequency), 1.17 * 100 - 0.22, 1e-14);
 }
 
+// Every tau (--taus all): the curves keep every tau, and the noise terms are fitted on the octave
+// grid's points among them (allan.cc's noise_fit_points): the same terms as the octave grid gives,
+// and the angle random walk within its uncertainty of the truth.
+TEST(AllanVariance, EveryTauGridFitsTheNoiseTermsOnTheOctavePoints) {
+  std::mt19937_64 random(23);
+  std::normal_distribution<double> white(0.0, 1.0);
+  std::vector<double> y(6000);
+  for (double& v : y) v = 5.0 + white(random);
+  const double rate = 100.0;
+  AllanOptions options = options_at(rate);
+  options.taus = "all";
+  const AllanResult every = allan_variance(y, options);
+  ASSERT_GT(every.tau_s.size(), 1000U);
+  for (std::size_t i = 0; i < every.averaging_factors.size(); ++i) EXPECT_EQ(every.averaging_factors[i], i + 1);
+  const AllanResult octave = allan_variance(y, options_at(rate));
+  ASSERT_TRUE(every.noise.has_value() && octave.noise.has_value());
+  EXPECT_EQ(every.noise->coefficients, octave.noise->coefficients);
+  EXPECT_EQ(every.noise->coefficient_uncertainties, octave.noise->coefficient_uncertainties);
+  const Figure& arw = every.noise->angle_random_walk;
+  const double truth = 1.0 / std::sqrt(rate) / 60.0;  // IEEE 952 C.1, deg/h*sqrt(s) to deg/sqrt(h)
+  ASSERT_TRUE(arw.uncertainty.has_value());
+  EXPECT_LT(std::abs(arw.value - truth), 3.0 * *arw.uncertainty);
+}
+
 // A raw f32 file whose largest factors exceed the ring limit: the second pass re-reads the file and
 // gives the deviations of the record in memory.
 TEST(AllanVariance, FileWithSecondPassAgreesWithMemory) {

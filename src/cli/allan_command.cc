@@ -61,7 +61,7 @@ CommandAction setup(CLI::App& root) {
                    "several channels in one pass, e.g. gx,gy,gz,ax,ay,az (names or indices): JSON {\"channels\": {...}}")
       ->delimiter(',')
       ->excludes(column);
-  command->add_option("--taus", arguments->options.taus, "octave, decade, all, N/decade or a list of tau in s")
+  command->add_option("--taus", arguments->options.taus, "octave, decade, all, N/decade or a list of tau in s; the noise terms are fitted on those an octave or more apart")
       ->capture_default_str();
   CLI::Option* unit = command->add_option(
       "--input-unit", arguments->input_units,

@@ -118,14 +118,12 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
     }
   }
   const std::vector<std::size_t> points = noise_fit_points(result.tau_s);
-  const auto at_points = [&points](const std::vector<double>& all) {
-    std::vector<double> v;
-    for (std::size_t i : points) v.push_back(all[i]);
-    return v;
-  };
-  const std::vector<double> tau_s = at_points(result.tau_s);
+  std::vector<double> tau_s;
   std::vector<double> variances;
-  for (std::size_t i : points) variances.push_back(basis->values[i] * basis->values[i]);
+  for (std::size_t i : points) {
+    tau_s.push_back(result.tau_s[i]);
+    variances.push_back(basis->values[i] * basis->values[i]);
+  }
   NoiseFitOptions fit_options;
   fit_options.fit_range = fit_range;
   fit_options.sample_count = result.sample_count;
@@ -143,12 +141,12 @@ void identify_noise(AllanResult& result, const std::optional<FitRange>& fit_rang
   // 26 sigma off the truth on 2e6 samples of white noise).
   std::vector<double> first_edf;
   NoiseType reddest = basis->noise_types.empty() ? NoiseType::kWhitePhase : basis->noise_types.front();
-  for (std::size_t i = 0; i < result.tau_s.size(); ++i) {
+  for (std::size_t i : points) {
     reddest = static_cast<NoiseType>(std::min(static_cast<int>(reddest), static_cast<int>(basis->noise_types[i])));
     first_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count,
                                                       result.averaging_factors[i], reddest));
   }
-  const NoiseTerms first = fit_noise_terms(tau_s, variances, at_points(first_edf), result.input_unit, fit_options);
+  const NoiseTerms first = fit_noise_terms(tau_s, variances, first_edf, result.input_unit, fit_options);
   std::vector<double> model_edf;
   for (std::size_t i : points) {
     model_edf.push_back(equivalent_degrees_of_freedom(basis_estimator, result.sample_count, result.averaging_factors[i],

@@ -703,8 +703,8 @@ struct AllanEngine::State {
     ++written;
   }
 
-  // Hands every whole block to the workers once it is integrated, as push() does (the same blocks,
-  // so the same bits), and leaves the last part to finish().
+  // Integrates every whole block and hands them to the workers as push() does (the same blocks and
+  // jobs, so the same bits), and leaves the last part to finish().
   void hand_over_in_place() {
     const std::size_t block = options.block_size;
     for (std::size_t end = (written / block + 1) * block; end <= sample_count + 1; end += block) {
@@ -756,12 +756,13 @@ struct AllanEngine::State {
       return;
     }
     // Block by block, each in its sweeps: the same sub-blocks as one block a job would give.
-    for (std::size_t b = work.begin; b < work.end; b = std::min(work.end, (b / options.block_size + 1) * options.block_size)) {
+    for (std::size_t b = work.begin; b < work.end;) {
       const std::size_t b1 = std::min(work.end, (b / options.block_size + 1) * options.block_size);
       for (std::size_t k = b; k < b1; k += kSweep) {
         const std::size_t k1 = std::min(b1, k + kSweep);
         for (std::size_t i = first; i < last; ++i) process_block(factors[i], k, k1, store, scratch[worker]);
       }
+      b = b1;
     }
   }
 

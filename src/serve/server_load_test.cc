@@ -1,7 +1,7 @@
 // inertest serve under a bounded load (issue 17): two batches of 10 000 requests over 8 keep-alive
-// connections on loopback (one under AddressSanitizer). It passes on no error and the process's memory flat between the batches
-// (resident size after the second within a few MiB of after the first); throughput and p99 latency
-// are printed, never asserted (they depend on the machine).
+// connections on loopback (one under AddressSanitizer). It passes on no error and the process's
+// memory flat between the batches (resident size after the second within a few MiB of after the
+// first); throughput and p99 latency are printed, never asserted (they depend on the machine).
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>

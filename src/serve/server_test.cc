@@ -81,7 +81,6 @@ std::string file_bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(file), {}};
 }
 
-
 // An archive of the golden demo campaign (FOG-SIM-NAV, every procedure) and three scale factor
 // tests of two more gyros, served on a free loopback port for the test's lifetime.
 class ServeApi : public ::testing::Test {

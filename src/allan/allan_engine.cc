@@ -150,13 +150,14 @@ struct FactorState {
   CompensatedSum overlapping_squares;
 };
 
-// The engine's inner loops (marked INERTEST_VECTOR_CLONES) are compiled for the baseline x86-64
-// and for AVX2, and the loader picks the one the CPU runs (GCC function multi-versioning; other
-// compilers build the baseline only). The wider registers carry the same kLanes lanes and the same
-// operations in the same order (AVX2 without FMA: nothing is contracted), so the sums are bit for
-// bit those of the baseline build.
+// The engine's inner loops (marked INERTEST_VECTOR_CLONES) are compiled for the baseline x86-64,
+// for AVX2 and for AVX-512F, and the loader picks the widest the CPU runs (GCC function
+// multi-versioning; other compilers build the baseline only). The wider registers carry the same
+// kLanes lanes and the same operations in the same order, and nothing is contracted into a fused
+// multiply-add (AVX-512F has them: the library builds with -ffp-contract=off), so the sums are bit
+// for bit those of the baseline build.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define INERTEST_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#define INERTEST_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define INERTEST_VECTOR_CLONES
 #endif

@@ -78,8 +78,8 @@ NoiseType dominant_noise(const NoiseTerms& fit, double tau) {
 // them. The fit's covariance has a row and a column per point and its decomposition grows as the cube
 // of their count: 25 000 samples at every tau (8333 points) took 390 s and 1.4 GB. And the fit is
 // validated on octave grids: on eight points an octave the angle random walk of 6000 white-noise
-// samples came out 3.3 % off the truth with a 0.6 % uncertainty (allan_test.cc). The curves and
-// their bounds keep every tau.
+// samples came out 3.3 % off the truth with a 0.6 % uncertainty (fit_noise_terms warns of such
+// grids). The curves and their bounds keep every tau.
 std::vector<std::size_t> noise_fit_points(const std::vector<double>& tau_s) {
   std::vector<std::size_t> points;
   double next = 0.0;

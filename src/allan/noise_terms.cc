@@ -36,6 +36,16 @@ void check_points(std::span<const double> tau_s, std::span<const double> values,
   }
 }
 
+// Whether two of the taus lie less than an octave apart (within a relative 1e-9).
+bool closer_than_an_octave(std::span<const double> tau_s) {
+  std::vector<double> sorted(tau_s.begin(), tau_s.end());
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i) {
+    if (sorted[i] < 2.0 * sorted[i - 1] * (1.0 - 1e-9)) return true;
+  }
+  return false;
+}
+
 using Coefficients = std::array<double, kTerms>;
 
 // sum_k C_ij(k)^2 is quadratic in the coefficients: a^T S a over a = (A_-2, A_-1, A_0, A_1) (the
@@ -457,6 +467,13 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
         "noise fit: {} taus, more than {}: the correlation of the overlapping estimates is not modelled and the "
         "uncertainties are understated; use a sparser tau grid (e.g. octave)",
         tau_s.size(), kMostCorrelatedPoints));
+  } else if (closer_than_an_octave(tau_s)) {
+    // The correlation model is validated on octave grids (the Monte Carlo test): on eight points an
+    // octave, 6000 white-noise samples gave an angle random walk 3.3 % off the truth with a 0.6 %
+    // uncertainty. allan_variance fits on the taus an octave or more apart for that reason.
+    terms.warnings.push_back(
+        "noise fit: taus closer than an octave: the correlation model of the overlapping estimates is "
+        "validated on octave grids and the uncertainties may be understated; fit on taus an octave or more apart");
   }
   std::size_t first = 0;
   std::size_t last = tau_s.size() - 1;

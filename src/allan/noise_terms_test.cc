@@ -118,6 +118,24 @@ TEST(NoiseTerms, DenseGridWarnsThatUncertaintiesAreUnderstated) {
   EXPECT_THAT(terms.warnings, ::testing::Contains(::testing::HasSubstr("not modelled")));
 }
 
+// Taus closer than an octave (eight an octave here) are fitted with the correlation model, which is
+// validated on octave grids only: the result says its uncertainties may be understated. The
+// octave grid itself does not.
+TEST(NoiseTerms, GridDenserThanAnOctaveWarns) {
+  Curve dense;
+  for (int i = 0; i <= 40; ++i) {
+    const double tau = 0.1 * std::pow(2.0, i / 8.0);
+    dense.tau.push_back(tau);
+    dense.variance.push_back(1.0 / tau);
+    dense.edf.push_back(1e4);
+  }
+  const NoiseTerms terms = fit_noise_terms(dense.tau, dense.variance, dense.edf, "deg/h");
+  EXPECT_THAT(terms.warnings, ::testing::Contains(::testing::HasSubstr("closer than an octave")));
+  const Curve octave = exact_curve({0.0, 1.0, 0.0, 0.0, 0.0}, 0.1, 3.2);
+  const NoiseTerms octave_terms = fit_noise_terms(octave.tau, octave.variance, octave.edf, "deg/h");
+  EXPECT_THAT(octave_terms.warnings, ::testing::Not(::testing::Contains(::testing::HasSubstr("closer than an octave"))));
+}
+
 // The slope read-off reads B at the floor: a flat part at short tau (an anti-alias filter) lies
 // above the floor and is not read; the floor, flat beside its least point, is.
 TEST(SlopeReadOff, BiasInstabilityIsReadAtTheFloorNotAtAShortTauPlateau) {

@@ -27,7 +27,9 @@
 // and adds no covariance. Fit and covariance are iterated (the covariance from the previous fit,
 // which avoids the bias of weighting by the observed points). Checked by a Monte Carlo test over
 // 200 simulated records: the 1-sigma intervals of N, B and K cover the truth in 60-76 % of them.
-// For more than 64 taus (a dense grid) the correlation is not modelled and a warning says so.
+// For more than 64 taus (a dense grid) the correlation is not modelled and a warning says so; for
+// taus closer than an octave it is, but that model is validated on octave grids only, and a
+// warning says the uncertainties may be understated.
 //
 // Fit range: eq. (30) describes the gyro's noise, not its anti-alias filter or coarse quantisation,
 // which flatten or bend the shortest taus. Unless a range is given, the shortest taus are dropped one

@@ -127,35 +127,6 @@ std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
   return ResultOf<AllanChannelsTag>(result.to_json(), result.report());
 }
 
-std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_file(
-    const std::string& path, double sample_rate_hz, const std::string& format, const std::optional<std::string>& column,
-    const std::string& input_unit, const Taus& taus, const std::string& estimators, double scale, double confidence,
-    std::size_t worker_count, const FitRangeArgument& fit_range, const std::optional<std::vector<std::string>>& columns,
-    const ExportArgument& export_to, const PsdArgument& psd) {
-  const RateRecordSource source = rate_source(path, format, column);
-  AllanOptions options =
-      allan_options(sample_rate_hz, "deg/h", taus, estimators, scale, confidence, worker_count, fit_range, psd);
-  AllanChannels result;
-  if (!columns) {
-    options.input_unit = input_unit;
-    {
-      py::gil_scoped_release release;
-      result.channels.push_back({column.value_or("rate"), allan_variance_of_file(source, options)});
-    }
-    export_filter_parameters(result, export_to, "inertest.allan_variance_of_file " + path);
-    return make_result<AllanTag>(result.channels.front().result);
-  }
-  if (column) throw Error("give column or columns, not both");
-  std::vector<ColumnSelector> selectors;
-  for (const std::string& c : *columns) selectors.push_back(ColumnSelector::parse(c));
-  {
-    py::gil_scoped_release release;
-    result = allan_variance_of_channels_in_file(source, selectors, input_unit, options);
-  }
-  export_filter_parameters(result, export_to, "inertest.allan_variance_of_file " + path);
-  return ResultOf<AllanChannelsTag>(result.to_json(), result.report());
-}
-
 }  // namespace
 
 void wrap_allan(py::module_& module) {
@@ -166,6 +137,7 @@ void wrap_allan(py::module_& module) {
       "the CLI's --json object.\n"
       "Members:\n"
       "    procedure: str\n"
+      "    clause: str\n"
       "    standard: str\n"
       "    sample_count: int\n"
       "    sample_rate_hz: float\n"
@@ -199,6 +171,8 @@ void wrap_allan(py::module_& module) {
       "Allan analysis of several channels of one record (an IMU's axes), each as AllanResult; a channel in an\n"
       "acceleration unit has velocity_random_walk, bias_instability (ug) and acceleration_random_walk.\n"
       "Members:\n"
+      "    procedure: str\n"
+      "    clause: str\n"
       "    channels: Record  # one AllanResult-shaped Record per channel, by name\n");
   const char* options_doc =
       "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
@@ -223,18 +197,19 @@ void wrap_allan(py::module_& module) {
                           "variance, its noise terms and periodic components (the result's psd), as --psd.\n") +
               options_doc)
                  .c_str());
-  module.def("allan_variance_of_file", &allan_of_file, "path"_a, py::kw_only(), "sample_rate_hz"_a,
-             "format"_a = "auto", "column"_a = py::none(), "input_unit"_a = "deg/h", "taus"_a = "octave",
-             "estimators"_a = "all", "scale"_a = 1.0, "confidence"_a = kOneSigmaConfidence, "worker_count"_a = 2,
-             "fit_range"_a = py::none(), "columns"_a = py::none(), "export"_a = py::none(), "psd"_a = py::none(),
-             (std::string("The same as allan_variance on a record streamed from a file (never held whole), as the CLI's\n"
-                          "allan command: format 'auto' (.mat, HDF5, TDMS by magic bytes, else text), 'csv', 'f64' or\n"
-                          "'f32' (raw little-endian), 'mat', 'hdf5', 'tdms'; column: header name or 1-based index, or\n"
-                          "the channel ('group/channel', 'struct.field'). A sample_rate_hz that contradicts the rate the\n"
-                          "file stores is an error. columns: several channels in one pass (an AllanChannelsResult), as\n"
-                          "the CLI's --columns.\n") +
-              options_doc)
-                 .c_str());
+  // The plan kind's function, inertest.allan (made from its spec by wrap_specs), under the name the
+  // README gives it; the keywords are the spec's (the plan keys).
+  module.def(
+      "allan_variance_of_file",
+      [](const std::string& path, py::kwargs keywords) {
+        keywords["file"] = path;
+        return py::module_::import("inertest").attr("allan")(**keywords);
+      },
+      "path"_a,
+      "inertest.allan(file=path, **keywords): the Allan analysis of a record streamed from a file (never held\n"
+      "whole), as the CLI's allan command and the plan kind \"allan\" make it, with their parameters as keywords\n"
+      "(sample_rate_hz, format, column, columns, input_unit, taus, scale_factor, estimators, fit_range,\n"
+      "psd, psd_window, psd_segment_length, threads, export); see help(inertest.allan).");
   module.def(
       "read_rate_record",
       [](const std::string& path, const std::string& format, const std::optional<std::string>& column) {

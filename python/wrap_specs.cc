@@ -260,12 +260,12 @@ void wrap_specs(py::module_& module) {
         [&spec](const py::kwargs& keywords) {
           const ProcedureCall call = call_of(spec, keywords);
           spec.check(call);
-          nlohmann::json fields;
+          ProcedureOutput output;
           {
             py::gil_scoped_release release;
-            fields = spec.run(call);
+            output = spec.run(call);
           }
-          return ResultOf<SpecTag>(procedure_json(spec, fields), procedure_text(spec, fields));
+          return ResultOf<SpecTag>(procedure_json(spec, output.fields), procedure_text(spec, output));
         },
         docstring_of(spec).c_str());
   }

@@ -11,7 +11,6 @@ from conftest import cli_json
 
 # Plan kinds whose function has another name: contracts of the Python module since issue 10.
 PYTHON_NAMES = {
-    "allan": "allan_variance",
     "bandwidth": "bandwidth_and_delay",
     "bias_temperature": "bias_temperature_sensitivity",
     "centrifuge": "calibrate_drift_coefficients",

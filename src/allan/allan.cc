@@ -454,6 +454,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
 
 nlohmann::json AllanResult::to_json() const {
   nlohmann::json json = {{"procedure", "allan_variance"},
+                         {"clause", kAllanClause},
                          {"standard", "GJB 2426A-2004 5.12.5.4.2; IEEE Std 952-1997 Annex C; NIST SP 1065"},
                          {"sample_count", sample_count},
                          {"sample_rate_hz", sample_rate_hz},

@@ -165,7 +165,7 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
 nlohmann::json AllanChannels::to_json() const {
   nlohmann::json json = nlohmann::json::object();
   for (const AllanChannel& channel : channels) json[channel.name] = channel.result.to_json();
-  return {{"channels", json}};
+  return {{"procedure", "allan_variance"}, {"clause", kAllanClause}, {"channels", json}};
 }
 
 std::string AllanChannels::report() const {

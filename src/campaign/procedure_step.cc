@@ -178,10 +178,11 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (e.location()) throw;  // already at its place, e.g. a run's (RunInput::where)
     step.fail(e.message());
   }
-  return [&spec, call, files](const StepRunContext&) {
+  return [&spec, call, files](const StepRunContext& run) {
     ProcedureCall run_call = call;
+    run_call.progress = run.progress;
     for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
-    return procedure_json(spec, spec.run(run_call));
+    return procedure_json(spec, spec.run(run_call).fields);
   };
 }
 

@@ -50,7 +50,7 @@ std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& param
   std::string text = parameter.doc;
   if (!parameter.unit.empty()) text += ", " + parameter.unit;
   const auto found = spec.defaults.find(parameter.name);
-  if (found != spec.defaults.end()) {
+  if (found != spec.defaults.end() && !found->second.empty()) {  // an empty list is no default to tell
     text += " (default: " + (found->second.is_string() ? found->second.get<std::string>() : found->second.dump()) + ")";
   }
   return text;
@@ -119,9 +119,13 @@ CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const
   switch (parameter.type) {
     case ParameterType::boolean: return command.add_flag(flag, arguments.flags[parameter.name], parameter.doc);
     case ParameterType::numbers:
-      return command.add_option(flag, arguments.lists[parameter.name], parameter_help(spec, parameter))->delimiter(',');
+      return command.add_option(flag, arguments.lists[parameter.name], parameter_help(spec, parameter))
+          ->delimiter(parameter.cli_separator);
     case ParameterType::number: return command.add_option(flag, arguments.numbers[parameter.name], parameter_help(spec, parameter));
-    case ParameterType::texts: return command.add_option(flag, arguments.text_lists[parameter.name], parameter_help(spec, parameter));
+    case ParameterType::texts: {
+      CLI::Option* option = command.add_option(flag, arguments.text_lists[parameter.name], parameter_help(spec, parameter));
+      return parameter.cli_values > 0 ? option->expected(static_cast<int>(parameter.cli_values)) : option->delimiter(',');
+    }
     case ParameterType::text: break;
   }
   return command.add_option(flag, arguments.texts[parameter.name], parameter_help(spec, parameter));
@@ -232,10 +236,11 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       }
     }
     // A procedure's complaint about the data of its one file names that file.
-    const nlohmann::json fields = call.files.size() == 1
-                                      ? with_file_context(call.files.begin()->second, [&] { return spec.run(call); })
-                                      : spec.run(call);
-    print_result(procedure_json(spec, fields), procedure_text(spec, fields), arguments->json);
+    call.progress = terminal_progress();
+    const ProcedureOutput output = call.files.size() == 1
+                                       ? with_file_context(call.files.begin()->second, [&] { return spec.run(call); })
+                                       : spec.run(call);
+    print_result(procedure_json(spec, output.fields), procedure_text(spec, output), arguments->json);
     return 0;
   };
 }

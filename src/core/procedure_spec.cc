@@ -147,4 +147,8 @@ std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fiel
   return text;
 }
 
+std::string procedure_text(const ProcedureSpec& spec, const ProcedureOutput& output) {
+  return output.text.empty() ? procedure_text(spec, output.fields) : output.text;
+}
+
 }  // namespace inertest

@@ -84,7 +84,7 @@ TEST(ProcedureSpec, PolarityFieldsFromTheSpec) {
   ProcedureCall call;
   call.inputs = {{"positive", 12.0}, {"negative", 8.0}};
   call.parameters = {{"output_unit", "V"}, {"expected", "positive"}};
-  const nlohmann::json json = procedure_json(spec, spec.run(call));
+  const nlohmann::json json = procedure_json(spec, spec.run(call).fields);
   EXPECT_EQ(json.at("polarity"), "positive");
   EXPECT_EQ(json.at("sign").at("value"), 1.0);
   EXPECT_EQ(json.at("output_positive_rate").at("unit"), "V");
@@ -93,7 +93,7 @@ TEST(ProcedureSpec, PolarityFieldsFromTheSpec) {
   EXPECT_TRUE(json.at("pass").get<bool>());
   EXPECT_EQ(json.at("warnings").size(), 1u);
   call.parameters = nlohmann::json::object();
-  EXPECT_FALSE(procedure_json(spec, spec.run(call)).contains("pass"));
+  EXPECT_FALSE(procedure_json(spec, spec.run(call).fields).contains("pass"));
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ nlohmann::json run_on(const std::string& path, const nlohmann::json& parameters 
   for (const auto& [name, value] : parameters.items()) call.parameters[name] = value;
   call.files["positions"] = path;
   spec->check(call);
-  return spec->run(call);
+  return spec->run(call).fields;
 }
 
 double value_of(const nlohmann::json& fields, const char* name) { return fields.at(name).at("value").get<double>(); }

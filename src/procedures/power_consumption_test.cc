@@ -28,7 +28,7 @@ nlohmann::json run_on(const std::string& path) {
   ProcedureCall call;
   call.files["supplies"] = path;
   spec->check(call);
-  return spec->run(call);
+  return spec->run(call).fields;
 }
 
 TEST(PowerConsumption, HandCase) {

@@ -31,7 +31,7 @@ TEST(ScaleFactorTemperatureModel, RecoversAQuadraticWithinItsUncertainty) {
   ASSERT_NE(spec, nullptr);
   call.parameters = {{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
   spec->check(call);
-  const nlohmann::json fields = spec->run(call);
+  const nlohmann::json fields = spec->run(call).fields;
   const nlohmann::json& coefficients = fields.at("scale_factor_temperature_coefficients");
   for (const auto& [name, truth] : {std::pair{"k_T", kLinear}, std::pair{"k_T2", kQuadratic}}) {
     const nlohmann::json& c = coefficients.at(name);

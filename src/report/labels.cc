@@ -84,17 +84,8 @@ constexpr Translation kTable[] = {
     {"ui.positive", "positive rates", "正向"},
     {"ui.negative", "negative rates", "负向"},
 
-    // Procedures (plan kinds).
-    {"kind.allan", "Allan variance and random walk coefficient", "Allan 方差与随机游走系数"},
+    // Procedures (plan kinds) not declared by a spec.
     {"kind.hand_checks", "Examination and electrical checks", "外观与电气检查"},
-
-    // Methods, one sentence each.
-    {"method.allan",
-     "Overlapping Allan variance of the rate record (IEEE Std 952-1997 Annex C) with confidence intervals; the "
-     "noise model σ²(τ) = Σ A_m·τ^m (m = −2…2) is fitted and each term read at its characteristic slope.",
-     "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
-     "-2..2），"
-     "各噪声项按其特征斜率读取。"},
 
     // Figures and quantities.
     {"scale_factor", "Scale factor", "标度因数"},
@@ -253,10 +244,9 @@ std::string Labels::field_of(const std::string& kind, std::string_view key) cons
 }
 
 std::string Labels::method_of(const std::string& kind) const {
-  if (const ProcedureSpec* spec = find_procedure_spec(kind); spec != nullptr && !spec->method_en.empty()) {
-    return language_ == Language::chinese && !spec->method_zh.empty() ? spec->method_zh : spec->method_en;
-  }
-  return known("method." + kind) ? (*this)("method." + kind) : "";
+  const ProcedureSpec* spec = find_procedure_spec(kind);
+  if (spec == nullptr) return "";
+  return language_ == Language::chinese && !spec->method_zh.empty() ? spec->method_zh : spec->method_en;
 }
 
 bool Labels::known(std::string_view key) { return index().contains(key); }

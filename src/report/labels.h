@@ -23,7 +23,7 @@ class Labels {
   std::string title_of(const std::string& kind) const;
   // A figure's label in a procedure's result: the spec's field label (capitalised), else the table's.
   std::string field_of(const std::string& kind, std::string_view key) const;
-  // A procedure's method in one paragraph: its spec's, else the table's "method.<kind>"; "" for none.
+  // A procedure's method in one paragraph: its spec's; "" for none.
   std::string method_of(const std::string& kind) const;
   // Whether the table holds the key (in any language).
   static bool known(std::string_view key);

@@ -149,6 +149,19 @@ void collect_array_figure(const json& node, const std::string& pointer, const st
 }
 
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
+                     int depth, bool headline, std::vector<FigureRow>& rows);
+
+// The channels of one record (an IMU's axes, issue 19): each listed as a result of its own, under
+// its name.
+void collect_channels(const json& channels, const std::string& pointer, const std::string& name, const Labels& labels,
+                      int depth, bool headline, std::vector<FigureRow>& rows) {
+  for (const auto& [channel, result] : channels.items()) {
+    collect_figures(result, pointer + "/" + escape_pointer_token(channel), name.empty() ? channel : name + " · " + channel,
+                    labels, depth, headline, rows);
+  }
+}
+
+void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
   if (is_figure(node) || is_unidentified_figure(node)) {
     rows.push_back({pointer, name, node, depth, headline && depth <= 2});
@@ -167,12 +180,7 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     for (const auto& [rank, key] : keys) {
       const json& value = node.at(key);
       if (key == "channels" && value.is_object()) {
-        // The channels of one record (an IMU's axes, issue 19): each listed as a result of its own,
-        // under its name.
-        for (const auto& [channel, result] : value.items()) {
-          collect_figures(result, pointer + "/channels/" + escape_pointer_token(channel),
-                          name.empty() ? channel : name + " · " + channel, labels, depth, headline, rows);
-        }
+        collect_channels(value, pointer + "/channels", name, labels, depth, headline, rows);
         continue;
       }
       if (!is_listed_member(key, value)) continue;
@@ -443,6 +451,10 @@ class ReportWriter {
       if (value == nullptr || field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
       if (is_long_array(*value)) continue;
       const std::string pointer = fmt::format("/{}", escape_pointer_token(field.name));
+      if (field.name == "channels" && value->is_object()) {
+        collect_channels(*value, pointer, "", labels_, 0, field.role == FieldRole::headline, rows);
+        continue;
+      }
       collect_figures(*value, pointer, labels_.field_of(kind, field.name), labels_, 1, field.role == FieldRole::headline,
                       rows);
     }

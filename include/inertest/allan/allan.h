@@ -31,6 +31,10 @@
 
 namespace inertest {
 
+// The clause of GJB 2426A-2004 the analysis implements (the JSON's "clause"; "procedure" is
+// "allan_variance").
+inline constexpr const char* kAllanClause = "GJB 2426A-2004 5.12.5.4.2";
+
 struct AllanOptions {
   double sample_rate_hz = 0.0;
   std::string input_unit = "deg/h";  // unit of the samples (after `scale`)

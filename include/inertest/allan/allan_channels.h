@@ -28,7 +28,7 @@ struct AllanChannel {
 struct AllanChannels {
   std::vector<AllanChannel> channels;  // in the order asked for
 
-  // {"channels": {"gx": {the JSON of AllanResult}, ...}}.
+  // {"procedure": "allan_variance", "clause", "channels": {"gx": {the JSON of AllanResult}, ...}}.
   nlohmann::json to_json() const;
   // One table per channel, each under its name.
   std::string report() const;

@@ -27,6 +27,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/figure.h"
+#include "inertest/core/progress.h"
 
 namespace inertest {
 
@@ -66,6 +67,8 @@ struct ParameterSpec {
   ParameterSpec& required_on_command_line() { required = true; return *this; }
   // A yes/no parameter stored through a binder (a bool member is one already).
   ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
+  // A text parameter stored through a binder (a std::string member is one already).
+  ParameterSpec& text() { type = ParameterType::text; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
   ParameterSpec& instrument_gives(std::string key, bool only = false) {
     instrument_default = std::move(key);
@@ -96,6 +99,16 @@ struct ParameterSpec {
     cli_flag_value = std::move(value);
     return *this;
   }
+  // A texts parameter whose option takes `count` values at once on the command line (`--export
+  // FORMAT FILE`, a contract) instead of a comma list; an array of them in a plan.
+  ParameterSpec& values_on_command_line(std::size_t count) { cli_values = count; return *this; }
+  // A list of numbers stored through a binder (a std::vector<double> member is one already), its
+  // values separated by `separator` on the command line (`--fit-range TMIN:TMAX`, a contract).
+  ParameterSpec& numbers(char separator = ',') {
+    type = ParameterType::numbers;
+    cli_separator = separator;
+    return *this;
+  }
   const std::string& plan_name() const { return plan_key.empty() ? name : plan_key; }
   // "--rate", "--nonlinearity-limit".
   std::string command_line_option() const { return "--" + (cli_option.empty() ? kebab_case(name) : cli_option); }
@@ -117,6 +130,8 @@ struct ParameterSpec {
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
   nlohmann::json cli_flag_value;
   std::string cli_option;  // "": the option is --kebab-case(name)
+  std::size_t cli_values = 0;  // texts: the values one option takes, 0: a comma list or the option repeated
+  char cli_separator = ',';     // numbers: between the values on the command line
 };
 
 enum class InputKind {
@@ -291,6 +306,16 @@ struct ProcedureCall {
   // A timed record as the command line (--rate/--time-column) or the plan (sample_rate_hz/time_column)
   // says it is stored; set when an input has timed_records(). Errors name the file.
   std::function<TimedRecord(const std::string& file)> read_timed_record;
+  // Progress of a long computation (a terminal's on the command line, the campaign's in a plan).
+  ProgressCallback progress;
+};
+
+// What a procedure's run gives: the result's fields by name (a null field is left out) and, for a
+// result that writes a text of its own (ProcedureDefinition::written_by), that text; empty: the
+// generic text of the fields (procedure_text).
+struct ProcedureOutput {
+  nlohmann::json fields;
+  std::string text;
 };
 
 // The whole description of one procedure. Built with ProcedureDefinition below.
@@ -319,8 +344,8 @@ struct ProcedureSpec {
   std::vector<std::string> example;
   // Checks the parameters (Options::validate) and the runs given before any input is read; throws Error.
   std::function<void(const ProcedureCall&)> check;
-  // Runs the procedure; returns the result's fields by name (a null field is left out).
-  std::function<nlohmann::json(const ProcedureCall&)> run;
+  // Runs the procedure.
+  std::function<ProcedureOutput(const ProcedureCall&)> run;
   // The fields of a Result computed elsewhere (e.g. Python on arrays): `result` holds a
   // `const Result*` of the procedure's Result type (std::bad_any_cast otherwise).
   std::function<nlohmann::json(const std::any& result)> fields_of;
@@ -348,6 +373,8 @@ nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& f
 // ("[a, b, c] ± [ua, ub, uc] unit" for a figure whose value and uncertainty are arrays: a vector or
 // a matrix), then the warnings.
 std::string procedure_text(const ProcedureSpec& spec, const nlohmann::json& fields);
+// The text of a run: its own (ProcedureOutput::text), else procedure_text of its fields.
+std::string procedure_text(const ProcedureSpec& spec, const ProcedureOutput& output);
 
 template <typename T>
 inline constexpr bool is_optional = false;
@@ -491,6 +518,22 @@ class ProcedureDefinition {
     });
   }
 
+  // A Result that writes its JSON object and its text itself, for a shape of its own (allan: one
+  // object, or one per channel of an IMU): `json` gives the fields (procedure_json adds "procedure"
+  // and "clause"), `text` the text. Its keys are declared with declare(), not read by field().
+  ProcedureDefinition& written_by(std::function<nlohmann::json(const Result&)> json,
+                                  std::function<std::string(const Result&)> text) {
+    written_json_ = std::move(json);
+    written_text_ = std::move(text);
+    return *this;
+  }
+
+  // A key of the JSON that written_by writes: for the report, the plan's limits and the stubs.
+  ProcedureDefinition& declare(FieldSpec field) {
+    spec_.fields.push_back(std::move(field));
+    return *this;
+  }
+
   // A field computed from the Result (e.g. a sign spelled out); null leaves it out.
   ProcedureDefinition& field_from(FieldSpec field, std::function<nlohmann::json(const Result&)> value) {
     if (field.value == FieldValue::structured && (field.role == FieldRole::table || field.role == FieldRole::curve)) {
@@ -518,14 +561,16 @@ class ProcedureDefinition {
         options_of(call).validate();
       }
     };
-    spec.fields_of = [getters = getters_](const std::any& result) {
+    spec.fields_of = [getters = getters_, written = written_json_](const std::any& result) {
+      const Result& value = *std::any_cast<const Result*>(result);
+      if (written) return written(value);
       nlohmann::json fields = nlohmann::json::object();
-      for (const auto& [name, get] : getters) fields[name] = get(*std::any_cast<const Result*>(result));
+      for (const auto& [name, get] : getters) fields[name] = get(value);
       return fields;
     };
-    spec.run = [options_of, fields_of = spec.fields_of, procedure](const ProcedureCall& call) {
+    spec.run = [options_of, fields_of = spec.fields_of, text = written_text_, procedure](const ProcedureCall& call) {
       const Result result = procedure(call, options_of(call));
-      return fields_of(&result);
+      return ProcedureOutput{fields_of(&result), text ? text(result) : std::string()};
     };
     return spec;
   }
@@ -561,6 +606,8 @@ class ProcedureDefinition {
   std::vector<std::pair<std::string, Binder>> binders_;
   std::vector<std::pair<std::string, std::function<nlohmann::json(const Result&)>>> getters_;
   std::function<void(const ProcedureCall&, const Options&)> check_;
+  std::function<nlohmann::json(const Result&)> written_json_;
+  std::function<std::string(const Result&)> written_text_;
 };
 
 }  // namespace inertest

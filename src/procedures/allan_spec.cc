@@ -1,0 +1,264 @@
+// Allan variance and the noise terms of a rate record, GJB 2426A-2004 5.12.5.4.2 (eqs. (30)-(31)),
+// IEEE Std 952-1997 Annex C, NIST SP 1065: the analysis of allan/allan.h on one channel of a record,
+// or on several channels read in one pass (an IMU's axes, allan/allan_channels.h). Declared once
+// (issue 22): the command `inertest allan`, the plan kind "allan" and the Python function
+// `inertest.allan` come from this file, with one name per parameter (the plan key and the Python
+// keyword; the flag its kebab-case, `--rate` and `--psd-segment` kept as the README writes them).
+// The result writes its own JSON object and text (AllanResult, AllanChannels): a tau table, and one
+// object per channel with --columns.
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "inertest/allan/allan.h"
+#include "inertest/allan/allan_channels.h"
+#include "inertest/allan/filter_parameters.h"
+#include "inertest/core/procedure_spec.h"
+#include "inertest/io/atomic_write.h"
+#include "inertest/io/rate_record.h"
+
+namespace inertest {
+namespace {
+
+struct AllanParameters {
+  std::string format = "auto";
+  std::optional<std::string> column;
+  std::vector<std::string> columns;
+  std::optional<double> sample_rate_hz;
+  std::optional<std::string> input_unit;
+  std::string taus = "octave";
+  std::optional<double> scale_factor;
+  std::string estimators = "all";
+  std::optional<FitRange> fit_range;
+  bool psd = false;
+  std::optional<std::string> psd_window;
+  std::size_t psd_segment_length = 0;  // 0: automatic
+  std::size_t threads = 2;
+  std::vector<std::string> export_to;  // FORMAT FILE
+
+  RateRecordSource source(const std::string& path) const {
+    RateRecordSource source;
+    source.path = path;
+    source.format = parse_rate_record_format(format);
+    if (column) source.column = ColumnSelector::parse(*column);
+    return source;
+  }
+
+  // The options of the analysis; the sample rate is the one given or, failing that, the one the
+  // record stores (HDF5 sample_rate_hz, TDMS wf_increment...), else an Error naming the file.
+  AllanOptions options(const RateRecordSource& source) const {
+    AllanOptions options;
+    if (sample_rate_hz) {
+      options.sample_rate_hz = *sample_rate_hz;
+    } else if (const std::optional<double> stored = stored_sample_rate(source)) {
+      options.sample_rate_hz = *stored;
+    } else {
+      throw Error(SourceLocation{source.path, 0, 0}, "the record stores no sample rate: give sample_rate_hz (--rate)");
+    }
+    options.taus = taus;
+    options.estimators = EstimatorSet::parse(estimators);
+    options.worker_count = threads;
+    options.fit_range = fit_range;
+    if (scale_factor) {
+      // raw / (output per deg/s) = deg/s; times 3600 = deg/h.
+      options.scale = 3600.0 / *scale_factor;
+      options.input_unit = "deg/h";
+    } else if (input_unit && columns.empty()) {
+      options.input_unit = *input_unit;
+    }
+    if (psd || psd_window || psd_segment_length > 0) {
+      WelchOptions welch;
+      welch.window = parse_spectral_window(psd_window.value_or("hann"));
+      welch.segment_length = psd_segment_length;
+      options.psd = welch;
+    }
+    return options;
+  }
+};
+
+// The result: one channel (AllanResult's JSON and text) or several ({"channels": {...}}).
+struct AllanRun {
+  AllanChannels channels;
+  bool several = false;
+};
+
+void check(const ProcedureCall& call, const AllanParameters& parameters) {
+  if (parameters.column && !parameters.columns.empty()) throw ParameterError("columns", "column and columns exclude each other");
+  if (parameters.scale_factor) {
+    if (parameters.input_unit) {
+      throw ParameterError("input_unit", "input_unit and scale_factor exclude each other: scaled output is in deg/h");
+    }
+    if (!(*parameters.scale_factor != 0.0) || !std::isfinite(*parameters.scale_factor)) {
+      throw ParameterError("scale_factor", "scale_factor must be finite and nonzero");
+    }
+  }
+  if (!parameters.export_to.empty()) {
+    if (parameters.export_to.size() != 2) throw ParameterError("export", "export takes FORMAT and FILE");
+    parse_filter_format(parameters.export_to[0]);
+  }
+  const auto checked = [](const char* name, const auto& work) {
+    try {
+      work();
+    } catch (const ParameterError&) {
+      throw;
+    } catch (const Error& e) {
+      if (e.location()) throw;
+      throw ParameterError(name, e.message());
+    }
+  };
+  checked("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
+  checked("psd_window", [&] { parse_spectral_window(parameters.psd_window.value_or("hann")); });
+  checked("format", [&] { parameters.source(call.files.at("record")); });
+  // The channels' units are checked once their names are read (allan_variance_of_channels_in_file).
+  parameters.options(parameters.source(call.files.at("record"))).validate();
+}
+
+AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
+  const std::string& file = call.files.at("record");
+  const RateRecordSource source = parameters.source(file);
+  const AllanOptions options = parameters.options(source);
+  AllanRun result;
+  if (parameters.columns.empty()) {
+    result.channels.channels.push_back(
+        {parameters.column.value_or("rate"), allan_variance_of_file(source, options, call.progress)});
+  } else {
+    std::vector<ColumnSelector> selectors;
+    for (const std::string& column : parameters.columns) selectors.push_back(ColumnSelector::parse(column));
+    result.channels = allan_variance_of_channels_in_file(source, selectors, parameters.input_unit.value_or(""), options,
+                                                         call.progress);
+    result.several = true;
+  }
+  if (!parameters.export_to.empty()) {
+    const std::string command = fmt::format("inertest allan {}{}", file,
+                                            result.several ? " --columns " + fmt::format("{}", fmt::join(parameters.columns, ",")) : "");
+    write_file_atomically(parameters.export_to[1],
+                          format_filter_parameters(filter_noise_parameters(result.channels),
+                                                   parse_filter_format(parameters.export_to[0]), command));
+  }
+  return result;
+}
+
+template <typename T, std::optional<T> AllanParameters::*member>
+void set_optional(AllanParameters& parameters, const nlohmann::json& value) {
+  parameters.*member = value.get<T>();
+}
+
+}  // namespace
+
+ProcedureSpec allan_spec();
+
+ProcedureSpec allan_spec() {
+  const FieldRole hidden = FieldRole::hidden;
+  return ProcedureDefinition<AllanParameters, AllanRun>(
+             "allan", "Allan variance and random walk coefficient", kAllanClause,
+             "ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV with chi-squared bounds (IEEE Std 952-1997 Annex C,\n"
+             "NIST SP 1065), and the noise terms Q, N (ARW), B (bias instability), K (RRW), R (rate ramp) by the\n"
+             "fit of GJB eq. (30) and by slope read-off. FILE: one channel of rate samples, text (csv), raw\n"
+             "little-endian f64/f32, or a channel of a MATLAB .mat, HDF5 or NI TDMS file (found by its magic\n"
+             "bytes; --column names the channel); --columns several channels in one pass. Text is parsed once,\n"
+             "into memory; the others stream once.")
+      .json_procedure_is("allan_variance")
+      .chinese_title("Allan 方差与随机游走系数")
+      .report_method(
+          "Overlapping Allan variance of the rate record (IEEE Std 952-1997 Annex C) with confidence intervals; the "
+          "noise model σ²(τ) = Σ A_m·τ^m (m = −2…2) is fitted and each term read at its characteristic slope.",
+          "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
+          "-2..2），各噪声项按其特征斜率读取。")
+      .input(InputSpec("record", "rate record").read_from_file("FILE", "file"))
+      .parameter(ParameterSpec("format", "how FILE is stored: auto, csv, f64 or f32 (raw little-endian), mat, hdf5 or tdms")
+                     .one_of({"auto", "csv", "f64", "f32", "mat", "hdf5", "tdms"}),
+                 &AllanParameters::format)
+      .parameter(ParameterSpec("column", "text column (header name or 1-based index), or channel: group/channel, "
+                                         "struct.field (default: the only one)")
+                     .text(),
+                 set_optional<std::string, &AllanParameters::column>)
+      .parameter(ParameterSpec("columns", "several channels in one pass, e.g. gx,gy,gz,ax,ay,az (names or indices): "
+                                          "JSON {\"channels\": {...}}"),
+                 &AllanParameters::columns)
+      .parameter(ParameterSpec("sample_rate_hz", "sample rate (default: the rate the file stores; one that "
+                                                 "contradicts it is an error)")
+                     .unit_is("Hz")
+                     .command_line_name_is("rate")
+                     .instrument_gives("sample_rate_hz"),
+                 set_optional<double, &AllanParameters::sample_rate_hz>)
+      .parameter(ParameterSpec("input_unit", "unit of the samples (default deg/h); with columns per channel too: "
+                                             "deg/s,ax=m/s^2 (an acceleration unit gives the accelerometer's noise terms)")
+                     .text(),
+                 set_optional<std::string, &AllanParameters::input_unit>)
+      .parameter(ParameterSpec("taus", "octave, decade, all, N/decade or a comma list of tau in s; the noise terms are "
+                                       "fitted on those an octave or more apart"),
+                 &AllanParameters::taus)
+      .parameter(ParameterSpec("scale_factor", "K, output units per deg/s: the raw output is divided by K and "
+                                               "reported in deg/h (excludes input_unit)"),
+                 set_optional<double, &AllanParameters::scale_factor>)
+      .parameter(ParameterSpec("estimators", "all, or a comma list of adev, oadev, mdev, hdev, ohdev, totdev"),
+                 &AllanParameters::estimators)
+      .parameter(ParameterSpec("fit_range", "TMIN:TMAX, the taus of the eq. (30) fit (default: chosen automatically, "
+                                            "see noise.fit.fit_range); [tau_min, tau_max] in a plan")
+                     .unit_is("s")
+                     .numbers(':'),
+                 [](AllanParameters& parameters, const nlohmann::json& value) {
+                   const auto range = value.get<std::vector<double>>();
+                   if (range.size() != 2) {
+                     throw ParameterError("fit_range", "the fit range must read TMIN:TMAX in s ([tau_min, tau_max] in a plan)");
+                   }
+                   parameters.fit_range = FitRange{range[0], range[1]};
+                 })
+      .parameter(ParameterSpec("psd", "also the power spectral density (Welch, IEEE Std 952-1997 Annex C): its noise "
+                                      "terms beside the Allan fit, periodic components (reads a streamed record into "
+                                      "memory)"),
+                 &AllanParameters::psd)
+      .parameter(ParameterSpec("psd_window", "the Welch window, default hann (implies psd)")
+                     .one_of({"hann", "hamming", "blackman-harris", "rectangular"}),
+                 set_optional<std::string, &AllanParameters::psd_window>)
+      .parameter(ParameterSpec("psd_segment_length", "samples per Welch segment, 0: a power of two giving 16-32 "
+                                                     "segments (a length implies psd)")
+                     .command_line_name_is("psd-segment"),
+                 &AllanParameters::psd_segment_length)
+      .parameter(ParameterSpec("threads", "worker threads"), &AllanParameters::threads)
+      .parameter(ParameterSpec("export", "FORMAT FILE: the noise parameters a navigation filter takes, FORMAT kalibr "
+                                         "(imu.yaml), matlab (gyroparams/accelparams), gnss-ins-sim (IMU error "
+                                         "dictionary) or json")
+                     .values_on_command_line(2),
+                 &AllanParameters::export_to)
+      .checked_by(check)
+      .written_by(
+          [](const AllanRun& result) {
+            return result.several ? result.channels.to_json() : result.channels.channels.front().result.to_json();
+          },
+          [](const AllanRun& result) {
+            return result.several ? result.channels.report() : result.channels.channels.front().result.report();
+          })
+      // Listed in the report in this order: the noise terms first.
+      .declare({"noise", FieldRole::headline, "noise terms", "噪声项",
+                "GJB 2426A-2004 eqs. (30)-(31); IEEE Std 952-1997 C.1"})
+      .declare({"record_length", FieldRole::detail, "record length", "记录时长", ""})
+      .declare({"mean", FieldRole::detail, "mean", "均值", ""})
+      .declare({"psd", FieldRole::detail, "power spectral density", "功率谱密度", "IEEE Std 952-1997 Annex C"})
+      .declare({"channels", FieldRole::headline, "channels", "通道", "issue 19: one object per channel"})
+      .declare({"standard", hidden, "standards", "标准", ""})
+      .declare({"sample_count", hidden, "samples", "样本数", ""})
+      .declare({"sample_rate_hz", hidden, "sample rate", "采样频率", ""})
+      .declare({"input_unit", hidden, "input unit", "输入单位", ""})
+      .declare({"tau_grid", hidden, "tau grid", "τ 网格", ""})
+      .declare({"confidence_level", hidden, "confidence level", "置信水平", ""})
+      .declare({"tau", hidden, "averaging times", "平均时间", ""})
+      .declare({"averaging_factor", hidden, "averaging factors", "平均因子", ""})
+      .declare({"noise_type", hidden, "dominant noise per tau", "主导噪声", "NIST SP 1065 5.6"})
+      .declare({"alpha", hidden, "noise exponent alpha per tau", "噪声指数 α", "NIST SP 1065 5.6"})
+      // The deviation curves, with bounds; the report draws one of them (allan_plots.cc).
+      .declare({"adev", hidden, "ADEV", "ADEV", "IEEE Std 952-1997 Annex C"})
+      .declare({"oadev", hidden, "OADEV", "OADEV", "NIST SP 1065 eq. (11)"})
+      .declare({"mdev", hidden, "MDEV", "MDEV", "NIST SP 1065"})
+      .declare({"hdev", hidden, "HDEV", "HDEV", "NIST SP 1065"})
+      .declare({"ohdev", hidden, "OHDEV", "OHDEV", "NIST SP 1065"})
+      .declare({"totdev", hidden, "TOTDEV", "TOTDEV", "NIST SP 1065 eq. (25)"})
+      .declare({"warnings", hidden, "warnings", "警告", ""})
+      .compute(run);
+}
+
+}  // namespace inertest

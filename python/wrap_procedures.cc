@@ -6,6 +6,7 @@
 #include "inertest/procedures/bias_repeatability.h"
 #include "inertest/procedures/bias_temperature_sensitivity.h"
 #include "inertest/procedures/earth_rate.h"
+#include "inertest/procedures/hand_checks.h"
 #include "inertest/procedures/input_axis_misalignment.h"
 #include "inertest/procedures/maximum_input_rate.h"
 #include "inertest/procedures/scale_factor.h"
@@ -160,6 +161,39 @@ ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray&
   return make_spec_result<InputAxisMisalignmentTag>(input_axis_misalignment_spec(), input_axis_misalignment(positions, options));
 }
 
+struct HandChecksTag {};
+
+// One check as a dict, as a plan's [[procedure.check]] table holds it: name, value (a number, or
+// "pass" / "fail" for a check by eye), and optionally unit, min and max.
+HandCheck hand_check_of(const py::dict& given) {
+  HandCheck check;
+  for (const auto& [key, value] : given) {
+    const auto name = py::str(key).cast<std::string>();
+    if (name == "name") {
+      check.name = value.cast<std::string>();
+    } else if (name == "value" && py::isinstance<py::str>(value)) {
+      const auto verdict = value.cast<std::string>();
+      if (verdict != "pass" && verdict != "fail") throw Error("hand check value '" + verdict + "': a number, \"pass\" or \"fail\"");
+      check.verdict = verdict == "pass";
+    } else if (name == "value") {
+      check.value = value.cast<double>();
+    } else if (name == "unit") {
+      check.unit = value.cast<std::string>();
+    } else if (name == "min" || name == "max") {
+      (name == "min" ? check.min : check.max) = value.cast<double>();
+    } else {
+      throw Error("hand check: unknown key '" + name + "' (name, value, unit, min, max)");
+    }
+  }
+  return check;
+}
+
+ResultOf<HandChecksTag> hand_checks_of(const std::vector<py::dict>& given) {
+  std::vector<HandCheck> checks;
+  for (const py::dict& check : given) checks.push_back(hand_check_of(check));
+  return make_result<HandChecksTag>(hand_checks(checks));
+}
+
 }  // namespace
 
 void wrap_procedures(py::module_& module) {
@@ -174,6 +208,21 @@ void wrap_procedures(py::module_& module) {
              "after the last nonzero rate are the static runs (eqs. 2-3); the nonzero rates are fitted by\n"
              "least squares F = K*Omega + F0 (eqs. 4-6). source names the input in error messages.\n"
              "Returns a ScaleFactorResult; raises inertest.Error (a ValueError) with the CLI's message.");
+
+  bind_result<HandChecksTag>(module, "HandChecksResult",
+                             "Checks measured by hand (GJB 2426A-2004 5.2-5.4): members as in the CLI's --json object, and\n"
+                             "one Figure per check under the snake_case of its name (e.g. insulation_resistance).\n"
+                             "Members:\n"
+                             "    procedure: str\n"
+                             "    clause: str\n"
+                             "    check_pass: Record  # by check key: whether it is within its min and max\n"
+                             "    checks: list[Record]  # key, name, value, unit, min, max, pass\n"
+                             "    all_pass: bool\n");
+  module.def("hand_checks", &hand_checks_of, "checks"_a,
+             "Checks measured by hand (GJB 2426A-2004 5.2 appearance, 5.3 insulation resistance, impedance,\n"
+             "dielectric strength, 5.4 power per supply), as the plan kind hand_checks takes them: checks is a\n"
+             "list of dicts with name, value (a number, or 'pass' / 'fail' for appearance) and optionally unit,\n"
+             "min and max, e.g. {'name': 'Insulation resistance', 'value': 120, 'unit': 'Mohm', 'min': 20}.");
 
   bind_result<BiasTag>(module, "BiasResult", result_doc(bias_spec()));
   module.def("bias", &bias_of, "output"_a, py::kw_only(), "sample_rate_hz"_a, "scale_factor"_a = py::none(),

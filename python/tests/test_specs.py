@@ -17,20 +17,29 @@ PYTHON_NAMES = {
     "threshold": "threshold_rate_table",
 }
 
-# Hand-written plan steps not yet declared as specs nor wrapped: they get their function when they
-# are declared (issue 22). Listed so that the test fails when one is exposed and the list is stale.
-AWAITING_SPEC = {"hand_checks"}
 
 
 def test_every_plan_kind_has_a_function():
     kinds = inertest.plan_kinds()
-    assert "polarity" in kinds and "scale_factor" in kinds
+    assert "polarity" in kinds and "scale_factor" in kinds and "hand_checks" in kinds
     for kind in kinds:
         name = PYTHON_NAMES.get(kind, kind)
-        if kind in AWAITING_SPEC:
-            assert not hasattr(inertest, name), f"{kind} is exposed now: remove it from AWAITING_SPEC"
-        else:
-            assert callable(getattr(inertest, name, None)), f"plan kind {kind} has no inertest.{name}"
+        assert callable(getattr(inertest, name, None)), f"plan kind {kind} has no inertest.{name}"
+
+
+def test_hand_checks_is_the_cli_json():
+    expected = cli_json("hand-checks", "--check", "name=Insulation resistance,value=120,unit=Mohm,min=20",
+                        "--check", "name=Appearance,value=pass")
+    result = inertest.hand_checks([{"name": "Insulation resistance", "value": 120, "unit": "Mohm", "min": 20},
+                                   {"name": "Appearance", "value": "pass"}])
+    assert result.to_dict() == expected
+    assert result.all_pass and result.insulation_resistance.unit == "Mohm"
+    failed = inertest.hand_checks([{"name": "Insulation resistance", "value": 12.5, "unit": "Mohm", "min": 20}])
+    assert not failed.all_pass and not failed.check_pass.insulation_resistance
+    with pytest.raises(inertest.Error, match="unknown key 'limit'"):
+        inertest.hand_checks([{"name": "Insulation resistance", "value": 120, "limit": 20}])
+    with pytest.raises(inertest.Error, match="a number, \"pass\" or \"fail\""):
+        inertest.hand_checks([{"name": "Appearance", "value": "good"}])
 
 
 def test_every_declared_procedure_has_a_function_and_stubs():

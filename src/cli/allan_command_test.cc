@@ -70,6 +70,20 @@ TEST(AllanCommand, JsonHoldsEveryEstimatorWithItsEdfMethod) {
   EXPECT_THAT(json["mdev"]["edf_method"].get<std::string>(), HasSubstr("Greenhall"));
 }
 
+// --estimators picks the curves; without OADEV, ADEV or TOTDEV there is no noise fit, and "noise"
+// is null.
+TEST(AllanCommand, EstimatorsPickTheCurvesAndNoiseIsNullWithoutAFit) {
+  testing::ScratchDirectory dir;
+  const auto run = run_cli({"allan", dir.write("rate.csv", white_record(1.0)), "--rate", "10", "--estimators",
+                            "mdev,hdev", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(json.contains("mdev") && json.contains("hdev"));
+  EXPECT_FALSE(json.contains("oadev") || json.contains("adev") || json.contains("totdev"));
+  ASSERT_TRUE(json.contains("noise"));
+  EXPECT_TRUE(json["noise"].is_null());
+}
+
 TEST(AllanCommand, JsonOfAnF64Record) {
   testing::ScratchDirectory dir;
   const std::string path = dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 4096)));

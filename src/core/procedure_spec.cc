@@ -58,7 +58,7 @@ std::string kebab_case(const std::string& name) {
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields) {
   nlohmann::json json = {{"procedure", spec.json_procedure}, {"clause", spec.clause}};
   for (const auto& [name, value] : fields.items()) {
-    if (!value.is_null()) json[name] = value;
+    if (!value.is_null() || spec.writes_own_json) json[name] = value;
   }
   return json;
 }

@@ -346,6 +346,8 @@ struct ProcedureSpec {
   std::function<void(const ProcedureCall&)> check;
   // Runs the procedure.
   std::function<ProcedureOutput(const ProcedureCall&)> run;
+  // The Result writes its JSON object itself (ProcedureDefinition::written_by): its nulls are kept.
+  bool writes_own_json = false;
   // The fields of a Result computed elsewhere (e.g. Python on arrays): `result` holds a
   // `const Result*` of the procedure's Result type (std::bad_any_cast otherwise).
   std::function<nlohmann::json(const std::any& result)> fields_of;
@@ -363,7 +365,8 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
                         const std::function<bool(const InputSpec&)>& given,
                         const std::function<std::string(const InputSpec&)>& name_of);
 
-// The JSON object of a result: "procedure" (json_procedure), "clause", the fields (nulls left out) and "warnings".
+// The JSON object of a result: "procedure" (json_procedure), "clause", the fields (nulls left out
+// unless the result writes its own JSON) and "warnings".
 // A field named "clause" (e.g. the subclause of the method used) replaces the spec's clause, here
 // and in the text.
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields);
@@ -525,6 +528,7 @@ class ProcedureDefinition {
                                   std::function<std::string(const Result&)> text) {
     written_json_ = std::move(json);
     written_text_ = std::move(text);
+    spec_.writes_own_json = true;
     return *this;
   }
 

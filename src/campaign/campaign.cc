@@ -262,7 +262,8 @@ nlohmann::json validate_plan(const std::string& plan_path) {
 
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
   const Plan plan = load_plan(plan_path);
-  campaign::StepRunContext context{options.progress};
+  campaign::StepRunContext context{options.progress, out_dir};
+  std::filesystem::create_directories(out_dir);
 
   nlohmann::json procedures = nlohmann::json::array();
   nlohmann::json verdicts = nlohmann::json::array();
@@ -303,7 +304,6 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       {"verdicts", std::move(verdicts)},
       {"verdict", verdict},
   };
-  std::filesystem::create_directories(out_dir);
   const std::string results_path = (std::filesystem::path(out_dir) / "results.json").string();
   write_file_atomically(results_path, summary.results.dump(2) + "\n");
   summary.written_files.push_back(results_path);

@@ -181,6 +181,7 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
   return [&spec, call, files](const StepRunContext& run) {
     ProcedureCall run_call = call;
     run_call.progress = run.progress;
+    run_call.output_directory = run.output_directory;
     for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
     return procedure_json(spec, spec.run(run_call).fields);
   };

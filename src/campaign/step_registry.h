@@ -40,6 +40,7 @@ struct PlanContext {
 
 struct StepRunContext {
   ProgressCallback progress;
+  std::string output_directory;  // the campaign's, where results.json and a plan's exports go
 };
 
 // Runs the procedure on data validated by the preparer; returns its result (to_json form).

@@ -1,6 +1,7 @@
 #include "inertest/core/procedure_spec.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
@@ -47,6 +48,11 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
     for (std::size_t i = 1; i < names.size(); ++i) list += (i + 1 == names.size() ? " or " : ", ") + names[i];
     throw Error(who + "give exactly one of " + list);
   }
+}
+
+std::string ProcedureCall::output_path(const std::string& path) const {
+  if (output_directory.empty() || std::filesystem::path(path).is_absolute()) return path;
+  return (std::filesystem::path(output_directory) / path).string();
 }
 
 std::string kebab_case(const std::string& name) {

@@ -135,7 +135,7 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
   if (!parameters.export_to.empty()) {
     const std::string command = fmt::format("inertest allan {}{}", file,
                                             result.several ? " --columns " + fmt::format("{}", fmt::join(parameters.columns, ",")) : "");
-    write_file_atomically(parameters.export_to[1],
+    write_file_atomically(call.output_path(parameters.export_to[1]),
                           format_filter_parameters(filter_noise_parameters(result.channels),
                                                    parse_filter_format(parameters.export_to[0]), command));
   }
@@ -222,7 +222,7 @@ ProcedureSpec allan_spec() {
       .parameter(ParameterSpec("threads", "worker threads"), &AllanParameters::threads)
       .parameter(ParameterSpec("export", "FORMAT FILE: the noise parameters a navigation filter takes, FORMAT kalibr "
                                          "(imu.yaml), matlab (gyroparams/accelparams), gnss-ins-sim (IMU error "
-                                         "dictionary) or json")
+                                         "dictionary) or json; in a plan a relative FILE is beside results.json")
                      .values_on_command_line(2),
                  &AllanParameters::export_to)
       .checked_by(check)

@@ -101,7 +101,8 @@ ProcedureSpec imu_calibration_spec() {
                                                       "(studentised residual from the fit without it)"),
                  &Options::outlier_false_alarm)
       .parameter(ParameterSpec("minimum_statics", "fewer accepted static intervals is an error"), &Options::minimum_statics)
-      .parameter(ParameterSpec("export", "write the calibration to FILE (.json) for imu-apply"), &Options::export_file)
+      .parameter(ParameterSpec("export", "write the calibration to FILE (.json) for imu-apply (in a plan a relative FILE is "
+                                           "beside results.json)"), &Options::export_file)
       .field_from({"accelerometer", FieldRole::detail, "accelerometer triad", "加速度计组件", "Tedaldi et al. 2014"},
                   [](const Result& result) { return triad_json(result.accelerometer); })
       .field_from({"gyro", FieldRole::detail, "gyro triad", "陀螺组件", "Tedaldi et al. 2014"},
@@ -132,7 +133,7 @@ ProcedureSpec imu_calibration_spec() {
       .compute([](const ProcedureCall& call, const Options& options) {
         Result result = calibrate_imu(read_imu_record(call.files.at("record"), options.columns), options);
         if (!options.export_file.empty()) {
-          write_file_atomically(options.export_file, calibration_file_json(result).dump(2) + "\n");
+          write_file_atomically(call.output_path(options.export_file), calibration_file_json(result).dump(2) + "\n");
         }
         return result;
       });

@@ -94,7 +94,8 @@ ProcedureSpec temperature_model_spec() {
       .parameter(ParameterSpec("rate_terms", "fit the terms in dT/dt (false: a model in T alone)")
                      .command_line_flag("no-rate-terms", false),
                  &Options::rate_terms)
-      .parameter(ParameterSpec("export", "write the coefficients to FILE (.json or .csv)"), &Options::export_file);
+      .parameter(ParameterSpec("export", "write the coefficients to FILE (.json or .csv; in a plan a relative FILE is beside "
+                                           "results.json)"), &Options::export_file);
   thermal::stability_fields(definition);
   definition
       .field_from({"bias_coefficients", FieldRole::detail, "model coefficients", "模型系数", "IEEE Std 952-1997 Annex B"},
@@ -146,7 +147,8 @@ ProcedureSpec temperature_model_spec() {
                                                      options.output_column, options.temperature_columns);
     Result result = temperature_model(record, options);
     if (!options.export_file.empty()) {
-      write_file_atomically(options.export_file, thermal_coefficients_text(result, options, options.export_file));
+      const std::string path = call.output_path(options.export_file);
+      write_file_atomically(path, thermal_coefficients_text(result, options, path));
     }
     return result;
   });

@@ -308,10 +308,16 @@ struct ProcedureCall {
   std::function<TimedRecord(const std::string& file)> read_timed_record;
   // Progress of a long computation (a terminal's on the command line, the campaign's in a plan).
   ProgressCallback progress;
+  // Where a plan's results go (the campaign's output directory); empty on the command line.
+  std::string output_directory;
+
+  // A file the procedure writes (an export): a relative path is in output_directory, so that a
+  // plan's exports land beside its results.json; on the command line, in the working directory.
+  std::string output_path(const std::string& path) const;
 };
 
-// What a procedure's run gives: the result's fields by name (a null field is left out) and, for a
-// result that writes a text of its own (ProcedureDefinition::written_by), that text; empty: the
+// What a procedure's run gives: the result's fields by name (procedure_json writes them) and, for
+// a result that writes a text of its own (ProcedureDefinition::written_by), that text; empty: the
 // generic text of the fields (procedure_text).
 struct ProcedureOutput {
   nlohmann::json fields;

@@ -1,4 +1,6 @@
 // The `allan` plan step: a binary record with the scale factor, the same figures as the library.
+#include <fstream>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -175,6 +177,36 @@ columns = ["gx", "ax"]
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("column and columns exclude each other"));
   }
+}
+
+// A plan takes every parameter of the command under its snake_case name: the estimators, and the
+// export, whose relative FILE lands beside results.json (not in the working directory).
+TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
+  testing::ScratchDirectory dir;
+  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
+  const std::string plan = dir.write("plan.toml", R"(
+[plan]
+title = "noise"
+[instrument]
+id = "FOG-1"
+sample_rate_hz = 10.0
+[[procedure]]
+kind = "allan"
+file = "w.f64"
+format = "f64"
+estimators = "oadev,mdev"
+export = ["json", "filter.json"]
+)");
+  const CampaignSummary summary = run_campaign(plan, dir.path() + "/out");
+  const nlohmann::json& result = summary.results["procedures"][0]["result"];
+  EXPECT_TRUE(result.contains("oadev") && result.contains("mdev"));
+  EXPECT_FALSE(result.contains("adev") || result.contains("totdev"));
+  std::ifstream exported(dir.path() + "/out/filter.json");
+  ASSERT_TRUE(exported.good()) << "the export is not beside results.json";
+  const nlohmann::json filter = nlohmann::json::parse(exported);
+  EXPECT_EQ(filter.at("command"), "inertest allan " + dir.path() + "/w.f64");
+  EXPECT_EQ(filter.at("sensors").at("rate").at("white_noise_density").at("unit"), "rad/s/sqrt(Hz)");
+  EXPECT_FALSE(std::ifstream("filter.json").good());
 }
 
 }  // namespace

@@ -15,6 +15,23 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// A plan of one allan step on w.f64, 3000 samples of white noise at 10 Hz written beside it; `keys`
+// (TOML lines) follow the step's file and format, from line 11 on.
+std::string white_noise_plan(testing::ScratchDirectory& dir, const std::string& name, const std::string& keys) {
+  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
+  return dir.write(name, R"(
+[plan]
+title = "noise"
+[instrument]
+id = "FOG-1"
+sample_rate_hz = 10.0
+[[procedure]]
+kind = "allan"
+file = "w.f64"
+format = "f64"
+)" + keys + "\n");
+}
+
 TEST(AllanStep, RunsFromAPlanWithScaleFactor) {
   testing::ScratchDirectory dir;
   dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
@@ -63,19 +80,8 @@ format = "f64"
 // fit_range=(0.2, 25.6); the command line writes it --fit-range 0.2:25.6).
 TEST(AllanStep, FitRangeKey) {
   testing::ScratchDirectory dir;
-  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
   const auto plan_with = [&](const std::string& name, const std::string& range) {
-    return dir.write(name, R"(
-[plan]
-title = "noise"
-[instrument]
-id = "FOG-1"
-sample_rate_hz = 10.0
-[[procedure]]
-kind = "allan"
-file = "w.f64"
-format = "f64"
-fit_range = )" + range + "\n");
+    return white_noise_plan(dir, name, "fit_range = " + range);
   };
   const CampaignSummary summary = run_campaign(plan_with("plan.toml", "[0.2, 25.6]"), dir.path() + "/out");
   const nlohmann::json& fit = summary.results["procedures"][0]["result"]["noise"]["fit"];
@@ -95,21 +101,9 @@ fit_range = )" + range + "\n");
 // upper bound: a maximum above the bound passes, one below it fails, a minimum always fails.
 TEST(AllanStep, LimitOnAnUnidentifiedTermUsesItsUpperBound) {
   testing::ScratchDirectory dir;
-  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
   const auto verdict_for = [&](const std::string& limit) {
-    const std::string plan = dir.write("plan.toml", R"(
-[plan]
-title = "noise"
-[instrument]
-id = "FOG-1"
-sample_rate_hz = 10.0
-[[procedure]]
-kind = "allan"
-file = "w.f64"
-format = "f64"
-input_unit = "deg/h"
-[procedure.limits]
-"/noise/rate_ramp" = )" + limit + "\n");
+    const std::string plan =
+        white_noise_plan(dir, "plan.toml", "input_unit = \"deg/h\"\n[procedure.limits]\n\"/noise/rate_ramp\" = " + limit);
     const CampaignSummary summary = run_campaign(plan, dir.path() + "/out");
     const nlohmann::json& b = summary.results["procedures"][0]["result"]["noise"]["rate_ramp"];
     EXPECT_EQ(b["identified"], false);
@@ -183,20 +177,8 @@ columns = ["gx", "ax"]
 // export, whose relative FILE lands beside results.json (not in the working directory).
 TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   testing::ScratchDirectory dir;
-  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
-  const std::string plan = dir.write("plan.toml", R"(
-[plan]
-title = "noise"
-[instrument]
-id = "FOG-1"
-sample_rate_hz = 10.0
-[[procedure]]
-kind = "allan"
-file = "w.f64"
-format = "f64"
-estimators = "oadev,mdev"
-export = ["json", "filter.json"]
-)");
+  const std::string plan =
+      white_noise_plan(dir, "plan.toml", "estimators = \"oadev,mdev\"\nexport = [\"json\", \"filter.json\"]");
   const CampaignSummary summary = run_campaign(plan, dir.path() + "/out");
   const nlohmann::json& result = summary.results["procedures"][0]["result"];
   EXPECT_TRUE(result.contains("oadev") && result.contains("mdev"));

@@ -155,6 +155,7 @@ constexpr Translation kTable[] = {
     {"residual_rms", "RMS residual", "残差均方根"},
     {"centrifuge_errors", "Centrifuge errors", "离心机误差"},
     {"noise", "Noise terms", "噪声项"},
+    {"psd", "Power spectral density", "功率谱密度"},
     {"noise_equivalent_rate", "Noise equivalent rate", "噪声等效角速度"},
     {"duration", "Record length", "记录时长"},
     {"record_length", "Record length", "记录时长"},

@@ -9,9 +9,10 @@
 namespace inertest::campaign {
 namespace {
 
-std::map<std::string, StepPreparer>& steps() {
-  static std::map<std::string, StepPreparer> registry;
-  return registry;
+// The plan kinds that are not declared procedures.
+const std::map<std::string, StepPreparer>& special_steps() {
+  static const std::map<std::string, StepPreparer> special = {{"hand_checks", prepare_hand_checks_step}};
+  return special;
 }
 
 // The declared procedures' steps (core/procedure_spec.h), built on first use.
@@ -28,15 +29,10 @@ const std::map<std::string, StepPreparer>& declared_steps() {
   return declared;
 }
 
-// The hand-registered steps, then the declared procedures'.
-std::array<const std::map<std::string, StepPreparer>*, 2> all_steps() { return {&steps(), &declared_steps()}; }
+// The special steps, then the declared procedures'.
+std::array<const std::map<std::string, StepPreparer>*, 2> all_steps() { return {&special_steps(), &declared_steps()}; }
 
 }  // namespace
-
-bool register_step(const std::string& kind, StepPreparer preparer) {
-  steps().emplace(kind, std::move(preparer));
-  return true;
-}
 
 const StepPreparer* find_step(const std::string& kind) {
   for (const auto* registry : all_steps()) {

@@ -49,8 +49,11 @@ using StepAction = std::function<nlohmann::json(const StepRunContext&)>;
 // the data files, and returns the action. Must read every key it accepts: leftovers are errors.
 using StepPreparer = std::function<StepAction(PlanTable& step, const PlanContext& context)>;
 
-bool register_step(const std::string& kind, StepPreparer preparer);
+// The steps of the plan kinds that are not declared procedures, one file each in steps/; listed by
+// step_registry.cc (no static initialiser of the shared library registers them).
+StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext& context);
 
+// The step of a plan kind: a declared procedure's (procedure_step.h) or one of the above.
 const StepPreparer* find_step(const std::string& kind);
 std::vector<std::string> registered_step_kinds();
 

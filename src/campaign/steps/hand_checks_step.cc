@@ -9,9 +9,8 @@
 #include "inertest/procedures/hand_checks.h"
 
 namespace inertest::campaign {
-namespace {
 
-StepAction prepare(PlanTable& step, const PlanContext&) {
+StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
   std::vector<HandCheck> checks;
   for (auto& table : step.tables("check")) {
     HandCheck check;
@@ -39,7 +38,4 @@ StepAction prepare(PlanTable& step, const PlanContext&) {
   return [checks](const StepRunContext&) { return hand_checks(checks).to_json(); };
 }
 
-const bool registered = register_step("hand_checks", prepare);
-
-}  // namespace
 }  // namespace inertest::campaign

@@ -173,7 +173,9 @@ HandCheck hand_check_of(const py::dict& given) {
       check.name = value.cast<std::string>();
     } else if (name == "value" && py::isinstance<py::str>(value)) {
       const auto verdict = value.cast<std::string>();
-      if (verdict != "pass" && verdict != "fail") throw Error("hand check value '" + verdict + "': a number, \"pass\" or \"fail\"");
+      if (verdict != "pass" && verdict != "fail") {
+        throw Error("hand check value '" + verdict + "': a number, \"pass\" or \"fail\"");
+      }
       check.verdict = verdict == "pass";
     } else if (name == "value") {
       check.value = value.cast<double>();
@@ -209,15 +211,16 @@ void wrap_procedures(py::module_& module) {
              "least squares F = K*Omega + F0 (eqs. 4-6). source names the input in error messages.\n"
              "Returns a ScaleFactorResult; raises inertest.Error (a ValueError) with the CLI's message.");
 
-  bind_result<HandChecksTag>(module, "HandChecksResult",
-                             "Checks measured by hand (GJB 2426A-2004 5.2-5.4): members as in the CLI's --json object, and\n"
-                             "one Figure per check under the snake_case of its name (e.g. insulation_resistance).\n"
-                             "Members:\n"
-                             "    procedure: str\n"
-                             "    clause: str\n"
-                             "    check_pass: Record  # by check key: whether it is within its min and max\n"
-                             "    checks: list[Record]  # key, name, value, unit, min, max, pass\n"
-                             "    all_pass: bool\n");
+  bind_result<HandChecksTag>(
+      module, "HandChecksResult",
+      "Checks measured by hand (GJB 2426A-2004 5.2-5.4): members as in the CLI's --json object, and\n"
+      "one Figure per check under the snake_case of its name (e.g. insulation_resistance).\n"
+      "Members:\n"
+      "    procedure: str\n"
+      "    clause: str\n"
+      "    check_pass: Record  # by check key: whether it is within its min and max\n"
+      "    checks: list[Record]  # key, name, value, unit, min, max, pass\n"
+      "    all_pass: bool\n");
   module.def("hand_checks", &hand_checks_of, "checks"_a,
              "Checks measured by hand (GJB 2426A-2004 5.2 appearance, 5.3 insulation resistance, impedance,\n"
              "dielectric strength, 5.4 power per supply), as the plan kind hand_checks takes them: checks is a\n"

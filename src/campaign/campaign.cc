@@ -263,22 +263,30 @@ nlohmann::json validate_plan(const std::string& plan_path) {
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
   const Plan plan = load_plan(plan_path);
   campaign::StepRunContext context{options.progress, out_dir};
+  // The steps' exports go into the output directory; one made here goes again if a step fails, so
+  // that a failed campaign leaves no partial output.
+  const bool made_here = !std::filesystem::exists(out_dir);
   std::filesystem::create_directories(out_dir);
 
   nlohmann::json procedures = nlohmann::json::array();
   nlohmann::json verdicts = nlohmann::json::array();
-  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
-    const auto& step = plan.steps[i];
-    if (options.progress) options.progress(step.name, static_cast<double>(i) / static_cast<double>(plan.steps.size()));
-    nlohmann::json result;
-    try {
-      result = step.action(context);
-    } catch (const Error& e) {
-      if (e.location()) throw Error("procedure '" + step.name + "': " + std::string(e.what()));
-      throw Error(step.where, "procedure '" + step.name + "': " + e.message());
+  try {
+    for (std::size_t i = 0; i < plan.steps.size(); ++i) {
+      const auto& step = plan.steps[i];
+      if (options.progress) options.progress(step.name, static_cast<double>(i) / static_cast<double>(plan.steps.size()));
+      nlohmann::json result;
+      try {
+        result = step.action(context);
+      } catch (const Error& e) {
+        if (e.location()) throw Error("procedure '" + step.name + "': " + std::string(e.what()));
+        throw Error(step.where, "procedure '" + step.name + "': " + e.message());
+      }
+      for (const auto& limit : step.limits) verdicts.push_back(check_limit(limit, step.name, result));
+      procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
     }
-    for (const auto& limit : step.limits) verdicts.push_back(check_limit(limit, step.name, result));
-    procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
+  } catch (...) {
+    if (made_here) std::filesystem::remove_all(out_dir);
+    throw;
   }
   if (options.progress) options.progress("done", 1.0);
 

@@ -19,6 +19,13 @@ std::map<std::string, PlotBuilder>& registry() {
   return builders;
 }
 
+// The builders, registered on first use by the generated list (cmake/plot_builder_list.cc.in).
+const std::map<std::string, PlotBuilder>& registered_builders() {
+  static const bool registered = (register_plot_builders(), true);
+  (void)registered;
+  return registry();
+}
+
 bool spans_decades(const std::vector<double>& values, double decades) {
   double lo = std::numeric_limits<double>::infinity();
   double hi = 0.0;
@@ -78,14 +85,12 @@ ReportPlot curve_plot(const PlotContext& context, const std::string& key, const 
 
 }  // namespace
 
-bool register_plots(const std::string& kind, PlotBuilder builder) {
-  registry()[kind] = std::move(builder);
-  return true;
-}
+void register_plots(const std::string& kind, PlotBuilder builder) { registry()[kind] = std::move(builder); }
 
 const PlotBuilder* find_plots(const std::string& kind) {
-  const auto found = registry().find(kind);
-  return found == registry().end() ? nullptr : &found->second;
+  const auto& builders = registered_builders();
+  const auto found = builders.find(kind);
+  return found == builders.end() ? nullptr : &found->second;
 }
 
 std::vector<ReportPlot> generic_plots(const PlotContext& context) {

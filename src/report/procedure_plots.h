@@ -30,8 +30,11 @@ struct PlotContext {
 
 using PlotBuilder = std::function<std::vector<ReportPlot>(const PlotContext&)>;
 
-// Registers the builder for a plan kind; call from a namespace-scope object's initialiser.
-bool register_plots(const std::string& kind, PlotBuilder builder);
+// Registers the builder for a plan kind: call from `void register_<file>()` of
+// src/report/plots/<file>.cc, which the generated list register_plot_builders() calls (CMake
+// lists the files: no static initialiser, and a misnamed function fails to link).
+void register_plots(const std::string& kind, PlotBuilder builder);
+void register_plot_builders();
 const PlotBuilder* find_plots(const std::string& kind);
 
 // Plots for a kind without a builder: every array of at least three objects in the result is a

@@ -1,5 +1,7 @@
 // The `allan` plan step: a binary record with the scale factor, the same figures as the library.
+#include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -189,6 +191,18 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   EXPECT_EQ(filter.at("command"), "inertest allan " + dir.path() + "/w.f64");
   EXPECT_EQ(filter.at("sensors").at("rate").at("white_noise_density").at("unit"), "rad/s/sqrt(Hz)");
   EXPECT_FALSE(std::ifstream("filter.json").good());
+
+  // A later step that fails takes the output directory and the earlier export with it: no partial
+  // output.
+  std::vector<double> with_nan = testing::uniform_noise(10.0, 3000);
+  with_nan[1500] = std::numeric_limits<double>::quiet_NaN();
+  dir.write("nan.f64", testing::f64_bytes(with_nan));
+  const std::string failing = white_noise_plan(dir, "failing.toml",
+                                               "export = [\"json\", \"filter.json\"]\n"
+                                               "[[procedure]]\nkind = \"allan\"\nname = \"second\"\nfile = \"nan.f64\"\n"
+                                               "format = \"f64\"");
+  EXPECT_THROW(run_campaign(failing, dir.path() + "/failed"), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/failed"));
 }
 
 }  // namespace

@@ -300,7 +300,12 @@ std::vector<ReportPlot> allan_plots(const PlotContext& context) {
   return plots;
 }
 
-const bool registered = register_plots("allan", allan_plots);
-
 }  // namespace
+
+void register_allan_plots();
+
+void register_allan_plots() {
+  register_plots("allan", allan_plots);
+}
+
 }  // namespace inertest::report

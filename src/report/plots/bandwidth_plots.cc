@@ -106,7 +106,10 @@ std::vector<ReportPlot> bandwidth_plots(const PlotContext& context) {
   return {std::move(plot)};
 }
 
-const bool registered = register_plots("bandwidth", bandwidth_plots);
-
 }  // namespace
+
+void register_bandwidth_plots();
+
+void register_bandwidth_plots() { register_plots("bandwidth", bandwidth_plots); }
+
 }  // namespace inertest::report

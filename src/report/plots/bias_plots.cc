@@ -93,7 +93,10 @@ std::vector<ReportPlot> bias_plots(const PlotContext& context) {
   return plots;
 }
 
-const bool registered = register_plots("bias", bias_plots);
-
 }  // namespace
+
+void register_bias_plots();
+
+void register_bias_plots() { register_plots("bias", bias_plots); }
+
 }  // namespace inertest::report

@@ -76,7 +76,10 @@ std::vector<ReportPlot> centrifuge_plots(const PlotContext& context) {
   return plots;
 }
 
-const bool registered = register_plots("centrifuge", centrifuge_plots);
-
 }  // namespace
+
+void register_centrifuge_plots();
+
+void register_centrifuge_plots() { register_plots("centrifuge", centrifuge_plots); }
+
 }  // namespace inertest::report

@@ -111,8 +111,13 @@ std::vector<ReportPlot> accelerometer_plots(const PlotContext& context) {
   return plots;
 }
 
-const bool gyro_registered = register_plots("gyro_misalignment", gyro_plots);
-const bool accelerometer_registered = register_plots("accelerometer_misalignment", accelerometer_plots);
-
 }  // namespace
+
+void register_misalignment_plots();
+
+void register_misalignment_plots() {
+  register_plots("gyro_misalignment", gyro_plots);
+  register_plots("accelerometer_misalignment", accelerometer_plots);
+}
+
 }  // namespace inertest::report

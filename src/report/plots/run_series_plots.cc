@@ -65,13 +65,18 @@ std::vector<ReportPlot> maximum_input_rate_plots(const PlotContext& context) {
   return {std::move(plot)};
 }
 
-const bool bias_registered = register_plots("bias_repeatability", [](const PlotContext& context) {
-  return runs_plot(context, "run_biases", "mean_bias");
-});
-const bool scale_factor_registered = register_plots("scale_factor_repeatability", [](const PlotContext& context) {
-  return runs_plot(context, "run_scale_factors", "mean_scale_factor");
-});
-const bool maximum_rate_registered = register_plots("maximum_input_rate", maximum_input_rate_plots);
-
 }  // namespace
+
+void register_run_series_plots();
+
+void register_run_series_plots() {
+  register_plots("bias_repeatability", [](const PlotContext& context) {
+    return runs_plot(context, "run_biases", "mean_bias");
+  });
+  register_plots("scale_factor_repeatability", [](const PlotContext& context) {
+    return runs_plot(context, "run_scale_factors", "mean_scale_factor");
+  });
+  register_plots("maximum_input_rate", maximum_input_rate_plots);
+}
+
 }  // namespace inertest::report

@@ -57,7 +57,10 @@ std::vector<ReportPlot> scale_factor_plots(const PlotContext& context) {
   return plots;
 }
 
-const bool registered = register_plots("scale_factor", scale_factor_plots);
-
 }  // namespace
+
+void register_scale_factor_plots();
+
+void register_scale_factor_plots() { register_plots("scale_factor", scale_factor_plots); }
+
 }  // namespace inertest::report

@@ -71,16 +71,20 @@ std::vector<ReportPlot> temperature_plots(const PlotContext& context, const Temp
   return {std::move(plot)};
 }
 
-const bool bias_registered = register_plots("bias_temperature", [](const PlotContext& context) {
-  return temperature_plots(context, {"runs", "bias", "room_temperature_bias", "ui.room_temperature", "bias_temperature",
-                                     "GJB 2426A-2004 5.12.4, eq. (22)"});
-});
-
-const bool scale_factor_registered = register_plots("scale_factor_temperature", [](const PlotContext& context) {
-  return temperature_plots(context,
-                           {"test_temperatures", "scale_factor", "reference_scale_factor", "ui.reference_temperature",
-                            "scale_factor_temperature", "GJB 2426A-2004 5.8.5, eq. (13)"});
-});
-
 }  // namespace
+
+void register_temperature_plots();
+
+void register_temperature_plots() {
+  register_plots("bias_temperature", [](const PlotContext& context) {
+    return temperature_plots(context, {"runs", "bias", "room_temperature_bias", "ui.room_temperature",
+                                       "bias_temperature", "GJB 2426A-2004 5.12.4, eq. (22)"});
+  });
+  register_plots("scale_factor_temperature", [](const PlotContext& context) {
+    return temperature_plots(context,
+                             {"test_temperatures", "scale_factor", "reference_scale_factor", "ui.reference_temperature",
+                              "scale_factor_temperature", "GJB 2426A-2004 5.8.5, eq. (13)"});
+  });
+}
+
 }  // namespace inertest::report

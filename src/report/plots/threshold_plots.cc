@@ -43,12 +43,17 @@ std::vector<ReportPlot> criterion_plots(const PlotContext& context, const char* 
   return {std::move(plot)};
 }
 
-const bool threshold_registered = register_plots("threshold", [](const PlotContext& context) {
-  return criterion_plots(context, "input", "threshold", "GJB 2426A-2004 5.10.4, eqs. (14)-(17)");
-});
-const bool resolution_registered = register_plots("resolution", [](const PlotContext& context) {
-  return criterion_plots(context, "increment", "resolution", "GJB 2426A-2004 5.11.4, eq. (18)");
-});
-
 }  // namespace
+
+void register_threshold_plots();
+
+void register_threshold_plots() {
+  register_plots("threshold", [](const PlotContext& context) {
+    return criterion_plots(context, "input", "threshold", "GJB 2426A-2004 5.10.4, eqs. (14)-(17)");
+  });
+  register_plots("resolution", [](const PlotContext& context) {
+    return criterion_plots(context, "increment", "resolution", "GJB 2426A-2004 5.11.4, eq. (18)");
+  });
+}
+
 }  // namespace inertest::report

@@ -86,6 +86,20 @@ struct AllanRun {
   bool several = false;
 };
 
+// An Error of `work` about the value of the parameter `name` is a ParameterError (a plan places it at
+// the key).
+template <typename Work>
+void check_parameter(const char* name, const Work& work) {
+  try {
+    work();
+  } catch (const ParameterError&) {
+    throw;
+  } catch (const Error& e) {
+    if (e.location()) throw;
+    throw ParameterError(name, e.message());
+  }
+}
+
 void check(const ProcedureCall& call, const AllanParameters& parameters) {
   if (parameters.column && !parameters.columns.empty()) throw ParameterError("columns", "column and columns exclude each other");
   if (parameters.scale_factor) {
@@ -96,23 +110,16 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
       throw ParameterError("scale_factor", "scale_factor must be finite and nonzero");
     }
   }
-  if (!parameters.export_to.empty()) {
-    if (parameters.export_to.size() != 2) throw ParameterError("export", "export takes FORMAT and FILE");
+  check_parameter("export", [&] {
+    if (parameters.export_to.empty()) return;
+    if (parameters.export_to.size() != 2) throw Error("export takes FORMAT and FILE");
     parse_filter_format(parameters.export_to[0]);
-  }
-  const auto checked = [](const char* name, const auto& work) {
-    try {
-      work();
-    } catch (const ParameterError&) {
-      throw;
-    } catch (const Error& e) {
-      if (e.location()) throw;
-      throw ParameterError(name, e.message());
-    }
-  };
-  checked("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
-  checked("psd_window", [&] { parse_spectral_window(parameters.psd_window.value_or("hann")); });
-  checked("format", [&] { parameters.source(call.files.at("record")); });
+  });
+  check_parameter("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
+  check_parameter("column", [&] { parameters.source(call.files.at("record")); });
+  check_parameter("columns", [&] {
+    for (const std::string& column : parameters.columns) ColumnSelector::parse(column);
+  });
   // The channels' units are checked once their names are read (allan_variance_of_channels_in_file).
   parameters.options(parameters.source(call.files.at("record"))).validate();
 }

@@ -191,6 +191,15 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   EXPECT_EQ(filter.at("command"), "inertest allan " + dir.path() + "/w.f64");
   EXPECT_EQ(filter.at("sensors").at("rate").at("white_noise_density").at("unit"), "rad/s/sqrt(Hz)");
   EXPECT_FALSE(std::ifstream("filter.json").good());
+  // A bad value is an error at its key, before anything runs.
+  for (const std::string keys : {"estimators = \"oadev,foo\"", "export = [\"yaml\", \"filter.yaml\"]", "column = \"0\""}) {
+    try {
+      validate_plan(white_noise_plan(dir, "bad.toml", keys));
+      ADD_FAILURE() << keys << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("bad.toml:11")) << keys;
+    }
+  }
 
   // A later step that fails takes the output directory and the earlier export with it: no partial
   // output.

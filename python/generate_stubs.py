@@ -112,6 +112,15 @@ def class_lines(name, cls):
     return lines if len(lines) > 1 else lines + ["    ..."]
 
 
+def python_literal(value):
+    """A default as Python writes it: True, not JSON's true; strings in double quotes."""
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(python_literal(item) for item in value) + "]"
+    return repr(value)
+
+
 def parameter_line(parameter):
     annotation = "int" if parameter["whole"] else PYTHON_TYPES[parameter["type"]]
     if parameter["required"]:
@@ -119,7 +128,7 @@ def parameter_line(parameter):
     default = parameter["default"]
     if default is None:
         return f"    {parameter['name']}: Optional[{annotation}] = None,"
-    return f"    {parameter['name']}: {annotation} = {json.dumps(default)},"
+    return f"    {parameter['name']}: {annotation} = {python_literal(default)},"
 
 
 def input_line(spec_input):

@@ -152,6 +152,12 @@ def test_generated_stubs_name_every_function_class_and_member():
     assert {"tau", "oadev", "noise", "warnings"} <= members["AllanResult"]
     for spec in inertest.procedure_specs():
         function = next(node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == spec["kind"])
+        # A function made from the spec: each keyword's default is the Python literal of the spec's
+        # (True, not JSON's true).
+        defaults = dict(zip((a.arg for a in function.args.kwonlyargs), function.args.kw_defaults))
+        for parameter in spec["parameters"] if spec["generic_function"] else []:
+            if defaults.get(parameter["name"]) is not None:
+                assert ast.literal_eval(defaults[parameter["name"]]) == (parameter["default"]), (spec["kind"], parameter)
         result = ast.unparse(function.returns)
         if result != "ProcedureResult":
             assert set(spec["fields"]) | {"procedure"} <= members[result], spec["kind"]

@@ -21,8 +21,7 @@ std::map<std::string, PlotBuilder>& registry() {
 
 // The builders, registered on first use by the generated list (cmake/plot_builder_list.cc.in).
 const std::map<std::string, PlotBuilder>& registered_builders() {
-  static const bool registered = (register_plot_builders(), true);
-  (void)registered;
+  [[maybe_unused]] static const bool registered = (register_plot_builders(), true);
   return registry();
 }
 

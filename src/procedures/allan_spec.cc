@@ -27,7 +27,7 @@ namespace {
 struct AllanParameters {
   std::string format = "auto";
   std::optional<std::string> column;
-  std::vector<std::string> columns;
+  std::optional<std::vector<std::string>> columns;  // several channels in one pass
   std::optional<double> sample_rate_hz;
   std::optional<std::string> input_unit;
   std::string taus = "octave";
@@ -67,7 +67,7 @@ struct AllanParameters {
       // raw / (output per deg/s) = deg/s; times 3600 = deg/h.
       options.scale = 3600.0 / *scale_factor;
       options.input_unit = "deg/h";
-    } else if (input_unit && columns.empty()) {
+    } else if (input_unit && !columns) {
       options.input_unit = *input_unit;
     }
     if (psd || psd_window || psd_segment_length > 0) {
@@ -101,7 +101,7 @@ void check_parameter(const char* name, const Work& work) {
 }
 
 void check(const ProcedureCall& call, const AllanParameters& parameters) {
-  if (parameters.column && !parameters.columns.empty()) throw ParameterError("columns", "column and columns exclude each other");
+  if (parameters.column && parameters.columns) throw ParameterError("columns", "column and columns exclude each other");
   if (parameters.scale_factor) {
     if (parameters.input_unit) {
       throw ParameterError("input_unit", "input_unit and scale_factor exclude each other: scaled output is in deg/h");
@@ -118,7 +118,9 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
   check_parameter("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
   check_parameter("column", [&] { parameters.source(call.files.at("record")); });
   check_parameter("columns", [&] {
-    for (const std::string& column : parameters.columns) ColumnSelector::parse(column);
+    if (!parameters.columns) return;
+    if (parameters.columns->empty()) throw Error("name at least one channel");
+    for (const std::string& column : *parameters.columns) ColumnSelector::parse(column);
   });
   // The channels' units are checked once their names are read (allan_variance_of_channels_in_file).
   parameters.options(parameters.source(call.files.at("record"))).validate();
@@ -129,19 +131,19 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
   const RateRecordSource source = parameters.source(file);
   const AllanOptions options = parameters.options(source);
   AllanRun result;
-  if (parameters.columns.empty()) {
+  if (!parameters.columns) {
     result.channels.channels.push_back(
         {parameters.column.value_or("rate"), allan_variance_of_file(source, options, call.progress)});
   } else {
     std::vector<ColumnSelector> selectors;
-    for (const std::string& column : parameters.columns) selectors.push_back(ColumnSelector::parse(column));
+    for (const std::string& column : *parameters.columns) selectors.push_back(ColumnSelector::parse(column));
     result.channels = allan_variance_of_channels_in_file(source, selectors, parameters.input_unit.value_or(""), options,
                                                          call.progress);
     result.several = true;
   }
   if (!parameters.export_to.empty()) {
     const std::string command = fmt::format("inertest allan {}{}", file,
-                                            result.several ? " --columns " + fmt::format("{}", fmt::join(parameters.columns, ",")) : "");
+                                            result.several ? " --columns " + fmt::format("{}", fmt::join(*parameters.columns, ",")) : "");
     write_file_atomically(call.output_path(parameters.export_to[1]),
                           format_filter_parameters(filter_noise_parameters(result.channels),
                                                    parse_filter_format(parameters.export_to[0]), command));
@@ -184,8 +186,9 @@ ProcedureSpec allan_spec() {
                      .text(),
                  set_optional<std::string, &AllanParameters::column>)
       .parameter(ParameterSpec("columns", "several channels in one pass, e.g. gx,gy,gz,ax,ay,az (names or indices): "
-                                          "JSON {\"channels\": {...}}"),
-                 &AllanParameters::columns)
+                                          "JSON {\"channels\": {...}}")
+                     .texts(),
+                 set_optional<std::vector<std::string>, &AllanParameters::columns>)
       .parameter(ParameterSpec("sample_rate_hz", "sample rate (default: the rate the file stores; one that "
                                                  "contradicts it is an error)")
                      .unit_is("Hz")

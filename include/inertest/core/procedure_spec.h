@@ -69,6 +69,8 @@ struct ParameterSpec {
   ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
   // A text parameter stored through a binder (a std::string member is one already).
   ParameterSpec& text() { type = ParameterType::text; return *this; }
+  // A list of texts stored through a binder (a std::vector<std::string> member is one already).
+  ParameterSpec& texts() { type = ParameterType::texts; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
   ParameterSpec& instrument_gives(std::string key, bool only = false) {
     instrument_default = std::move(key);

@@ -192,7 +192,8 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   EXPECT_EQ(filter.at("sensors").at("rate").at("white_noise_density").at("unit"), "rad/s/sqrt(Hz)");
   EXPECT_FALSE(std::ifstream("filter.json").good());
   // A bad value is an error at its key, before anything runs.
-  for (const std::string keys : {"estimators = \"oadev,foo\"", "export = [\"yaml\", \"filter.yaml\"]", "column = \"0\""}) {
+  for (const std::string keys :
+       {"estimators = \"oadev,foo\"", "export = [\"yaml\", \"filter.yaml\"]", "column = \"0\"", "columns = []"}) {
     try {
       validate_plan(white_noise_plan(dir, "bad.toml", keys));
       ADD_FAILURE() << keys << " was accepted";

@@ -86,20 +86,6 @@ struct AllanRun {
   bool several = false;
 };
 
-// An Error of `work` about the value of the parameter `name` is a ParameterError (a plan places it at
-// the key).
-template <typename Work>
-void check_parameter(const char* name, const Work& work) {
-  try {
-    work();
-  } catch (const ParameterError&) {
-    throw;
-  } catch (const Error& e) {
-    if (e.location()) throw;
-    throw ParameterError(name, e.message());
-  }
-}
-
 void check(const ProcedureCall& call, const AllanParameters& parameters) {
   if (parameters.column && parameters.columns) throw ParameterError("columns", "column and columns exclude each other");
   if (parameters.scale_factor) {
@@ -116,14 +102,15 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     parse_filter_format(parameters.export_to[0]);
   });
   check_parameter("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
-  check_parameter("column", [&] { parameters.source(call.files.at("record")); });
+  RateRecordSource source;
+  check_parameter("column", [&] { source = parameters.source(call.files.at("record")); });
   check_parameter("columns", [&] {
     if (!parameters.columns) return;
     if (parameters.columns->empty()) throw Error("name at least one channel");
     for (const std::string& column : *parameters.columns) ColumnSelector::parse(column);
   });
   // The channels' units are checked once their names are read (allan_variance_of_channels_in_file).
-  parameters.options(parameters.source(call.files.at("record"))).validate();
+  parameters.options(source).validate();
 }
 
 AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
@@ -149,11 +136,6 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
                                                    parse_filter_format(parameters.export_to[0]), command));
   }
   return result;
-}
-
-template <typename T, std::optional<T> AllanParameters::*member>
-void set_optional(AllanParameters& parameters, const nlohmann::json& value) {
-  parameters.*member = value.get<T>();
 }
 
 }  // namespace
@@ -182,29 +164,26 @@ ProcedureSpec allan_spec() {
                      .one_of({"auto", "csv", "f64", "f32", "mat", "hdf5", "tdms"}),
                  &AllanParameters::format)
       .parameter(ParameterSpec("column", "text column (header name or 1-based index), or channel: group/channel, "
-                                         "struct.field (default: the only one)")
-                     .text(),
-                 set_optional<std::string, &AllanParameters::column>)
+                                         "struct.field (default: the only one)"),
+                 &AllanParameters::column)
       .parameter(ParameterSpec("columns", "several channels in one pass, e.g. gx,gy,gz,ax,ay,az (names or indices): "
-                                          "JSON {\"channels\": {...}}")
-                     .texts(),
-                 set_optional<std::vector<std::string>, &AllanParameters::columns>)
+                                          "JSON {\"channels\": {...}}"),
+                 &AllanParameters::columns)
       .parameter(ParameterSpec("sample_rate_hz", "sample rate (default: the rate the file stores; one that "
                                                  "contradicts it is an error)")
                      .unit_is("Hz")
                      .command_line_name_is("rate")
                      .instrument_gives("sample_rate_hz"),
-                 set_optional<double, &AllanParameters::sample_rate_hz>)
+                 &AllanParameters::sample_rate_hz)
       .parameter(ParameterSpec("input_unit", "unit of the samples (default deg/h); with columns per channel too: "
-                                             "deg/s,ax=m/s^2 (an acceleration unit gives the accelerometer's noise terms)")
-                     .text(),
-                 set_optional<std::string, &AllanParameters::input_unit>)
+                                             "deg/s,ax=m/s^2 (an acceleration unit gives the accelerometer's noise terms)"),
+                 &AllanParameters::input_unit)
       .parameter(ParameterSpec("taus", "octave, decade, all, N/decade or a comma list of tau in s; the noise terms are "
                                        "fitted on those an octave or more apart"),
                  &AllanParameters::taus)
       .parameter(ParameterSpec("scale_factor", "K, output units per deg/s: the raw output is divided by K and "
                                                "reported in deg/h (excludes input_unit)"),
-                 set_optional<double, &AllanParameters::scale_factor>)
+                 &AllanParameters::scale_factor)
       .parameter(ParameterSpec("estimators", "all, or a comma list of adev, oadev, mdev, hdev, ohdev, totdev"),
                  &AllanParameters::estimators)
       .parameter(ParameterSpec("fit_range", "TMIN:TMAX, the taus of the eq. (30) fit (default: chosen automatically, "
@@ -224,7 +203,7 @@ ProcedureSpec allan_spec() {
                  &AllanParameters::psd)
       .parameter(ParameterSpec("psd_window", "the Welch window, default hann (implies psd)")
                      .one_of({"hann", "hamming", "blackman-harris", "rectangular"}),
-                 set_optional<std::string, &AllanParameters::psd_window>)
+                 &AllanParameters::psd_window)
       .parameter(ParameterSpec("psd_segment_length", "samples per Welch segment, 0: a power of two giving 16-32 "
                                                      "segments (a length implies psd)")
                      .command_line_name_is("psd-segment"),

@@ -38,12 +38,6 @@ struct CentrifugeInputOptions {
   }
 };
 
-// An optional number of the options, absent unless given.
-template <std::optional<double> CentrifugeInputOptions::*member>
-void set_optional(CentrifugeInputOptions& options, const nlohmann::json& value) {
-  options.*member = value.get<double>();
-}
-
 }  // namespace
 
 ProcedureSpec centrifuge_spec() {
@@ -83,7 +77,7 @@ ProcedureSpec centrifuge_spec() {
                      .unit_is("deg")
                      .command_line_name_is("latitude")
                      .site_gives("latitude_deg"),
-                 set_optional<&Options::latitude_deg>)
+                 &Options::latitude_deg)
       .parameter(ParameterSpec("gravity_m_s2", "local gravity")
                      .unit_is("m/s^2")
                      .command_line_name_is("gravity")
@@ -92,15 +86,15 @@ ProcedureSpec centrifuge_spec() {
       .parameter(ParameterSpec("k1_rad", "measured k1 = dtheta_y2t + dtheta_y2(-Omega t)")
                      .unit_is("rad")
                      .command_line_name_is("k1"),
-                 set_optional<&Options::k1_rad>)
+                 &Options::k1_rad)
       .parameter(ParameterSpec("k2_rad", "measured k2 = dtheta_x2t + dtheta_x2(-Omega t)")
                      .unit_is("rad")
                      .command_line_name_is("k2"),
-                 set_optional<&Options::k2_rad>)
+                 &Options::k2_rad)
       .parameter(ParameterSpec("delta_omega_rad_s", "measured platform rate minus main-axis rate")
                      .unit_is("rad/s")
                      .command_line_name_is("delta-omega"),
-                 set_optional<&Options::delta_omega_rad_s>)
+                 &Options::delta_omega_rad_s)
       .parameter(ParameterSpec("compensation",
                                "compensate the Earth rate and the centrifuge errors in epsilon (false: epsilon = 0, "
                                "the paper's comparison)")

@@ -139,13 +139,7 @@ ProcedureSpec threshold_spec() {
         if (options.table_rate_deg_s == 0.0) throw ParameterError("table_rate", "must be nonzero with method 3");
         if (options.sample_rate_hz && !(*options.sample_rate_hz > 0.0))
           throw ParameterError("rate", "must be positive");
-        if (!options.format.empty()) {
-          try {
-            BinaryFormat::parse(options.format);
-          } catch (const Error& e) {
-            throw ParameterError("format", e.message());
-          }
-        }
+        if (!options.format.empty()) check_parameter("format", [&] { BinaryFormat::parse(options.format); });
       })
       .compute([](const ProcedureCall& call, const Options& options) {
         const std::string& file = call.files.at("file");

@@ -52,6 +52,20 @@ class ParameterError : public Error {
   std::string parameter;
 };
 
+// Runs a check of the parameter `name`'s value: an Error without a place from it becomes a
+// ParameterError (a plan places it at the parameter's key).
+template <typename Check>
+void check_parameter(const std::string& name, const Check& check) {
+  try {
+    check();
+  } catch (const ParameterError&) {
+    throw;
+  } catch (const Error& e) {
+    if (e.location()) throw;
+    throw ParameterError(name, e.message());
+  }
+}
+
 // A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
 // setters below, e.g. .unit_is("deg/s").required_on_command_line().
 struct ParameterSpec {
@@ -67,10 +81,6 @@ struct ParameterSpec {
   ParameterSpec& required_on_command_line() { required = true; return *this; }
   // A yes/no parameter stored through a binder (a bool member is one already).
   ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
-  // A text parameter stored through a binder (a std::string member is one already).
-  ParameterSpec& text() { type = ParameterType::text; return *this; }
-  // A list of texts stored through a binder (a std::vector<std::string> member is one already).
-  ParameterSpec& texts() { type = ParameterType::texts; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
   ParameterSpec& instrument_gives(std::string key, bool only = false) {
     instrument_default = std::move(key);
@@ -392,6 +402,16 @@ inline constexpr bool is_optional = false;
 template <typename T>
 inline constexpr bool is_optional<std::optional<T>> = true;
 
+// T, or the value type of a std::optional<T>.
+template <typename T>
+struct optional_value {
+  using type = T;
+};
+template <typename T>
+struct optional_value<std::optional<T>> {
+  using type = T;
+};
+
 template <typename T>
 constexpr FieldValue field_value_of() {
   if constexpr (is_optional<T>) {
@@ -445,7 +465,7 @@ class ProcedureDefinition {
   }
 
   // A parameter stored in an Options member; its default is the member's default value unless the
-  // parameter is required.
+  // parameter is required; a std::optional member has none (absent unless given).
   // A std::size_t member is a whole number (checked by the command line and plans); the other types
   // are as ParameterType says.
   template <typename T>
@@ -591,23 +611,26 @@ class ProcedureDefinition {
   // A parameter stored in the member of the Options that `member_of` returns.
   template <typename T>
   ProcedureDefinition& member_parameter(ParameterSpec parameter, std::function<T&(Options&)> member_of) {
-    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::string> || std::is_same_v<T, std::size_t> ||
-                      std::is_same_v<T, std::vector<double>> || std::is_same_v<T, bool> ||
-                      std::is_same_v<T, std::vector<std::string>>,
+    using Value = typename optional_value<T>::type;
+    static_assert(std::is_same_v<Value, double> || std::is_same_v<Value, std::string> ||
+                      std::is_same_v<Value, std::size_t> || std::is_same_v<Value, std::vector<double>> ||
+                      std::is_same_v<Value, bool> || std::is_same_v<Value, std::vector<std::string>>,
                   "number, whole number, text, numbers, boolean or texts parameters");
-    Options defaults;
-    if (!parameter.required) spec_.defaults[parameter.name] = member_of(defaults);
-    parameter.type = std::is_same_v<T, std::string>           ? ParameterType::text
-                     : std::is_same_v<T, std::vector<double>> ? ParameterType::numbers
-                     : std::is_same_v<T, bool>                ? ParameterType::boolean
-                     : std::is_same_v<T, std::vector<std::string>> ? ParameterType::texts
-                                                              : ParameterType::number;
-    parameter.whole = std::is_same_v<T, std::size_t>;
+    if constexpr (!is_optional<T>) {
+      Options defaults;
+      if (!parameter.required) spec_.defaults[parameter.name] = member_of(defaults);
+    }
+    parameter.type = std::is_same_v<Value, std::string>                ? ParameterType::text
+                     : std::is_same_v<Value, std::vector<double>>      ? ParameterType::numbers
+                     : std::is_same_v<Value, bool>                     ? ParameterType::boolean
+                     : std::is_same_v<Value, std::vector<std::string>> ? ParameterType::texts
+                                                                       : ParameterType::number;
+    parameter.whole = std::is_same_v<Value, std::size_t>;
     binders_.emplace_back(parameter.name, [member_of](Options& options, const nlohmann::json& value) {
-      if constexpr (std::is_same_v<T, std::size_t>) {
+      if constexpr (std::is_same_v<Value, std::size_t>) {
         member_of(options) = static_cast<std::size_t>(value.get<double>());
       } else {
-        member_of(options) = value.get<T>();
+        member_of(options) = value.get<Value>();
       }
     });
     spec_.parameters.push_back(std::move(parameter));

@@ -5,6 +5,7 @@
 #include "inertest/allan/allan_channels.h"
 
 #include <cmath>
+#include <gmock/gmock.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <tuple>
@@ -231,6 +232,50 @@ TEST(FilterParameters, EveryFormatNamesItsKeysAndSaysHowEachNumberWasObtained) {
   EXPECT_EQ(json.at("sensors").at("gx").at("random_walk_density").at("unit"), "rad/s^2/sqrt(Hz)");
   for (const std::string& text : {matlab, sim}) EXPECT_NE(text.find("GJB 2426A-2004 eq. 30"), std::string::npos);
   EXPECT_THROW(parse_filter_format("yaml"), Error);
+}
+
+// Each target loads only what its reader takes: Kalibr both sensors, MATLAB one axis or three,
+// gnss-ins-sim three of each; anything else is refused before a line is written.
+TEST(FilterParameters, ChannelSetsATargetCannotLoadAreRefused) {
+  const auto sensors = filter_noise_parameters(analysed());
+  const std::vector<SensorNoiseParameters> gyros(sensors.begin(), sensors.begin() + 3);
+  const std::vector<SensorNoiseParameters> two_gyros_one_accelerometer = {sensors[0], sensors[1], sensors[5]};
+  const auto refusal = [](const std::vector<SensorNoiseParameters>& chosen, FilterFormat format) {
+    try {
+      format_filter_parameters(chosen, format, "test");
+    } catch (const Error& e) {
+      return e.message();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(refusal(gyros, FilterFormat::kKalibr),
+              ::testing::HasSubstr("Kalibr's imu.yaml needs a gyroscope and an accelerometer: the channels give 3 "
+                                   "gyro and 0 accelerometer axes"));
+  EXPECT_THAT(refusal(two_gyros_one_accelerometer, FilterFormat::kMatlab),
+              ::testing::HasSubstr("MATLAB's gyroparams and accelparams take one axis or three"));
+  EXPECT_THAT(refusal(gyros, FilterFormat::kGnssInsSim),
+              ::testing::HasSubstr("gnss-ins-sim's IMU error model takes three gyro and three accelerometer axes"));
+  EXPECT_EQ(refusal(gyros, FilterFormat::kMatlab), "accepted");
+  EXPECT_EQ(refusal(two_gyros_one_accelerometer, FilterFormat::kKalibr), "accepted");
+  EXPECT_EQ(refusal({sensors[0]}, FilterFormat::kJson), "accepted");
+}
+
+// gnss-ins-sim has no random-walk term: its file lists each K it leaves out. MATLAB's and
+// gnss-ins-sim's files carry the record's rate and the discrete values the JSON has.
+TEST(FilterParameters, WhatAFormatCannotHoldIsInItsComments) {
+  const auto sensors = filter_noise_parameters(analysed());
+  const std::string sim = format_filter_parameters(sensors, FilterFormat::kGnssInsSim, "test");
+  EXPECT_THAT(sim, ::testing::HasSubstr("K is left out (gx " + fmt::format("{:.6g}", sensors[0].random_walk_density.value)));
+  EXPECT_THAT(sim, ::testing::HasSubstr("rad/s^2/sqrt(Hz); ax "));
+  EXPECT_THAT(sim, ::testing::HasSubstr("\nfs = 10  # Hz"));
+  const std::string matlab = format_filter_parameters(sensors, FilterFormat::kMatlab, "test");
+  EXPECT_THAT(matlab, ::testing::HasSubstr("\nsample_rate_hz = 10;"));
+  for (const std::string& text : {sim, matlab}) {
+    for (const SensorNoiseParameters& s : {sensors[0], sensors[3]}) {
+      EXPECT_THAT(text, ::testing::HasSubstr(fmt::format("white sigma [{:.6g}", s.discrete_white_sigma)));
+      EXPECT_THAT(text, ::testing::HasSubstr(fmt::format("Gauss-Markov phi [{:.6g}", s.discrete_gauss_markov_phi)));
+    }
+  }
 }
 
 TEST(AllanChannels, PerChannelUnitsAreCheckedAgainstTheChannels) {

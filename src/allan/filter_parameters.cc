@@ -102,6 +102,57 @@ constexpr const char* kHow =
     "(sigma(tau) = K sqrt(tau/3)), bias instability B (flat floor 0.664 B) with its first-order Gauss-Markov "
     "equivalent: T = tau_min/1.8926, sigma = 0.664 B/0.6174 (El-Sheimy et al. 2008, eq. 23); no inflation applied";
 
+// The discrete-time values of the channels (one comment line), for the formats that take the
+// continuous ones: white sigma N/sqrt(dt), random-walk step K sqrt(dt), Gauss-Markov phi and
+// driving sigma, at the record's interval dt.
+std::string discrete_note(const char* comment, const std::vector<const SensorNoiseParameters*>& chosen,
+                          const SiUnits& units) {
+  if (chosen.empty()) return "";
+  return fmt::format(
+      "{} discrete at dt = {} s ({}): white sigma {} {}, random-walk step sigma {} {}, Gauss-Markov phi {}, "
+      "driving sigma {} {}\n",
+      comment, number(1.0 / chosen.front()->sample_rate_hz), channel_list(chosen),
+      vector_of(chosen, [](const auto& s) { return s.discrete_white_sigma; }), units.bias,
+      vector_of(chosen, [](const auto& s) { return s.discrete_random_walk_sigma; }), units.bias,
+      vector_of(chosen, [](const auto& s) { return s.discrete_gauss_markov_phi; }),
+      vector_of(chosen, [](const auto& s) { return s.discrete_gauss_markov_sigma; }), units.bias);
+}
+
+// "gx 9.5e-06, gy ... rad/s^2/sqrt(Hz); ax ... m/s^3/sqrt(Hz)": K of each channel.
+std::string random_walk_note(const std::vector<SensorNoiseParameters>& sensors) {
+  std::string text;
+  for (SensorKind kind : {SensorKind::kGyro, SensorKind::kAccelerometer}) {
+    const auto chosen = of_kind(sensors, kind);
+    if (chosen.empty()) continue;
+    std::string values;
+    for (const SensorNoiseParameters* s : chosen) {
+      values += fmt::format("{}{} {}", values.empty() ? "" : ", ", s->channel, number(s->random_walk_density.value));
+    }
+    text += fmt::format("{}{} {}", text.empty() ? "" : "; ", values, si_units(kind).walk);
+  }
+  return text;
+}
+
+// What each target can load (their readers): Kalibr's imu.yaml has the keys of both sensors
+// (kalibr ConfigReader: a missing field is an error); MATLAB's gyroparams/accelparams take a scalar
+// or a 3-element row vector; gnss-ins-sim's IMU error model takes the x, y, z of both (imu_model.IMU
+// needs gyro_* and accel_*). Anything else is an Error before a file is written.
+void check_target(const std::vector<SensorNoiseParameters>& sensors, FilterFormat format) {
+  const std::size_t gyros = of_kind(sensors, SensorKind::kGyro).size();
+  const std::size_t accelerometers = of_kind(sensors, SensorKind::kAccelerometer).size();
+  const std::string given = fmt::format("the channels give {} gyro and {} accelerometer axes", gyros, accelerometers);
+  const std::string how = " (an acceleration unit makes a channel an accelerometer's: --input-unit ax=m/s^2)";
+  if (format == FilterFormat::kKalibr && (gyros == 0 || accelerometers == 0)) {
+    throw Error("Kalibr's imu.yaml needs a gyroscope and an accelerometer: " + given + how + "; json takes any");
+  }
+  if (format == FilterFormat::kMatlab && (gyros == 2 || gyros > 3 || accelerometers == 2 || accelerometers > 3)) {
+    throw Error("MATLAB's gyroparams and accelparams take one axis or three: " + given);
+  }
+  if (format == FilterFormat::kGnssInsSim && (gyros != 3 || accelerometers != 3)) {
+    throw Error("gnss-ins-sim's IMU error model takes three gyro and three accelerometer axes: " + given + how);
+  }
+}
+
 std::string kalibr(const std::vector<SensorNoiseParameters>& sensors, const std::string& command) {
   std::string text = "# Kalibr IMU noise model (imu.yaml), written by inertest: " + command + "\n# " + kHow + "\n";
   text += "# Kalibr takes one value per sensor: the largest of its axes (the conservative choice).\n";
@@ -147,16 +198,22 @@ std::string matlab(const std::vector<SensorNoiseParameters>& sensors, const std:
     text += fmt::format("% Gauss-Markov sigma {} {}, correlation time {} s\n",
                         vector_of(chosen, [](const auto& s) { return s.gauss_markov_sigma; }), units.bias,
                         vector_of(chosen, [](const auto& s) { return s.gauss_markov_correlation_time_s; }));
+    text += discrete_note("%", chosen, units);
   };
   block(SensorKind::kGyro, "gyro", "gyroparams");
   block(SensorKind::kAccelerometer, "accel", "accelparams");
-  return text;
+  return text + fmt::format("sample_rate_hz = {};  % the record's (imuSensor's SampleRate)\n", number(sensors.front().sample_rate_hz));
 }
 
 std::string gnss_ins_sim(const std::vector<SensorNoiseParameters>& sensors, const std::string& command) {
   std::string text = "# gnss-ins-sim IMU error dictionary, written by inertest: " + command + "\n# " + kHow +
                      "\n# *_b_stability is the Gauss-Markov sigma, *_b_corr its correlation time; the constant bias "
-                     "is not a noise figure and is left at 0.\nimport numpy as np\n\nimu_err = {\n";
+                     "is not a noise figure and is left at 0.\n# The model has no rate or acceleration random walk: "
+                     "K is left out (" + random_walk_note(sensors) + ").\n" +
+                     discrete_note("#", of_kind(sensors, SensorKind::kGyro), si_units(SensorKind::kGyro)) +
+                     discrete_note("#", of_kind(sensors, SensorKind::kAccelerometer), si_units(SensorKind::kAccelerometer)) +
+                     "import numpy as np\n\nfs = " + number(sensors.front().sample_rate_hz) +
+                     "  # Hz, the record's sample rate (the IMU's fs of gnss-ins-sim's Sim)\n\nimu_err = {\n";
   constexpr double kRadPerDeg = constants::kPi / 180.0;
   const auto gyro = of_kind(sensors, SensorKind::kGyro);
   if (!gyro.empty()) {
@@ -258,6 +315,7 @@ nlohmann::json filter_parameters_json(const std::vector<SensorNoiseParameters>& 
 std::string format_filter_parameters(const std::vector<SensorNoiseParameters>& sensors, FilterFormat format,
                                      const std::string& command) {
   if (sensors.empty()) throw Error("no sensor to export");
+  check_target(sensors, format);
   switch (format) {
     case FilterFormat::kKalibr: return kalibr(sensors, command);
     case FilterFormat::kMatlab: return matlab(sensors, command);

@@ -190,6 +190,21 @@ TEST(AllanCommand, ExportWritesTheFilterParametersOrNothing) {
   EXPECT_THAT(written, HasSubstr("gyroscope_noise_density: "));
   EXPECT_THAT(written, HasSubstr("accelerometer_random_walk: "));
   EXPECT_THAT(written, HasSubstr("update_rate: 100"));
+  // The header's command gives the same file again: every parameter that made the numbers is in it.
+  const std::string marker = "written by inertest: inertest ";
+  const auto begin = written.find(marker);
+  ASSERT_NE(begin, std::string::npos) << written;
+  const std::string command = written.substr(begin + marker.size(), written.find('\n', begin) - begin - marker.size());
+  EXPECT_THAT(command, HasSubstr("--input-unit deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2"));
+  std::vector<std::string> words;
+  for (std::size_t at = 0; at <= command.size();) {
+    const std::size_t end = std::min(command.find(' ', at), command.size());
+    words.push_back(command.substr(at, end - at));
+    at = end + 1;
+  }
+  ASSERT_EQ(run_cli(words).exit_code, 0) << command;
+  std::ifstream again(yaml);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()), written);
   // Channels in counts have no SI density: an error, and neither the file nor the JSON.
   const std::string refused = dir.path() + "/refused.yaml";
   const auto counts = run_cli({"allan", record, "--rate", "100", "--columns", "gx,ax", "--input-unit", "count",

@@ -6,9 +6,12 @@
 // keyword; the flag its kebab-case, `--rate` and `--psd-segment` kept as the README writes them).
 // The result writes its own JSON object and text (AllanResult, AllanChannels): a tau table, and one
 // object per channel with --columns.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -113,6 +116,49 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
   parameters.options(source).validate();
 }
 
+// A word of a command line, quoted for a POSIX shell when it needs to be.
+std::string shell_word(const std::string& word) {
+  const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || std::string_view("_-./:=,+^@%").find(static_cast<char>(c)) != std::string_view::npos;
+  });
+  if (plain) return word;
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// The command line of this run, for an export's header: `inertest allan FILE` and each parameter
+// whose value is not its default, as the command line takes it, whether the run came from the
+// command line, a plan or Python, so that the file says how to get its numbers again.
+std::string command_line(const ProcedureCall& call) {
+  const ProcedureSpec& spec = *find_procedure_spec("allan");
+  std::vector<std::string> words = {"inertest", "allan", call.files.at("record")};
+  for (const ParameterSpec& parameter : spec.parameters) {
+    const auto given = call.parameters.find(parameter.name);
+    const auto fallback = spec.defaults.find(parameter.name);
+    if (given == call.parameters.end() || given->is_null() ||
+        (fallback != spec.defaults.end() && fallback->second == *given)) {
+      continue;
+    }
+    words.push_back(parameter.command_line_option());
+    const auto text_of = [](const nlohmann::json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); };
+    if (parameter.type == ParameterType::boolean) continue;  // the flag alone
+    if (!given->is_array()) {
+      words.push_back(text_of(*given));
+    } else if (parameter.cli_values > 0) {
+      for (const nlohmann::json& value : *given) words.push_back(text_of(value));
+    } else {
+      std::string list;
+      const char separator = parameter.type == ParameterType::numbers ? parameter.cli_separator : ',';
+      for (const nlohmann::json& value : *given) list += (list.empty() ? "" : std::string(1, separator)) + text_of(value);
+      words.push_back(list);
+    }
+  }
+  std::string line;
+  for (const std::string& word : words) line += (line.empty() ? "" : " ") + shell_word(word);
+  return line;
+}
+
 AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
   const std::string& file = call.files.at("record");
   const RateRecordSource source = parameters.source(file);
@@ -129,11 +175,9 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
     result.several = true;
   }
   if (!parameters.export_to.empty()) {
-    const std::string command = fmt::format("inertest allan {}{}", file,
-                                            result.several ? " --columns " + fmt::format("{}", fmt::join(*parameters.columns, ",")) : "");
     write_file_atomically(call.output_path(parameters.export_to[1]),
                           format_filter_parameters(filter_noise_parameters(result.channels),
-                                                   parse_filter_format(parameters.export_to[0]), command));
+                                                   parse_filter_format(parameters.export_to[0]), command_line(call)));
   }
   return result;
 }

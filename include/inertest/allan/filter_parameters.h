@@ -62,10 +62,12 @@ enum class FilterFormat { kKalibr, kMatlab, kGnssInsSim, kJson };
 // "kalibr", "matlab", "gnss-ins-sim", "json"; throws Error listing them.
 FilterFormat parse_filter_format(std::string_view text);
 
-// The file's text. Kalibr and gnss-ins-sim take one gyro and one accelerometer triad: the gyro
-// channels, then the accelerometer channels, in the order given, are the x, y, z axes (Kalibr's
-// single value per sensor is the largest of the axes, the conservative choice). `command` is
-// quoted in the file's header comment.
+// The file's text. The gyro channels, then the accelerometer channels, in the order given, are the
+// x, y, z axes. Kalibr takes one value per sensor (the largest of its axes, the conservative
+// choice) and needs both sensors; MATLAB's gyroparams/accelparams one axis or three; gnss-ins-sim
+// three of each, and has no random-walk term (the file says K is left out). Channels a target
+// cannot load are an Error, before any text. MATLAB and gnss-ins-sim get the record's sample rate
+// and the discrete values in comments. `command` is quoted in the file's header comment.
 std::string format_filter_parameters(const std::vector<SensorNoiseParameters>& sensors, FilterFormat format,
                                      const std::string& command);
 

@@ -188,7 +188,9 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   std::ifstream exported(dir.path() + "/out/filter.json");
   ASSERT_TRUE(exported.good()) << "the export is not beside results.json";
   const nlohmann::json filter = nlohmann::json::parse(exported);
-  EXPECT_EQ(filter.at("command"), "inertest allan " + dir.path() + "/w.f64");
+  // The command that gives these numbers again, the plan's keys as its options.
+  EXPECT_EQ(filter.at("command"), "inertest allan " + dir.path() +
+                                      "/w.f64 --format f64 --rate 10.0 --estimators oadev,mdev --export json filter.json");
   EXPECT_EQ(filter.at("sensors").at("rate").at("white_noise_density").at("unit"), "rad/s/sqrt(Hz)");
   EXPECT_FALSE(std::ifstream("filter.json").good());
   // A bad value is an error at its key, before anything runs.

@@ -104,6 +104,10 @@ std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
   if (rate.ndim() != 2) throw Error(fmt::format("rate must be a 1-D or 2-D array, not {}-D", rate.ndim()));
   const auto rows = static_cast<std::size_t>(rate.shape(0));
   const auto count = static_cast<std::size_t>(rate.shape(1));
+  if (count > rows) {
+    throw Error(fmt::format("rate has {} rows and {} columns: the channels are the columns, one sample a row "
+                            "(a transposed array? rate.T)", rows, count));
+  }
   std::vector<std::string> names;
   for (std::size_t c = 0; c < count; ++c) names.push_back(std::to_string(c + 1));
   const std::vector<std::string> selectors = names;

@@ -45,21 +45,31 @@ std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
   return keywords;
 }
 
+// A Python number: int, float, or numpy's scalars (np.int64, np.float32...), but not a bool or text.
+bool is_number(const py::handle& value) {
+  return PyNumber_Check(value.ptr()) != 0 && !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
+         !py::isinstance<py::array>(value);
+}
+
 nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle& value) {
   if (parameter.type == ParameterType::boolean) {
     if (!py::isinstance<py::bool_>(value)) throw Error(fmt::format("{} must be True or False", parameter.name));
     return value.cast<bool>();
   }
   if (parameter.type == ParameterType::numbers || parameter.type == ParameterType::texts) {
-    if (py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a list", parameter.name));
-    if (parameter.type == ParameterType::texts) return value.cast<std::vector<std::string>>();
-    return value.cast<std::vector<double>>();
+    const bool texts = parameter.type == ParameterType::texts;
+    const std::string what = fmt::format("{} must be a list of {}", parameter.name, texts ? "strings" : "numbers");
+    if (py::isinstance<py::str>(value)) throw Error(what);
+    try {
+      if (texts) return value.cast<std::vector<std::string>>();
+      return value.cast<std::vector<double>>();
+    } catch (const py::cast_error&) {
+      throw Error(what);
+    }
   }
   if (parameter.type == ParameterType::number) {
-    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) {
-      throw Error(fmt::format("{} must be a number", parameter.name));
-    }
-    const auto number = value.cast<double>();
+    if (!is_number(value)) throw Error(fmt::format("{} must be a number", parameter.name));
+    const double number = py::float_(py::reinterpret_borrow<py::object>(value));
     if (parameter.whole && !(number >= 0.0 && number == std::floor(number))) {
       throw Error(fmt::format("{} must be a whole number, got {}", parameter.name, number));
     }
@@ -76,7 +86,7 @@ nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle&
 
 // A number, or the mean of an array of samples (compensated, as a record's mean).
 double input_value(const InputSpec& input, const py::handle& value) {
-  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return value.cast<double>();
+  if (is_number(value)) return py::float_(py::reinterpret_borrow<py::object>(value));
   if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) {
     throw Error(fmt::format("{} must be a number or an array of samples", input.name));
   }

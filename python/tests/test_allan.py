@@ -58,6 +58,26 @@ def test_taus_as_a_list_or_an_array_of_seconds():
 def test_bad_allan_options_are_errors():
     with pytest.raises(inertest.Error, match="estimator"):
         inertest.allan_variance(np.ones(100), sample_rate_hz=1.0, estimators="bogus")
+    imu = np.random.default_rng(3).normal(0.0, 1.0, (2000, 3))
+    # A second channel of a name would hide the first one's result.
+    with pytest.raises(inertest.Error, match="channel 'a' is asked for twice"):
+        inertest.allan_variance(imu, sample_rate_hz=100.0, channels=["a", "a", "b"])
+    with pytest.raises(inertest.Error, match="the channels are the columns"):
+        inertest.allan_variance(np.ascontiguousarray(imu.T), sample_rate_hz=100.0)
+
+
+def test_the_spec_function_takes_numpy_numbers_and_names_a_bad_type(tmp_path):
+    path = tmp_path / "rate.csv"
+    np.savetxt(path, white_noise_deg_h(seed=9, samples=5_000), fmt="%.17g", header="rate", comments="")
+    plain = inertest.allan(file=str(path), sample_rate_hz=100.0, threads=2, taus="decade")
+    from_numpy = inertest.allan(file=str(path), sample_rate_hz=np.int64(100), threads=np.int64(2), taus="decade")
+    assert from_numpy.to_dict() == plain.to_dict()
+    with pytest.raises(inertest.Error, match="columns must be a list of strings"):
+        inertest.allan(file=str(path), sample_rate_hz=100.0, columns=[2, 3])
+    with pytest.raises(inertest.Error, match="fit_range must be a list of numbers"):
+        inertest.allan(file=str(path), sample_rate_hz=100.0, fit_range=["a", "b"])
+    with pytest.raises(inertest.Error, match="sample_rate_hz must be a number"):
+        inertest.allan(file=str(path), sample_rate_hz=True)
 
 
 def test_gyro_noise_is_reproducible_by_seed():

@@ -256,7 +256,11 @@ std::vector<SensorNoiseParameters> filter_noise_parameters(const AllanChannels& 
                               "filter parameters (give --input-unit {}=deg/s or ...=m/s^2)",
                               channel.name, result.input_unit, channel.name));
     }
-    if (!result.noise) throw Error("channel " + channel.name + ": its noise terms were not fitted (see its warnings)");
+    if (!result.noise) {
+      // The result is not printed when its export fails: its warnings say why here.
+      throw Error(fmt::format("channel {}: its noise terms were not fitted, so it has no filter parameters ({})",
+                              channel.name, fmt::join(result.warnings, "; ")));
+    }
     const NoiseTerms& noise = *result.noise;
     const SiUnits units = si_units(s.kind);
     s.sample_rate_hz = result.sample_rate_hz;

@@ -262,11 +262,15 @@ nlohmann::json validate_plan(const std::string& plan_path) {
 
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
   const Plan plan = load_plan(plan_path);
-  campaign::StepRunContext context{options.progress, out_dir};
-  // The steps' exports go into the output directory; one made here goes again if a step fails, so
-  // that a failed campaign leaves no partial output.
+  // The steps' exports are written into a staging directory and moved beside results.json once
+  // every step has run: a failed campaign leaves no partial output, whether or not the output
+  // directory was there before (one made here goes too), and overwrites nothing of an earlier run.
   const bool made_here = !std::filesystem::exists(out_dir);
   std::filesystem::create_directories(out_dir);
+  const std::filesystem::path staging = std::filesystem::path(out_dir) / ".inertest-exports";
+  std::filesystem::remove_all(staging);
+  std::filesystem::create_directories(staging);
+  campaign::StepRunContext context{options.progress, staging.string()};
 
   nlohmann::json procedures = nlohmann::json::array();
   nlohmann::json verdicts = nlohmann::json::array();
@@ -285,9 +289,16 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
     }
   } catch (...) {
-    if (made_here) std::filesystem::remove_all(out_dir);
+    std::filesystem::remove_all(made_here ? std::filesystem::path(out_dir) : staging);
     throw;
   }
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(staging)) {
+    if (!entry.is_regular_file()) continue;
+    const std::filesystem::path target = std::filesystem::path(out_dir) / entry.path().lexically_relative(staging);
+    std::filesystem::create_directories(target.parent_path());
+    std::filesystem::rename(entry.path(), target);
+  }
+  std::filesystem::remove_all(staging);
   if (options.progress) options.progress("done", 1.0);
 
   bool all_pass = true;

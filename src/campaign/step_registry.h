@@ -40,7 +40,7 @@ struct PlanContext {
 
 struct StepRunContext {
   ProgressCallback progress;
-  std::string output_directory;  // the campaign's, where results.json and a plan's exports go
+  std::string output_directory;  // where a plan's exports go: staged, moved beside results.json once every step has run
 };
 
 // Runs the procedure on data validated by the preparer; returns its result (to_json form).

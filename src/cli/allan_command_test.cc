@@ -231,6 +231,37 @@ TEST(AllanCommand, ColumnsReportAMissingChannelOrUnitByName) {
   const auto binary = run_cli({"allan", raw, "--format", "f64", "--rate", "100", "--columns", "1,2"});
   EXPECT_EQ(binary.exit_code, 2);
   EXPECT_THAT(binary.err, HasSubstr("holds one channel"));
+  // A channel asked for twice would hide the first one's result under the same name.
+  for (const char* twice : {"gx,gx", "2,gx"}) {
+    const auto repeated = run_cli({"allan", record, "--rate", "100", "--columns", twice, "--json"});
+    EXPECT_EQ(repeated.exit_code, 2) << twice;
+    EXPECT_THAT(repeated.err, HasSubstr("channel 'gx' is asked for twice")) << twice;
+  }
+  // Units per channel need --columns; a raw record has no column to choose and is no text.
+  const auto per_channel = run_cli({"allan", record, "--rate", "100", "--column", "gx", "--input-unit", "deg/s,ax=m/s^2"});
+  EXPECT_EQ(per_channel.exit_code, 2);
+  EXPECT_THAT(per_channel.err, HasSubstr("units per channel (deg/s,ax=m/s^2) need columns"));
+  const auto column = run_cli({"allan", raw, "--format", "f64", "--rate", "100", "--column", "2"});
+  EXPECT_EQ(column.exit_code, 2);
+  EXPECT_THAT(column.err, HasSubstr("a raw f64/f32 record holds one channel: column does not apply"));
+  const auto as_text = run_cli({"allan", raw, "--rate", "100"});
+  EXPECT_EQ(as_text.exit_code, 2);
+  EXPECT_THAT(as_text.err, HasSubstr("not text: a NUL byte at offset 0 (a binary record? give its format"));
+}
+
+// A list option takes one word (or --export its two), so FILE may come after it.
+TEST(AllanCommand, ListOptionsLeaveTheFileAfterThem) {
+  testing::ScratchDirectory dir;
+  const std::string record = dir.write("imu.csv", imu_record());
+  const auto fit = run_cli({"allan", "--fit-range", "0.1:10", record, "--column", "gx", "--rate", "100", "--json"});
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(nlohmann::json::parse(fit.out).at("noise").at("fit").at("fit_range").at("chosen_by"), "user");
+  const std::string yaml = dir.path() + "/imu.yaml";
+  const auto columns = run_cli({"allan", "--columns", "gx,ax", "--export", "kalibr", yaml, record, "--rate", "100",
+                                "--input-unit", "deg/s,ax=m/s^2", "--json"});
+  ASSERT_EQ(columns.exit_code, 0) << columns.err;
+  EXPECT_EQ(nlohmann::json::parse(columns.out).at("channels").size(), 2U);
+  EXPECT_TRUE(std::ifstream(yaml).good());
 }
 
 }  // namespace

@@ -112,6 +112,13 @@ void check_whole(const ParameterSpec& parameter, double value) {
   }
 }
 
+// A list option takes its values from one word (a comma list, TMIN:TMAX), or from exactly `count`
+// words (--export FORMAT FILE), each time it is given: never the positional FILE after it.
+CLI::Option* list_option(CLI::Option* option, std::size_t count, char separator) {
+  option->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  return count > 0 ? option->expected(static_cast<int>(count)) : option->expected(1)->delimiter(separator);
+}
+
 // One option of a parameter: a flag for a boolean, a list for numbers, a value otherwise.
 CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const ProcedureSpec& spec,
                                   const ParameterSpec& parameter) {
@@ -119,13 +126,15 @@ CLI::Option* add_parameter_option(CLI::App& command, Arguments& arguments, const
   switch (parameter.type) {
     case ParameterType::boolean: return command.add_flag(flag, arguments.flags[parameter.name], parameter.doc);
     case ParameterType::numbers:
-      return command.add_option(flag, arguments.lists[parameter.name], parameter_help(spec, parameter))
-          ->delimiter(parameter.cli_separator);
-    case ParameterType::number: return command.add_option(flag, arguments.numbers[parameter.name], parameter_help(spec, parameter));
-    case ParameterType::texts: {
-      CLI::Option* option = command.add_option(flag, arguments.text_lists[parameter.name], parameter_help(spec, parameter));
-      return parameter.cli_values > 0 ? option->expected(static_cast<int>(parameter.cli_values)) : option->delimiter(',');
-    }
+      return list_option(command.add_option(flag, arguments.lists[parameter.name], parameter_help(spec, parameter)), 0,
+                         parameter.cli_separator)
+          ->type_name(parameter.cli_separator == ',' ? "X,Y,..." : fmt::format("X{}Y", parameter.cli_separator));
+    case ParameterType::number:
+      return command.add_option(flag, arguments.numbers[parameter.name], parameter_help(spec, parameter))
+          ->type_name(parameter.whole ? "UINT" : "FLOAT");
+    case ParameterType::texts:
+      return list_option(command.add_option(flag, arguments.text_lists[parameter.name], parameter_help(spec, parameter)),
+                         parameter.cli_values, ',');
     case ParameterType::text: break;
   }
   return command.add_option(flag, arguments.texts[parameter.name], parameter_help(spec, parameter));

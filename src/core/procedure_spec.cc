@@ -52,7 +52,9 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
 
 std::string ProcedureCall::output_path(const std::string& path) const {
   if (output_directory.empty() || std::filesystem::path(path).is_absolute()) return path;
-  return (std::filesystem::path(output_directory) / path).string();
+  const std::filesystem::path inside = std::filesystem::path(output_directory) / path;
+  std::filesystem::create_directories(inside.parent_path());
+  return inside.string();
 }
 
 std::string kebab_case(const std::string& name) {

@@ -187,7 +187,16 @@ SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t 
 
 TextTable read_text_table(const std::string& path, const TextTableOptions& options) {
   const MappedFile file(path);
-  return parse_text_table(file.bytes(), path, options);
+  try {
+    return parse_text_table(file.bytes(), path, options);
+  } catch (const Error& e) {
+    // A binary record read as text fails at some cell; say what it is instead (text holds no NUL).
+    const std::string_view head = file.bytes().substr(0, 4096);
+    const std::size_t nul = head.find('\0');
+    if (nul == std::string_view::npos) throw;
+    throw Error(SourceLocation{path, 0, 0}, "not text: a NUL byte at offset " + std::to_string(nul) +
+                                                 " (a binary record? give its format, e.g. --format f64 or f32)");
+  }
 }
 
 }  // namespace inertest

@@ -20,6 +20,9 @@
 #include "inertest/allan/allan.h"
 #include "inertest/allan/allan_channels.h"
 #include "inertest/allan/filter_parameters.h"
+#include "inertest/allan/noise_terms.h"
+#include "inertest/allan/tau_grid.h"
+#include "inertest/core/units.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/io/rate_record.h"
@@ -105,14 +108,37 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     parse_filter_format(parameters.export_to[0]);
   });
   check_parameter("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
+  check_parameter("taus", [&] { TauGrid::parse(parameters.taus); });
+  check_parameter("fit_range", [&] {
+    NoiseFitOptions fit;
+    fit.fit_range = parameters.fit_range;
+    fit.validate();
+  });
   RateRecordSource source;
-  check_parameter("column", [&] { source = parameters.source(call.files.at("record")); });
+  check_parameter("column", [&] {
+    source = parameters.source(call.files.at("record"));
+    if (parameters.column && (source.format == RateRecordFormat::kFloat64 || source.format == RateRecordFormat::kFloat32)) {
+      throw Error("a raw f64/f32 record holds one channel: column does not apply");
+    }
+  });
   check_parameter("columns", [&] {
     if (!parameters.columns) return;
     if (parameters.columns->empty()) throw Error("name at least one channel");
-    for (const std::string& column : *parameters.columns) ColumnSelector::parse(column);
+    for (auto column = parameters.columns->begin(); column != parameters.columns->end(); ++column) {
+      if (column->empty()) throw Error("an empty channel name in columns");
+      ColumnSelector::parse(*column);
+      if (std::find(parameters.columns->begin(), column, *column) != column) {
+        throw Error("channel '" + *column + "' is asked for twice");
+      }
+    }
   });
-  // The channels' units are checked once their names are read (allan_variance_of_channels_in_file).
+  check_parameter("input_unit", [&] {
+    if (!parameters.input_unit || parameters.columns) return;  // per channel: checked once the names are read
+    if (parameters.input_unit->find_first_of(",=") != std::string::npos) {
+      throw Error("units per channel (" + *parameters.input_unit + ") need columns, not column");
+    }
+    Unit::parse(*parameters.input_unit);
+  });
   parameters.options(source).validate();
 }
 

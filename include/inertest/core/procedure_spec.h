@@ -320,11 +320,13 @@ struct ProcedureCall {
   std::function<TimedRecord(const std::string& file)> read_timed_record;
   // Progress of a long computation (a terminal's on the command line, the campaign's in a plan).
   ProgressCallback progress;
-  // Where a plan's results go (the campaign's output directory); empty on the command line.
+  // Where a plan's exports go (the campaign's staging directory, moved beside its results.json once
+  // every step has run); empty on the command line.
   std::string output_directory;
 
-  // A file the procedure writes (an export): a relative path is in output_directory, so that a
-  // plan's exports land beside its results.json; on the command line, in the working directory.
+  // A file the procedure writes (an export): a relative path is in output_directory (its directories
+  // made there), so that a plan's exports land beside its results.json; on the command line, in the
+  // working directory.
   std::string output_path(const std::string& path) const;
 };
 

@@ -195,7 +195,9 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   EXPECT_FALSE(std::ifstream("filter.json").good());
   // A bad value is an error at its key, before anything runs.
   for (const std::string keys :
-       {"estimators = \"oadev,foo\"", "export = [\"yaml\", \"filter.yaml\"]", "column = \"0\"", "columns = []"}) {
+       {"estimators = \"oadev,foo\"", "export = [\"yaml\", \"filter.yaml\"]", "column = \"0\"", "columns = []",
+        "columns = [\"gx\", \"gx\"]", "fit_range = [10, 0.1]", "taus = \"foo\"", "input_unit = \"furlong\"",
+        "input_unit = \"deg/s,ax=m/s^2\"", "column = \"2\""}) {
     try {
       validate_plan(white_noise_plan(dir, "bad.toml", keys));
       ADD_FAILURE() << keys << " was accepted";
@@ -215,6 +217,16 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
                                                "format = \"f64\"");
   EXPECT_THROW(run_campaign(failing, dir.path() + "/failed"), Error);
   EXPECT_FALSE(std::filesystem::exists(dir.path() + "/failed"));
+  // Into the directory of an earlier run: its files stay as they were, and nothing is added.
+  EXPECT_THROW(run_campaign(failing, dir.path() + "/out"), Error);
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path() + "/out")) {
+    left.push_back(entry.path().filename().string());
+  }
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"filter.json", "results.json"}));
+  std::ifstream earlier(dir.path() + "/out/filter.json");
+  EXPECT_EQ(nlohmann::json::parse(earlier), filter);
 }
 
 }  // namespace

@@ -26,8 +26,10 @@ namespace py = pybind11;
 // C-contiguous by pybind11 only when it is not already, so a float64 array is never copied.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// A view of a one-dimensional array's buffer; `name` is the argument's name for the error.
-std::span<const double> as_span(const DoubleArray& array, const char* name);
+// A view of a one-dimensional array's buffer; `name` is the argument's name for the error. A NaN or
+// an infinity is an Error naming its place (as a record's is), unless `values` is Values::any.
+enum class Values { finite, any };
+std::span<const double> as_span(const DoubleArray& array, const char* name, Values values = Values::finite);
 
 // Throws Error unless every array has the length of the first; `names` name them in the message.
 void require_equal_lengths(std::initializer_list<std::pair<const char*, std::size_t>> lengths);

@@ -1,4 +1,5 @@
 // core: inertest.Error (a ValueError), Figure, Record and Result, unit conversion, the version.
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -11,11 +12,18 @@
 
 namespace inertest::python {
 
-std::span<const double> as_span(const DoubleArray& array, const char* name) {
+std::span<const double> as_span(const DoubleArray& array, const char* name, Values values) {
   if (array.ndim() != 1) {
     throw Error(fmt::format("{} must be a one-dimensional array, not {}-dimensional", name, array.ndim()));
   }
-  return {array.data(), static_cast<std::size_t>(array.shape(0))};
+  const std::span<const double> span(array.data(), static_cast<std::size_t>(array.shape(0)));
+  if (values == Values::finite) {
+    const auto bad = std::find_if(span.begin(), span.end(), [](double v) { return !std::isfinite(v); });
+    if (bad != span.end()) {
+      throw Error(fmt::format("{}: value {} ({}) is not a finite number", name, bad - span.begin() + 1, *bad));
+    }
+  }
+  return span;
 }
 
 void require_equal_lengths(std::initializer_list<std::pair<const char*, std::size_t>> lengths) {
@@ -244,7 +252,7 @@ void wrap_units(py::module_& module) {
         if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
           return py::float_(convert(value.cast<double>(), from, to));
         }
-        const auto values = as_span(value.cast<DoubleArray>(), "value");
+        const auto values = as_span(value.cast<DoubleArray>(), "value", Values::any);  // NaN converts to NaN
         std::vector<double> converted(values.size());
         for (std::size_t i = 0; i < values.size(); ++i) converted[i] = convert(values[i], from, to);
         return to_numpy(std::move(converted));

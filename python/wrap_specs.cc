@@ -1,6 +1,6 @@
 // specs: every declared procedure (core/procedure_spec.h) that has no array-based function of its
 // own in this module becomes `inertest.<kind>(**keywords)`, made from its spec as the CLI command
-// and the plan step are: the keywords are the spec's parameter names (the plan keys), each
+// and the plan step are: the keywords are the spec's plan keys (ParameterSpec::plan_name), each
 // value-or-record input `NAME` takes a number or an array of samples (their mean, as NAME_file
 // takes a record's mean in a plan), each file input takes its plan key (a path), and each runs input
 // its plan key: a list of paths (runs 1, 2, ...) or of (number, path) pairs; output records are read
@@ -38,7 +38,7 @@ bool reads_timed_records(const ProcedureSpec& spec) {
 // when it reads output records and sample_rate_hz and time_column when they are timed.
 std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
   std::vector<std::string> keywords;
-  for (const ParameterSpec& parameter : spec.parameters) keywords.push_back(parameter.name);
+  for (const ParameterSpec& parameter : spec.parameters) keywords.push_back(parameter.plan_name());
   for (const InputSpec& input : spec.inputs) keywords.push_back(keyword_of(input));
   if (reads_records(spec)) keywords.insert(keywords.end(), {"column", "format"});
   if (reads_timed_records(spec)) keywords.insert(keywords.end(), {"sample_rate_hz", "time_column"});
@@ -53,12 +53,12 @@ bool is_number(const py::handle& value) {
 
 nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle& value) {
   if (parameter.type == ParameterType::boolean) {
-    if (!py::isinstance<py::bool_>(value)) throw Error(fmt::format("{} must be True or False", parameter.name));
+    if (!py::isinstance<py::bool_>(value)) throw Error(fmt::format("{} must be True or False", parameter.plan_name()));
     return value.cast<bool>();
   }
   if (parameter.type == ParameterType::numbers || parameter.type == ParameterType::texts) {
     const bool texts = parameter.type == ParameterType::texts;
-    const std::string what = fmt::format("{} must be a list of {}", parameter.name, texts ? "strings" : "numbers");
+    const std::string what = fmt::format("{} must be a list of {}", parameter.plan_name(), texts ? "strings" : "numbers");
     if (py::isinstance<py::str>(value)) throw Error(what);
     try {
       if (texts) return value.cast<std::vector<std::string>>();
@@ -68,18 +68,18 @@ nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle&
     }
   }
   if (parameter.type == ParameterType::number) {
-    if (!is_number(value)) throw Error(fmt::format("{} must be a number", parameter.name));
+    if (!is_number(value)) throw Error(fmt::format("{} must be a number", parameter.plan_name()));
     const double number = py::float_(py::reinterpret_borrow<py::object>(value));
     if (parameter.whole && !(number >= 0.0 && number == std::floor(number))) {
-      throw Error(fmt::format("{} must be a whole number, got {}", parameter.name, number));
+      throw Error(fmt::format("{} must be a whole number, got {}", parameter.plan_name(), number));
     }
     return number;
   }
-  if (!py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a string", parameter.name));
+  if (!py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a string", parameter.plan_name()));
   const auto text = value.cast<std::string>();
   if (!parameter.choices.empty() &&
       std::find(parameter.choices.begin(), parameter.choices.end(), text) == parameter.choices.end()) {
-    throw Error(fmt::format("{} must be one of {}", parameter.name, fmt::join(parameter.choices, ", ")));
+    throw Error(fmt::format("{} must be one of {}", parameter.plan_name(), fmt::join(parameter.choices, ", ")));
   }
   return text;
 }
@@ -130,10 +130,10 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
   ProcedureCall call;
   for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
   for (const ParameterSpec& parameter : spec.parameters) {
-    if (keywords.contains(parameter.name)) {
-      call.parameters[parameter.name] = parameter_value(parameter, keywords[parameter.name.c_str()]);
+    if (const std::string& keyword = parameter.plan_name(); keywords.contains(keyword)) {
+      call.parameters[parameter.name] = parameter_value(parameter, keywords[keyword.c_str()]);
     } else if (parameter.required) {
-      throw Error(fmt::format("{}() needs {} ({})", spec.kind, parameter.name, parameter.doc));
+      throw Error(fmt::format("{}() needs {} ({})", spec.kind, parameter.plan_name(), parameter.doc));
     }
   }
   check_alternatives(spec, spec.kind + "(): ", [&](const InputSpec& input) { return keywords.contains(keyword_of(input)); },
@@ -172,7 +172,7 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
 std::string docstring_of(const ProcedureSpec& spec) {
   std::string text = fmt::format("{} ({}).\n{}\nKeywords:\n", spec.title, spec.clause, spec.doc);
   for (const ParameterSpec& parameter : spec.parameters) {
-    text += fmt::format("  {}: {}{}", parameter.name, parameter.doc, parameter.unit.empty() ? "" : " (" + parameter.unit + ")");
+    text += fmt::format("  {}: {}{}", parameter.plan_name(), parameter.doc, parameter.unit.empty() ? "" : " (" + parameter.unit + ")");
     if (const auto found = spec.defaults.find(parameter.name); found != spec.defaults.end()) {
       text += fmt::format(", default {}", found->second.dump());
     } else if (parameter.required) {
@@ -204,7 +204,7 @@ nlohmann::json description_of(const ProcedureSpec& spec, bool generic_function) 
   nlohmann::json parameters = nlohmann::json::array();
   for (const ParameterSpec& parameter : spec.parameters) {
     const auto found = spec.defaults.find(parameter.name);
-    parameters.push_back({{"name", parameter.name},
+    parameters.push_back({{"name", parameter.plan_name()},
                           {"type", parameter_type_names.at(static_cast<std::size_t>(parameter.type))},
                           {"unit", parameter.unit},
                           {"doc", parameter.doc},
@@ -269,7 +269,11 @@ void wrap_specs(py::module_& module) {
         spec.kind.c_str(),
         [&spec](const py::kwargs& keywords) {
           const ProcedureCall call = call_of(spec, keywords);
-          spec.check(call);
+          try {
+            spec.check(call);
+          } catch (const ParameterError& e) {
+            throw Error(e.message_naming(spec.find_parameter(e.parameter)->plan_name()));
+          }
           ProcedureOutput output;
           {
             py::gil_scoped_release release;

@@ -110,7 +110,7 @@ def test_specs_describe_parameters_as_the_plan_names_them():
     maximum = specs["maximum_input_rate"]
     assert not maximum["generic_function"]  # its array-based function (issue 10) stays
     names = [parameter["name"] for parameter in maximum["parameters"]]
-    assert "nonlinearity_limit" in names
+    assert "nonlinearity_limit_ppm" in names  # the plan key, as the array function takes it
     json.dumps(specs)  # plain data
 
 
@@ -125,11 +125,11 @@ def test_scale_factor_temperature_from_runs_is_the_cli_json(tmp_path):
     listing = tmp_path / "runs.csv"
     listing.write_text("temperature_degC,file\n" + "".join(f"{t},{p}\n" for t, p in runs))
     expected = cli_json("scale-factor-temperature", listing, "--reference-temperature", "20")
-    result = inertest.scale_factor_temperature(run=runs, reference_temperature=20)
+    result = inertest.scale_factor_temperature(run=runs, reference_temperature_degC=20)
     assert result.to_dict() == expected
     assert result.scale_factor_temperature_sensitivity.value == pytest.approx(75.0, rel=1e-6)
     with pytest.raises(inertest.Error) as raised:
-        inertest.scale_factor_temperature(run=runs, reference_temperature=25)
+        inertest.scale_factor_temperature(run=runs, reference_temperature_degC=25)
     assert "matches no run" in str(raised.value)
 
 

@@ -50,11 +50,11 @@ TEST(AllanCommand, ScaleFactorAndInputUnitExcludeEachOther) {
   const std::string raw = dir.write("raw.csv", white_record(1.0));
   const auto both = run_cli({"allan", raw, "--rate", "100", "--scale-factor", "250", "--input-unit", "deg/s"});
   EXPECT_NE(both.exit_code, 0);
-  EXPECT_THAT(both.err, HasSubstr("input_unit and scale_factor exclude each other"));
+  EXPECT_THAT(both.err, HasSubstr("--input-unit and scale_factor exclude each other"));
   const auto zero = run_cli({"allan", raw, "--rate", "100", "--scale-factor", "0", "--json"});
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_EQ(zero.out, "");
-  EXPECT_THAT(zero.err, HasSubstr("scale_factor must be finite and nonzero"));
+  EXPECT_THAT(zero.err, HasSubstr("--scale-factor must be finite and nonzero"));
 }
 
 TEST(AllanCommand, JsonHoldsEveryEstimatorWithItsEdfMethod) {

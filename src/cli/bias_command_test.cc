@@ -67,6 +67,20 @@ TEST(BiasCommandTest, NamedColumnAndBinaryFormat) {
   const auto f32 = run_cli({"bias", binary, "--rate", "10", "--scale-factor", "5", "--format", "f32", "--json"});
   ASSERT_EQ(f32.exit_code, 0) << f32.err;
   EXPECT_NEAR(nlohmann::json::parse(f32.out).at("bias").at("value").get<double>(), 1440.0, 1e-3);
+  // No column chosen in a record of several: the one headed "output", else an error (the first
+  // column, the time here, was taken and its mean reported as the bias).
+  const auto unchosen = run_cli({"bias", csv, "--rate", "10", "--scale-factor", "5"});
+  EXPECT_EQ(unchosen.exit_code, 2);
+  EXPECT_THAT(unchosen.err, ::testing::HasSubstr("rest.csv:1:1: the record has 2 columns (time, gyro): choose the "
+                                                 "output with --column"));
+  std::string headed = "time,output\n";
+  for (std::size_t i = 0; i < output.size(); ++i) headed += std::to_string(i) + "," + nlohmann::json(output[i]).dump() + "\n";
+  const auto by_header = run_cli({"bias", scratch.write("headed.csv", headed), "--rate", "10", "--scale-factor", "5", "--json"});
+  ASSERT_EQ(by_header.exit_code, 0) << by_header.err;
+  EXPECT_EQ(nlohmann::json::parse(by_header.out).at("bias"), nlohmann::json::parse(by_name.out).at("bias"));
+  // The text says which smoothing time each bias stability is of.
+  const auto printed = run_cli({"bias", csv, "--rate", "10", "--scale-factor", "5", "--column", "gyro"});
+  EXPECT_THAT(printed.out, ::testing::HasSubstr("    smoothing_s 1.0: "));
 }
 
 TEST(BiasCommandTest, ClearErrors) {

@@ -238,7 +238,11 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       record.path = file;
       return with_file_context(file, [&] { return read_timed_record(record, rate, time_column, minimum); });
     };
-    spec.check(call);
+    try {
+      spec.check(call);
+    } catch (const ParameterError& e) {
+      throw Error(e.message_naming(spec.find_parameter(e.parameter)->command_line_option()));
+    }
     for (const InputSpec& input : spec.inputs) {
       if (input.kind == InputKind::value_or_record) {
         call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);

@@ -109,7 +109,13 @@ std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
     if (row.is_object() && !is_figure(row)) {
       for (const auto& [key, cell] : row.items()) line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
     } else {
-      line = value_text(row);
+      // A figure with members of its own says what it is of first (bias stability: "smoothing_s 10: ...").
+      if (row.is_object()) {
+        for (const auto& [key, cell] : row.items()) {
+          if (key != "value" && key != "unit" && key != "uncertainty") line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
+        }
+      }
+      line += (line.empty() ? "" : ": ") + value_text(row);
     }
     text += "    " + line + "\n";
   }

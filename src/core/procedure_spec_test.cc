@@ -33,6 +33,13 @@ TEST(ProcedureSpec, RegistryHoldsEveryDeclaredProcedureOnceWithUniqueNames) {
   }
 }
 
+TEST(ProcedureSpec, AParameterErrorNamesTheParameterAsItsCallerDoes) {
+  EXPECT_EQ(ParameterError("interval_s", "interval_s must be positive").message_naming("--interval"),
+            "--interval must be positive");
+  EXPECT_EQ(ParameterError("table_rate", "must be nonzero with method 3").message_naming("table_rate_deg_s"),
+            "table_rate_deg_s: must be nonzero with method 3");
+}
+
 TEST(ProcedureSpec, KebabCase) {
   EXPECT_EQ(kebab_case("nonlinearity_limit"), "nonlinearity-limit");
   EXPECT_EQ(kebab_case("polarity"), "polarity");

@@ -1,5 +1,7 @@
 #include "inertest/io/output_record.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
@@ -64,11 +66,19 @@ std::vector<double> read_output_record(const OutputRecordSource& source, std::si
     return samples;
   }
   TextTableOptions options;
-  options.columns = {selector_or(source.column, 1)};
+  if (!source.column.empty()) options.columns = {ColumnSelector::parse(source.column)};
   options.record_row_lines = false;
   options.minimum_rows = minimum_samples;
   TextTable table = read_text_table(source.path, options);
-  return std::move(table.columns.front());
+  if (table.columns.size() == 1) return std::move(table.columns.front());
+  // Several columns and none chosen: the one headed "output", else the choice is the user's (the
+  // first column of a time,output record is the time: taking it silently gave its mean as a bias).
+  const auto output = std::find(table.names.begin(), table.names.end(), "output");
+  if (output != table.names.end()) return std::move(table.columns[static_cast<std::size_t>(output - table.names.begin())]);
+  const std::size_t first_line = table.header_line != 0 ? table.header_line : table.first_data_line;
+  throw Error(SourceLocation{source.path, first_line, 1},
+              fmt::format("the record has {} columns{}: choose the output with --column (plan key `column`)",
+                          table.columns.size(), table.header_line != 0 ? " (" + fmt::format("{}", fmt::join(table.names, ", ")) + ")" : ""));
 }
 
 TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<double> sample_rate_hz,

@@ -18,21 +18,30 @@ struct Series {
 };
 
 // Means over windows [k·s, (k+1)·s) of time since power-on, each stamped at (k+1)·s. A window holding
-// no sample is skipped.
-Series smooth(const PowerOnRun& run, double smoothing_s) {
+// no sample is skipped, and so is a last window the record ends inside (its stamp would lie after
+// the record: a turn-on time longer than the test); the record ends half a sample interval after
+// its last sample. A record shorter than one window is an Error.
+Series smooth(const PowerOnRun& run, double smoothing_s, const char* what) {
+  const std::size_t n = run.time_s.size();
+  const double record_end = run.time_s.back() + 0.5 * (run.time_s.back() - run.time_s.front()) / static_cast<double>(n - 1);
   Series series;
   std::size_t i = 0;
-  while (i < run.time_s.size()) {
+  while (i < n) {
     const double window = std::floor(run.time_s[i] / smoothing_s);
+    if ((window + 1.0) * smoothing_s > record_end) break;
     CompensatedSum sum;
     std::size_t count = 0;
-    while (i < run.time_s.size() && std::floor(run.time_s[i] / smoothing_s) == window) {
+    while (i < n && std::floor(run.time_s[i] / smoothing_s) == window) {
       sum.add(run.output[i]);
       ++count;
       ++i;
     }
     series.time_s.push_back((window + 1.0) * smoothing_s);
     series.output.push_back(sum.value() / static_cast<double>(count));
+  }
+  if (series.time_s.empty()) {
+    throw Error(fmt::format("{}: run '{}' ends at {} s, inside its first smoothing window of {} s", what, run.name,
+                            run.time_s.back(), smoothing_s));
   }
   return series;
 }
@@ -80,7 +89,8 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
     if (!at_rest && options.rate_band == 0.0) {
       throw Error(fmt::format("{}: run '{}' is at rate but no rate band (relative rate error) was given", what, run.name));
     }
-    const Series series = options.smoothing_s > 0.0 ? smooth(run, options.smoothing_s) : Series{run.time_s, run.output};
+    const Series series =
+        options.smoothing_s > 0.0 ? smooth(run, options.smoothing_s, what) : Series{run.time_s, run.output};
     auto within = [&](double output) {
       const double indicated = (output - options.zero_output) / options.scale_factor - earth_deg_s;  // deg/s
       if (at_rest) return std::abs(indicated) * kSecondsPerHour <= options.rest_band_deg_h;

@@ -84,6 +84,18 @@ TEST(TurnOnTimeTest, SmoothingAveragesWindowsFromPowerOn) {
   // Windows [0,1) holds t = 0.5 only; [1,2) holds 1.0 and 1.5 -> mean 5, fails; [2,3) 2.0, 2.5 -> -0.25;
   // [3,4) 3.0, 3.5 -> 0.25; [4,5) 4.0 -> 0. Turn-on at the end of [2,3): 3 s.
   EXPECT_DOUBLE_EQ(turn_on_time(runs, options).time.value, 3.0);
+  // A window the record ends inside is no mean of the smoothing time: with 3 s, [3,6) holds the
+  // settled 3.0-4.0 s only, and stamped at 6 s it gave a turn-on time after the record's end.
+  PowerOnRun late{"late", 0.0, run.time_s, {9, 9, 9, 9, 9, 0, 0, 0}};
+  options.smoothing_s = 3.0;
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{late}, options), Error);
+  options.smoothing_s = 5.0;
+  try {
+    turn_on_time(runs, options);
+    ADD_FAILURE() << "a record shorter than one window was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "turn-on time: run 'r' ends at 4 s, inside its first smoothing window of 5 s");
+  }
 }
 
 TEST(TurnOnTimeTest, BadInputIsAnError) {

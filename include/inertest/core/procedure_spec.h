@@ -49,6 +49,13 @@ class ParameterError : public Error {
  public:
   ParameterError(std::string parameter_name, const std::string& message)
       : Error(message), parameter(std::move(parameter_name)) {}
+  // The message with the parameter as its caller names it (a flag "--table-rate", a Python keyword):
+  // "--interval must be positive" for "interval_s must be positive", else "--table-rate: <message>".
+  std::string message_naming(const std::string& given_as) const {
+    const std::string& text = message();
+    if (text.starts_with(parameter + " ")) return given_as + text.substr(parameter.size());
+    return given_as + ": " + text;
+  }
   std::string parameter;
 };
 
@@ -98,7 +105,8 @@ struct ParameterSpec {
     instrument_condition = {std::move(parameter), std::move(value)};
     return *this;
   }
-  // The plan key when it is a contract that differs from the name (e.g. "nonlinearity_limit_ppm").
+  // The plan key (and Python keyword) when it is a contract that differs from the name (e.g.
+  // "nonlinearity_limit_ppm").
   ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
   // The command-line option when it is a contract that differs from --kebab-case(name) (e.g. "rate"
   // for sample_rate_hz: --rate).
@@ -125,7 +133,7 @@ struct ParameterSpec {
   // "--rate", "--nonlinearity-limit".
   std::string command_line_option() const { return "--" + (cli_option.empty() ? kebab_case(name) : cli_option); }
 
-  std::string name;  // snake_case: the plan key and the Python keyword; the flag is --kebab-case
+  std::string name;  // snake_case: the plan key and the Python keyword (unless plan_key_is); the flag is --kebab-case
   ParameterType type = ParameterType::number;
   std::string unit;  // the unit of a number, "" when dimensionless or text
   std::string doc;

@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -481,9 +482,12 @@ nlohmann::json FigureHistory::to_json() const {
 
 void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }
 
-std::unique_ptr<Archive> open_archive(const std::string& location) {
+std::unique_ptr<Archive> open_archive(const std::string& location, ArchiveOpening opening) {
   if (location.empty()) throw Error("archive: no location given (a file path or a postgresql:// URL)");
   const bool is_url = location.rfind("postgresql://", 0) == 0 || location.rfind("postgres://", 0) == 0;
+  if (!is_url && opening == ArchiveOpening::existing && !std::filesystem::is_regular_file(location)) {
+    throw Error(SourceLocation{location, 0, 0}, "no archive here (inertest archive add creates one)");
+  }
   auto db = is_url ? open_postgresql(location) : open_sqlite(location);
   return std::make_unique<DatabaseArchive>(std::move(db), location);
 }
@@ -496,6 +500,7 @@ std::string default_archive_location() {
 }
 
 nlohmann::json read_results_file(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw Error(SourceLocation{path, 0, 0}, "a directory, not a results.json");
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error(SourceLocation{path, 0, 0}, "cannot read the file");
   const std::string text{std::istreambuf_iterator<char>(file), {}};
@@ -513,8 +518,15 @@ nlohmann::json read_results_file(const std::string& path) {
         ++column;
       }
     }
+    // "[json.exception.parse_error.101] parse error at line 1, column 9: <what>": the what, which
+    // may quote the text read ("last read: 'N'").
     std::string message = e.what();
-    if (const auto colon = message.rfind(": "); colon != std::string::npos) message = message.substr(colon + 2);
+    if (const auto at = message.find("column "); at != std::string::npos) {
+      if (const auto colon = message.find(": ", at); colon != std::string::npos) message = message.substr(colon + 2);
+    }
+    if (end < text.size() && (text[end] == 'N' || text[end] == 'I')) {
+      message += " (JSON has no NaN or Infinity: null stands for a missing number)";
+    }
     throw Error(SourceLocation{path, line, column}, "not valid JSON: " + message);
   }
 }

@@ -3,9 +3,13 @@
 #include "inertest/archive/archive.h"
 
 #include <gtest/gtest.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -367,6 +371,15 @@ TEST_P(ArchiveBackend, CommandLineRoundTrip) {
   EXPECT_THAT(refused.err, HasSubstr(broken + ":3:3: not valid JSON"));
   const auto after = testing::run_cli({"archive", "list", "--db", location_, "--json"});
   EXPECT_EQ(nlohmann::json::parse(after.out).at("campaigns").size(), 1u);
+  // A directory, and Python's json.dump of a NaN: said as what they are.
+  const auto directory = testing::run_cli({"archive", "add", scratch_.path(), "--db", location_});
+  EXPECT_EQ(directory.exit_code, 2);
+  EXPECT_THAT(directory.err, HasSubstr(scratch_.path() + ": a directory, not a results.json"));
+  const std::string nan = scratch_.write("nan.json", "{\"instrument\": {\"id\": \"X\", \"bias\": NaN}}\n");
+  const auto not_a_number = testing::run_cli({"archive", "add", nan, "--db", location_});
+  EXPECT_EQ(not_a_number.exit_code, 2);
+  EXPECT_THAT(not_a_number.err, HasSubstr(nan + ":1:36: not valid JSON: syntax error while parsing value"));
+  EXPECT_THAT(not_a_number.err, HasSubstr("(JSON has no NaN or Infinity: null stands for a missing number)"));
 }
 
 // Day-to-day repeatability of the archived campaigns. Scale factors 36000, 36001, 35999:
@@ -500,6 +513,40 @@ TEST_P(ArchiveBackend, DemoResultsRoundTripExactly) {
 
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),
                          [](const ::testing::TestParamInfo<const char*>& param) { return std::string(param.param); });
+
+// Reading an archive that is not there is an error: a mistyped --db made an empty archive (and its
+// directories) and listed nothing.
+TEST(ArchiveOpening, AReadOfAMissingFileIsAnErrorAndCreatesNothing) {
+  testing::ScratchDirectory scratch;
+  const std::string typo = scratch.path() + "/typo/archive.sqlite";
+  for (const std::vector<std::string>& command : {std::vector<std::string>{"list"}, {"instruments"},
+                                                  {"history", "FOG-1", "--figure", "bias/bias"}}) {
+    std::vector<std::string> arguments = {"archive"};
+    arguments.insert(arguments.end(), command.begin(), command.end());
+    arguments.insert(arguments.end(), {"--db", typo});
+    const auto run = testing::run_cli(arguments);
+    EXPECT_EQ(run.exit_code, 2) << command[0];
+    EXPECT_THAT(run.err, HasSubstr(typo + ": no archive here (inertest archive add creates one)")) << command[0];
+  }
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/typo"));
+}
+
+// A server that accepts the connection and never answers: an error within seconds, not a hang.
+TEST(ArchiveOpening, ASilentServerIsATimeoutNotAHang) {
+  const int listener = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(listener, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  ASSERT_EQ(::listen(listener, 4), 0);
+  socklen_t length = sizeof address;
+  ASSERT_EQ(::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length), 0);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW(open_archive(fmt::format("postgresql://lab@127.0.0.1:{}/archive", ntohs(address.sin_port))), Error);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  ::close(listener);
+}
 
 TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {
   const char* saved = std::getenv("INERTEST_DB");

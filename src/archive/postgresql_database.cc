@@ -28,7 +28,11 @@ std::string redact(const std::string& url) {
 class PostgresqlDatabase final : public Database {
  public:
   explicit PostgresqlDatabase(const std::string& url) : where_(redact(url)) {
-    connection_ = PQconnectdb(url.c_str());
+    // A server that accepts and never answers would hang every command: 10 s to connect, unless
+    // the URL says otherwise (its connect_timeout comes later and wins).
+    const char* keywords[] = {"connect_timeout", "dbname", nullptr};
+    const char* values[] = {"10", url.c_str(), nullptr};
+    connection_ = PQconnectdbParams(keywords, values, 1);
     if (connection_ == nullptr || PQstatus(connection_) != CONNECTION_OK) {
       const std::string message = connection_ ? PQerrorMessage(connection_) : "out of memory";
       PQfinish(connection_);

@@ -30,7 +30,7 @@ CommandAction setup(CLI::App& archive) {
       results.push_back(archive::read_results_file(file));
       archive::check_results(results.back(), file);
     }
-    const auto store = open_archive_option(arguments->db);
+    const auto store = open_archive_option(arguments->db, archive::ArchiveOpening::create);
     nlohmann::json added = nlohmann::json::array();
     std::string report;
     for (std::size_t i = 0; i < results.size(); ++i) {

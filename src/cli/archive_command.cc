@@ -46,8 +46,8 @@ void add_db_option(CLI::App& command, std::string& db) {
                      "~/.local/share/inertest/archive.sqlite");
 }
 
-std::unique_ptr<archive::Archive> open_archive_option(const std::string& db) {
-  return archive::open_archive(db.empty() ? archive::default_archive_location() : db);
+std::unique_ptr<archive::Archive> open_archive_option(const std::string& db, archive::ArchiveOpening opening) {
+  return archive::open_archive(db.empty() ? archive::default_archive_location() : db, opening);
 }
 
 }  // namespace inertest::cli

@@ -42,7 +42,7 @@ CommandAction setup(CLI::App& root) {
     const std::string report_path = report::write_report(summary.results, arguments->out, report_options);
     if (archive_option->count() > 0) {
       const auto outcome =
-          open_archive_option(arguments->archive)->add(summary.results, summary.written_files.front());
+          open_archive_option(arguments->archive, archive::ArchiveOpening::create)->add(summary.results, summary.written_files.front());
       fmt::print(stderr, "{} the archive as campaign {}\n", outcome.added ? "added to" : "already in", outcome.id);
     }
     print_result(summary.results, report::render_text_report(summary.results, report_options), arguments->json);

@@ -2,6 +2,8 @@
 // interactive plots and the history switcher the server adds to the report's pages.
 #include "serve/pages.h"
 
+#include <cctype>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -127,21 +129,38 @@ std::string add_form(const Words& w) {
 
 }  // namespace
 
+// A path segment of a URL: every byte but the unreserved ones percent-encoded (RFC 3986 2.3), so that
+// an id with a space, a '/' or Chinese characters links to its page.
+std::string path_segment(const std::string& text) {
+  std::string encoded;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (std::isalnum(byte) != 0 || c == '-' || c == '.' || c == '_' || c == '~') {
+      encoded += c;
+    } else {
+      encoded += fmt::format("%{:02X}", byte);
+    }
+  }
+  return encoded;
+}
+
 std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language, bool allow_add) {
   const bool zh = language == report::Language::chinese;
   const Words& w = zh ? chinese : english;
   const std::string lang_query = zh ? "?lang=zh" : "";
   std::string rows;
   for (const auto& i : instruments.at("instruments")) {
-    const std::string id = escape_xml(i.at("instrument").get<std::string>());
+    const std::string& instrument = i.at("instrument").get_ref<const std::string&>();
+    const std::string id = escape_xml(instrument);
     const auto& latest = i.at("latest");
     const std::string verdict = latest.at("verdict").get<std::string>();
     rows += fmt::format(
-        "<tr data-instrument=\"{0}\"><td><a href=\"/instruments/{0}{1}\">{0}</a></td><td class=\"num\">{2}</td>"
+        "<tr data-instrument=\"{0}\"><td><a href=\"/instruments/{8}{1}\">{0}</a></td><td class=\"num\">{2}</td>"
         "<td>{3}</td><td class=\"verdict {4}\">{5}</td><td><a href=\"/campaigns/{6}{1}\">{7}</a></td></tr>\n",
         id, lang_query, i.at("campaigns").get<std::size_t>(), escape_xml(latest.at("tested_on").get<std::string>()),
         verdict == "PASS" ? "pass" : verdict == "FAIL" ? "fail" : "none", escape_xml(verdict_word(verdict, zh)),
-        escape_xml(latest.at("id").get<std::string>()), escape_xml(latest.at("title").get<std::string>()));
+        escape_xml(latest.at("id").get<std::string>()), escape_xml(latest.at("title").get<std::string>()),
+        path_segment(instrument));
   }
   return fmt::format(
       "<!DOCTYPE html>\n<html lang=\"{0}\">\n<head>\n<meta charset=\"utf-8\">\n<title>inertest · {1}</title>\n"
@@ -195,7 +214,7 @@ std::string with_history_switcher(std::string page, const std::vector<std::strin
     std::string query = f.empty() ? "" : "figure=";
     for (char c : f) query += c == '+' ? std::string("%2B") : std::string(1, c);  // '+' would read as a space
     if (!lang_query.empty()) query += (query.empty() ? "" : "&") + lang_query;
-    return escape_xml("/instruments/" + id + (query.empty() ? "" : "?" + query));
+    return escape_xml("/instruments/" + path_segment(id) + (query.empty() ? "" : "?" + query));
   };
   std::string instrument_options;
   for (const auto& id : instruments) {

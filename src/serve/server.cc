@@ -5,7 +5,6 @@
 #include <httplib.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <mutex>
 #include <random>
 #include <regex>
@@ -28,10 +27,12 @@ struct Refusal {
   std::string message;
 };
 
-// Names are checked before any query: an instrument id as results.json writers use them, a
+// Names are checked before any query: an instrument id as the archive takes it (any text; here no
+// control character, not a dot segment, at most 256 bytes: it is only bound to queries and
+// escaped in pages), a
 // campaign id (16 hex digits, the archive's content hash), PROCEDURE/FIGURE keys (no segment can
 // be "." or ".."), an ISO date.
-const std::regex instrument_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]{0,127})");
+const std::regex instrument_pattern(R"((?!\.\.?$)[^\x00-\x1f\x7f]+)");
 const std::regex campaign_pattern(R"([0-9a-f]{16})");
 const std::regex figure_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]*(/[A-Za-z0-9_][A-Za-z0-9_.+\-]*)+)");
 const std::regex date_pattern(R"(\d{4}-\d{2}-\d{2})");
@@ -212,7 +213,7 @@ struct Server::Impl {
     http.Get("/api/instruments", route([this](const httplib::Request&, httplib::Response&) {
       return archive::instrument_list_json(store->list(std::nullopt));
     }));
-    http.Get(R"(/api/instruments/([^/]+)/history)", route([this](const httplib::Request& request, httplib::Response&) {
+    http.Get(R"(/api/instruments/(.+)/history)", route([this](const httplib::Request& request, httplib::Response&) {
       const std::string instrument = checked(request.matches[1].str(), instrument_pattern, "the instrument id");
       const std::string figure = checked(required_parameter(request, "figure"), figure_pattern, "the figure");
       return store->history(instrument, figure).to_json();
@@ -240,7 +241,7 @@ struct Server::Impl {
                            "text/html; charset=utf-8");
       return nlohmann::json();
     }));
-    http.Get(R"(/instruments/([^/]+))", route([this](const httplib::Request& request, httplib::Response& response) {
+    http.Get(R"(/instruments/(.+))", route([this](const httplib::Request& request, httplib::Response& response) {
       const std::string instrument = checked(request.matches[1].str(), instrument_pattern, "the instrument id");
       response.set_content(history_page(request, instrument), "text/html; charset=utf-8");
       return nlohmann::json();
@@ -269,17 +270,19 @@ struct Server::Impl {
     // An answer goes out as headers then body: without TCP_NODELAY the body waits for the client's
     // delayed ACK of the headers on a keep-alive connection (about 40 ms a request on Linux).
     http.set_tcp_nodelay(true);
+    // SO_REUSEADDR only: cpp-httplib's default adds SO_REUSEPORT, with which a second server binds
+    // the same port and the kernel splits the requests between the two archives.
+    http.set_socket_options([](socket_t socket) {
+      const int yes = 1;
+      setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
     http.set_default_headers({{"X-Content-Type-Options", "nosniff"}, {"Cache-Control", "no-store"}});
   }
 };
 
 Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
-  const bool is_url = options.db.rfind("postgresql://", 0) == 0 || options.db.rfind("postgres://", 0) == 0;
-  if (!is_url && !std::filesystem::is_regular_file(options.db)) {
-    throw Error("serve: no archive at '" + options.db + "' (inertest archive add creates one)");
-  }
-  impl_->store = archive::open_archive(options.db);
+  impl_->store = archive::open_archive(options.db, archive::ArchiveOpening::existing);
   impl_->add_routes();
   if (options.port == 0) {
     impl_->port = impl_->http.bind_to_any_port(options.bind);

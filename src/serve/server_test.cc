@@ -178,8 +178,10 @@ TEST_F(ServeApi, HostileRequestsGet4xxAndChangeNothing) {
   const std::string before = file_bytes(db_);
   start(false);
   const std::vector<std::pair<std::string, int>> targets = {
-      {"/api/instruments/FOG-2'%20OR%20'1'='1/history?figure=scale_factor/scale_factor", 400},
-      {"/api/instruments/FOG-2%27%3B%20DROP%20TABLE%20campaign%3B--/history?figure=scale_factor/scale_factor", 400},
+      // Any text is an id the archive may hold (bound to the query, never spliced): these are unknown.
+      {"/api/instruments/FOG-2'%20OR%20'1'='1/history?figure=scale_factor/scale_factor", 404},
+      {"/api/instruments/FOG-2%27%3B%20DROP%20TABLE%20campaign%3B--/history?figure=scale_factor/scale_factor", 404},
+      {"/api/instruments/FOG%092/history?figure=scale_factor/scale_factor", 400},
       {"/api/instruments/FOG-2/history?figure=scale_factor/x'%20OR%201=1--", 400},
       {"/api/fleet?figure=scale_factor/scale_factor'%3BDELETE%20FROM%20figure%3B--", 400},
       {"/api/fleet?figure=scale_factor/scale_factor&since=2026'--", 400},
@@ -301,6 +303,31 @@ TEST_F(ServeApi, ADatabaseFailureIsA500NotA404) {
     EXPECT_EQ(reply.status, 500) << target << ": " << reply.body;
     EXPECT_NE(reply.json().value("error", "").find("the archive's database failed"), std::string::npos) << reply.body;
   }
+}
+
+// Any id the archive takes opens in the web view: a space, a '/' and Chinese characters are
+// percent-encoded in the links and read back from the path.
+TEST_F(ServeApi, AnIdWithASpaceASlashOrChineseOpensItsPages) {
+  const std::string id = "FOG 12/\xe9\x99\x80\xe8\x9e\xba";  // FOG 12/陀螺
+  archive::open_archive(db_)->add(testing::scale_factor_campaign(id, "2026-03-04", 36000.1), "odd");
+  start(false);
+  const std::string encoded = "FOG%2012%2F%E9%99%80%E8%9E%BA";
+  EXPECT_NE(get(port(), "/").body.find("<a href=\"/instruments/" + encoded + "\">"), std::string::npos);
+  EXPECT_EQ(get(port(), "/instruments/" + encoded).status, 200);
+  const auto history = get(port(), "/api/instruments/" + encoded + "/history?figure=scale_factor/scale_factor");
+  ASSERT_EQ(history.status, 200) << history.body;
+  EXPECT_EQ(history.json().at("instrument"), id);
+}
+
+// A port another server holds is an error, not a second listener the kernel would share the
+// requests with (cpp-httplib's default SO_REUSEPORT allowed that).
+TEST_F(ServeApi, APortInUseIsAnError) {
+  start(false);
+  ASSERT_EQ(get(port(), "/api/instruments").status, 200);  // running (a stop before it is lost)
+  ServerOptions options;
+  options.db = db_;
+  options.port = port();
+  EXPECT_THROW(Server second(options), Error);
 }
 
 TEST(Serve, MissingArchiveIsAnError) {

@@ -141,10 +141,14 @@ nlohmann::json instrument_list_json(const std::vector<CampaignEntry>& campaigns)
 // [fleet_summary of each figure]}.
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures);
 
-// Opens (creating it when needed, and migrating its schema) the archive at location: a
-// postgresql:// (or postgres://) URL, else a file path for SQLite. Throws Error when it cannot be
-// opened or its schema is newer than this inertest.
-std::unique_ptr<Archive> open_archive(const std::string& location);
+// Whether opening an archive may create it: a read of a mistyped path must not make an empty one.
+enum class ArchiveOpening { create, existing };
+
+// Opens (creating it when needed and allowed, and migrating its schema) the archive at location:
+// a postgresql:// (or postgres://) URL, else a file path for SQLite. Throws Error when it cannot be
+// opened, when a SQLite file is not there and `opening` is existing, or when its schema is newer
+// than this inertest.
+std::unique_ptr<Archive> open_archive(const std::string& location, ArchiveOpening opening = ArchiveOpening::create);
 
 // Where the archive is when --db is not given: $INERTEST_DB, else ~/.local/share/inertest/archive.sqlite.
 std::string default_archive_location();

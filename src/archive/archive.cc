@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cmath>
 #include <cstdlib>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -157,13 +158,18 @@ std::optional<std::string> optional_string(const nlohmann::json& object, const c
   return it->get<std::string>();
 }
 
-// A test date is YYYY-MM-DD, optionally followed by a time: what sorts and compares as text.
+// A test date is YYYY-MM-DD, a day of the Gregorian calendar, optionally followed by a time: what
+// sorts and compares as text (2026-13-45 would sort, and mean nothing).
 bool is_iso_date(const std::string& text) {
   if (text.size() < 10 || text[4] != '-' || text[7] != '-') return false;
   for (const int i : {0, 1, 2, 3, 5, 6, 8, 9}) {
     if (text[static_cast<std::size_t>(i)] < '0' || text[static_cast<std::size_t>(i)] > '9') return false;
   }
-  return true;
+  const auto number = [&](std::size_t at, std::size_t digits) { return std::stoi(text.substr(at, digits)); };
+  const std::chrono::year_month_day day{std::chrono::year{number(0, 4)},
+                                        std::chrono::month{static_cast<unsigned>(number(5, 2))},
+                                        std::chrono::day{static_cast<unsigned>(number(8, 2))}};
+  return day.ok();
 }
 
 // One figure's value (a number, or the numbers of an array figure, e.g. a triad's [x, y, z] or a 3x3,

@@ -243,6 +243,10 @@ TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
   EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }), "figure 'nope/nope' is not archived");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),
             "--since '2026-13': expected YYYY-MM-DD");
+  for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29"}) {
+    EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string(no_day)); }),
+              std::string("--since '") + no_day + "': expected YYYY-MM-DD");
+  }
   EXPECT_EQ(error([&] { archive->results("0000000000000000"); }), "campaign '0000000000000000' is not in the archive");
 }
 

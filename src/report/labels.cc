@@ -37,6 +37,8 @@ constexpr Translation kTable[] = {
     {"ui.measured", "Measured", "实测值"},
     {"ui.verdict", "Verdict", "结论"},
     {"ui.pass", "PASS", "合格"},
+    {"ui.yes", "yes", "是"},
+    {"ui.no", "no", "否"},
     {"ui.fail", "FAIL", "不合格"},
     {"ui.none", "NONE", "无"},
     {"ui.method", "Method", "方法"},

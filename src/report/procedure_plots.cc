@@ -48,7 +48,8 @@ std::vector<std::string> numeric_members(const nlohmann::json& element) {
 
 // A plot of the curve `key`: the member `keys[0]` of each point on the abscissa, the others as
 // ordinates (those sharing a unit share a panel, at most three panels). Log abscissa when it is
-// positive and spans more than two decades.
+// positive and spans more than two decades, unless it is the time of a record (a chamber profile
+// squeezed into its last decade reads wrong).
 ReportPlot curve_plot(const PlotContext& context, const std::string& key, const nlohmann::json& curve,
                       const std::vector<std::string>& keys) {
   const Column x = column(curve, keys.front());
@@ -65,7 +66,8 @@ ReportPlot curve_plot(const PlotContext& context, const std::string& key, const 
     Panel panel;
     panel.height = 280.0;
     panel.x = make_axis(context.labels(keys.front()), pretty_unit(x.unit),
-                        spans_decades(x.values, 2.0) ? AxisScale::log : AxisScale::linear);
+                        !keys.front().starts_with("time") && spans_decades(x.values, 2.0) ? AxisScale::log
+                                                                                          : AxisScale::linear);
     const auto& members = by_unit[unit_order[u]];
     panel.y = make_axis(members.size() == 1 ? context.labels(members.front()) : "", pretty_unit(unit_order[u]));
     for (const auto& name : members) {

@@ -229,6 +229,9 @@ std::pair<std::string, std::string> format_figure(const json& figure, const Labe
   if (is_unidentified_figure(figure)) {
     return {labels("ui.not_identified") + " (< " + format_number(figure.at("upper_bound").get<double>(), 2) + ")", ""};
   }
+  // A declared text or yes/no figure (polarity's "positive", its "as specified").
+  if (figure.at("value").is_string()) return {figure.at("value").get<std::string>(), ""};
+  if (figure.at("value").is_boolean()) return {labels(figure.at("value").get<bool>() ? "ui.yes" : "ui.no"), ""};
   const double value = figure.at("value").get<double>();
   const auto* u = member(figure, "uncertainty");
   if (u == nullptr || !u->is_number() || !(u->get<double>() > 0.0) || !std::isfinite(value)) {
@@ -451,6 +454,11 @@ class ReportWriter {
       if (value == nullptr || field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
       if (is_long_array(*value)) continue;
       const std::string pointer = fmt::format("/{}", escape_pointer_token(field.name));
+      if (value->is_string() || value->is_boolean()) {
+        rows.push_back({pointer, labels_.field_of(kind, field.name), json{{"value", *value}, {"unit", ""}}, 1,
+                        field.role == FieldRole::headline});
+        continue;
+      }
       if (field.name == "channels" && value->is_object()) {
         collect_channels(*value, pointer, "", labels_, 0, field.role == FieldRole::headline, rows);
         continue;

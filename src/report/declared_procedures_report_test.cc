@@ -89,6 +89,26 @@ TEST(DeclaredProceduresReport, EverySectionShowsItsTitleFiguresAndCurves) {
   RecordProperty("declared_curves_plotted", static_cast<int>(curves));
 }
 
+// The smoothed records of a bias run start at its start: padding the time axis below it drew a
+// fifth of the plot as negative seconds.
+TEST(DeclaredProceduresReport, TheBiasRecordPlotStartsAtTimeZero) {
+  const nlohmann::json results = golden_results();
+  const Labels labels(Language::english);
+  const nlohmann::json verdicts = nlohmann::json::array();
+  std::size_t checked = 0;
+  for (const auto& procedure : results.at("procedures")) {
+    if (procedure.at("kind") != "bias") continue;
+    const PlotContext context{procedure.at("result"), labels, verdicts, find_procedure_spec("bias")};
+    for (const ReportPlot& plot : procedure_plots("bias", context)) {
+      if (plot.field != "smoothed_record") continue;
+      ASSERT_TRUE(plot.plot.panels.at(0).x.min.has_value());
+      EXPECT_EQ(*plot.plot.panels.at(0).x.min, 0.0);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0U);
+}
+
 TEST(DeclaredProceduresReport, APlotOfAnUndeclaredCurveIsAnError) {
   const ProcedureSpec* spec = find_procedure_spec("polarity");
   ASSERT_NE(spec, nullptr);

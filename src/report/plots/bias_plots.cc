@@ -18,6 +18,7 @@ std::optional<ReportPlot> smoothed_record_plot(const PlotContext& context) {
   Panel panel;
   panel.height = 340.0;
   panel.x = make_axis(context.labels("axis.time"), "s");
+  panel.x.min = 0.0;  // the record's time: padding the range below its start drew negative seconds
   std::string unit = "deg/h";
   const char* colours[] = {"#aec7e8", "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e"};
   std::size_t index = 0;

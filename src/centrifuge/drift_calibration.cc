@@ -341,6 +341,10 @@ nlohmann::json centrifuge_errors_json(const DriftCalibrationResult& result) {
       nlohmann::json correlation = nlohmann::json::object();
       for (const auto& [name, rho] : estimate->correlation) correlation[name] = rho;
       entry = {{"value", estimate->value}, {"source", "estimated"}, {"correlation", correlation}};
+    } else if (measured && !result.compensation) {
+      // Measured for the influence analysis (paper section 6) but applied nowhere: the value given,
+      // said so (it read "measured" with the 0 that was applied).
+      entry = {{"value", result.influence.at(e).magnitude}, {"source", "measured, not applied (compensation off)"}};
     } else {
       entry = {{"value", Figure{used[e], kErrorUnits[e], std::nullopt}},
                {"source", measured ? "measured" : "not measured (0)"}};

@@ -57,6 +57,11 @@ TEST(CentrifugeCommand, NoCompensationGivesThePapersDI) {
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_NEAR(json["coefficients"]["D_I"]["value"].get<double>(), -1.5268 * kPerStandardG, 0.5e-4);
   EXPECT_FALSE(json["compensation"].get<bool>());
+  // The measured errors are the ones given, and said to be applied nowhere (they read "measured"
+  // with the 0 that was applied).
+  const nlohmann::json& k1 = json.at("centrifuge_errors").at("k1");
+  EXPECT_EQ(k1.at("value").at("value"), -2e-5);
+  EXPECT_EQ(k1.at("source"), "measured, not applied (compensation off)");
 }
 
 TEST(CentrifugeCommand, RawSamplesWithOmegaColumn) {

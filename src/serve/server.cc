@@ -5,7 +5,9 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <regex>
 
@@ -180,14 +182,16 @@ struct Server::Impl {
     return options;
   }
 
-  nlohmann::json add_campaign(const httplib::Request& request) {
+  // `body` is null when it was over --max-body (not read): refused after who may add is checked.
+  nlohmann::json add_campaign(const httplib::Request& request, const std::optional<std::string>& body) {
     if (!options.allow_add) throw Refusal{403, "the server is read-only (start it with --allow-add)"};
     const std::string authorization = request.get_header_value("Authorization");
     if (authorization.empty()) throw Refusal{401, "the token is missing (Authorization: Bearer TOKEN)"};
     if (!same_secret(authorization, "Bearer " + token)) throw Refusal{403, "the token is wrong"};
+    if (!body) throw Refusal{413, reason(413)};
     nlohmann::json results;
     try {
-      results = nlohmann::json::parse(request.body);
+      results = nlohmann::json::parse(*body);
     } catch (const nlohmann::json::parse_error&) {
       throw Refusal{400, "the body is not valid JSON"};
     }
@@ -224,9 +228,23 @@ struct Server::Impl {
       if (request.has_param("since")) since = checked(request.get_param_value("since"), date_pattern, "since");
       return archive::fleet_summary(store->fleet(figure, since), since);
     }));
-    http.Post("/api/campaigns", route([this](const httplib::Request& request, httplib::Response&) {
-      return add_campaign(request);
-    }));
+    // The body is read here whatever its type: `curl --data-binary @results.json` sends a form,
+    // which cpp-httplib would parse and cap at 8 KiB (a 413 for any real campaign).
+    http.Post("/api/campaigns", [this](const httplib::Request& request, httplib::Response& response,
+                                       const httplib::ContentReader& read) {
+      // A body over --max-body is not read (cpp-httplib skips it for a reader): its length says so.
+      const std::string length = request.get_header_value("Content-Length");
+      std::optional<std::string> body;
+      if (length.empty() || std::strtoull(length.c_str(), nullptr, 10) <= options.max_body_bytes) {
+        body.emplace();
+        read([&](const char* data, std::size_t size) {
+          body->append(data, size);
+          return true;
+        });
+      }
+      route([this, &body](const httplib::Request& r, httplib::Response&) { return add_campaign(r, body); })(request,
+                                                                                                          response);
+    });
 
     // The pages, in English or (?lang=zh) Chinese.
     http.Get("/", route([this](const httplib::Request& request, httplib::Response& response) {

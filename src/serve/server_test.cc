@@ -70,9 +70,10 @@ Reply get(int port, const std::string& target) {
   return http_exchange(port, "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
 }
 
-Reply post(int port, const std::string& target, const std::string& body, const std::string& headers = "") {
+Reply post(int port, const std::string& target, const std::string& body, const std::string& headers = "",
+           const std::string& type = "application/json") {
   return http_exchange(port, "POST " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" + headers +
-                            "Content-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+                            "Content-Type: " + type + "\r\nContent-Length: " + std::to_string(body.size()) +
                             "\r\n\r\n" + body);
 }
 
@@ -209,6 +210,7 @@ TEST_F(ServeApi, HostileRequestsGet4xxAndChangeNothing) {
   }
   // Adding is refused by a read-only server, token or not, and a malformed request line too.
   EXPECT_EQ(post(port(), "/api/campaigns", testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0).dump()).status, 403);
+  EXPECT_EQ(post(port(), "/api/campaigns", std::string(70 * 1024, ' ')).status, 403);  // read-only first, not 413
   const auto garbage = http_exchange(port(), "NONSENSE\r\n\r\n");
   EXPECT_EQ(garbage.status, 400);
   EXPECT_TRUE(garbage.json().contains("error"));
@@ -230,7 +232,7 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   const std::string good = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0).dump();
   EXPECT_EQ(post(port(), "/api/campaigns", good).status, 401);
   EXPECT_EQ(post(port(), "/api/campaigns", good, "Authorization: Bearer 0123\r\n").status, 403);
-  EXPECT_EQ(post(port(), "/api/campaigns", std::string(70 * 1024, ' ') + good, token).status, 413);
+  { const auto big = post(port(), "/api/campaigns", std::string(70 * 1024, ' ') + good, token); EXPECT_EQ(big.status, 413) << big.body; }
   EXPECT_EQ(post(port(), "/api/campaigns", "{\"instrument\": ", token).status, 400);
   EXPECT_EQ(post(port(), "/api/campaigns", "[1, 2, 3]", token).status, 400);
   nlohmann::json not_a_number = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0);
@@ -244,6 +246,12 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_TRUE(added.json()["added"][0]["added"].get<bool>());
   EXPECT_FALSE(post(port(), "/api/campaigns", good, token).json()["added"][0]["added"].get<bool>());
   EXPECT_EQ(get(port(), "/api/campaigns").json()["campaigns"].size(), 5u);
+  // As `curl --data-binary @results.json` sends it, a form: a body over cpp-httplib's 8 KiB of form.
+  nlohmann::json large = testing::scale_factor_campaign("FOG-10", "2026-04-02", 36000.0);
+  large["plan"] = {{"notes", std::string(20 * 1024, 'x')}};
+  const auto as_form = post(port(), "/api/campaigns", large.dump(), token, "application/x-www-form-urlencoded");
+  ASSERT_EQ(as_form.status, 200) << as_form.body;
+  EXPECT_EQ(as_form.json()["added"][0]["instrument"], "FOG-10");
 }
 
 std::size_t count(const std::string& text, const std::string& part) {

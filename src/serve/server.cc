@@ -31,9 +31,8 @@ struct Refusal {
 
 // Names are checked before any query: an instrument id as the archive takes it (any text; here no
 // control character, not a dot segment, at most 256 bytes: it is only bound to queries and
-// escaped in pages), a
-// campaign id (16 hex digits, the archive's content hash), PROCEDURE/FIGURE keys (no segment can
-// be "." or ".."), an ISO date.
+// escaped in pages), a campaign id (16 hex digits, the archive's content hash), PROCEDURE/FIGURE
+// keys (no segment can be "." or ".."), an ISO date.
 const std::regex instrument_pattern(R"((?!\.\.?$)[^\x00-\x1f\x7f]+)");
 const std::regex campaign_pattern(R"([0-9a-f]{16})");
 const std::regex figure_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]*(/[A-Za-z0-9_][A-Za-z0-9_.+\-]*)+)");
@@ -232,13 +231,18 @@ struct Server::Impl {
     // which cpp-httplib would parse and cap at 8 KiB (a 413 for any real campaign).
     http.Post("/api/campaigns", [this](const httplib::Request& request, httplib::Response& response,
                                        const httplib::ContentReader& read) {
-      // A body over --max-body is not read (cpp-httplib skips it for a reader): its length says so.
+      // A body over --max-body is not kept: cpp-httplib skips one whose length says so, and one sent
+      // in chunks is dropped once it passes the limit.
       const std::string length = request.get_header_value("Content-Length");
       std::optional<std::string> body;
       if (length.empty() || std::strtoull(length.c_str(), nullptr, 10) <= options.max_body_bytes) {
         body.emplace();
         read([&](const char* data, std::size_t size) {
-          body->append(data, size);
+          if (body && body->size() + size <= options.max_body_bytes) {
+            body->append(data, size);
+          } else {
+            body.reset();
+          }
           return true;
         });
       }

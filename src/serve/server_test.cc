@@ -246,6 +246,12 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_TRUE(added.json()["added"][0]["added"].get<bool>());
   EXPECT_FALSE(post(port(), "/api/campaigns", good, token).json()["added"][0]["added"].get<bool>());
   EXPECT_EQ(get(port(), "/api/campaigns").json()["campaigns"].size(), 5u);
+  // In chunks past --max-body (64 KiB here): refused, not kept whole in memory.
+  const std::string chunk(40 * 1024, ' ');
+  const auto chunked = http_exchange(port(), "POST /api/campaigns HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" +
+                                                 token + "Transfer-Encoding: chunked\r\n\r\na000\r\n" + chunk +
+                                                 "\r\na000\r\n" + chunk + "\r\n0\r\n\r\n");
+  EXPECT_EQ(chunked.status, 413) << chunked.body;
   // As `curl --data-binary @results.json` sends it, a form: a body over cpp-httplib's 8 KiB of form.
   nlohmann::json large = testing::scale_factor_campaign("FOG-10", "2026-04-02", 36000.0);
   large["plan"] = {{"notes", std::string(20 * 1024, 'x')}};

@@ -47,8 +47,7 @@ std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
 
 // A Python number: int, float, or numpy's scalars (np.int64, np.float32...), but not a bool or text.
 bool is_number(const py::handle& value) {
-  return PyNumber_Check(value.ptr()) != 0 && !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
-         !py::isinstance<py::array>(value);
+  return PyNumber_Check(value.ptr()) != 0 && !py::isinstance<py::bool_>(value) && !py::isinstance<py::array>(value);
 }
 
 nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle& value) {

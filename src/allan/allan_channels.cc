@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 #include <type_traits>
 
@@ -69,11 +70,10 @@ AllanChannels analyse_channels(const std::vector<std::span<Sample>>& columns, co
   for (const auto& column : columns) {
     if (column.size() != columns.front().size()) throw Error("the channels differ in length");
   }
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    // Each channel's result is under its name: a second one of a name would hide the first.
-    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) != names.begin() + static_cast<std::ptrdiff_t>(i)) {
-      throw Error("channel '" + names[i] + "' is asked for twice");
-    }
+  // Each channel's result is under its name: a second one of a name would hide the first.
+  std::set<std::string> seen;
+  for (const std::string& name : names) {
+    if (!seen.insert(name).second) throw Error("channel '" + name + "' is asked for twice");
   }
   for (const AllanOptions& o : options) o.validate();
   // Channels side by side, each engine on one thread (the engine's sums do not depend on its thread

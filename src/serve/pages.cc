@@ -127,8 +127,6 @@ std::string add_form(const Words& w) {
       w.add, w.add_file, w.add_token, w.add_send, w.add_no_file, w.added, w.already, add_script);
 }
 
-}  // namespace
-
 // A path segment of a URL: every byte but the unreserved ones percent-encoded (RFC 3986 2.3), so that
 // an id with a space, a '/' or Chinese characters links to its page.
 std::string path_segment(const std::string& text) {
@@ -143,6 +141,8 @@ std::string path_segment(const std::string& text) {
   }
   return encoded;
 }
+
+}  // namespace
 
 std::string render_instrument_list_page(const nlohmann::json& instruments, report::Language language, bool allow_add) {
   const bool zh = language == report::Language::chinese;

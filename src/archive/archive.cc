@@ -215,6 +215,33 @@ void collect_figures(const nlohmann::json& node, const std::string& procedure, c
   }
 }
 
+// The figures a limit names inside a list (a row of a table, e.g. "/bias_stability/1", bias
+// stability at the second smoothing time): collect_figures leaves lists out (their rows are curves
+// and tables, hundreds of points), but a figure the plan puts a limit on is archived wherever it is,
+// so that its history and the archive's report show it with its limits. rows[first, end) are the
+// procedure's figures collected already.
+void collect_limited_figures(const nlohmann::json& result, const std::string& procedure,
+                             const std::map<std::pair<std::string, std::string>, const nlohmann::json*>& verdicts,
+                             std::size_t first, const std::string& source, std::vector<FigureRow>& rows) {
+  const std::size_t end = rows.size();
+  for (const auto& [key, verdict] : verdicts) {
+    if (key.first != procedure) continue;
+    const auto collected = [&](const FigureRow& row) { return row.figure == key.second; };
+    if (std::any_of(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.begin() + static_cast<std::ptrdiff_t>(end),
+                    collected)) {
+      continue;
+    }
+    const nlohmann::json* node = nullptr;
+    try {
+      const nlohmann::json::json_pointer pointer("/" + key.second);
+      if (result.contains(pointer)) node = &result.at(pointer);
+    } catch (const nlohmann::json::exception&) {
+      // not a JSON pointer into this result (the campaign wrote the verdict; nothing to archive)
+    }
+    if (node != nullptr && node->is_object()) collect_figures(*node, procedure, key.second, source, rows);
+  }
+}
+
 CampaignRecord read_campaign(const nlohmann::json& results, const std::string& source) {
   using type = nlohmann::json::value_t;
   if (!results.is_object()) malformed(source, "expected a JSON object");
@@ -268,8 +295,10 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
     if (name.empty() || name.find('/') != std::string::npos) {
       malformed(source, "procedure name '" + name + "' is empty or contains '/'");
     }
-    collect_figures(member(procedure, "result", type::object, source, "procedure '" + name + "': "), name, "", source,
-                    record.figures);
+    const nlohmann::json& result = member(procedure, "result", type::object, source, "procedure '" + name + "': ");
+    const std::size_t first = record.figures.size();
+    collect_figures(result, name, "", source, record.figures);
+    collect_limited_figures(result, name, verdicts, first, source, record.figures);
   }
   for (auto& row : record.figures) {
     const auto it = verdicts.find({row.procedure, row.figure});

@@ -164,6 +164,33 @@ TEST_P(ArchiveBackend, ArrayFiguresAreStoredElementByElement) {
   EXPECT_FALSE(misalignment.points[0].uncertainty);
 }
 
+// A limit on a row of a table (bias stability at the second smoothing time, named by the plan's JSON
+// pointer) archives that row with its limit; the table's other rows and curves stay out.
+TEST_P(ArchiveBackend, AFigureALimitNamesInAListIsArchivedWithItsLimit) {
+  auto archive = open();
+  nlohmann::json results = campaign("FOG-0417", "2026-03-02", 36000.0);
+  nlohmann::json& bias = results["procedures"][1]["result"];
+  bias["bias_stability"] = {{{"smoothing_s", 10.0}, {"value", 0.012}, {"unit", "deg/h"}},
+                            {{"smoothing_s", 100.0}, {"value", 0.0057}, {"unit", "deg/h"}}};
+  bias["normalised_stability_curve"] = {{{"tau_s", 0.01}, {"value", 1.5}, {"unit", "deg/h"}}};
+  results["verdicts"].push_back({{"procedure", "bias_static"}, {"figure", "/bias_stability/1"}, {"value", 0.0057},
+                                 {"pass", true}, {"max", 0.02 / 3600.0}, {"unit", "deg/s"}});
+  results["verdicts"].push_back({{"procedure", "bias_static"}, {"figure", "/no_such/0"}, {"pass", true}, {"max", 1.0}});
+  archive->add(results, "a.json");
+  const auto stability = archive->history("FOG-0417", "bias_static/bias_stability/1");
+  ASSERT_EQ(stability.points.size(), 1u);
+  EXPECT_EQ(stability.points[0].value, 0.0057);
+  EXPECT_EQ(stability.unit, "deg/h");
+  ASSERT_TRUE(stability.upper_limit);
+  EXPECT_NEAR(*stability.upper_limit, 0.02, 1e-15);  // the plan's limit, in the figure's unit
+  EXPECT_FALSE(stability.lower_limit);
+  EXPECT_EQ(archive->figures(true),
+            (std::vector<std::string>{"bias_static/bias_stability/1", "scale_factor/scale_factor"}));
+  const auto all = archive->figures(false);
+  EXPECT_EQ(std::count(all.begin(), all.end(), "bias_static/bias_stability/0"), 0);
+  EXPECT_EQ(std::count(all.begin(), all.end(), "bias_static/normalised_stability_curve/0"), 0);
+}
+
 TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
   auto archive = open();
   const auto once = archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
@@ -366,6 +393,9 @@ TEST_P(ArchiveBackend, CommandLineRoundTrip) {
   EXPECT_EQ(json["points"][0]["value"], results["procedures"][0]["result"]["scale_factor"]["value"]);
   EXPECT_EQ(json["points"][0]["uncertainty"], results["procedures"][0]["result"]["scale_factor"]["uncertainty"]);
   EXPECT_EQ(json["points"][0]["campaign"], campaigns[0]["id"]);
+  const auto text = testing::run_cli(
+      {"archive", "history", "FOG-SIM-NAV", "--figure", "scale_factor/scale_factor", "--db", location_});
+  EXPECT_THAT(text.out, HasSubstr("\n  limits: min 35999, max 36001\n"));  // the plan's, in the figure's unit
 
   // A malformed file among good ones: nothing is added, the error names the file, line and column.
   const std::string good = scratch_.write("good.json", campaign("FOG-2", "2026-02-01", 1.0).dump());

@@ -106,6 +106,13 @@ TEST(ProcedureStep, InstrumentDefaultOnlyWhereItsConditionHolds) {
   ScratchDirectory scratch;
   const std::string plan = scratch.write("plan.toml", std::string(kHeader) + body);
   EXPECT_NO_THROW(validate_plan(plan));
+  // Records in deg/h take no K: the instrument's nominal one is not given to them, and one the step
+  // gives is an error at its key.
+  const std::string bias = "nominal_scale_factor = 36000\nsample_rate_hz = 100\n[[procedure]]\nkind = \"bias\"\n"
+                           "file = \"plan.toml\"\ninput = \"deg/h\"\n";
+  EXPECT_NO_THROW(validate_plan(scratch.write("bias.toml", std::string(kHeader) + bias)));
+  expect_plan_error(bias + "scale_factor = 36000\n",
+                    "bias: the scale factor K and records in deg/h (--input-deg-h; input = \"deg/h\") exclude each other");
 }
 
 }  // namespace

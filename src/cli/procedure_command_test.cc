@@ -49,6 +49,11 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   run = run_cli({"bias-repeatability", first, second});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("missing the scale factor K"));
+  // K with records in deg/h would go unused: said, not ignored.
+  run = run_cli({"bias-repeatability", first, second, "--input-deg-h", "--scale-factor", "36000"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("--scale-factor"));
+  EXPECT_THAT(run.err, HasSubstr("exclude each other: records in deg/h are not divided by K"));
   const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
   run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);

@@ -80,18 +80,22 @@ ProcedureSpec bias_spec();
 
 // The check, before any record is read, of a spec whose records eq. (19) converts (`procedure`: bias,
 // its repeatability or temperature sensitivity): the scale factor given unless the records hold deg/h,
-// then validate_conversion(). Throws Error.
+// and not given when they do (it would go unused), then validate_conversion(). Throws Error.
 void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options, const std::string& procedure);
 
 // Declares eq. (19)'s conversion on `definition`, alike for bias, its repeatability and temperature
-// sensitivity: scale_factor (K; a plan without it takes [instrument] nominal_scale_factor) and input
+// sensitivity: scale_factor (K; a plan without it takes [instrument] nominal_scale_factor, unless its
+// records hold deg/h) and input
 // ("output", or "deg/h" for records in deg/h already: the flag --input-deg-h), stored in the
 // BiasOptions that `conversion` gives of the procedure's Options.
 template <typename Options, typename Result>
 ProcedureDefinition<Options, Result>& bias_conversion_parameters(ProcedureDefinition<Options, Result>& definition,
                                                                   BiasOptions& (*conversion)(Options&)) {
   return definition
-      .parameter(ParameterSpec("scale_factor", "K").unit_is("output units per deg/s").instrument_gives("nominal_scale_factor"),
+      .parameter(ParameterSpec("scale_factor", "K")
+                     .unit_is("output units per deg/s")
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_when("input", "output"),
                  [conversion](Options& options, const nlohmann::json& value) {
                    conversion(options).scale_factor = value.get<double>();
                  })

@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
 
 namespace inertest {
@@ -21,19 +22,20 @@ std::vector<AllanOptions> channel_options(const AllanOptions& common, const std:
   std::map<std::size_t, std::string> named;
   bool bare_seen = false;
   // Split as the record readers split a line: blanks around each part trimmed.
-  for (const TextField& item : split_text_line(units, ',', "--input-unit", 1)) {
+  for (const TextField& item : split_text_line(units, ',', "input_unit", 1)) {
     if (item.text.empty()) continue;
-    const std::vector<TextField> parts = split_text_line(item.text, '=', "--input-unit", 1);
+    const std::vector<TextField> parts = split_text_line(item.text, '=', "input_unit", 1);
     if (parts.size() == 1) {
       if (bare_seen) {
-        throw Error("--input-unit: two units without a channel name ('" + fallback + "', '" + item.text + "')");
+        throw ParameterError("input_unit", "input_unit gives two units without a channel name ('" + fallback + "', '" +
+                                               item.text + "')");
       }
       bare_seen = true;
-      Unit::parse(item.text);
+      check_parameter("input_unit", [&] { Unit::parse(item.text); });
       fallback = item.text;
       continue;
     }
-    if (parts.size() != 2) throw Error("--input-unit: '" + item.text + "' is not NAME=UNIT");
+    if (parts.size() != 2) throw ParameterError("input_unit", "input_unit has '" + item.text + "', which is not NAME=UNIT");
     const std::string& name = parts[0].text;
     const std::string& unit = parts[1].text;
     std::size_t channel = names.size();
@@ -43,10 +45,13 @@ std::vector<AllanOptions> channel_options(const AllanOptions& common, const std:
     if (channel == names.size()) {
       std::string list;
       for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-      throw Error("--input-unit names '" + name + "', which is not a channel asked for (" + list + ")");
+      throw ParameterError("input_unit",
+                           "input_unit names '" + name + "', which is not a channel asked for (" + list + ")");
     }
-    if (named.contains(channel)) throw Error("--input-unit gives channel '" + names[channel] + "' twice");
-    Unit::parse(unit);
+    if (named.contains(channel)) {
+      throw ParameterError("input_unit", "input_unit gives channel '" + names[channel] + "' twice");
+    }
+    check_parameter("input_unit", [&] { Unit::parse(unit); });
     named[channel] = unit;
   }
   std::vector<AllanOptions> options(names.size(), common);

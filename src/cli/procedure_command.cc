@@ -238,11 +238,15 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       record.path = file;
       return with_file_context(file, [&] { return read_timed_record(record, rate, time_column, minimum); });
     };
-    try {
-      spec.check(call);
-    } catch (const ParameterError& e) {
-      throw Error(e.message_naming(spec.find_parameter(e.parameter)->command_line_option()));
-    }
+    // An error about a parameter's value names it as given here: --input-unit, not input_unit.
+    const auto naming_options = [&spec](auto&& work) {
+      try {
+        return work();
+      } catch (const ParameterError& e) {
+        throw Error(e.message_naming(spec.find_parameter(e.parameter)->command_line_option()));
+      }
+    };
+    naming_options([&] { spec.check(call); });
     for (const InputSpec& input : spec.inputs) {
       if (input.kind == InputKind::value_or_record) {
         call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
@@ -250,9 +254,9 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     }
     // A procedure's complaint about the data of its one file names that file.
     call.progress = terminal_progress();
-    const ProcedureOutput output = call.files.size() == 1
-                                       ? with_file_context(call.files.begin()->second, [&] { return spec.run(call); })
-                                       : spec.run(call);
+    const auto run = [&] { return naming_options([&] { return spec.run(call); }); };
+    const ProcedureOutput output =
+        call.files.size() == 1 ? with_file_context(call.files.begin()->second, run) : run();
     print_result(procedure_json(spec, output.fields), procedure_text(spec, output), arguments->json);
     return 0;
   };

@@ -36,8 +36,8 @@ struct AllanChannels {
 
 // The options of each channel: `common` with its input unit taken from `units`, a comma list of
 // NAME=UNIT (NAME a channel's name or its selector as given) and at most one bare UNIT that sets
-// the unit of the channels not named (default: common.input_unit). Throws Error for a name that is
-// no channel, a channel named twice, or a unit that does not parse.
+// the unit of the channels not named (default: common.input_unit). Throws ParameterError
+// ("input_unit") for a name that is no channel, a channel named twice, or a unit that does not parse.
 std::vector<AllanOptions> channel_options(const AllanOptions& common, const std::vector<std::string>& names,
                                           const std::vector<std::string>& selectors, std::string_view units);
 

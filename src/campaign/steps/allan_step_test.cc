@@ -16,6 +16,7 @@ namespace inertest {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // A plan of one allan step on w.f64, 3000 samples of white noise at 10 Hz written beside it; `keys`
 // (TOML lines) follow the step's file and format, from line 11 on.
@@ -128,7 +129,7 @@ TEST(AllanStep, ColumnsAnalyseEveryChannelWithItsUnit) {
   std::string text = "t,gx,ax\n";
   for (std::size_t i = 0; i < a.size(); ++i) text += fmt::format("{},{:.17g},{:.17g}\n", i, a[i], b[(i * 7) % b.size()]);
   dir.write("imu.csv", text);
-  const std::string plan = dir.write("plan.toml", R"(
+  const std::string plan_text = R"(
 [plan]
 title = "IMU noise"
 [instrument]
@@ -142,7 +143,8 @@ file = "imu.csv"
 columns = ["gx", "ax"]
 input_unit = "deg/s,ax=m/s^2"
 taus = "decade"
-)");
+)";
+  const std::string plan = dir.write("plan.toml", plan_text);
   const CampaignSummary summary = run_campaign(plan, dir.path() + "/out");
   const nlohmann::json& result = summary.results["procedures"][0]["result"];
   AllanOptions options;
@@ -172,6 +174,16 @@ columns = ["gx", "ax"]
     FAIL() << "column and columns together were accepted";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("column and columns exclude each other"));
+  }
+  // A unit for a channel not asked for is said in the plan's words (the key, not the CLI's flag).
+  std::string wrong_unit = plan_text;
+  wrong_unit.replace(wrong_unit.find("ax=m/s^2"), 8, "az=m/s^2");
+  try {
+    run_campaign(dir.write("wrong_unit.toml", wrong_unit), dir.path() + "/out3");
+    FAIL() << "a unit for a channel not asked for was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("input_unit names 'az', which is not a channel asked for (gx, ax)"));
+    EXPECT_THAT(e.what(), Not(HasSubstr("--input-unit")));
   }
 }
 

@@ -1,7 +1,12 @@
 // inertest serve [--db DB] [--bind 127.0.0.1] [--port 8080] [--allow-add] [--max-body BYTES]
 #include <fmt/format.h>
+#include <pthread.h>
 
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <thread>
 
 #include "archive_command.h"
 #include "command.h"
@@ -35,11 +40,35 @@ CommandAction setup(CLI::App& root) {
       ->capture_default_str();
   return [arguments] {
     arguments->options.db = arguments->db.empty() ? archive::default_archive_location() : arguments->db;
+    // Ctrl-C or SIGTERM stops the server as stop() does: no new connection, the requests under way
+    // answered (an add finishes its transaction), then exit 0. The signals are blocked in every
+    // thread (the server's take this mask) and taken by one thread that waits for them.
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
     serve::Server server(arguments->options);
     fmt::print("inertest serve: {} ({})\n", server.url(), arguments->options.allow_add ? "adding allowed" : "read-only");
     if (arguments->options.allow_add) fmt::print("token: {}\n", server.token());
     std::fflush(stdout);
+    std::atomic<bool> served{false};
+    std::atomic<int> received{0};
+    std::thread signal_waiter([&] {
+      int signal = 0;
+      sigwait(&signals, &signal);
+      received = signal;
+      // A stop() before run() listens would be lost: repeated until run() returns.
+      while (!served) {
+        server.stop();
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    });
     server.run();
+    served = true;
+    if (received == 0) pthread_kill(signal_waiter.native_handle(), SIGTERM);  // run() ended on its own
+    signal_waiter.join();
+    if (received != 0) fmt::print(stderr, "inertest serve: stopped ({})\n", received == SIGINT ? "SIGINT" : "SIGTERM");
     return 0;
   };
 }

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -342,6 +345,39 @@ TEST_F(ServeApi, APortInUseIsAnError) {
   options.db = db_;
   options.port = port();
   EXPECT_THROW(Server second(options), Error);
+}
+
+// `inertest serve` stops on SIGTERM (or Ctrl-C) as stop() does, says so and exits 0.
+TEST_F(ServeApi, TheCommandStopsOnASignalAndExitsZero) {
+  int out[2];
+  ASSERT_EQ(::pipe(out), 0);
+  testing::ScratchDirectory scratch;
+  const std::string err_path = scratch.path() + "/err";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(out[1], STDOUT_FILENO);
+    ::close(out[0]);
+    if (!std::freopen(err_path.c_str(), "w", stderr)) _exit(127);
+    const std::string program = testing::cli_path();
+    ::execl(program.c_str(), program.c_str(), "serve", "--db", db_.c_str(), "--port", "0", nullptr);
+    _exit(127);
+  }
+  ::close(out[1]);
+  std::string first_line;
+  char c = 0;
+  while (::read(out[0], &c, 1) == 1 && c != '\n') first_line += c;
+  ::close(out[0]);
+  const auto colon = first_line.rfind(':');
+  ASSERT_NE(colon, std::string::npos) << first_line;
+  const int served_port = std::stoi(first_line.substr(colon + 1));
+  EXPECT_EQ(get(served_port, "/api/instruments").status, 200);
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  std::ifstream err(err_path);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(err), {}), "inertest serve: stopped (SIGTERM)\n");
 }
 
 TEST(Serve, MissingArchiveIsAnError) {

@@ -53,6 +53,8 @@ CliRun run_example(const ProcedureSpec& spec) {
   return run_cli(arguments);
 }
 
+std::string cli_path() { return INERTEST_CLI_PATH; }
+
 CliRun run_cli(const std::vector<std::string>& arguments) {
   // stdout and stderr go to files, so neither pipe can block the other.
   ScratchDirectory scratch;
@@ -61,7 +63,7 @@ CliRun run_cli(const std::vector<std::string>& arguments) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     std::vector<char*> argv;
-    std::string program = INERTEST_CLI_PATH;
+    std::string program = cli_path();
     argv.push_back(program.data());
     std::vector<std::string> copies = arguments;
     for (auto& a : copies) argv.push_back(a.data());

@@ -40,6 +40,9 @@ struct CliRun {
   std::string err;
 };
 
+// The path of build/bin/inertest.
+std::string cli_path();
+
 // Runs build/bin/inertest with the arguments (no shell quoting; each is one argv entry).
 CliRun run_cli(const std::vector<std::string>& arguments);
 

@@ -194,6 +194,20 @@ constexpr Translation kTable[] = {
     {"axis.input", "Input rate", "输入角速度"},
     {"axis.increment", "Input rate increment", "输入角速度增量"},
     {"axis.relative_error", "Relative error of the output", "输出相对误差"},
+
+    // Members of curves that are no axis quantity of the table above.
+    {"tau_s", "Averaging time τ", "平均时间 τ"},
+    {"value", "Value", "数值"},
+    {"frequency_hz", "Frequency", "频率"},
+    {"gain", "Gain", "增益"},
+    {"fitted_gain", "Fitted gain", "拟合增益"},
+    {"phase_deg", "Phase", "相位"},
+    {"fitted_phase_deg", "Fitted phase", "拟合相位"},
+    {"relative_change", "Relative change", "相对变化"},
+    {"model", "Model", "模型"},
+    {"heating", "Heating", "升温"},
+    {"cooling", "Cooling", "降温"},
+    {"soak", "Soak", "恒温"},
 };
 
 const std::unordered_map<std::string_view, const Translation*>& index() {
@@ -220,7 +234,9 @@ std::string humanise_key(std::string_view key) {
 
 std::string Labels::operator()(std::string_view key) const {
   const auto& table = index();
-  const auto found = table.find(key);
+  auto found = table.find(key);
+  // A curve's member ("time", "residual") is labelled as the axis quantity of its name.
+  if (found == table.end() && key.find('.') == std::string_view::npos) found = table.find("axis." + std::string(key));
   if (found == table.end()) return humanise_key(key);
   const Translation& t = *found->second;
   if (language_ == Language::chinese && !t.chinese.empty()) return std::string(t.chinese);

@@ -1,5 +1,7 @@
 #include "report/labels.h"
 
+#include "inertest/core/procedure_spec.h"
+
 #include <set>
 
 #include "test_util/test_util.h"
@@ -27,6 +29,22 @@ TEST(ReportLabels, GjbTermsInChinese) {
   EXPECT_EQ(chinese("bandwidth"), "带宽");
   EXPECT_EQ(chinese.title_of("bandwidth"), "频带宽度与输出延迟时间");
   EXPECT_EQ(Labels(Language::english)("bias_stability"), "Bias stability");
+}
+
+// The members of every declared curve that the generic plot labels (procedure_plots.cc) read in
+// Chinese in a Chinese report: none falls back to the English of humanise_key.
+TEST(ReportLabels, EveryDeclaredCurveMemberHasAChineseLabel) {
+  const Labels chinese(Language::chinese);
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    for (const FieldSpec& field : spec.fields) {
+      if (field.role != FieldRole::curve) continue;
+      for (const std::string& member : field.axes) {
+        EXPECT_NE(chinese(member), humanise_key(member)) << spec.kind << " " << field.name << " " << member;
+      }
+    }
+  }
+  EXPECT_EQ(chinese("time"), "时间");  // the axis quantity of that name
+  EXPECT_EQ(chinese("heating"), "升温");
 }
 
 TEST(ReportLabels, UnknownKeysReadAsThemselves) {

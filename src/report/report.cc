@@ -298,7 +298,8 @@ class ReportWriter {
     check_shape();
     std::string text = fmt::format("{}: {} {}\n", labels_("ui.test_report"), labels_("ui.instrument"), instrument_id());
     for (const json& procedure : results_.at("procedures")) {
-      text += fmt::format("\n{} ({})\n", procedure_title(procedure), procedure.value("kind", ""));
+      const std::string kind = procedure.value("kind", "");
+      text += fmt::format("\n{} ({})\n", labels_.title_of(kind), procedure.value("name", kind));
       for (const FigureRow& row : figures_of(procedure)) {
         const auto [value, uncertainty] = format_figure(row.figure, labels_);
         const std::string unit = pretty_unit(row.figure.value("unit", ""));
@@ -413,10 +414,12 @@ class ReportWriter {
     out_ += "</table>\n</div>\n</header>\n";
   }
 
+  // The heading of a procedure's section: its kind's title, with the plan's name for the step
+  // when it has one of its own ("Bias (bias_static)").
   std::string procedure_title(const json& procedure) const {
     const std::string name = procedure.value("name", "");
     const std::string kind_label = labels_.title_of(procedure.value("kind", ""));
-    return name == procedure.value("kind", "") || name.empty() ? kind_label : name;
+    return name == procedure.value("kind", "") || name.empty() ? kind_label : kind_label + " (" + name + ")";
   }
 
   void write_contents() {

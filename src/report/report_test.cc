@@ -314,7 +314,7 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
   EXPECT_THAT(text, HasSubstr("Test report: Instrument FOG-SIM-NAV\n"));
   const std::regex sections[] = {
       std::regex(R"(\nScale factor \(scale_factor\)\n  Scale factor K +[0-9.]+ ± [0-9.]+ pulse/s/\(°/s\)\n)"),
-      std::regex(R"(\nallan_long_static \(allan\)\n  Noise terms · Random walk coefficient +[0-9.]+ ± [0-9.]+ °/√h\n)"),
+      std::regex(R"(\nAllan variance and random walk coefficient \(allan_long_static\)\n  Noise terms · Random walk coefficient +[0-9.]+ ± [0-9.]+ °/√h\n)"),
       std::regex(R"(\n  ax · Noise terms · Velocity random walk +[0-9.]+ ± [0-9.]+ m/s/√h\n)"),
       std::regex(R"(\n  Gyro triad · Scale factor x +[0-9.]+ ± [0-9.]+ count/\(rad/s\)\n)"),
       std::regex(R"(\n  Gyro triad · Misalignment zy +-?[0-9.]+ ± [0-9.]+ rad\n)"),

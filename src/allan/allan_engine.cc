@@ -184,6 +184,9 @@ struct FactorState {
 // one term per cycle). The partial sums are added pairwise, which is also the more accurate order.
 constexpr std::size_t kLanes = 16;
 
+// Lanes[l]: the sum of the terms at i = l (mod kLanes) of a run, i counted from its start.
+using Lanes = std::array<double, kLanes>;
+
 double lane_total(const double (&lanes)[kLanes]) {
   double level[kLanes];
   std::copy(std::begin(lanes), std::end(lanes), level);
@@ -191,6 +194,25 @@ double lane_total(const double (&lanes)[kLanes]) {
     for (std::size_t l = 0; l < width; ++l) level[l] = level[2 * l] + level[2 * l + 1];
   }
   return level[0];
+}
+
+double lane_total(const Lanes& lanes) {
+  double level[kLanes];
+  std::copy(lanes.begin(), lanes.end(), level);
+  return lane_total(level);
+}
+
+// The terms at i = r (mod m) of a run, m dividing kLanes: the lanes r, r + m, ...
+double strided_lane_total(const Lanes& lanes, std::size_t r, std::size_t m) {
+  double total = 0.0;
+  for (std::size_t l = r; l < kLanes; l += m) total += lanes[l];
+  return total;
+}
+
+Lanes to_lanes(const double (&lanes)[kLanes]) {
+  Lanes out;
+  std::copy(std::begin(lanes), std::end(lanes), out.begin());
+  return out;
 }
 
 // Sum of values[0..n) in kLanes independent lanes (vectorisable).
@@ -280,7 +302,7 @@ double average_lane_total(const double (&lanes)[kAverageLanes]) {
 }
 
 struct SecondDifferenceSums {
-  double second = 0.0;  // sum a_k^2
+  Lanes second{};  // sum a_k^2, by lane
   AverageSums averages;
 };
 
@@ -306,16 +328,16 @@ template <bool kAverages>
       }
     }
   }
-  for (; i < length; ++i) {
+  for (; i < length; ++i) {  // the last terms in their lanes too (strided_lane_total counts on it)
     const double a = p0[i] - 2.0 * p1[i] + p2[i];
-    lanes[0] += a * a;
+    lanes[i % kLanes] += a * a;
     if constexpr (kAverages) {
       const double d = (p0[i] - p1[i]) - shift;
       d_sums[0] += d;
       d_squares[0] += d * d;
     }
   }
-  return {lane_total(lanes), {lane_total(d_sums), lane_total(d_squares)}};
+  return {to_lanes(lanes), {lane_total(d_sums), lane_total(d_squares)}};
 }
 
 // second_difference_loop, with the average sums when `shift` is not null.
@@ -342,10 +364,10 @@ SecondDifferenceSums second_difference_window(const double* __restrict p0, const
   }
   for (; i < length; ++i) {
     const double a = p0[i] - 2.0 * p1[i] + p2[i];
-    lanes[0] += a * a;
+    lanes[i % kLanes] += a * a;
     window[0] += a;
   }
-  return {lane_total(lanes), {lane_total(window), 0.0}};
+  return {to_lanes(lanes), {lane_total(window), 0.0}};
 }
 
 // The sums of d_k - shift alone (the anchors m <= k < 2m, or 3m, before the difference sweeps).
@@ -371,8 +393,8 @@ AverageSums difference_sums(const double* __restrict p0, const double* __restric
 }
 
 struct ThirdDifferenceSquares {
-  double second = 0.0;  // sum a_k^2
-  double third = 0.0;   // sum h_k^2
+  Lanes second{};  // sum a_k^2, by lane
+  Lanes third{};   // sum h_k^2, by lane
   AverageSums averages;
 };
 
@@ -407,15 +429,15 @@ template <bool kStoreH, bool kAverages>
     const double a = p0[i] - 2.0 * p1[i] + p2[i];
     const double hk = a - (p1[i] - 2.0 * p2[i] + p3[i]);
     if constexpr (kStoreH) h[i] = hk;
-    lanes_a[0] += a * a;
-    lanes_h[0] += hk * hk;
+    lanes_a[i % kLanes] += a * a;
+    lanes_h[i % kLanes] += hk * hk;
     if constexpr (kAverages) {
       const double d = (p0[i] - p1[i]) - shift;
       d_sums[0] += d;
       d_squares[0] += d * d;
     }
   }
-  return {lane_total(lanes_a), lane_total(lanes_h), {lane_total(d_sums), lane_total(d_squares)}};
+  return {to_lanes(lanes_a), to_lanes(lanes_h), {lane_total(d_sums), lane_total(d_squares)}};
 }
 
 // third_difference_loop, storing the h_k unless `h` is null, with the average sums when `shift`
@@ -811,21 +833,37 @@ struct AllanEngine::State {
       const std::size_t hi = std::min(k1, 3 * m);
       if (lo < hi) {
         double total = 0.0;
+        double multiples = 0.0;
+        std::size_t k = lo;
         for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, lo, hi, 1, [&](const auto& p, std::size_t n) {
           const SecondDifferenceSums sums = second_difference_window(p[0], p[1], p[2], n);
-          total += sums.second;
+          total += lane_total(sums.second);
+          if (adev_from_lanes(m)) multiples += at_multiples(sums.second, k, m);
           f.window += sums.averages.sum;
+          k += n;
         });
         f.sums[index_of(Estimator::kOadev)].add(total);
+        if (adev_from_lanes(m)) f.sums[index_of(Estimator::kAdev)].add(multiples);
         if (hi == 3 * m) f.sums[index_of(Estimator::kMdev)].add(f.window * f.window);  // w_{3m-1}
       }
       sweep_third(f, std::max(k0, 3 * m), k1, store, h_buffer);
     } else {
       sweep_second(f, std::max(k0, 2 * m), k1, store);
     }
-    if (adev) strided(f, Estimator::kAdev, 2 * m, k0, k1, store);
-    if (hdev) strided(f, Estimator::kHdev, 3 * m, k0, k1, store);
+    if (adev && !adev_from_lanes(m)) strided(f, Estimator::kAdev, 2 * m, k0, k1, store);
+    if (hdev && !hdev_from_lanes(m)) strided(f, Estimator::kHdev, 3 * m, k0, k1, store);
     average(f, k0, k1, store);
+  }
+
+  // The ADEV (HDEV) terms are those of OADEV (OHDEV) at the anchors k that are multiples of m (NIST
+  // SP 1065 eqs. 7 and 8, 15 and 16). Where m divides kLanes, a lane of a sweep's run holds anchors
+  // of one residue mod m, so the sweep's lanes give the ADEV and HDEV sums too: no strided pass
+  // (a gather of every m-th phase value; the factors m <= 16 cost N (1 + 1/2 + ...) terms each).
+  bool adev_from_lanes(std::size_t m) const { return adev && kLanes % m == 0; }
+  bool hdev_from_lanes(std::size_t m) const { return hdev && kLanes % m == 0; }
+  // The terms of a run whose first anchor is k at the anchors that are multiples of m.
+  static double at_multiples(const Lanes& lanes, std::size_t k, std::size_t m) {
+    return strided_lane_total(lanes, (m - k % m) % m, m);
   }
 
   // d_k = X_k - X_{k-m} at every anchor k in [max(k0, m), k1): m times the overlapping averages
@@ -868,10 +906,13 @@ struct AllanEngine::State {
     if (k0 >= k1) return;
     const std::size_t m = f.m;
     const double* shift = f.overlapping_averages ? &f.overlapping_shift : nullptr;
+    std::size_t k = k0;
     for_each_run<3>(store, {lagged(0), lagged(m), lagged(2 * m)}, k0, k1, 1, [&](const auto& p, std::size_t length) {
       const SecondDifferenceSums sums = second_difference_sums(p[0], p[1], p[2], length, shift);
-      f.sums[index_of(Estimator::kOadev)].add(sums.second);
+      f.sums[index_of(Estimator::kOadev)].add(lane_total(sums.second));
+      if (adev_from_lanes(m)) f.sums[index_of(Estimator::kAdev)].add(at_multiples(sums.second, k, m));
       if (shift != nullptr) add_average_sums(f, sums.averages);
+      k += length;
     });
   }
 
@@ -884,27 +925,34 @@ struct AllanEngine::State {
     while (k < k1) {
       // Runs of at most the scratch length (the second pass has longer windows than a block).
       const std::size_t piece_end = std::min(k1, k + h_buffer.size());
+      std::size_t run_start = k;
       for_each_run<4>(store, {lagged(0), lagged(m), lagged(2 * m), lagged(3 * m)}, k, piece_end, 1,
                       [&](const auto& p, std::size_t length) {
                         if (mdev) {
-                          third_run<true>(f, p, length, h_buffer.data());
+                          third_run<true>(f, p, run_start, length, h_buffer.data());
                         } else {
-                          third_run<false>(f, p, length, h_buffer.data());
+                          third_run<false>(f, p, run_start, length, h_buffer.data());
                         }
+                        run_start += length;
                       });
       k = piece_end;
     }
   }
 
   // Without MDEV the h_k are not stored: one stream less through the cache.
+  // The run's first anchor is k.
   template <bool kWithMdev>
-  void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t length, double* h) {
+  void third_run(FactorState& f, const std::array<const double*, 4>& p, std::size_t k, std::size_t length,
+                 double* h) {
+    const std::size_t m = f.m;
     const double* shift = f.overlapping_averages ? &f.overlapping_shift : nullptr;
     const ThirdDifferenceSquares squares =
         third_difference_squares(p[0], p[1], p[2], p[3], length, kWithMdev ? h : nullptr, shift);
     if (shift != nullptr) add_average_sums(f, squares.averages);
-    f.sums[index_of(Estimator::kOadev)].add(squares.second);
-    f.sums[index_of(Estimator::kOhdev)].add(squares.third);
+    f.sums[index_of(Estimator::kOadev)].add(lane_total(squares.second));
+    f.sums[index_of(Estimator::kOhdev)].add(lane_total(squares.third));
+    if (adev_from_lanes(m)) f.sums[index_of(Estimator::kAdev)].add(at_multiples(squares.second, k, m));
+    if (hdev_from_lanes(m)) f.sums[index_of(Estimator::kHdev)].add(at_multiples(squares.third, k, m));
     if constexpr (kWithMdev) f.sums[index_of(Estimator::kMdev)].add(mdev_window_squares(h, length, f.window));
   }
 

@@ -178,6 +178,13 @@ AllanResult assemble(std::size_t sample_count, double mean, const std::vector<Al
     DeviationCurve& curve = result.curves[e];
     curve.unit = options.input_unit;
     for (const AllanSums& s : sums) {
+      // The sums of squared differences are of the samples' magnitude squared times m^2 N: beyond
+      // about 1e150 they overflow (inf, or NaN from inf - inf), which max(0, NaN) would read as 0.
+      if (!std::isfinite(s.variance(e))) {
+        throw Error(fmt::format("the {} at tau = {:g} s overflows a double: the samples are too large (give them "
+                                "in a larger unit)",
+                                estimator_name(e), static_cast<double>(s.averaging_factor) / options.sample_rate_hz));
+      }
       curve.values.push_back(std::abs(options.scale) * std::sqrt(std::max(0.0, s.variance(e))));
       curve.terms.push_back(s.terms(e));
     }

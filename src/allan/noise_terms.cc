@@ -452,7 +452,15 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
                                                     : *std::min_element(tau_s.begin(), tau_s.end());
   PointSet all;
   all.tau_s.assign(tau_s.begin(), tau_s.end());
-  all.variance.assign(variance.begin(), variance.end());
+  // The fit runs on the variances divided by the largest: the model is linear in its coefficients,
+  // so they and their uncertainties are the scaled fit's times `scale`, and the covariance of the
+  // points (of the order of the squared variances) neither overflows nor underflows for records of
+  // any magnitude (1e45 deg/h gave covariances beyond the range of a double and a failed QR).
+  const double scale = *std::max_element(variance.begin(), variance.end());
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    throw Error(fmt::format("the noise fit needs finite, positive variances (largest {:g})", scale));
+  }
+  for (double v : variance) all.variance.push_back(v / scale);
   all.edf.assign(edf.begin(), edf.end());
   for (double tau : tau_s) all.spans.push_back(std::max<std::int64_t>(1, std::llround(tau / t0)));
   if (tau_s.size() <= kMostCorrelatedPoints) {
@@ -555,14 +563,14 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       TermSpec{&NoiseTerms::rate_ramp, 2.0, units_for(input_unit, 2)}};
   for (Eigen::Index j = 0; j < kTerms; ++j) {
     const auto k = static_cast<std::size_t>(j);
-    terms.coefficients[k] = fit.a[k];
+    terms.coefficients[k] = scale * fit.a[k];
     const TermSpec& spec = specs[k];
     const auto place = std::find(columns.begin(), columns.end(), j);
     if (place != columns.end()) {
       const auto c = place - columns.begin();
-      terms.coefficient_uncertainties[k] = std::sqrt(inflation * free_covariance(c, c));
+      terms.coefficient_uncertainties[k] = scale * std::sqrt(inflation * free_covariance(c, c));
       terms.identified[k] = true;
-      terms.*spec.figure = figure_of(fit.a[k], terms.coefficient_uncertainties[k], spec.c, spec.units);
+      terms.*spec.figure = figure_of(terms.coefficients[k], terms.coefficient_uncertainties[k], spec.c, spec.units);
       continue;
     }
     // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty give
@@ -594,10 +602,10 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       if (settled) break;
     }
     terms.identified[k] = false;
-    terms.coefficient_uncertainties[k] = sigma;
+    terms.coefficient_uncertainties[k] = scale * sigma;
     Figure& figure = terms.*spec.figure;
     figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
-    terms.upper_bounds[k] = figure_of(bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
+    terms.upper_bounds[k] = figure_of(scale * bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
   }
   return terms;
 }

@@ -79,6 +79,25 @@ TEST(NoiseTerms, ACoefficientHeldAtZeroIsNotIdentified) {
   EXPECT_EQ(json["fit"]["verdict"], "consistent");
 }
 
+// The fit is linear in the coefficients: variances s^2 times larger give coefficients s^2 times
+// larger and noise terms s times larger, whatever s (1e45 deg/h overflowed the covariance of the
+// points and crashed the QR; 1e-100 underflowed it).
+TEST(NoiseTerms, FitScalesWithTheRecordAtAnyMagnitude) {
+  const Curve curve = exact_curve({0.0, 1.0, 0.0, 1e-4, 0.0}, 0.1, 1e4);
+  const NoiseTerms unit = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  for (double s : {1e-100, 1e-30, 1e45, 1e100}) {
+    Curve scaled = curve;
+    for (double& v : scaled.variance) v *= s * s;
+    const NoiseTerms terms = fit_noise_terms(scaled.tau, scaled.variance, scaled.edf, "deg/h");
+    EXPECT_EQ(terms.identified, unit.identified) << s;
+    EXPECT_NEAR_RELATIVE(terms.angle_random_walk.value, s * unit.angle_random_walk.value, 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(*terms.angle_random_walk.uncertainty, s * *unit.angle_random_walk.uncertainty, 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(terms.rate_random_walk.value, s * unit.rate_random_walk.value, 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(terms.upper_bounds[2]->value, s * unit.upper_bounds[2]->value, 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(terms.coefficients[1], s * s * unit.coefficients[1], 1e-9) << s;
+  }
+}
+
 // A curve that eq. (30) describes from 1 s on, bent below it (as an anti-alias filter does: the
 // deviation at 0.125..0.5 s falls short of the white-noise line): the automatic range drops the
 // bent taus and says why; a user range is taken as given.

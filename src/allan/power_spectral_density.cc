@@ -385,6 +385,15 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
     not_fitted("a band of zero power (a constant record?)");
     return;
   }
+  // Fitted on the band means divided by the largest, as the Allan fit is (noise_terms.cc): the
+  // model is linear in its coefficients, and the covariance of the bands (of the order of S^2)
+  // stays within the range of a double for records of any magnitude.
+  const double scale = observed.maxCoeff();
+  if (!std::isfinite(scale)) {
+    not_fitted("a band of infinite power (samples too large)");
+    return;
+  }
+  observed /= scale;
   // The correlation of the band means: Cov(a, b) = (2 / nu) S_a S_b sum_{i in a, j in b} |c(i - j)|^2
   // / (M_a M_b) (the header; its diagonal is 2 S_a^2 / edf_a). Bins of neighbouring bands correlate
   // too: at low frequency, where each band is a bin, Hann's neighbours by |c(1)|^2 = 4/9.
@@ -481,13 +490,13 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
   for (Eigen::Index j = 0; j < kTerms; ++j) {
     const auto k = static_cast<std::size_t>(j);
     const TermSpec& spec = specs[k];
-    terms.coefficients[k] = a(j);
+    terms.coefficients[k] = scale * a(j);
     const auto place = std::find(columns.begin(), columns.end(), j);
     if (place != columns.end()) {
       const auto c = place - columns.begin();
-      terms.coefficient_uncertainties[k] = std::sqrt(inflation * covariance(c, c));
+      terms.coefficient_uncertainties[k] = scale * std::sqrt(inflation * covariance(c, c));
       terms.identified[k] = true;
-      terms.*spec.figure = figure_of(a(j), terms.coefficient_uncertainties[k], 1.0, spec.units);
+      terms.*spec.figure = figure_of(terms.coefficients[k], terms.coefficient_uncertainties[k], 1.0, spec.units);
       continue;
     }
     // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty give
@@ -501,9 +510,9 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
     const Eigen::Index last = joint.rows() - 1;
     const double sigma = std::sqrt(inflation * joint(last, last));
     terms.identified[k] = false;
-    terms.coefficient_uncertainties[k] = sigma;
+    terms.coefficient_uncertainties[k] = scale * sigma;
     terms.*spec.figure = figure_of(0.0, kUnknown, 1.0, spec.units);
-    terms.upper_bounds[k] = figure_of(std::max(0.0, unconstrained(last)) + 2.0 * sigma,
+    terms.upper_bounds[k] = figure_of(scale * (std::max(0.0, unconstrained(last)) + 2.0 * sigma),
                                       kUnknown, 1.0, spec.units);
   }
   if (terms.identified[kTerms - 1]) {

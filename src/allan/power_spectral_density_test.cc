@@ -324,6 +324,26 @@ TEST(WelchPsd, OneSigmaIntervalsOfBAndKCoverTheTruthWithFlicker) {
 // frequency, its amplitude within 5 % (measured: 0.477 +- 0.021 of 0.4875, at 1.2338 Hz, 8.2 times
 // the floor); its bins are left out of the noise fit, so N still covers
 // the truth within 2 of its uncertainties.
+// The noise fit scales with the record: samples s times larger give terms s times larger, whatever
+// s (1e100 and 1e-100 overflowed or underflowed the covariance of the bands and crashed the QR).
+TEST(WelchPsd, NoiseFitScalesWithTheRecordAtAnyMagnitude) {
+  sim::Random random(5);
+  std::vector<double> x(1 << 14);
+  for (double& v : x) v = random.normal();
+  WelchOptions options;
+  options.sample_rate_hz = 100.0;
+  const SpectralNoiseTerms unit = welch_power_spectral_density(x, "deg/h", options).noise;
+  ASSERT_TRUE(unit.identified[1]);
+  for (double s : {1e-100, 1e45, 1e100}) {
+    std::vector<double> scaled = x;
+    for (double& v : scaled) v *= s;
+    const SpectralNoiseTerms terms = welch_power_spectral_density(scaled, "deg/h", options).noise;
+    EXPECT_EQ(terms.identified, unit.identified) << s;
+    EXPECT_NEAR_RELATIVE(terms.angle_random_walk.value, s * unit.angle_random_walk.value, 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(*terms.angle_random_walk.uncertainty, s * *unit.angle_random_walk.uncertainty, 1e-9) << s;
+  }
+}
+
 TEST(WelchPsd, SinusoidOnNoiseIsFoundAndLeftOutOfTheNoiseFit) {
   const Simulated s = white_and_random_walk();
   std::vector<double> x = simulated_rate(s.parameters, s.dt, s.samples, 77);

@@ -50,10 +50,22 @@ void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options
 
 double BiasOptions::deg_h_per_output() const { return input_in_deg_h ? 1.0 : kSecondsPerHour / scale_factor; }
 
+namespace {
+
+// Samples beyond about 1e150 (1e308 for a mean) overflow the sums of squares (or of values): an
+// error, not a null figure.
+[[noreturn]] void throw_overflow(const char* what) {
+  throw Error(fmt::format("bias: the {} overflows a double: the samples are too large (give them in a larger unit)",
+                          what));
+}
+
+}  // namespace
+
 double bias_deg_h(std::span<const double> output, const BiasOptions& options) {
   options.validate_conversion();
   if (output.empty()) throw Error("bias: the record is empty");
   double value = mean(output) * options.deg_h_per_output();  // eq. (19): F̄/K, deg/s -> deg/h
+  if (!std::isfinite(value)) throw_overflow("mean");
   if (options.remove_earth_rate) value -= to_deg_h(earth_rate_on_axis(*options.remove_earth_rate));
   return value;
 }
@@ -90,6 +102,7 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
       result.warnings.push_back(e.message() + " (left out)");
       continue;
     }
+    if (!std::isfinite(stability.stability * magnitude)) throw_overflow("bias stability");
     std::vector<double> smoothed;
     smoothed.reserve(stability.means.size());
     const double earth = result.earth_rate_removed ? result.earth_rate_removed->value : 0.0;

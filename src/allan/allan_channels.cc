@@ -16,9 +16,13 @@
 
 namespace inertest {
 
-std::vector<AllanOptions> channel_options(const AllanOptions& common, const std::vector<std::string>& names,
-                                          const std::vector<std::string>& selectors, std::string_view units) {
-  std::string fallback = common.input_unit;
+namespace {
+
+// The unit `units` gives each channel (by its name, or the bare unit of the channels not named),
+// nullopt where it gives none. Throws ParameterError as channel_options.
+std::vector<std::optional<std::string>> given_units(const std::vector<std::string>& names,
+                                                    const std::vector<std::string>& selectors, std::string_view units) {
+  std::optional<std::string> fallback;
   std::map<std::size_t, std::string> named;
   bool bare_seen = false;
   // Split as the record readers split a line: blanks around each part trimmed.
@@ -27,8 +31,8 @@ std::vector<AllanOptions> channel_options(const AllanOptions& common, const std:
     const std::vector<TextField> parts = split_text_line(item.text, '=', "input_unit", 1);
     if (parts.size() == 1) {
       if (bare_seen) {
-        throw ParameterError("input_unit", "input_unit gives two units without a channel name ('" + fallback + "', '" +
-                                               item.text + "')");
+        throw ParameterError("input_unit", "input_unit gives two units without a channel name ('" + *fallback +
+                                               "', '" + item.text + "')");
       }
       bare_seen = true;
       check_parameter("input_unit", [&] { Unit::parse(item.text); });
@@ -54,10 +58,18 @@ std::vector<AllanOptions> channel_options(const AllanOptions& common, const std:
     check_parameter("input_unit", [&] { Unit::parse(unit); });
     named[channel] = unit;
   }
+  std::vector<std::optional<std::string>> given(names.size(), fallback);
+  for (const auto& [channel, unit] : named) given[channel] = unit;
+  return given;
+}
+
+}  // namespace
+
+std::vector<AllanOptions> channel_options(const AllanOptions& common, const std::vector<std::string>& names,
+                                          const std::vector<std::string>& selectors, std::string_view units) {
+  const std::vector<std::optional<std::string>> given = given_units(names, selectors, units);
   std::vector<AllanOptions> options(names.size(), common);
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    options[i].input_unit = named.contains(i) ? named.at(i) : fallback;
-  }
+  for (std::size_t i = 0; i < names.size(); ++i) options[i].input_unit = given[i].value_or(common.input_unit);
   return options;
 }
 
@@ -157,14 +169,26 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
     }
     return analyse_channels(spans, names, channel_options(common, names, selectors, units));
   }
-  // A record of named channels stores each channel apart: each is streamed once, in turn.
+  // A record of named channels stores each channel apart: each is streamed once, in turn, at the
+  // rate and in the unit given or, where none is given, those it stores for the channel.
   const std::optional<ChannelRecordFormat> channel_format = channel_record_format_of(source.format);
   std::vector<std::string> names;
+  std::vector<AllanOptions> options;
   {
     const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *channel_format);
-    for (const ColumnSelector& column : columns) names.push_back(record->channels()[record->find(column)].name);
+    std::vector<std::size_t> indices;
+    for (const ColumnSelector& column : columns) {
+      indices.push_back(record->find(column));
+      names.push_back(record->channels()[indices.back()].name);
+    }
+    const std::vector<std::optional<std::string>> given = given_units(names, selectors, units);
+    const std::optional<double> rate = common.sample_rate_hz > 0.0 ? std::optional(common.sample_rate_hz) : std::nullopt;
+    options.assign(names.size(), common);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      options[i].sample_rate_hz = resolve_sample_rate(*record, indices[i], rate);
+      options[i].input_unit = resolve_unit(*record, indices[i], given[i]).value_or(common.input_unit);
+    }
   }
-  const std::vector<AllanOptions> options = channel_options(common, names, selectors, units);
   AllanChannels result;
   for (std::size_t i = 0; i < columns.size(); ++i) {
     source.column = columns[i];

@@ -250,6 +250,32 @@ TEST(AllanCommand, ColumnsReportAMissingChannelOrUnitByName) {
 }
 
 // A list option takes one word (or --export its two), so FILE may come after it.
+// A record of named channels (HDF5) stores each channel's rate and unit: allan takes them, for one
+// channel and for several (which failed without --rate, and took deg/s samples for deg/h).
+TEST(AllanCommand, ChannelsOfAnHdf5RecordAtTheirStoredRateAndUnit) {
+  const std::string record = testing::source_path("data/lab_formats/record.h5");
+  const auto one = run_cli({"allan", record, "--column", "imu/gyro_x", "--taus", "decade", "--json"});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto single = nlohmann::json::parse(one.out);
+  EXPECT_EQ(single["input_unit"], "deg/h");
+  EXPECT_EQ(single["sample_rate_hz"], 200.0);
+  const auto several = run_cli({"allan", record, "--columns", "imu/gyro_x", "--taus", "decade", "--json"});
+  ASSERT_EQ(several.exit_code, 0) << several.err;
+  EXPECT_EQ(nlohmann::json::parse(several.out)["channels"]["imu/gyro_x"], single);
+  const auto contradicted = run_cli({"allan", record, "--columns", "imu/gyro_x", "--input-unit", "deg/s"});
+  EXPECT_EQ(contradicted.exit_code, 2);
+  EXPECT_THAT(contradicted.err,
+              HasSubstr(record + ": the unit given, deg/s, contradicts the unit deg/h stored for channel 'imu/gyro_x'"));
+  // The temperature channel stores no rate: one must be given, and then agree with the gyro's.
+  const auto no_rate = run_cli({"allan", record, "--columns", "imu/gyro_x,imu/temperature"});
+  EXPECT_EQ(no_rate.exit_code, 2);
+  EXPECT_THAT(no_rate.err, HasSubstr("channel 'imu/temperature' stores no sample rate: give it"));
+  const auto given = run_cli({"allan", record, "--columns", "imu/gyro_x,imu/temperature", "--rate", "200",
+                              "--input-unit", "imu/temperature=degC", "--taus", "decade", "--json"});
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_EQ(nlohmann::json::parse(given.out)["channels"]["imu/temperature"]["input_unit"], "degC");
+}
+
 TEST(AllanCommand, ListOptionsLeaveTheFileAfterThem) {
   testing::ScratchDirectory dir;
   const std::string record = dir.write("imu.csv", imu_record());

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 #include "io/channel_readers.h"
 
 namespace inertest {
@@ -162,6 +163,34 @@ double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std
                                    *info.sample_rate_hz, info.name));
   }
   return *info.sample_rate_hz;
+}
+
+std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
+                                        const std::optional<std::string>& given) {
+  const ChannelInfo& info = record.channels().at(channel);
+  if (info.unit.empty()) return given;
+  const SourceLocation where{record.path(), 0, 0};
+  std::optional<Unit> stored;
+  try {
+    stored = Unit::parse(info.unit);
+  } catch (const Error&) {
+    if (given) return given;  // the stored unit is no unit inertest knows: the given one is taken as is
+    throw Error(where, fmt::format("channel '{}' stores the unit '{}', which inertest does not know: give the unit "
+                                   "of the samples (--input-unit / input_unit)",
+                                   info.name, info.unit));
+  }
+  if (!given) return info.unit;
+  bool agree = false;
+  try {
+    agree = std::abs(convert(1.0, Unit::parse(*given), *stored) - 1.0) <= 1e-12;
+  } catch (const Error&) {
+    // of another dimension: they disagree
+  }
+  if (!agree) {
+    throw Error(where, fmt::format("the unit given, {}, contradicts the unit {} stored for channel '{}'", *given,
+                                   info.unit, info.name));
+  }
+  return given;
 }
 
 std::string channel_range_context(const ChannelInfo& channel, std::uint64_t first, std::size_t count) {

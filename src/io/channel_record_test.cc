@@ -3,6 +3,8 @@
 // npTDMS's test data, with the values npTDMS's tests expect).
 #include "inertest/io/channel_record.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -102,6 +104,31 @@ TEST(ChannelRecord, RateRecordAndOutputRecordReadChannelsByName) {
   } catch (const Error& e) {
     EXPECT_THAT(e.message(), HasSubstr("the sample rate given, 100 Hz, contradicts the 200 Hz stored for channel 'imu/gyro_x'"));
   }
+}
+
+// The unit of the samples: the one given, else the stored one; a given unit that contradicts the
+// stored one is an error naming both (allan read a channel stored in deg/s as deg/h).
+TEST(ChannelRecord, StoredUnitIsUsedAndAContradictionIsAnError) {
+  const auto record = open_channel_record(lab_file("record.h5"), ChannelRecordFormat::kHdf5);
+  const std::size_t gyro = record->find(ColumnSelector::parse("imu/gyro_x"));
+  const std::size_t temperature = record->find(ColumnSelector::parse("imu/temperature"));
+  EXPECT_EQ(resolve_unit(*record, gyro, std::nullopt), "deg/h");
+  EXPECT_EQ(resolve_unit(*record, gyro, std::string("°/h")), "°/h");  // the same unit
+  EXPECT_EQ(resolve_unit(*record, temperature, std::nullopt), std::nullopt);  // none stored, none given
+  EXPECT_EQ(resolve_unit(*record, temperature, std::string("degC")), "degC");
+  for (const char* other : {"deg/s", "m/s^2"}) {
+    try {
+      resolve_unit(*record, gyro, std::string(other));
+      FAIL() << other;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.location()->file, lab_file("record.h5"));
+      EXPECT_EQ(e.message(), fmt::format("the unit given, {}, contradicts the unit deg/h stored for channel 'imu/gyro_x'",
+                                         other));
+    }
+  }
+  EXPECT_EQ(resolved_unit({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")},
+                          std::nullopt),
+            "deg/h");
 }
 
 TEST(ChannelRecord, MissingChannelListsTheChannels) {

@@ -126,6 +126,13 @@ std::optional<double> stored_sample_rate(const RateRecordSource& source) {
   return record->channels()[record->find(source.column)].sample_rate_hz;
 }
 
+std::optional<std::string> resolved_unit(const RateRecordSource& source, const std::optional<std::string>& given) {
+  const std::optional<ChannelRecordFormat> format = channel_record_format_of(resolve_rate_record_format(source));
+  if (!format) return given;
+  const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *format);
+  return resolve_unit(*record, record->find(source.column), given);
+}
+
 std::vector<double> read_text_rate_record(const RateRecordSource& source) {
   TextTableOptions options;
   options.record_row_lines = false;

@@ -60,6 +60,8 @@ struct AllanParameters {
     AllanOptions options;
     if (sample_rate_hz) {
       options.sample_rate_hz = *sample_rate_hz;
+    } else if (columns && channel_record_format_of(resolve_rate_record_format(source))) {
+      // several channels of a record that stores each one's rate: each its own (allan_channels.cc)
     } else if (const std::optional<double> stored = stored_sample_rate(source)) {
       options.sample_rate_hz = *stored;
     } else {
@@ -73,8 +75,9 @@ struct AllanParameters {
       // raw / (output per deg/s) = deg/s; times 3600 = deg/h.
       options.scale = 3600.0 / *scale_factor;
       options.input_unit = "deg/h";
-    } else if (input_unit && !columns) {
-      options.input_unit = *input_unit;
+    } else if (!columns) {
+      // The unit given, else the one the record stores (HDF5 units, TDMS unit_string), else deg/h.
+      if (const std::optional<std::string> unit = resolved_unit(source, input_unit)) options.input_unit = *unit;
     }
     if (psd || psd_window || psd_segment_length > 0) {
       WelchOptions welch;
@@ -139,7 +142,9 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     }
     Unit::parse(*parameters.input_unit);
   });
-  parameters.options(source).validate();
+  AllanOptions options = parameters.options(source);
+  if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;  // each channel's own, read with the channels
+  options.validate();
 }
 
 // A word of a command line, quoted for a POSIX shell when it needs to be.
@@ -245,7 +250,8 @@ ProcedureSpec allan_spec() {
                      .command_line_name_is("rate")
                      .instrument_gives("sample_rate_hz"),
                  &AllanParameters::sample_rate_hz)
-      .parameter(ParameterSpec("input_unit", "unit of the samples (default deg/h); with columns per channel too: "
+      .parameter(ParameterSpec("input_unit", "unit of the samples (default: the one the record stores, HDF5 units or "
+                                             "TDMS unit_string, else deg/h); with columns per channel too: "
                                              "deg/s,ax=m/s^2 (an acceleration unit gives the accelerometer's noise terms)"),
                  &AllanParameters::input_unit)
       .parameter(ParameterSpec("taus", "octave, decade, all, N/decade or a comma list of tau in s; the noise terms are "

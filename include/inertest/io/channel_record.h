@@ -93,4 +93,11 @@ std::vector<double> read_channel(ChannelRecord& record, std::size_t channel);
 // when neither is known.
 double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given);
 
+// The unit of the samples to use: `given`, or the stored one (HDF5 `units`, TDMS `unit_string`)
+// when none is given; nullopt when neither is known. Throws Error naming the file, the channel and
+// both units when they differ (as units: "deg/s" and "°/s" agree), and for a stored unit inertest
+// does not know when none is given.
+std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
+                                        const std::optional<std::string>& given);
+
 }  // namespace inertest

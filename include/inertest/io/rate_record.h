@@ -45,6 +45,10 @@ std::optional<ChannelRecordFormat> channel_record_format_of(RateRecordFormat for
 // none or is text or raw binary. Throws Error as read_rate_record.
 std::optional<double> stored_sample_rate(const RateRecordSource& source);
 
+// The unit of the samples: resolve_unit (io/channel_record.h) for a record of named channels,
+// `given` for text and raw binary. Throws Error as resolve_unit and read_rate_record.
+std::optional<std::string> resolved_unit(const RateRecordSource& source, const std::optional<std::string>& given);
+
 using SampleSink = std::function<void(std::span<const double> samples)>;
 
 // Reads the record from the start and hands consecutive chunks of samples to `sink`; returns the

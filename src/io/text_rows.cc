@@ -15,10 +15,19 @@ namespace {
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
+// Excel's error values: a cell that starts with one is a missing number, not the start of a '#'
+// comment (a row "#N/A,20" dropped as a comment would shift every later sample in time).
+bool is_spreadsheet_error(std::string_view text) {
+  for (std::string_view error : {"#N/A", "#VALUE!", "#DIV/0!", "#REF!", "#NAME?", "#NUM!", "#NULL!"}) {
+    if (text.starts_with(error)) return true;
+  }
+  return false;
+}
+
 bool is_skipped(std::string_view line, char comment) {
   std::size_t i = 0;
   while (i < line.size() && is_blank(line[i])) ++i;
-  return i == line.size() || (comment != '\0' && line[i] == comment);
+  return i == line.size() || (comment != '\0' && line[i] == comment && !is_spreadsheet_error(line.substr(i)));
 }
 
 // A line holding both ',' and ';' is taken as ';'-separated with decimal commas, the common
@@ -230,7 +239,10 @@ RowLayout read_row_layout(const Line& first, const std::string& source, const Te
 
   layout.has_header = options.header == TextTableOptions::Header::kPresent;
   if (options.header == TextTableOptions::Header::kDetect) {
-    layout.has_header = std::any_of(fields.begin(), fields.end(), [](const Field& f) { return !parse_number(f.text); });
+    // A header has a cell that is text; an empty cell is no text (a first data row with a missing
+    // value is a data row, and its empty cell an error, as in any other row).
+    layout.has_header = std::any_of(fields.begin(), fields.end(),
+                                    [](const Field& f) { return !f.text.empty() && !parse_number(f.text); });
     for (const Field& field : fields) {
       if (layout.has_header && is_decimal_comma(field.text)) {
         fail_decimal_comma(SourceLocation{source, first.number, field.column}, field.text, "");

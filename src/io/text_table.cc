@@ -23,6 +23,13 @@ using io_detail::LineCursor;
 using io_detail::RowChunk;
 using io_detail::RowLayout;
 
+// The text after a UTF-8 byte order mark (Excel's "CSV UTF-8" and many loggers write one): it is no
+// part of the first cell, and editors do not show it, so columns are counted after it.
+std::string_view without_byte_order_mark(std::string_view text) {
+  constexpr std::string_view kMark = "\xEF\xBB\xBF";
+  return text.starts_with(kMark) ? text.substr(kMark.size()) : text;
+}
+
 // TextTableOptions::threads, else INERTEST_THREADS, else one per core.
 std::size_t thread_count(const TextTableOptions& options) {
   if (options.threads > 0) return options.threads;
@@ -135,6 +142,7 @@ bool TextTable::has_column(std::string_view name) const {
 }
 
 TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options) {
+  text = without_byte_order_mark(text);
   TextTable table;
   table.source = source;
   // The first line that is neither blank nor a comment decides delimiter and header.
@@ -173,7 +181,7 @@ SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t 
     return location;
   }
   const MappedFile file(table.source);
-  LineCursor cursor(file.bytes());
+  LineCursor cursor(without_byte_order_mark(file.bytes()));
   Line line{};
   while (cursor.next(line)) {
     if (line.number != location.line) continue;

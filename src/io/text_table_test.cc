@@ -120,7 +120,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"quoted_not_a_number", "rate,output\n1,\"2x\"\n", "rec.csv:2:3: expected a number in column 'output', found '2x'"},
         BadInput{"quoted_empty_cell", "rate,output\n1,\"\"\n", "rec.csv:2:3: empty cell in column 'output'"},
         BadInput{"quoted_decimal_comma", "rate,output\n1,\"2,5\"\n", "rec.csv:2:3: '2,5' in column 'output' looks like a decimal comma"},
-        BadInput{"quoted_second_header", "\"rate\",\"output\"\n1,2\n\"rate\",output\n", "rec.csv:3:1: a second header row"}),
+        BadInput{"quoted_second_header", "\"rate\",\"output\"\n1,2\n\"rate\",output\n", "rec.csv:3:1: a second header row"},
+        // A first row with a missing value is a data row (it was taken for a header, its sample lost).
+        BadInput{"empty_cell_in_the_first_row", "1,,3\n4,5,6\n", "rec.csv:1:3: empty cell, expected a number"},
+        // Excel's error values are missing numbers, not '#' comments (the row was dropped).
+        BadInput{"spreadsheet_error", "gyro,temp\n0.1,20\n#N/A,20\n", "rec.csv:3:1: expected a number in column 'gyro', found '#N/A'"},
+        BadInput{"spreadsheet_error_first", "g\n#DIV/0!\n1\n", "rec.csv:2:1: expected a number in column 'g', found '#DIV/0!'"}),
     testing::NameOfParam());
 
 // RFC 4180 2.6-2.7: a quoted header name may hold the delimiter and a doubled quote; neither is
@@ -141,6 +146,19 @@ TEST(TextTable, QuotedHeaderNamesHoldDelimitersAndQuotes) {
   testing::ScratchDirectory dir;
   const std::string path = dir.write("q.csv", "\"a\",\"b\"\n1,  \"2\"\n");
   EXPECT_EQ(locate_cell(read_text_table(path), 0, 1).column, 5u);
+}
+
+// A UTF-8 byte order mark (Excel's "CSV UTF-8") is no part of the first cell: a header is read by
+// its names, a headerless record keeps its first sample, and columns are counted after the mark.
+TEST(TextTable, ByteOrderMarkIsSkipped) {
+  const TextTable named = parse("\xEF\xBB\xBF\"time\",\"rate\"\r\n0,1\r\n1,2\r\n");
+  EXPECT_EQ(named.names, (std::vector<std::string>{"time", "rate"}));
+  EXPECT_EQ(named.columns[1], (std::vector<double>{1.0, 2.0}));
+  const TextTable bare = parse("\xEF\xBB\xBF" "1\n2\n3\n");
+  EXPECT_EQ(bare.header_line, 0u);
+  EXPECT_EQ(bare.columns[0], (std::vector<double>{1.0, 2.0, 3.0}));
+  EXPECT_THAT(error_of("\xEF\xBB\xBFrate,output\n1x,2\n"), HasSubstr("rec.csv:2:1: expected a number"));
+  EXPECT_THAT(error_of("\xEF\xBB\xBF" "1,2\n3,4x\n"), HasSubstr("rec.csv:2:3: expected a number"));
 }
 
 TEST(TextTable, SplitTextLineUnquotesFields) {

@@ -193,8 +193,11 @@ void wrap_figure(py::module_& module) {
           "The figure's JSON: {'value': v, 'unit': u} plus 'uncertainty' when known.")
       .def("__float__", [](const Figure& figure) { return figure.value; })
       .def("__eq__",
-           [](const Figure& a, const Figure& b) {
-             return a.value == b.value && a.unit == b.unit && a.uncertainty == b.uncertainty;
+           [](const Figure& a, const py::object& other) -> py::object {
+             // Not a Figure: NotImplemented, so that figure == None is False (not a TypeError).
+             if (!py::isinstance<Figure>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+             const auto& b = other.cast<const Figure&>();
+             return py::bool_(a.value == b.value && a.unit == b.unit && a.uncertainty == b.uncertainty);
            })
       .def("__repr__", &figure_repr);
 }

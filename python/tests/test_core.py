@@ -20,6 +20,14 @@ def test_figure_holds_value_unit_uncertainty_and_converts():
     assert float(figure) == 1.0
 
 
+def test_figure_equals_only_an_equal_figure():
+    figure = inertest.Figure(1.0, "deg/h", 0.5)
+    assert figure == inertest.Figure(1.0, "deg/h", 0.5)
+    assert figure != inertest.Figure(1.0, "deg/h")
+    assert figure != None  # noqa: E711 (a TypeError before)
+    assert figure not in [None, 1.0, "1.0 deg/h"]
+
+
 def test_figure_with_unknown_unit_is_an_error():
     with pytest.raises(ValueError, match="furlong"):
         inertest.Figure(1.0, "furlong")

@@ -9,8 +9,9 @@ namespace inertest::cli {
 
 void add_record_options(CLI::App& command, OutputRecordSource& source) {
   command.add_option("--column", source.column,
-                     "the output column by header name or 1-based index (default: the only or first column), or "
-                     "channel of a .mat, HDF5 or TDMS record (struct.field, group/channel)");
+                     "the output column of a text record by header name or 1-based index (default: the only column, "
+                     "or the one headed 'output'), or the channel of a .mat, HDF5 or TDMS record (struct.field, "
+                     "group/channel)");
   command.add_option("--format", source.format,
                      "auto (default: .mat, HDF5 or TDMS by magic bytes, else text), csv, mat, hdf5, tdms, or binary: "
                      "f64, f32, i32 or i16, optionally with le/be (e.g. f32be)");

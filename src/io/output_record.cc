@@ -61,6 +61,11 @@ std::vector<double> read_output_record(const OutputRecordSource& source, std::si
     return samples;
   }
   if (!is_text(source.format)) {
+    if (!source.column.empty()) {  // it was ignored: interleaved channels were read as one
+      throw Error(SourceLocation{source.path, 0, 0},
+                  fmt::format("a raw {} record holds one channel: --column (plan key `column`) does not apply",
+                              source.format));
+    }
     std::vector<double> samples = read_binary_record(source.path, BinaryFormat::parse(source.format));
     require_samples(source.path, samples.size(), minimum_samples);
     return samples;

@@ -151,20 +151,10 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
   OutputRecordSource source;
   if (keywords.contains("column")) source.column = py::str(keywords["column"]).cast<std::string>();
   if (keywords.contains("format")) source.format = py::str(keywords["format"]).cast<std::string>();
-  const std::size_t minimum = minimum_samples_of(spec.inputs);
-  call.read_record = [source, minimum](const std::string& file) {
-    OutputRecordSource record = source;
-    record.path = file;
-    return read_output_record(record, minimum);
-  };
   std::optional<double> rate;
   if (keywords.contains("sample_rate_hz")) rate = keywords["sample_rate_hz"].cast<double>();
   const std::string time_column = keywords.contains("time_column") ? py::str(keywords["time_column"]).cast<std::string>() : "";
-  call.read_timed_record = [source, rate, time_column, minimum](const std::string& file) {
-    OutputRecordSource record = source;
-    record.path = file;
-    return read_timed_record(record, rate, time_column, minimum);
-  };
+  set_record_readers(call, source, minimum_samples_of(spec.inputs), rate, time_column);
   return call;
 }
 

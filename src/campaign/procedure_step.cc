@@ -153,23 +153,15 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (file) files[input.name] = *file;
   }
   const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
-  const std::size_t minimum = minimum_samples_of(spec.inputs);
-  call.read_record = [source, minimum](const std::string& file) {
-    OutputRecordSource record = source;
-    record.path = file;
-    return read_output_record(record, minimum);
-  };
+  std::optional<double> rate;
+  std::string time_column;
   if (reads_timed_records) {
-    const std::optional<double> rate = step.optional_number("sample_rate_hz");
+    rate = step.optional_number("sample_rate_hz");
     if (rate && !(*rate > 0.0)) step.fail_at("sample_rate_hz", "must be positive");
-    const std::string time_column = step.string_or("time_column", "");
+    time_column = step.string_or("time_column", "");
     if (rate && !time_column.empty()) step.fail_at("time_column", "is not used with sample_rate_hz");
-    call.read_timed_record = [source, rate, time_column, minimum](const std::string& file) {
-      OutputRecordSource record = source;
-      record.path = file;
-      return read_timed_record(record, rate, time_column, minimum);
-    };
   }
+  set_record_readers(call, source, minimum_samples_of(spec.inputs), rate, time_column);
   try {
     spec.check(call);
   } catch (const ParameterError& e) {

@@ -226,18 +226,8 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       if (input.kind == InputKind::runs) call.runs[input.name] = runs_given(spec, input, *arguments);
       if (input.kind == InputKind::file) call.files[input.name] = arguments->files.at(input.name);
     }
-    call.read_record = [source = arguments->source, minimum = minimum_samples_of(spec.inputs)](const std::string& file) {
-      OutputRecordSource record = source;
-      record.path = file;
-      return with_file_context(file, [&] { return read_output_record(record, minimum); });
-    };
-    call.read_timed_record = [source = arguments->source, rate = arguments->sample_rate_hz,
-                              time_column = arguments->time_column,
-                              minimum = minimum_samples_of(spec.inputs)](const std::string& file) {
-      OutputRecordSource record = source;
-      record.path = file;
-      return with_file_context(file, [&] { return read_timed_record(record, rate, time_column, minimum); });
-    };
+    set_record_readers(call, arguments->source, minimum_samples_of(spec.inputs), arguments->sample_rate_hz,
+                       arguments->time_column);
     // An error about a parameter's value names it as given here: --input-unit, not input_unit.
     const auto naming_options = [&spec](auto&& work) {
       try {

@@ -54,6 +54,14 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("--scale-factor"));
   EXPECT_THAT(run.err, HasSubstr("exclude each other: records in deg/h are not divided by K"));
+  // A record that stores its sample rate (HDF5, 200 Hz): a --rate that contradicts it is an error
+  // naming both (the bias stability was computed at the rate given).
+  const std::string stored = testing::source_path("data/lab_formats/record.h5");
+  run = run_cli({"bias", stored, "--column", "imu/gyro_x", "--rate", "100", "--input-deg-h"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr(stored + ": the sample rate given, 100 Hz, contradicts the 200 Hz stored"));
+  run = run_cli({"bias", stored, "--column", "imu/gyro_x", "--rate", "200", "--input-deg-h", "--json"});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
   const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
   run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/io/binary_record.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
@@ -145,6 +146,39 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
   record.time_s = std::move(table.columns[0]);
   record.output = std::move(table.columns[1]);
   return record;
+}
+
+double record_sample_rate(const OutputRecordSource& source, double given) {
+  const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source);
+  if (!channel_format) return given;
+  const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);
+  return resolve_sample_rate(*file, file->find(channel_selector(source.column)), given);
+}
+
+void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,
+                        std::optional<double> sample_rate_hz, const std::string& time_column) {
+  // The source of one file; its errors without a place named at the file.
+  const auto of_file = [source](const std::string& file, const auto& work) {
+    OutputRecordSource record = source;
+    record.path = file;
+    try {
+      return work(record);
+    } catch (const Error& e) {
+      if (e.location()) throw;
+      throw Error(SourceLocation{file, 0, 0}, e.message());
+    }
+  };
+  call.read_record = [of_file, minimum_samples](const std::string& file) {
+    return of_file(file, [&](const OutputRecordSource& record) { return read_output_record(record, minimum_samples); });
+  };
+  call.read_timed_record = [of_file, minimum_samples, sample_rate_hz, time_column](const std::string& file) {
+    return of_file(file, [&](const OutputRecordSource& record) {
+      return read_timed_record(record, sample_rate_hz, time_column, minimum_samples);
+    });
+  };
+  call.record_sample_rate = [of_file](const std::string& file, double given) {
+    return of_file(file, [&](const OutputRecordSource& record) { return record_sample_rate(record, given); });
+  };
 }
 
 }  // namespace inertest

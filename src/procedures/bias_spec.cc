@@ -95,8 +95,10 @@ ProcedureSpec bias_spec() {
         check_bias_conversion(call, options, "bias");
         options.validate();
       })
-      .compute([](const ProcedureCall& call, const BiasOptions& options) {
-        return bias(call.read_record(call.files.at("record")), options);
+      .compute([](const ProcedureCall& call, BiasOptions options) {
+        const std::string& file = call.files.at("record");
+        options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // as the file stores it
+        return bias(call.read_record(file), options);
       });
 }
 

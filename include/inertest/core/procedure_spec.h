@@ -326,6 +326,9 @@ struct ProcedureCall {
   // A timed record as the command line (--rate/--time-column) or the plan (sample_rate_hz/time_column)
   // says it is stored; set when an input has timed_records(). Errors name the file.
   std::function<TimedRecord(const std::string& file)> read_timed_record;
+  // The rate of a record sampled at `given` Hz, checked against the rate the file stores (a record of
+  // named channels): a contradiction is an Error naming both. Set with read_record.
+  std::function<double(const std::string& file, double given)> record_sample_rate;
   // Progress of a long computation (a terminal's on the command line, the campaign's in a plan).
   ProgressCallback progress;
   // Where a plan's exports go (the campaign's staging directory, moved beside its results.json once

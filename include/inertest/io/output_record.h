@@ -10,6 +10,8 @@
 
 namespace inertest {
 
+struct ProcedureCall;
+
 struct OutputRecordSource {
   std::string path;
   // Empty or "auto": a .mat, HDF5 or TDMS record by its magic bytes, else a text record. "csv": a
@@ -45,5 +47,17 @@ struct TimedRecord {
 // naming both; without a stored rate, time_column names a channel of times, or the rate is needed.
 TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<double> sample_rate_hz,
                               const std::string& time_column = "", std::size_t minimum_samples = 1);
+
+// The sample rate of a record sampled at `given` Hz: `given`, checked against the rate a record of
+// named channels stores for the channel (io/channel_record.h resolve_sample_rate: a contradiction
+// is an Error naming both). Text and raw binary records store none: `given`.
+double record_sample_rate(const OutputRecordSource& source, double given);
+
+// Sets the record readers of a procedure's call (read_record, read_timed_record and
+// record_sample_rate) for records stored as `source` says (its path each file's), as the command
+// line, a plan step and Python give it: at least `minimum_samples` samples, timed by
+// `sample_rate_hz` or the time column. An Error without a place gets the file's.
+void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,
+                        std::optional<double> sample_rate_hz, const std::string& time_column);
 
 }  // namespace inertest

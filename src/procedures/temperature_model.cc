@@ -348,6 +348,9 @@ void TemperatureModelOptions::validate() const {
   if (!(rate_window_s >= 2.0 * interval_s)) {
     throw ParameterError("rate_window_s", "rate_window_s must cover at least two intervals (2 x interval_s)");
   }
+  if (!std::isfinite(reference_temperature_degC)) {
+    throw ParameterError("reference_temperature", "reference_temperature must be finite");
+  }
   if (!(soak_rate_degC_per_min >= 0.0)) throw ParameterError("soak_rate", "soak_rate must not be negative");
   if (!(stability_window_s >= interval_s)) {
     throw ParameterError("stability_window_s", "stability_window_s must be at least interval_s");

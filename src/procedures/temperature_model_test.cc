@@ -4,11 +4,13 @@
 // without dT/dt failing on the same data), the smoothed rate of a quantised ramp, the export's round
 // trip and temperature-apply through the declared command.
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "inertest/campaign/campaign.h"
 #include "inertest/procedures/temperature_model.h"
 #include "inertest/sim/thermal_model.h"
 #include "test_util/test_util.h"
@@ -282,6 +284,41 @@ TEST(TemperatureModel, AMissingCoefficientIsAnError) {
             6u);
   EXPECT_EQ(read_thermal_compensation(scratch.write("whole.csv", coefficients_csv(order_two_rows()))).coefficients.size(),
             6u);
+}
+
+TEST(TemperatureModel, ANonFiniteReferenceTemperatureIsAParameterError) {
+  TemperatureModelOptions options;
+  options.scale_factor = 36000.0;
+  for (const double reference : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    options.reference_temperature_degC = reference;
+    try {
+      options.validate();
+      ADD_FAILURE() << "accepted " << reference;
+    } catch (const ParameterError& e) {
+      EXPECT_EQ(e.parameter, "reference_temperature");
+      EXPECT_EQ(e.message_naming("--reference-temperature"), "--reference-temperature must be finite");
+    }
+  }
+  // In a plan, at its key, before anything runs.
+  const testing::ScratchDirectory scratch;
+  const std::string plan = scratch.write("plan.toml", R"([instrument]
+id = "FOG-7"
+output_unit = "pulse/s"
+
+[[procedure]]
+kind = "temperature_model"
+file = "plan.toml"
+scale_factor = 36000
+temperature_column = ["coil"]
+reference_temperature = nan
+)");
+  try {
+    validate_plan(plan);
+    ADD_FAILURE() << "the plan was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr(plan + ":10:"));
+    EXPECT_THAT(e.what(), HasSubstr("reference_temperature must be finite"));
+  }
 }
 
 TEST(TemperatureModel, RefusesARecordWithoutRamps) {

@@ -414,6 +414,9 @@ void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions
 }  // namespace
 
 void ImuCalibrationOptions::validate() const {
+  // The output units are any the unit parser knows (counts, volts, m/s^2, ...): an unknown one is its error.
+  check_parameter("accelerometer_unit", [&] { Unit::parse(accelerometer_unit); });
+  check_parameter("gyro_unit", [&] { Unit::parse(gyro_unit); });
   if (!(gravity_m_s2 > 9.7 && gravity_m_s2 < 9.9)) {
     throw ParameterError("gravity_m_s2", fmt::format("{} m/s^2 is not a gravity on the Earth's surface", gravity_m_s2));
   }

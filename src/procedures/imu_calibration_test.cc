@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/sim/imu_tumble.h"
 #include "test_util/test_util.h"
 
@@ -119,6 +120,23 @@ TEST(ImuCalibration, RecoversEveryParameterWithinItsUncertainty) {
   EXPECT_GT(rms, 0.6);
   EXPECT_LT(rms, 1.5);
   EXPECT_GT(static_cast<double>(within) / static_cast<double>(z.size()), 0.88);
+}
+
+TEST(ImuCalibration, AnUnknownOutputUnitIsAParameterError) {
+  for (const auto& [parameter, member] : {std::pair{"accelerometer_unit", &ImuCalibrationOptions::accelerometer_unit},
+                                          std::pair{"gyro_unit", &ImuCalibrationOptions::gyro_unit}}) {
+    ImuCalibrationOptions options;
+    options.*member = "furlong";
+    try {
+      options.validate();
+      ADD_FAILURE() << parameter << " accepted 'furlong'";
+    } catch (const ParameterError& e) {
+      EXPECT_EQ(e.parameter, parameter);
+      EXPECT_THAT(e.message(), ::testing::StartsWith("unknown unit 'furlong' in 'furlong'"));
+    }
+    options.*member = "mV";
+    EXPECT_NO_THROW(options.validate());
+  }
 }
 
 // The record without samples [first, last), as a logger that dropped them leaves it.

@@ -16,6 +16,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
+#include "inertest/core/surface_gravity.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
@@ -417,9 +418,7 @@ void ImuCalibrationOptions::validate() const {
   // The output units are any the unit parser knows (counts, volts, m/s^2, ...): an unknown one is its error.
   check_parameter("accelerometer_unit", [&] { Unit::parse(accelerometer_unit); });
   check_parameter("gyro_unit", [&] { Unit::parse(gyro_unit); });
-  if (!(gravity_m_s2 > 9.7 && gravity_m_s2 < 9.9)) {
-    throw ParameterError("gravity_m_s2", fmt::format("{} m/s^2 is not a gravity on the Earth's surface", gravity_m_s2));
-  }
+  check_surface_gravity("gravity_m_s2", gravity_m_s2);
   if (!(static_window_s > 0.0)) throw ParameterError("static_window_s", "the moving-variance window must be positive");
   if (!(static_threshold > 1.0)) {
     throw ParameterError("static_threshold", "the threshold is a multiple of the quietest variance: more than 1");

@@ -77,6 +77,29 @@ std::size_t check_runs(std::span<const CentrifugeRun> runs) {
   return levels.size();
 }
 
+// A run that gives its main-axis rate Omega as well as its g-level A: with the radius and the site's
+// gravity they must agree, A = Omega^2 R0 / g (paper section 6), or one of them is wrong (a radius of
+// another arm, a rate in deg/s) and the coefficients with it. The g-level is the run's set point, so
+// Omega was set from it; the tolerance, 1 %, passes a level computed with standard gravity instead of
+// the site's (at most 0.3 % apart on the Earth's surface) and rounded to three significant figures
+// (at most 0.5 %), and catches every such mistake of more than 1 %.
+constexpr double kGLevelTolerance = 1e-2;
+
+void check_g_levels(std::span<const CentrifugeRun> runs, const CentrifugeSite& site) {
+  for (const CentrifugeRun& run : runs) {
+    if (!run.omega_rad_s) continue;
+    const double level = *run.omega_rad_s * *run.omega_rad_s * site.radius_m / site.gravity_m_s2;
+    if (std::abs(level - run.accel_g) > kGLevelTolerance * run.accel_g) {
+      throw Error(run.location,
+                  fmt::format("centrifuge: omega_rad_s {:.10g} at radius {} m and gravity {} m/s^2 is a g-level of "
+                              "{:.6g} g (Omega^2 R0 / g), not the run's accel_g {:g}: they differ by {:.3g} %, more "
+                              "than {:g} % (is --radius or --gravity wrong, or omega_rad_s in another unit?)",
+                              *run.omega_rad_s, site.radius_m, site.gravity_m_s2, level, run.accel_g,
+                              100.0 * std::abs(level - run.accel_g) / run.accel_g, 100.0 * kGLevelTolerance));
+    }
+  }
+}
+
 double run_omega(const CentrifugeRun& run, const CentrifugeSite& site) {
   // Paper section 6: the main axis turns at Omega = sqrt(A g / R0) for a g-level A.
   return run.omega_rad_s ? *run.omega_rad_s : std::sqrt(run.accel_g * site.gravity_m_s2 / site.radius_m);
@@ -213,6 +236,7 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
   options.validate();
   DriftCalibrationResult result;
   result.g_levels = check_runs(runs);
+  check_g_levels(runs, options.site);
   for (const CentrifugeRun& run : runs) {
     if (run.harmonic_fit && run.harmonic_fit->constant_output) {
       result.warnings.push_back(fmt::format(

@@ -220,6 +220,36 @@ TEST(CentrifugeDriftCalibration, AStuckRunIsWarnedAbout) {
 // The coefficients are per standard g at any site: a gyro whose drift is D per standard g
 // (9.80665 m/s^2, what the unit deg/h/g means to Unit::parse) calibrated at a site of 9.78 m/s^2,
 // where each specific force in the site's g is 9.78 / 9.80665 of itself in standard g.
+TEST(CentrifugeDriftCalibration, AnOmegaThatIsNotTheGLevelIsAnErrorAtItsRow) {
+  // Table 3 with Omega = sqrt(A g / R0) of the paper's R0 = 1 m, g = 9.8 m/s^2.
+  std::vector<CentrifugeRun> runs = table3_runs();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    runs[i].omega_rad_s = std::sqrt(runs[i].accel_g * 9.8 / 1.0);
+    runs[i].location = {"table3.csv", i + 2, 0};
+  }
+  DriftCalibrationOptions options = paper_options();
+  const DriftCalibrationResult consistent = calibrate_drift_coefficients(runs, options);
+  // A radius of 5 m makes the same rates 50 and 100 g: the coefficients would be 5x off.
+  options.site.radius_m = 5.0;
+  try {
+    calibrate_drift_coefficients(runs, options);
+    ADD_FAILURE() << "omega at 5 m accepted as 10 g";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "table3.csv:2: centrifuge: omega_rad_s 9.899494937 at radius 5 m and gravity 9.8 m/s^2 is a g-level of "
+              "50 g (Omega^2 R0 / g), not the run's accel_g 10: they differ by 400 %, more than 1 % (is --radius or "
+              "--gravity wrong, or omega_rad_s in another unit?)");
+  }
+  // Within 1 %: levels of Omega set with 9.8 m/s^2, at a site of 9.78 m/s^2 (0.2 % apart).
+  options.site.radius_m = 1.0;
+  options.site.gravity_m_s2 = 9.78;
+  EXPECT_NO_THROW(calibrate_drift_coefficients(runs, options));
+  options.site.gravity_m_s2 = 9.8;
+  runs.back().omega_rad_s = *runs.back().omega_rad_s * 1.006;  // 1.2 % in Omega^2
+  EXPECT_THROW(calibrate_drift_coefficients(runs, options), Error);
+  EXPECT_EQ(consistent.coefficients.size(), kDriftTermCount);
+}
+
 TEST(CentrifugeDriftCalibration, CoefficientsArePerStandardGAtAnySiteGravity) {
   DriftCalibrationOptions options = paper_options();
   options.site.gravity_m_s2 = 9.78;

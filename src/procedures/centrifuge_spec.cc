@@ -7,6 +7,7 @@
 #include "inertest/centrifuge/centrifuge_record.h"
 #include "inertest/centrifuge/drift_calibration.h"
 #include "inertest/core/citations.h"
+#include "inertest/core/surface_gravity.h"
 
 namespace inertest {
 namespace {
@@ -134,6 +135,7 @@ ProcedureSpec centrifuge_spec() {
           throw Error("centrifuge: --latitude is required: the Earth rate at the site enters the compensation "
                       "(or pass --no-compensation)");
         }
+        check_surface_gravity("gravity_m_s2", options.gravity_m_s2);
         options.calibration().validate();
       })
       .compute([](const ProcedureCall& call, const Options& options) {

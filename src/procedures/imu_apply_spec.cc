@@ -45,16 +45,6 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
   const auto sample = [&](const std::array<std::vector<double>, 3>& columns, std::size_t i) {
     return Vector3{columns[0][i], columns[1][i], columns[2][i]};
   };
-  if (!options.output_file.empty()) {
-    std::string text = "time_s,ax_m_s2,ay_m_s2,az_m_s2,gx_rad_s,gy_rad_s,gz_rad_s\n";
-    for (std::size_t i = 0; i < record.time_s.size(); ++i) {
-      const Vector3 a = calibration[0].apply(sample(record.accelerometer, i));
-      const Vector3 w = calibration[1].apply(sample(record.gyro, i));
-      text += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", record.time_s[i], a[0], a[1], a[2], w[0],
-                          w[1], w[2]);
-    }
-    write_file_atomically(options.output_file, text);
-  }
   ImuApplyResult result;
   result.samples = record.time_s.size();
   double gravity_squares = 0.0, rate_squares = 0.0;
@@ -71,6 +61,17 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
   result.rest_rate_rms = {std::sqrt(rate_squares / statics), "rad/s", std::nullopt};
   if (result.static_intervals == 0) {
     result.warnings.emplace_back("no static interval in the record: the calibration is applied but not checked");
+  }
+  // Written last, once everything that can fail has run: a failed run leaves no file (nor a partial one).
+  if (!options.output_file.empty()) {
+    std::string text = "time_s,ax_m_s2,ay_m_s2,az_m_s2,gx_rad_s,gy_rad_s,gz_rad_s\n";
+    for (std::size_t i = 0; i < record.time_s.size(); ++i) {
+      const Vector3 a = calibration[0].apply(sample(record.accelerometer, i));
+      const Vector3 w = calibration[1].apply(sample(record.gyro, i));
+      text += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", record.time_s[i], a[0], a[1], a[2], w[0],
+                          w[1], w[2]);
+    }
+    write_file_atomically(options.output_file, text);
   }
   return result;
 }

@@ -16,6 +16,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
+#include "inertest/core/surface_gravity.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
@@ -378,12 +379,46 @@ std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals)
   return accepted;
 }
 
+// Gaps in the time stamps: a step of more than 1.5 times the median step (io/time_stamps.h's rule, as
+// `inspect` reports them). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
+// rate interpolated linearly over it), the turn made while samples were missing is lost and the
+// rotation's residual with it: an Error at the line after the gap. Elsewhere (in a static interval, or
+// in a motion between statics that no fit uses) it changes nothing the fits use: a warning.
+void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions, std::vector<std::string>& warnings) {
+  const std::size_t n = record.time_s.size();
+  std::vector<double> steps(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) steps[i] = record.time_s[i + 1] - record.time_s[i];
+  const double step = median_of(steps);
+  constexpr double kGapFactor = 1.5;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    if (!(steps[k] > kGapFactor * step)) continue;
+    const std::size_t missing = std::max<long>(1, std::lround(steps[k] / step) - 1);
+    const std::string where =
+        record.lines.empty() ? fmt::format("after sample {}", k + 1) : fmt::format("before line {}", record.lines[k + 1]);
+    const std::string gap = fmt::format("a gap in the time stamps: {:.6g} s to {:.6g} s, {} sample(s) of {:.6g} s missing",
+                                        record.time_s[k], record.time_s[k + 1], missing, step);
+    const auto inside = std::find_if(motions.begin(), motions.end(),
+                                     [k](const Motion& motion) { return motion.from <= k && k < motion.to; });
+    if (inside == motions.end()) {
+      warnings.push_back(fmt::format("{} {}, outside the rotations the gyro's fit integrates", gap, where));
+      continue;
+    }
+    const SourceLocation location =
+        record.lines.empty() ? at_file(record.source) : SourceLocation{record.source, record.lines[k + 1], 0};
+    throw Error(location, fmt::format("{}{}, inside the rotation from the static interval ending at {:.6g} s to the one "
+                                      "starting at {:.6g} s: the gyro's integration would lose the turn made in it",
+                                      gap, record.lines.empty() ? " " + where : "", record.time_s[inside->from],
+                                      record.time_s[inside->to]));
+  }
+}
+
 }  // namespace
 
 void ImuCalibrationOptions::validate() const {
-  if (!(gravity_m_s2 > 9.7 && gravity_m_s2 < 9.9)) {
-    throw ParameterError("gravity_m_s2", fmt::format("{} m/s^2 is not a gravity on the Earth's surface", gravity_m_s2));
-  }
+  // The output units are any the unit parser knows (counts, volts, m/s^2, ...): an unknown one is its error.
+  check_parameter("accelerometer_unit", [&] { Unit::parse(accelerometer_unit); });
+  check_parameter("gyro_unit", [&] { Unit::parse(gyro_unit); });
+  check_surface_gravity("gravity_m_s2", gravity_m_s2);
   if (!(static_window_s > 0.0)) throw ParameterError("static_window_s", "the moving-variance window must be positive");
   if (!(static_threshold > 1.0)) {
     throw ParameterError("static_threshold", "the threshold is a multiple of the quietest variance: more than 1");
@@ -473,7 +508,7 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
         throw Error(at_file(path), fmt::format("the time does not increase at sample {}", i + 1));
       }
     }
-    return {path, std::move(samples[0]), {std::move(samples[1]), std::move(samples[2]), std::move(samples[3])},
+    return {path, {}, std::move(samples[0]), {std::move(samples[1]), std::move(samples[2]), std::move(samples[3])},
             {std::move(samples[4]), std::move(samples[5]), std::move(samples[6])}};
   }
   options.minimum_rows = 2;
@@ -485,6 +520,7 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
   }
   ImuRecord record;
   record.source = path;
+  record.lines = std::move(table.row_lines);
   record.time_s = std::move(table.columns[0]);
   for (int j = 0; j < 3; ++j) {
     record.accelerometer[j] = std::move(table.columns[1 + j]);
@@ -680,6 +716,7 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
     return motions;
   };
   const std::vector<Motion> motions = motions_of(accelerometer.parameters);
+  check_time_gaps(record, motions, result.warnings);
   const ResidualFunction residuals = [&](const Parameters& p) { return direction_residuals(record, motions, p, w.bias); };
   // The common scale that best turns each gravity direction into the next, searched over nine
   // decades of output unit per rad/s, starts the fit.

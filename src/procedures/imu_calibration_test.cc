@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/sim/imu_tumble.h"
 #include "test_util/test_util.h"
 
@@ -119,6 +120,71 @@ TEST(ImuCalibration, RecoversEveryParameterWithinItsUncertainty) {
   EXPECT_GT(rms, 0.6);
   EXPECT_LT(rms, 1.5);
   EXPECT_GT(static_cast<double>(within) / static_cast<double>(z.size()), 0.88);
+}
+
+TEST(ImuCalibration, AnUnknownOutputUnitIsAParameterError) {
+  for (const auto& [parameter, member] : {std::pair{"accelerometer_unit", &ImuCalibrationOptions::accelerometer_unit},
+                                          std::pair{"gyro_unit", &ImuCalibrationOptions::gyro_unit}}) {
+    ImuCalibrationOptions options;
+    options.*member = "furlong";
+    try {
+      options.validate();
+      ADD_FAILURE() << parameter << " accepted 'furlong'";
+    } catch (const ParameterError& e) {
+      EXPECT_EQ(e.parameter, parameter);
+      EXPECT_THAT(e.message(), ::testing::StartsWith("unknown unit 'furlong' in 'furlong'"));
+    }
+    options.*member = "mV";
+    EXPECT_NO_THROW(options.validate());
+  }
+}
+
+// The record without samples [first, last), as a logger that dropped them leaves it.
+ImuRecord without(ImuRecord record, std::size_t first, std::size_t last) {
+  const auto cut = [&](auto& column) {
+    column.erase(column.begin() + static_cast<std::ptrdiff_t>(first), column.begin() + static_cast<std::ptrdiff_t>(last));
+  };
+  cut(record.time_s);
+  cut(record.lines);
+  for (int j = 0; j < 3; ++j) {
+    cut(record.accelerometer[j]);
+    cut(record.gyro[j]);
+  }
+  return record;
+}
+
+TEST(ImuCalibration, AGapInARotationIsAnErrorAtItsLineAndElsewhereAWarning) {
+  ImuRecord record = tumble(12, 12);
+  record.source = "tumble.csv";
+  for (std::size_t i = 0; i < record.time_s.size(); ++i) record.lines.push_back(i + 2);  // under a header line
+  const StaticDetection detection = detect_static_intervals(record, {});
+  ASSERT_GE(detection.intervals.size(), 3u);
+  // 20 samples (0.2 s) dropped in the middle of the first rotation: the turn made then is lost.
+  const std::size_t middle = (detection.intervals[0].last + detection.intervals[1].first) / 2;
+  const ImuRecord rotation_gap = without(record, middle, middle + 20);
+  try {
+    calibrate_imu(rotation_gap, {});
+    ADD_FAILURE() << "a gap inside a rotation was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->to_string(), fmt::format("tumble.csv:{}", middle + 22));
+    EXPECT_THAT(e.message(), ::testing::HasSubstr(fmt::format(
+                                 "a gap in the time stamps: {:.6g} s to {:.6g} s, 20 sample(s) of 0.01 s missing, inside "
+                                 "the rotation from the static interval ending at",
+                                 record.time_s[middle - 1], record.time_s[middle + 20])));
+  }
+  // The same gap in a static interval changes no rotation: the calibration stands, with a warning.
+  const StaticInterval& still = detection.intervals[2];
+  const std::size_t inside = (still.first + still.last) / 2;
+  const ImuCalibrationResult result = calibrate_imu(without(record, inside, inside + 20), {});
+  const ImuCalibrationResult whole = calibrate_imu(record, {});
+  ASSERT_FALSE(result.warnings.empty());
+  EXPECT_EQ(result.warnings.back(),
+            fmt::format("a gap in the time stamps: {:.6g} s to {:.6g} s, 20 sample(s) of 0.01 s missing before line {}, "
+                        "outside the rotations the gyro's fit integrates",
+                        record.time_s[inside - 1], record.time_s[inside + 20], inside + 22));
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(result.gyro.scale_factor[j], whole.gyro.scale_factor[j], whole.gyro.scale_factor_uncertainty[j]);
+  }
 }
 
 // Samples [first, last) of a record.

@@ -9,7 +9,9 @@
 //   y = c_0 + Σ_{j=1..n} k_Tj (T − T_m)^j,
 // the temperature model of the scale factor in IEEE Std 952-1997's model equation (Annex B). The
 // covariance is propagated from the K_i's uncertainties, Cov = G diag(σ²) Gᵀ with G the fit's linear
-// map from observations to coefficients, so that it holds with as many runs as coefficients.
+// map from observations to coefficients, so that it holds with as many runs as coefficients. When the
+// points scatter about the polynomial more than their σ_i allow (χ²/ν > 1), the covariance is scaled
+// by χ²/ν (the Birge ratio squared), with a warning; with ν = 0 it cannot be checked, and says so.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -85,6 +87,28 @@ ScaleFactorTemperatureModelResult fit_scale_factor_temperature(std::span<const T
     unit[i] = 1.0;
     const LeastSquaresResult column = solve_least_squares(design, unit, weighted);
     for (std::size_t j = 0; j < n; ++j) variance[j] += column.parameters[j] * column.parameters[j] * sigma[i] * sigma[i];
+  }
+  // Lack of fit: χ² = Σ (r_i/σ_i)² on ν = m − n residual degrees of freedom. χ²/ν > 1
+  // says the K_i scatter about the polynomial more than their uncertainties allow (an order too low, or
+  // σ_i understated), and the covariance from the σ_i alone is too small: it is scaled by χ²/ν, the
+  // square of the Birge ratio R_B = sqrt(χ²/ν) (R. T. Birge, Phys. Rev. 40 (1932) 207; Kacker, Datla &
+  // Parr, Metrologia 39 (2002) 279), never scaled down.
+  const std::size_t dof = m - n;
+  double chi_square = 0.0;
+  for (std::size_t i = 0; i < m; ++i) chi_square += (fit.residuals[i] / sigma[i]) * (fit.residuals[i] / sigma[i]);
+  if (dof == 0) {
+    result.warnings.push_back(fmt::format(
+        "{} runs for a polynomial of order {}: the fit leaves no residual degree of freedom, so its uncertainties "
+        "(from the runs' alone) cannot be checked against the points' scatter",
+        m, options.order));
+  } else if (chi_square / static_cast<double>(dof) > 1.0) {
+    const double reduced = chi_square / static_cast<double>(dof);
+    for (double& v : variance) v *= reduced;
+    result.warnings.push_back(fmt::format(
+        "the scale factors scatter about the polynomial of order {} more than their uncertainties allow: chi2/dof = "
+        "{:.4g}/{} = {:.4g}; the coefficients' uncertainties are scaled by the Birge ratio sqrt(chi2/dof) = {:.4g} "
+        "(a higher --order, or the runs' uncertainties understated?)",
+        options.order, chi_square, dof, reduced, std::sqrt(reduced)));
   }
   // The design is in (T − T_m)/10 for conditioning: k_Tj = β_j / 10^j.
   for (std::size_t j = 0; j < n; ++j) {

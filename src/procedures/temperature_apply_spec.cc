@@ -53,9 +53,18 @@ ProcedureSpec temperature_apply_spec() {
       .compute([](const ProcedureCall& call, const Options& options) {
         const ThermalCompensation compensation = read_thermal_compensation(call.files.at("coefficients"));
         const std::string sensor = options.temperature_columns.empty() ? compensation.sensor : options.temperature_columns.front();
-        const ThermalRecord record =
-            read_thermal_record(call.files.at("record"), options.time_column, options.output_column, {sensor});
-        return apply_thermal_compensation(record, compensation, options);
+        const std::string& path = call.files.at("record");
+        const ThermalRecord record = read_thermal_record(path, options.time_column, options.output_column, {sensor});
+        // A complaint about the record (too short for its windows) names it: of the two files the
+        // command reads, the coefficients' errors already name theirs.
+        try {
+          return apply_thermal_compensation(record, compensation, options);
+        } catch (const ParameterError&) {
+          throw;
+        } catch (const Error& e) {
+          if (e.location()) throw;
+          throw Error(SourceLocation{path, 0, 0}, e.message());
+        }
       });
 }
 

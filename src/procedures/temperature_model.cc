@@ -5,10 +5,12 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
 #include "inertest/numerics/least_squares.h"
@@ -21,9 +23,88 @@ namespace {
 
 constexpr double kSecondsPerHour = 3600.0;
 constexpr double kSecondsPerMinute = 60.0;
+constexpr std::size_t kHighestOrder = 6;  // of the polynomial in ΔT (maximum_order)
 
 std::string power_name(std::size_t k) { return k == 1 ? "D_T" : fmt::format("D_T{}", k); }
 std::string power_unit(std::size_t k) { return k == 1 ? "deg/h/degC" : fmt::format("deg/h/degC^{}", k); }
+
+// The terms of the model equation (procedures/temperature_model.h) a coefficient multiplies.
+enum class ThermalTerm { power, rate, temperature_rate, hysteresis };
+
+struct TermOfCoefficient {
+  ThermalTerm term = ThermalTerm::power;
+  std::size_t power = 0;  // of ΔT, for ThermalTerm::power
+  std::string unit;       // the unit the model takes it in
+};
+
+// The term of a coefficient by its name: D_0, D_T, D_T2 ... D_T6, D_dT, D_TdT, D_H; none for another.
+std::optional<TermOfCoefficient> term_of(const std::string& name) {
+  if (name == "D_0") return TermOfCoefficient{ThermalTerm::power, 0, "deg/h"};
+  if (name == "D_dT") return TermOfCoefficient{ThermalTerm::rate, 0, "deg/h/(degC/min)"};
+  if (name == "D_TdT") return TermOfCoefficient{ThermalTerm::temperature_rate, 0, "deg/h/degC/(degC/min)"};
+  if (name == "D_H") return TermOfCoefficient{ThermalTerm::hysteresis, 0, "deg/h"};
+  for (std::size_t k = 1; k <= kHighestOrder; ++k) {
+    if (name == power_name(k)) return TermOfCoefficient{ThermalTerm::power, k, power_unit(k)};
+  }
+  return std::nullopt;
+}
+
+// A coefficient of an exported file (named `what` in messages: its key or row, at `where`, its unit at
+// `unit_where`), its value and uncertainty converted from the unit it gives to the unit the model takes.
+ThermalCoefficient checked_coefficient(const std::string& name, const Figure& given, const SourceLocation& where,
+                                       const SourceLocation& unit_where, const std::string& what) {
+  const std::optional<TermOfCoefficient> term = term_of(name);
+  if (!term) {
+    throw Error(where, fmt::format("{}: unknown coefficient '{}' (the model's are D_0, D_T, D_T2 ... D_T{}, D_dT, "
+                                   "D_TdT and D_H)",
+                                   what, name, kHighestOrder));
+  }
+  if (given.unit.empty()) {
+    throw Error(unit_where, fmt::format("{}: no unit (the model takes {} in {})", what, name, term->unit));
+  }
+  try {
+    const Unit from = Unit::parse(given.unit);
+    const Unit to = Unit::parse(term->unit);
+    std::optional<double> uncertainty;
+    if (given.uncertainty) uncertainty = convert(*given.uncertainty, from, to);
+    return {name, {convert(given.value, from, to), term->unit, uncertainty}};
+  } catch (const Error& e) {
+    throw Error(unit_where, fmt::format("{}: the unit '{}' of {} is not one of {}: {}", what, given.unit, name,
+                                        term->unit, e.message()));
+  }
+}
+
+// Every term a model of its coefficients needs is there: D_0; D_T ... D_Tn without a gap, n the
+// model's order (`order` when the file states it, else the highest power given); D_dT with D_TdT.
+void check_complete_model(std::span<const ThermalCoefficient> coefficients, std::optional<std::size_t> order,
+                          const SourceLocation& where) {
+  std::vector<bool> powers(kHighestOrder + 1, false);
+  bool rate = false, temperature_rate = false;
+  std::size_t highest = 0;
+  for (const ThermalCoefficient& c : coefficients) {
+    const TermOfCoefficient term = *term_of(c.name);
+    if (term.term == ThermalTerm::power) {
+      powers[term.power] = true;
+      highest = std::max(highest, term.power);
+    }
+    rate = rate || term.term == ThermalTerm::rate;
+    temperature_rate = temperature_rate || term.term == ThermalTerm::temperature_rate;
+  }
+  if (order && highest > *order) {
+    throw Error(where, fmt::format("coefficients: {} is beyond the model's order {}", power_name(highest), *order));
+  }
+  const std::size_t n = order.value_or(highest);
+  for (std::size_t k = 0; k <= n; ++k) {
+    if (powers[k]) continue;
+    throw Error(where, fmt::format("coefficients: {} is missing (a model of order {} has D_0{})",
+                                   k == 0 ? "D_0" : power_name(k), n,
+                                   n == 0 ? "" : n == 1 ? " and D_T" : fmt::format(", D_T ... {}", power_name(n))));
+  }
+  if (rate != temperature_rate) {
+    throw Error(where, fmt::format("coefficients: {} is missing (the rate terms D_dT and D_TdT come together)",
+                                   rate ? "D_TdT" : "D_dT"));
+  }
+}
 
 // The columns of the design in the scaled variables u = (T − T_c)/s, v = Ṫ/r: u^0..u^n, then v and
 // u·v with the rate terms, then h with both legs present.
@@ -267,12 +348,17 @@ void TemperatureModelOptions::validate() const {
   if (!(rate_window_s >= 2.0 * interval_s)) {
     throw ParameterError("rate_window_s", "rate_window_s must cover at least two intervals (2 x interval_s)");
   }
+  if (!std::isfinite(reference_temperature_degC)) {
+    throw ParameterError("reference_temperature", "reference_temperature must be finite");
+  }
   if (!(soak_rate_degC_per_min >= 0.0)) throw ParameterError("soak_rate", "soak_rate must not be negative");
   if (!(stability_window_s >= interval_s)) {
     throw ParameterError("stability_window_s", "stability_window_s must be at least interval_s");
   }
   if (folds < 2) throw ParameterError("folds", "folds must be at least 2");
-  if (maximum_order > 6) throw ParameterError("maximum_order", "maximum_order must be at most 6");
+  if (maximum_order > kHighestOrder) {
+    throw ParameterError("maximum_order", fmt::format("maximum_order must be at most {}", kHighestOrder));
+  }
 }
 
 std::vector<double> smoothed_rate_degC_per_min(std::span<const double> time_s, std::span<const double> temperature_degC,
@@ -307,19 +393,22 @@ double thermal_bias_deg_h(std::span<const ThermalCoefficient> coefficients, doub
   const double dt = temperature_degC - reference_temperature_degC;
   double bias = 0.0;
   for (const ThermalCoefficient& c : coefficients) {
+    const std::optional<TermOfCoefficient> term = term_of(c.name);
+    if (!term) throw Error(fmt::format("unknown temperature model coefficient '{}'", c.name));
     const double value = c.value.value;
-    if (c.name == "D_0") {
-      bias += value;
-    } else if (c.name == "D_dT") {
-      bias += value * rate_degC_per_min;
-    } else if (c.name == "D_TdT") {
-      bias += value * dt * rate_degC_per_min;
-    } else if (c.name == "D_H") {
-      bias += value * 0.5 * leg;
-    } else if (c.name == "D_T") {
-      bias += value * dt;
-    } else {
-      bias += value * std::pow(dt, std::stod(c.name.substr(3)));
+    switch (term->term) {
+      case ThermalTerm::power:
+        bias += value * std::pow(dt, static_cast<double>(term->power));
+        break;
+      case ThermalTerm::rate:
+        bias += value * rate_degC_per_min;
+        break;
+      case ThermalTerm::temperature_rate:
+        bias += value * dt * rate_degC_per_min;
+        break;
+      case ThermalTerm::hysteresis:
+        bias += value * 0.5 * leg;
+        break;
     }
   }
   return bias;
@@ -475,6 +564,7 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
     for (const auto& c : result.coefficients) coefficients[c.name] = c.value;
     return nlohmann::json{{"model", "inertest temperature model"},
                           {"sensor", result.sensor},
+                          {"order", result.order},
                           {"reference_temperature_degC", options.reference_temperature_degC},
                           {"rate_window_s", options.rate_window_s},
                           {"soak_rate_degC_per_min", options.soak_rate_degC_per_min},
@@ -483,10 +573,10 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
            "\n";
   }
   if (extension != ".csv") throw Error(fmt::format("{}: the export is .json or .csv, not '{}'", path, extension));
-  std::string text = fmt::format("name,value,unit,uncertainty\nsensor,{},,\nreference_temperature,{},degC,\n"
+  std::string text = fmt::format("name,value,unit,uncertainty\nsensor,{},,\norder,{},,\nreference_temperature,{},degC,\n"
                                  "rate_window,{},s,\nsoak_rate,{},degC/min,\n",
-                                 result.sensor, options.reference_temperature_degC, options.rate_window_s,
-                                 options.soak_rate_degC_per_min);
+                                 result.sensor, result.order, options.reference_temperature_degC,
+                                 options.rate_window_s, options.soak_rate_degC_per_min);
   for (const auto& c : result.coefficients) {
     text += fmt::format("{},{},{},{}\n", c.name, c.value.value, c.value.unit, c.value.uncertainty.value_or(0.0));
   }
@@ -497,19 +587,31 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
   const MappedFile file(path);
   const std::string_view text = file.bytes();
   ThermalCompensation compensation;
+  const SourceLocation file_location{path, 0, 0};
+  std::optional<std::size_t> order;  // stated by exports since the order was written; else inferred
+  auto set_order = [&](double value, const SourceLocation& where) {
+    if (!(value >= 0.0 && value <= static_cast<double>(kHighestOrder) && value == std::floor(value))) {
+      throw Error(where, fmt::format("order: {} is not a whole number from 0 to {}", value, kHighestOrder));
+    }
+    order = static_cast<std::size_t>(value);
+  };
   if (std::filesystem::path(path).extension() == ".json") {
     try {
       const nlohmann::json json = nlohmann::json::parse(text);
       compensation.sensor = json.at("sensor").get<std::string>();
+      if (json.contains("order")) set_order(json.at("order").get<double>(), file_location);
       compensation.reference_temperature_degC = json.at("reference_temperature_degC").get<double>();
       compensation.rate_window_s = json.at("rate_window_s").get<double>();
       compensation.soak_rate_degC_per_min = json.at("soak_rate_degC_per_min").get<double>();
       for (const auto& [name, figure] : json.at("coefficients").items()) {
-        compensation.coefficients.push_back({name, figure.get<Figure>()});
+        compensation.coefficients.push_back(
+            checked_coefficient(name, figure.get<Figure>(), file_location, file_location, "coefficients." + name));
       }
     } catch (const nlohmann::json::exception& e) {
-      throw Error(SourceLocation{path, 0, 0}, fmt::format("not an exported temperature model: {}", e.what()));
+      throw Error(file_location, fmt::format("not an exported temperature model: {}", e.what()));
     }
+    if (compensation.coefficients.empty()) throw Error(file_location, "no coefficients");
+    check_complete_model(compensation.coefficients, order, file_location);
     return compensation;
   }
   io_detail::LineCursor cursor(text);
@@ -532,13 +634,22 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
       compensation.rate_window_s = value;
     } else if (name == "soak_rate") {
       compensation.soak_rate_degC_per_min = value;
+    } else if (name == "order") {
+      set_order(value, SourceLocation{path, line_number, cells[1].column});
     } else if (name.starts_with("D_")) {
-      compensation.coefficients.push_back({name, {value, cells[2].text, number_cell(cells[3], path, line_number)}});
+      const SourceLocation where{path, line_number, 1};
+      const bool repeated = std::any_of(compensation.coefficients.begin(), compensation.coefficients.end(),
+                                        [&](const ThermalCoefficient& c) { return c.name == name; });
+      if (repeated) throw Error(where, fmt::format("coefficient '{}' is given twice", name));
+      compensation.coefficients.push_back(checked_coefficient(
+          name, {value, cells[2].text, number_cell(cells[3], path, line_number)}, where,
+          SourceLocation{path, line_number, cells[2].column}, "coefficient " + name));
     } else {
       throw Error(SourceLocation{path, line_number, 1}, fmt::format("unknown row '{}'", name));
     }
   }
   if (compensation.coefficients.empty()) throw Error(SourceLocation{path, line_number, 0}, "no coefficients");
+  check_complete_model(compensation.coefficients, order, SourceLocation{path, 0, 0});
   return compensation;
 }
 

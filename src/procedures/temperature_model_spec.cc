@@ -55,9 +55,9 @@ ProcedureSpec temperature_model_spec() {
       "linear regression over --rate-window; the residual bias stability after compensation beside the\n"
       "raw one, over the same windows. RECORD is a text record with a time column (s), an output column\n"
       "and one or more temperature columns (degC; the first compensates, the others are compared).\n"
-      "--export FILE writes the coefficients: FILE.json {\"model\", \"sensor\", \"reference_temperature_degC\",\n"
+      "--export FILE writes the coefficients: FILE.json {\"model\", \"sensor\", \"order\", \"reference_temperature_degC\",\n"
       "\"rate_window_s\", \"soak_rate_degC_per_min\", \"coefficients\": {name: {value, unit, uncertainty}}} or\n"
-      "FILE.csv 'name,value,unit,uncertainty' (rows sensor, reference_temperature, rate_window,\n"
+      "FILE.csv 'name,value,unit,uncertainty' (rows sensor, order, reference_temperature, rate_window,\n"
       "soak_rate, then D_0, D_T, D_T2, ..., D_dT, D_TdT, D_H); `inertest temperature-apply` applies them.");
   definition.chinese_title("零偏温度模型")
       .report_method(

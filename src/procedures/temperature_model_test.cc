@@ -4,16 +4,21 @@
 // without dT/dt failing on the same data), the smoothed rate of a quantised ramp, the export's round
 // trip and temperature-apply through the declared command.
 #include <cmath>
+#include <limits>
 #include <map>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "inertest/campaign/campaign.h"
 #include "inertest/procedures/temperature_model.h"
 #include "inertest/sim/thermal_model.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
 namespace {
+
+using ::testing::HasSubstr;
 
 // A short chamber run: soaks of 900 s, 20 -> 50 -> -10 -> 20 degC at 1, 2 and 0.5 degC/min.
 sim::ChamberProfile short_chamber() {
@@ -154,6 +159,165 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
     // The same record and windows: the residual stability temperature-model reported.
     EXPECT_NEAR(applied.at("residual_bias_stability").at("value").get<double>(),
                 nlohmann::json::parse(model.out).at("residual_bias_stability").at("value").get<double>(), 1e-6);
+  }
+}
+
+// An exported model of order 2 with the rate terms and the hysteresis, in either form; `edit` changes
+// the coefficient rows (name, value, unit) before they are written.
+struct CoefficientRow {
+  std::string name;
+  double value;
+  std::string unit;
+};
+
+std::vector<CoefficientRow> order_two_rows() {
+  return {{"D_0", 0.02, "deg/h"},           {"D_T", 0.003, "deg/h/degC"},
+          {"D_T2", 4e-5, "deg/h/degC^2"},   {"D_dT", 0.03, "deg/h/(degC/min)"},
+          {"D_TdT", 4e-4, "deg/h/degC/(degC/min)"}, {"D_H", 0.003, "deg/h"}};
+}
+
+std::string coefficients_json(const std::vector<CoefficientRow>& rows, bool with_order = true) {
+  nlohmann::json coefficients = nlohmann::json::object();
+  for (const auto& row : rows) coefficients[row.name] = {{"value", row.value}, {"unit", row.unit}, {"uncertainty", 1e-6}};
+  nlohmann::json json{{"model", "inertest temperature model"}, {"sensor", "coil"}, {"reference_temperature_degC", 20.0},
+                      {"rate_window_s", 600.0}, {"soak_rate_degC_per_min", 0.05}, {"coefficients", coefficients}};
+  if (with_order) json["order"] = 2;
+  return json.dump(2);
+}
+
+std::string coefficients_csv(const std::vector<CoefficientRow>& rows, bool with_order = true) {
+  std::string text = "name,value,unit,uncertainty\nsensor,coil,,\n";
+  if (with_order) text += "order,2,,\n";
+  text += "reference_temperature,20,degC,\nrate_window,600,s,\nsoak_rate,0.05,degC/min,\n";
+  for (const auto& row : rows) text += fmt::format("{},{},{},1e-6\n", row.name, row.value, row.unit);
+  return text;
+}
+
+std::string read_error(const std::string& path) {
+  try {
+    read_thermal_compensation(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(TemperatureModel, CoefficientsOfAnotherNameAreAnErrorNamingTheFile) {
+  const testing::ScratchDirectory scratch;
+  std::vector<CoefficientRow> rows = order_two_rows();
+  rows.back().name = "D_X";
+  const std::string json = scratch.write("typo.json", coefficients_json(rows));
+  EXPECT_EQ(read_error(json), json + ": coefficients.D_X: unknown coefficient 'D_X' (the model's are D_0, D_T, "
+                                     "D_T2 ... D_T6, D_dT, D_TdT and D_H)");
+  const std::string csv = scratch.write("typo.csv", coefficients_csv(rows));
+  EXPECT_THAT(read_error(csv), HasSubstr(csv + ":12:1: coefficient D_X: unknown coefficient 'D_X'"));
+  // Names the old reader took apart by their digits (std::stod threw or read a power it was not given).
+  for (const char* name : {"D_T2x", "D_T7", "D_Tx"}) {
+    rows.back().name = name;
+    EXPECT_THAT(read_error(scratch.write("typo.json", coefficients_json(rows))), HasSubstr("unknown coefficient"));
+  }
+  rows.back().name = "D_T";
+  const std::string twice = scratch.write("twice.csv", coefficients_csv(rows));
+  EXPECT_EQ(read_error(twice), twice + ":12:1: coefficient 'D_T' is given twice");
+  const std::vector<ThermalCoefficient> unknown{{"D_X", {1.0, "deg/h", std::nullopt}}};
+  EXPECT_THROW(thermal_bias_deg_h(unknown, 20.0, 30.0, 0.0, 0), Error);
+}
+
+TEST(TemperatureModel, CoefficientsAreConvertedFromTheirUnits) {
+  const testing::ScratchDirectory scratch;
+  std::vector<CoefficientRow> rows = order_two_rows();
+  rows[1] = {"D_T", 0.003 / 3600.0, "deg/s/degC"};     // the same D_T in deg/s/degC
+  rows[2] = {"D_T2", 4e-5, "deg/h/K^2"};              // a kelvin of difference is a degC: no change
+  rows[3] = {"D_dT", 0.03 * 60.0, "deg/h/(degC/s)"};  // per degC/s: 60 times the value per degC/min
+  for (const std::string& path : {scratch.write("units.json", coefficients_json(rows)),
+                                  scratch.write("units.csv", coefficients_csv(rows))}) {
+    const ThermalCompensation read = read_thermal_compensation(path);
+    std::map<std::string, Figure> by_name;
+    for (const ThermalCoefficient& c : read.coefficients) by_name[c.name] = c.value;
+    EXPECT_NEAR(by_name.at("D_T").value, 0.003, 1e-15) << path;
+    EXPECT_EQ(by_name.at("D_T").unit, "deg/h/degC");
+    EXPECT_NEAR(*by_name.at("D_T").uncertainty, 3600e-6, 1e-15);
+    EXPECT_NEAR(by_name.at("D_T2").value, 4e-5, 1e-18);
+    EXPECT_NEAR(by_name.at("D_dT").value, 0.03, 1e-15);
+    EXPECT_NEAR(*by_name.at("D_dT").uncertainty, 1e-6 / 60.0, 1e-18);
+  }
+  rows[1] = {"D_T", 0.003, "deg/h"};  // not per degree
+  const std::string json = scratch.write("wrong.json", coefficients_json(rows));
+  EXPECT_THAT(read_error(json), HasSubstr(json + ": coefficients.D_T: the unit 'deg/h' of D_T is not one of deg/h/degC: "
+                                                 "cannot convert"));
+  const std::string csv = scratch.write("wrong.csv", coefficients_csv(rows));
+  EXPECT_THAT(read_error(csv), HasSubstr(csv + ":8:11: coefficient D_T: the unit 'deg/h' of D_T"));
+  rows[1] = {"D_T", 0.003, "furlong"};
+  EXPECT_THAT(read_error(scratch.write("wrong.json", coefficients_json(rows))), HasSubstr("the unit 'furlong' of D_T"));
+  rows[1] = {"D_T", 0.003, ""};
+  const std::string no_unit = scratch.write("no_unit.csv", coefficients_csv(rows));
+  EXPECT_EQ(read_error(no_unit), no_unit + ":8:11: coefficient D_T: no unit (the model takes D_T in deg/h/degC)");
+}
+
+TEST(TemperatureModel, AMissingCoefficientIsAnError) {
+  const testing::ScratchDirectory scratch;
+  std::vector<CoefficientRow> rows = order_two_rows();
+  rows.erase(rows.begin() + 2);  // D_T2 of the order 2 the file states
+  for (const std::string& path : {scratch.write("missing.json", coefficients_json(rows)),
+                                  scratch.write("missing.csv", coefficients_csv(rows))}) {
+    EXPECT_EQ(read_error(path), path + ": coefficients: D_T2 is missing (a model of order 2 has D_0, D_T ... D_T2)");
+  }
+  // Without a stated order (an older export) a gap in the powers still shows.
+  rows = order_two_rows();
+  rows.erase(rows.begin() + 1);  // D_T, with D_T2 given
+  const std::string gap = scratch.write("gap.json", coefficients_json(rows, false));
+  EXPECT_EQ(read_error(gap), gap + ": coefficients: D_T is missing (a model of order 2 has D_0, D_T ... D_T2)");
+  rows = order_two_rows();
+  rows.erase(rows.begin());
+  EXPECT_THAT(read_error(scratch.write("no_constant.csv", coefficients_csv(rows, false))), HasSubstr("D_0 is missing"));
+  rows = order_two_rows();
+  rows.erase(rows.begin() + 4);  // D_TdT without D_dT
+  EXPECT_THAT(read_error(scratch.write("half_rate.json", coefficients_json(rows))),
+              HasSubstr("coefficients: D_TdT is missing (the rate terms D_dT and D_TdT come together)"));
+  rows = order_two_rows();
+  rows.push_back({"D_T3", 1e-7, "deg/h/degC^3"});
+  EXPECT_THAT(read_error(scratch.write("beyond.json", coefficients_json(rows))),
+              HasSubstr("coefficients: D_T3 is beyond the model's order 2"));
+  // The complete file reads, with or without its order.
+  EXPECT_EQ(read_thermal_compensation(scratch.write("whole.json", coefficients_json(order_two_rows(), false)))
+                .coefficients.size(),
+            6u);
+  EXPECT_EQ(read_thermal_compensation(scratch.write("whole.csv", coefficients_csv(order_two_rows()))).coefficients.size(),
+            6u);
+}
+
+TEST(TemperatureModel, ANonFiniteReferenceTemperatureIsAParameterError) {
+  TemperatureModelOptions options;
+  options.scale_factor = 36000.0;
+  for (const double reference : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    options.reference_temperature_degC = reference;
+    try {
+      options.validate();
+      ADD_FAILURE() << "accepted " << reference;
+    } catch (const ParameterError& e) {
+      EXPECT_EQ(e.parameter, "reference_temperature");
+      EXPECT_EQ(e.message_naming("--reference-temperature"), "--reference-temperature must be finite");
+    }
+  }
+  // In a plan, at its key, before anything runs.
+  const testing::ScratchDirectory scratch;
+  const std::string plan = scratch.write("plan.toml", R"([instrument]
+id = "FOG-7"
+output_unit = "pulse/s"
+
+[[procedure]]
+kind = "temperature_model"
+file = "plan.toml"
+scale_factor = 36000
+temperature_column = ["coil"]
+reference_temperature = nan
+)");
+  try {
+    validate_plan(plan);
+    ADD_FAILURE() << "the plan was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr(plan + ":10:"));
+    EXPECT_THAT(e.what(), HasSubstr("reference_temperature must be finite"));
   }
 }
 

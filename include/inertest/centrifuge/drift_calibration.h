@@ -146,8 +146,9 @@ nlohmann::json influence_json(const DriftCalibrationResult& result);
 nlohmann::json runs_json(const DriftCalibrationResult& result);
 nlohmann::json site_json(const CentrifugeSite& site);
 
-// Throws Error (at the offending run's location where known) for an invalid run, a duplicated
-// (g-level, beta) run, fewer amplitudes than parameters, or a design that cannot identify some
+// Throws Error (at the offending run's location where known) for an invalid run, a run whose
+// omega_rad_s, with the site's radius and gravity, gives a g-level more than 1 % from its accel_g
+// (Omega^2 R0 / g), a duplicated (g-level, beta) run, fewer amplitudes than parameters, or a design that cannot identify some
 // parameters (naming them). The g-levels may hold different platform angles when the design still
 // has full rank.
 DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRun> runs,

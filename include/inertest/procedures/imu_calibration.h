@@ -44,6 +44,7 @@ using Matrix3 = std::array<Vector3, 3>;
 // One IMU record: time (s) and the six outputs, in the record's units, of equal length.
 struct ImuRecord {
   std::string source;  // the file, for messages
+  std::vector<std::size_t> lines;  // the file line of each sample of a text record (empty: not known)
   std::vector<double> time_s;
   std::array<std::vector<double>, 3> accelerometer;
   std::array<std::vector<double>, 3> gyro;
@@ -134,7 +135,9 @@ struct StaticDetection {
 StaticDetection detect_static_intervals(const ImuRecord& record, const ImuCalibrationOptions& options);
 
 // The whole calibration. Throws Error (naming the record) when fewer than minimum_statics statics are
-// accepted or the orientations cannot identify the model.
+// accepted or the orientations cannot identify the model, and (naming its line) at a gap in the time
+// stamps, a step of more than 1.5 median steps as `inspect` finds one, inside a rotation the gyro's fit
+// integrates; a gap elsewhere is a warning.
 ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibrationOptions& options);
 
 }  // namespace inertest

@@ -131,9 +131,9 @@ std::vector<double> smoothed_rate_degC_per_min(std::span<const double> time_s, s
                                                double window_s);
 
 // The exported compensation coefficients (--export), documented in the spec's help:
-// JSON {"model": "inertest temperature model", "sensor", "reference_temperature_degC",
-// "scale_factor", "rate_window_s", "soak_rate_degC_per_min", "coefficients": {name: {value, unit,
-// uncertainty}}}; CSV with the header 'name,value,unit,uncertainty' and the settings as rows whose
+// JSON {"model": "inertest temperature model", "sensor", "order", "reference_temperature_degC",
+// "rate_window_s", "soak_rate_degC_per_min", "coefficients": {name: {value, unit, uncertainty}}};
+// CSV with the header 'name,value,unit,uncertainty' and the settings (sensor, order, ...) as rows whose
 // unit column names them. By the file's extension (.json or .csv).
 std::string thermal_coefficients_text(const TemperatureModelResult& result, const TemperatureModelOptions& options,
                                       const std::string& path);
@@ -146,7 +146,11 @@ struct ThermalCompensation {
   std::vector<ThermalCoefficient> coefficients;
 };
 
-// Reads an exported file (either form); throws Error naming the file (and line) when it is not one.
+// Reads an exported file (either form); throws Error naming the file (and the line of the CSV form,
+// the key of the JSON form) when it is not one: a coefficient of no term of the model, a unit that
+// does not convert to the model's (the values come back in deg/h, deg/h/degC^k, deg/h/(degC/min),
+// deg/h/degC/(degC/min), whatever unit the file gives), a term missing (D_0, D_T ... D_Tn for the
+// order n the file states or, in a file without one, the highest power given; D_dT and D_TdT together).
 ThermalCompensation read_thermal_compensation(const std::string& path);
 
 struct TemperatureApplyResult {

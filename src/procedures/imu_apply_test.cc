@@ -1,0 +1,39 @@
+// imu-apply (procedures/imu_apply_spec.cc) through the command: what it writes.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "test_util/test_util.h"
+
+namespace inertest {
+namespace {
+
+// imu-apply on a record too short for its check leaves no --output file (it wrote the calibrated
+// record first, then failed).
+TEST(ImuApply, AFailureWritesNoOutput) {
+  const testing::ScratchDirectory scratch;
+  const std::string tumble_csv = testing::read_file(testing::source_path("examples/imu_calibration/tumble.csv"));
+  std::string head;
+  for (std::size_t at = 0, lines = 0; lines < 31; ++lines) {
+    const std::size_t end = tumble_csv.find('\n', at) + 1;
+    head += tumble_csv.substr(at, end - at);
+    at = end;
+  }
+  const std::string record = scratch.write("short.csv", head);
+  const std::string output = scratch.path() + "/calibrated.csv";
+  const testing::CliRun run = testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"),
+                                                record, "--output", output});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.err, "inertest: error: " + record + ": 30 samples: too short for a 1 s moving-variance window of 25 samples\n");
+  EXPECT_FALSE(std::filesystem::exists(output));
+  // The whole record: the file is written.
+  const testing::CliRun whole = testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"),
+                                                  testing::source_path("examples/imu_calibration/tumble.csv"), "--output",
+                                                  output, "--json"});
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_TRUE(std::filesystem::exists(output));
+}
+
+}  // namespace
+}  // namespace inertest

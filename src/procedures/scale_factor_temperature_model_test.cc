@@ -102,6 +102,9 @@ TEST(ScaleFactorTemperatureModel, UncertaintyCoversTheTruthWhenTheModelIsRight) 
   for (int i = 0; i < kTrials; ++i) trials.push_back(trial(quadratic, 2, 0.0, uniform));
   EXPECT_GT(coverage(trials, 2.0), 0.60);
   EXPECT_LT(coverage(trials, 2.0), 0.80);
+  // The lack-of-fit warning is for scatter beyond chance: P(chi2_4 / 4 > 1 + 3 sqrt(2/4)) = 0.014.
+  const auto warned = std::count_if(trials.begin(), trials.end(), [](const Trial& t) { return !t.warnings.empty(); });
+  EXPECT_LT(warned, kTrials / 20);
 }
 
 TEST(ScaleFactorTemperatureModel, BirgeRatioRestoresCoverageOfScatterTheUncertaintiesLeaveOut) {

@@ -68,3 +68,27 @@ def test_cli_uses_the_stored_rate_and_lists_channels(hdf5_file, mat_file, tmp_pa
         "allan", mat_file, "--column", "imu.gyro_y", "--rate", "100")
     assert "the sample rate given, 10 Hz, contradicts the 100 Hz stored for channel 'imu/gyro_x'" in cli_error(
         "allan", hdf5_file, "--rate", "10")
+
+
+def test_a_stored_rate_that_is_no_rate_is_said_with_the_file_and_channel(tmp_path):
+    """A sample_rate_hz attribute of 0 or NaN names the file and the channel, and a given rate stands."""
+    for stored in (0.0, float("nan")):
+        path = tmp_path / "zero.h5"
+        with h5py.File(path, "w") as f:
+            f.create_dataset("g", data=RATE).attrs["sample_rate_hz"] = stored
+        message = cli_error("allan", path)
+        assert message.startswith(f"{path}: channel 'g' stores the sample rate {stored:g} Hz, which is no rate: give it")
+        assert cli_json("allan", path, "--rate", "100")["sample_rate_hz"] == 100.0
+
+
+def test_several_channels_at_their_stored_rates_and_units(tmp_path):
+    """--columns on an HDF5 record: each channel at its stored rate and in its stored unit."""
+    path = tmp_path / "imu.h5"
+    with h5py.File(path, "w") as f:
+        for name, unit, rate in (("gx", "deg/s", 100.0), ("ax", "m/s^2", 50.0)):
+            d = f.create_dataset("imu/" + name, data=RATE)
+            d.attrs["units"], d.attrs["sample_rate_hz"] = unit, rate
+    channels = cli_json("allan", path, "--columns", "imu/gx,imu/ax")["channels"]
+    assert (channels["imu/gx"]["input_unit"], channels["imu/gx"]["sample_rate_hz"]) == ("deg/s", 100.0)
+    assert (channels["imu/ax"]["input_unit"], channels["imu/ax"]["sample_rate_hz"]) == ("m/s^2", 50.0)
+    assert "velocity_random_walk" in channels["imu/ax"]["noise"]

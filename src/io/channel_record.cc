@@ -27,9 +27,11 @@ bool has_hdf5_signature_at(std::ifstream& file, std::uint64_t offset) {
   return std::memcmp(bytes.data(), kHdf5Signature.data(), bytes.size()) == 0;
 }
 
-std::string channel_list(const ChannelRecord& record) {
+std::string channel_list(const ChannelRecord& record, bool numeric_only = false) {
   std::string names;
-  for (const auto& channel : record.channels()) names += (names.empty() ? "" : ", ") + channel.name;
+  for (const auto& channel : record.channels()) {
+    if (!numeric_only || channel.numeric) names += (names.empty() ? "" : ", ") + channel.name;
+  }
   return names.empty() ? "none" : names;
 }
 
@@ -88,7 +90,7 @@ std::size_t ChannelRecord::find(const std::optional<ColumnSelector>& selector) c
     if (numeric != 1) {
       throw Error(where, fmt::format("the record has {} numeric channels ({}): choose one with --column (plan key "
                                      "`column`)",
-                                     numeric, channel_list(*this)));
+                                     numeric, channel_list(*this, true)));
     }
     return index;
   }
@@ -154,6 +156,12 @@ std::vector<double> read_channel(ChannelRecord& record, std::size_t channel) {
 double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given) {
   const ChannelInfo& info = record.channels().at(channel);
   const SourceLocation where{record.path(), 0, 0};
+  if (info.sample_rate_hz && !(*info.sample_rate_hz > 0.0 && std::isfinite(*info.sample_rate_hz))) {
+    if (given) return *given;  // a stored rate of 0 or NaN is no rate: the given one stands
+    throw Error(where, fmt::format("channel '{}' stores the sample rate {} Hz, which is no rate: give it (--rate / "
+                                   "sample_rate_hz)",
+                                   info.name, *info.sample_rate_hz));
+  }
   if (!info.sample_rate_hz) {
     if (!given) throw Error(where, fmt::format("channel '{}' stores no sample rate: give it (--rate / sample_rate_hz)", info.name));
     return *given;

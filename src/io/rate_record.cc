@@ -123,7 +123,9 @@ std::optional<double> stored_sample_rate(const RateRecordSource& source) {
   const std::optional<ChannelRecordFormat> format = channel_record_format_of(resolve_rate_record_format(source));
   if (!format) return std::nullopt;
   const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *format);
-  return record->channels()[record->find(source.column)].sample_rate_hz;
+  const std::size_t channel = record->find(source.column);
+  if (!record->channels()[channel].sample_rate_hz) return std::nullopt;
+  return resolve_sample_rate(*record, channel, std::nullopt);  // a stored 0 or NaN is an error naming it
 }
 
 std::optional<std::string> resolved_unit(const RateRecordSource& source, const std::optional<std::string>& given) {

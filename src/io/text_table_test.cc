@@ -125,6 +125,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"empty_cell_in_the_first_row", "1,,3\n4,5,6\n", "rec.csv:1:3: empty cell, expected a number"},
         // Excel's error values are missing numbers, not '#' comments (the row was dropped).
         BadInput{"spreadsheet_error", "gyro,temp\n0.1,20\n#N/A,20\n", "rec.csv:3:1: expected a number in column 'gyro', found '#N/A'"},
+        BadInput{"cr_line_ends", "1\r2\r3\r", "rec.csv:1:2: the lines end in a carriage return alone"},
         BadInput{"spreadsheet_error_first", "g\n#DIV/0!\n1\n", "rec.csv:2:1: expected a number in column 'g', found '#DIV/0!'"}),
     testing::NameOfParam());
 

@@ -95,11 +95,18 @@ double coverage(const std::vector<Trial>& trials, double target) {
 // error is between a normal's and a Student t's with 4 degrees of freedom (P(|t_4| < 1) = 0.63).
 constexpr int kTrials = 300;
 
-TEST(ScaleFactorTemperatureModel, UncertaintyCoversTheTruthWhenTheModelIsRight) {
-  testing::UniformSequence uniform(5);
-  auto quadratic = [](double d) { return 2.0 * d + 0.05 * d * d; };
+double quadratic(double d) { return 2.0 * d + 0.05 * d * d; }
+
+// kTrials trials of the quadratic K(T) fitted at order 2, each run's K off by `scatter` ppm.
+std::vector<Trial> quadratic_trials(double scatter, std::uint64_t seed) {
+  testing::UniformSequence uniform(seed);
   std::vector<Trial> trials;
-  for (int i = 0; i < kTrials; ++i) trials.push_back(trial(quadratic, 2, 0.0, uniform));
+  for (int i = 0; i < kTrials; ++i) trials.push_back(trial(quadratic, 2, scatter, uniform));
+  return trials;
+}
+
+TEST(ScaleFactorTemperatureModel, UncertaintyCoversTheTruthWhenTheModelIsRight) {
+  const std::vector<Trial> trials = quadratic_trials(0.0, 5);
   EXPECT_GT(coverage(trials, 2.0), 0.60);
   EXPECT_LT(coverage(trials, 2.0), 0.80);
   // The lack-of-fit warning is for scatter beyond chance: P(chi2_4 / 4 > 1 + 3 sqrt(2/4)) = 0.014.
@@ -110,10 +117,7 @@ TEST(ScaleFactorTemperatureModel, UncertaintyCoversTheTruthWhenTheModelIsRight) 
 TEST(ScaleFactorTemperatureModel, BirgeRatioRestoresCoverageOfScatterTheUncertaintiesLeaveOut) {
   // Each run's K off by 0.5 ppm (a chamber's repeatability, say), 10^3 times its stated uncertainty:
   // unscaled, nearly no trial would cover; scaled by the Birge ratio, about as many as a t_4's.
-  testing::UniformSequence uniform(7);
-  auto quadratic = [](double d) { return 2.0 * d + 0.05 * d * d; };
-  std::vector<Trial> trials;
-  for (int i = 0; i < kTrials; ++i) trials.push_back(trial(quadratic, 2, 0.5, uniform));
+  const std::vector<Trial> trials = quadratic_trials(0.5, 7);
   EXPECT_GT(coverage(trials, 2.0), 0.55);
   EXPECT_LT(coverage(trials, 2.0), 0.75);
   for (const Trial& t : trials) {

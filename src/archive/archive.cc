@@ -224,9 +224,10 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
                              const std::map<std::pair<std::string, std::string>, const nlohmann::json*>& verdicts,
                              std::size_t first, const std::string& source, std::vector<FigureRow>& rows) {
   const std::size_t end = rows.size();
-  for (const auto& [key, verdict] : verdicts) {
+  for (const auto& entry : verdicts) {
+    const auto& key = entry.first;  // not a structured binding: the lambda below captures it
     if (key.first != procedure) continue;
-    const auto collected = [&](const FigureRow& row) { return row.figure == key.second; };
+    const auto collected = [&key](const FigureRow& row) { return row.figure == key.second; };
     if (std::any_of(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.begin() + static_cast<std::ptrdiff_t>(end),
                     collected)) {
       continue;

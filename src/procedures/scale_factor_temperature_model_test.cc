@@ -33,7 +33,7 @@ TEST(ScaleFactorTemperatureModel, RecoversAQuadraticWithinItsUncertainty) {
   }
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
   ASSERT_NE(spec, nullptr);
-  call.parameters = {{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
+  call.parameters = nlohmann::json{{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
   spec->check(call);
   const nlohmann::json fields = spec->run(call).fields;
   const nlohmann::json& coefficients = fields.at("scale_factor_temperature_coefficients");
@@ -74,7 +74,7 @@ Trial trial(const RelativeChange& y_ppm, std::size_t order, double run_scatter_p
     call.runs["runs"].push_back({t, scratch.write(fmt::format("points_{}C.csv", t), points)});
   }
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
-  call.parameters = {{"order", order}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
+  call.parameters = nlohmann::json{{"order", order}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
   spec->check(call);
   const nlohmann::json fields = spec->run(call).fields;
   const nlohmann::json& k_t = fields.at("scale_factor_temperature_coefficients").at("k_T");
@@ -162,7 +162,7 @@ TEST(ScaleFactorTemperatureModel, NoResidualDegreeOfFreedomIsSaid) {
     call.runs["runs"].push_back({t, scratch.write(fmt::format("points_{}C.csv", t), points)});
   }
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
-  call.parameters = {{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
+  call.parameters = nlohmann::json{{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
   spec->check(call);
   const nlohmann::json warnings = spec->run(call).fields.at("warnings");
   ASSERT_EQ(warnings.size(), 1u);
@@ -175,7 +175,7 @@ TEST(ScaleFactorTemperatureModel, AnOrderNeedsEnoughRuns) {
   ASSERT_NE(spec, nullptr);
   ProcedureCall call;
   call.runs["runs"] = {{20.0, "a.csv"}, {60.0, "b.csv"}};
-  call.parameters = {{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "1"}};
+  call.parameters = nlohmann::json{{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "1"}};
   EXPECT_THROW(spec->check(call), ParameterError);
 }
 

@@ -143,11 +143,13 @@ bool TextTable::has_column(std::string_view name) const {
 
 TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options) {
   text = without_byte_order_mark(text);
-  // Lines ended by CR alone (classic Mac OS) would read as one line of many fields.
-  if (const std::size_t cr = text.find('\r');
-      cr != std::string_view::npos && cr + 1 < text.size() && text[cr + 1] != '\n' && text.find('\n') == std::string_view::npos) {
-    throw Error(SourceLocation{source, 1, cr + 1},
-                "the lines end in a carriage return alone (CR, classic Mac OS): inertest reads LF or CR LF line ends");
+  // Lines ended by CR alone (classic Mac OS) would read as one line of many fields. Looked for only
+  // in a text without LF (the search for an LF ends at the first line of any other record).
+  if (text.find('\n') == std::string_view::npos) {
+    if (const std::size_t cr = text.find('\r'); cr != std::string_view::npos && cr + 1 < text.size()) {
+      throw Error(SourceLocation{source, 1, cr + 1},
+                  "the lines end in a carriage return alone (CR, classic Mac OS): inertest reads LF or CR LF line ends");
+    }
   }
   TextTable table;
   table.source = source;

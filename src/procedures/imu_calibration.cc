@@ -362,13 +362,32 @@ std::vector<double> moving_variance(const std::array<std::vector<double>, 3>& co
   return variance;
 }
 
-// The median of the quietest tenth of the windows: the record's own noise.
-double quietest(const std::vector<double>& variance, std::size_t half) {
+// The variance of the rounding to the record's quantisation step q, summed over the three axes:
+// q^2 / 12 each (a uniform rounding error, Widrow & Kollar, "Quantization Noise", 2008, eq. 5.3),
+// q the smallest nonzero step between consecutive samples (1 for whole counts; negligible for a
+// record that is not quantised).
+double quantisation_variance(const std::array<std::vector<double>, 3>& columns) {
+  double total = 0.0;
+  for (const std::vector<double>& x : columns) {
+    double step = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < x.size(); ++i) {
+      const double d = std::abs(x[i] - x[i - 1]);
+      if (d > 0.0) step = std::min(step, d);
+    }
+    if (std::isfinite(step)) total += step * step / 12.0;
+  }
+  return total;
+}
+
+// The median of the quietest tenth of the windows: the record's own noise; at least its rounding's
+// (a quiet quantised record has windows of no variance at all, and any multiple of 0 is 0).
+double quietest(const std::array<std::vector<double>, 3>& columns, const std::vector<double>& variance,
+                std::size_t half) {
   std::vector<double> defined(variance.begin() + static_cast<std::ptrdiff_t>(half),
                               variance.end() - static_cast<std::ptrdiff_t>(half));
   std::sort(defined.begin(), defined.end());
   defined.resize(std::max<std::size_t>(1, defined.size() / 10));
-  return median_of(defined);
+  return std::max(median_of(defined), quantisation_variance(columns));
 }
 
 std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals) {
@@ -543,8 +562,8 @@ StaticDetection detect_static_intervals(const ImuRecord& record, const ImuCalibr
   StaticDetection detection;
   const std::vector<double> accelerometer = moving_variance(record.accelerometer, half);
   const std::vector<double> gyro = moving_variance(record.gyro, half);
-  detection.accelerometer_noise_variance = quietest(accelerometer, half);
-  detection.gyro_noise_variance = quietest(gyro, half);
+  detection.accelerometer_noise_variance = quietest(record.accelerometer, accelerometer, half);
+  detection.gyro_noise_variance = quietest(record.gyro, gyro, half);
   const auto still = [&](std::size_t i) {
     return accelerometer[i] <= options.static_threshold * detection.accelerometer_noise_variance &&
            gyro[i] <= options.static_threshold * detection.gyro_noise_variance;

@@ -40,6 +40,22 @@ TEST(ImuCalibration, FindsTheStaticIntervalsOfATumble) {
   EXPECT_NEAR(intervals.front().end_s, 19.5, 0.1);
 }
 
+// A quiet IMU quantised to whole counts (0.2 counts of noise) has still windows of no variance at
+// all: the noise is taken as at least the rounding's, 3 x 1/12 count^2, and the statics are found
+// (a threshold multiple of 0 found none).
+TEST(ImuCalibration, AQuietQuantisedRecordHasItsRoundingAsItsNoise) {
+  sim::ImuTumbleOptions options;
+  options.orientations = 12;
+  options.accelerometer.noise = 0.2;
+  options.gyro.noise = 0.2;
+  const ImuRecord record = sim::simulate_imu_tumble(options, 3);
+  const StaticDetection detection = detect_static_intervals(record, {});
+  EXPECT_GE(detection.accelerometer_noise_variance, 0.25);
+  EXPECT_GE(detection.gyro_noise_variance, 0.25);
+  ASSERT_EQ(detection.intervals.size(), 13u);
+  for (const StaticInterval& interval : detection.intervals) EXPECT_TRUE(interval.accepted) << interval.reason;
+}
+
 TEST(ImuCalibration, RefusesAShortStillAndSaysWhy) {
   ImuCalibrationOptions options;
   options.static_minimum_s = 7.0;

@@ -238,6 +238,14 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
   result.g_levels = check_runs(runs);
   check_g_levels(runs, options.site);
   for (const CentrifugeRun& run : runs) {
+    // Eq. (11)'s amplitudes are the output's harmonics over whole revolutions (the paper's test
+    // samples the output over them): less than one is a fit the revolution does not support.
+    if (run.harmonic_fit && run.harmonic_fit->part_of_a_revolution) {
+      result.warnings.push_back(fmt::format(
+          "run at {} and beta = {}: the samples cover {:.3g} of a revolution: its harmonics are fitted over less "
+          "than one turn and may mix with drift",
+          g_label(run.accel_g), beta_label(run.beta_rad), run.harmonic_fit->revolutions));
+    }
     if (run.harmonic_fit && run.harmonic_fit->constant_output) {
       result.warnings.push_back(fmt::format(
           "run at {} and beta = {}: all {} samples equal {:.10g} deg/h (a stuck channel?); its harmonics of 0 are "

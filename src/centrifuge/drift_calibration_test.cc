@@ -217,6 +217,20 @@ TEST(CentrifugeDriftCalibration, AStuckRunIsWarnedAbout) {
                                                         samples[1].output.size())));
 }
 
+// Samples over half a revolution give harmonics fitted over part of a turn: said, run by run.
+// Irregular sampling (angles in any order) is not judged so.
+TEST(CentrifugeDriftCalibration, PartOfARevolutionIsWarnedAbout) {
+  const DriftCalibrationOptions options = paper_options();
+  auto samples = simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, false);
+  samples[2].gamma_rad.resize(18);
+  samples[2].output.resize(18);
+  const DriftCalibrationResult result = calibrate_drift_coefficients(analyse_sample_runs(samples), options);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], HasSubstr("the samples cover 0.5 of a revolution"));
+  const auto irregular = simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, true);
+  EXPECT_TRUE(calibrate_drift_coefficients(analyse_sample_runs(irregular), options).warnings.empty());
+}
+
 // The coefficients are per standard g at any site: a gyro whose drift is D per standard g
 // (9.80665 m/s^2, what the unit deg/h/g means to Unit::parse) calibrated at a site of 9.78 m/s^2,
 // where each specific force in the site's g is 9.78 / 9.80665 of itself in standard g.

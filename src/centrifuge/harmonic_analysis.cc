@@ -41,6 +41,21 @@ double whole_revolutions(std::span<const double> gamma) {
   return std::round(span / (2.0 * constants::kPi));
 }
 
+// The angles made continuous: a record that wraps them into [0, 360) deg (or any turn) is unwrapped,
+// each step taken as the one of magnitude below half a turn, so that the span covered is counted in
+// revolutions (eq. (11)'s harmonics are periodic: the fit does not change).
+std::vector<double> unwrapped(std::span<const double> gamma) {
+  std::vector<double> angles(gamma.begin(), gamma.end());
+  const double turn = 2.0 * constants::kPi;
+  double shift = 0.0;
+  for (std::size_t i = 1; i < angles.size(); ++i) {
+    const double step = gamma[i] - gamma[i - 1];
+    shift -= turn * std::round(step / turn);
+    angles[i] = gamma[i] + shift;
+  }
+  return angles;
+}
+
 double rms_about_fit(std::span<const double> gamma, std::span<const double> output, const HarmonicAmplitudes& a) {
   CompensatedSum sum;
   for (std::size_t i = 0; i < gamma.size(); ++i) {
@@ -69,7 +84,8 @@ HarmonicFit analyse_harmonics(std::span<const double> gamma_rad, std::span<const
   HarmonicFit fit;
   fit.sample_count = n;
   fit.constant_output = is_constant(output);
-  const double revolutions = whole_revolutions(gamma_rad);
+  const std::vector<double> continuous = unwrapped(gamma_rad);
+  const double revolutions = whole_revolutions(continuous);
   if (revolutions > 0.0) {
     // Exact DFT bins over whole revolutions.
     std::array<CompensatedSum, kHarmonicCount> sums;
@@ -96,7 +112,13 @@ HarmonicFit analyse_harmonics(std::span<const double> gamma_rad, std::span<const
       throw Error("harmonic analysis: the sampling angles cannot separate the terms of eq. (11): " + e.message());
     }
     fit.method = HarmonicFit::Method::kLeastSquares;
-    fit.revolutions = std::abs(gamma_rad[n - 1] - gamma_rad[0]) / (2.0 * constants::kPi);
+    // The span of the first to the last sample, and the mean step the last one stands for.
+    fit.revolutions = std::abs(continuous[n - 1] - continuous[0]) * static_cast<double>(n) /
+                      static_cast<double>(n - 1) / (2.0 * constants::kPi);
+    const auto step_sign = [&](std::size_t i) { return continuous[i] > continuous[i - 1] ? 1 : -1; };
+    bool one_way = true;
+    for (std::size_t i = 2; i < n && one_way; ++i) one_way = step_sign(i) == step_sign(1);
+    fit.part_of_a_revolution = one_way && fit.revolutions < 1.0 - 1e-6;
   }
   fit.residual_rms = rms_about_fit(gamma_rad, output, fit.amplitudes);
   return fit;

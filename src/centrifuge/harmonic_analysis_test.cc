@@ -86,7 +86,28 @@ TEST(CentrifugeHarmonicAnalysis, PartialRevolutionUsesLeastSquares) {
   }
   const HarmonicFit fit = analyse_harmonics(gamma, output);
   EXPECT_EQ(fit.method, HarmonicFit::Method::kLeastSquares);
+  EXPECT_NEAR(fit.revolutions, 30.0 / 36.0, 1e-12);  // 290 deg first to last, and a mean step
+  EXPECT_TRUE(fit.part_of_a_revolution);
   for (std::size_t h = 0; h < kHarmonicCount; ++h) EXPECT_NEAR(fit.amplitudes[h], kTruth[h], 1e-10);
+}
+
+// Angles wrapped into [0, 360) deg, as a turntable's encoder logs them: two revolutions in steps of
+// 10 deg are read as two revolutions (the DFT), in either direction (they read as 0.97 of one).
+TEST(CentrifugeHarmonicAnalysis, WrappedAnglesAreUnwrapped) {
+  for (const double direction : {1.0, -1.0}) {
+    std::vector<double> gamma;
+    std::vector<double> output;
+    for (int i = 0; i < 72; ++i) {
+      const double degrees = std::fmod(360.0 + std::fmod(direction * i * 10.0, 360.0), 360.0);
+      gamma.push_back(degrees * constants::kDegree);
+      output.push_back(signal(gamma.back()));
+    }
+    const HarmonicFit fit = analyse_harmonics(gamma, output);
+    EXPECT_EQ(fit.method, HarmonicFit::Method::kDiscreteFourier) << direction;
+    EXPECT_DOUBLE_EQ(fit.revolutions, 2.0) << direction;
+    EXPECT_FALSE(fit.part_of_a_revolution) << direction;
+    for (std::size_t h = 0; h < kHarmonicCount; ++h) EXPECT_NEAR(fit.amplitudes[h], kTruth[h], 1e-12) << direction;
+  }
 }
 
 TEST(CentrifugeHarmonicAnalysis, TooFewSamplesIsAnError) {

@@ -18,8 +18,12 @@ struct HarmonicFit {
   // rms of the samples about the five-term fit, sqrt(sum r^2 / N), in the unit of the outputs.
   double residual_rms = 0.0;
   std::size_t sample_count = 0;
-  double revolutions = 0.0;  // span covered by the samples (N * step / 2 pi for the DFT)
+  double revolutions = 0.0;  // span covered by the samples, angles unwrapped (N * step / 2 pi for the DFT;
+                             // the first to the last sample plus a mean step for least squares)
   Method method = Method::kLeastSquares;
+  // The angles advance one way (a rotation, unwrapped) over less than one revolution: harmonics
+  // fitted over part of a turn. Angles in any order (irregular sampling) are not judged.
+  bool part_of_a_revolution = false;
   // Every sample equal (a stuck channel): the harmonics k1..k2 are 0 by construction, not measured.
   bool constant_output = false;
 };

@@ -10,6 +10,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/core/progress.h"
 
 namespace inertest::cli {
@@ -25,18 +26,6 @@ std::vector<std::pair<CLI::App*, CommandAction>> add_registered_commands(CLI::Ap
 
 // Prints a result: exactly one JSON object on stdout with --json, else the readable report.
 void print_result(const nlohmann::json& json, const std::string& report, bool as_json);
-
-// Runs work on one input file: an Error without a location gets the file as its location, so a
-// procedure's complaint ("missing the static run") names the file it came from.
-template <typename Work>
-auto with_file_context(const std::string& file, Work&& work) {
-  try {
-    return work();
-  } catch (const Error& e) {
-    if (e.location()) throw;
-    throw Error(SourceLocation{file, 0, 0}, e.message());
-  }
-}
 
 // Progress on stderr when stderr is a terminal; nothing otherwise (never on stdout).
 ProgressCallback terminal_progress();

@@ -161,12 +161,7 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
   const auto of_file = [source](const std::string& file, const auto& work) {
     OutputRecordSource record = source;
     record.path = file;
-    try {
-      return work(record);
-    } catch (const Error& e) {
-      if (e.location()) throw;
-      throw Error(SourceLocation{file, 0, 0}, e.message());
-    }
+    return with_file_context(file, [&] { return work(record); });
   };
   call.read_record = [of_file, minimum_samples](const std::string& file) {
     return of_file(file, [&](const OutputRecordSource& record) { return read_output_record(record, minimum_samples); });

@@ -20,7 +20,7 @@ std::size_t missing_samples(double ratio) {
 // The median of the steps between successive time stamps: the nominal interval of a record with
 // a few gaps (a mean would be pulled up by them). The lower median of an even count, so that of
 // two steps the shorter is the interval and the longer can be a gap.
-double median_step(const std::vector<double>& time) {
+double median_step(std::span<const double> time) {
   std::vector<double> steps(time.size() - 1);
   for (std::size_t i = 1; i < time.size(); ++i) steps[i - 1] = time[i] - time[i - 1];
   const auto middle = steps.begin() + static_cast<std::ptrdiff_t>((steps.size() - 1) / 2);
@@ -103,6 +103,18 @@ void TimeStampOptions::validate() const {
   }
 }
 
+TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,
+                        const TimeStampOptions& options) {
+  TimeGaps found;
+  found.sample_interval = options.sample_interval.value_or(median_step(time));
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    const double ratio = (time[i] - time[i - 1]) / found.sample_interval;
+    if (ratio <= options.gap_factor) continue;
+    found.gaps.push_back({i, i < lines.size() ? lines[i] : 0, time[i - 1], time[i], missing_samples(ratio)});
+  }
+  return found;
+}
+
 TimeStampReport check_time_stamps(TextTable& table, std::size_t time_column, const TimeStampOptions& options) {
   options.validate();
   if (time_column >= table.columns.size()) {
@@ -126,17 +138,16 @@ TimeStampReport check_time_stamps(TextTable& table, std::size_t time_column, con
 
   TimeStampReport report;
   report.policy = options.policy;
-  report.sample_interval = options.sample_interval.value_or(median_step(time));
-  for (std::size_t i = 1; i < time.size(); ++i) {
-    const double ratio = (time[i] - time[i - 1]) / report.sample_interval;
-    if (ratio <= options.gap_factor) continue;
-    report.gaps.push_back({i, line_of(table, i), time[i - 1], time[i], missing_samples(ratio)});
-    if (options.policy != GapPolicy::kStop) continue;
-    const TimeGap& gap = report.gaps.back();
-    throw Error(locate_cell(table, i, time_column),
+  TimeGaps found = find_time_gaps(time, table.row_lines, options);
+  report.sample_interval = found.sample_interval;
+  report.gaps = std::move(found.gaps);
+  if (options.policy == GapPolicy::kStop && !report.gaps.empty()) {
+    const TimeGap& gap = report.gaps.front();
+    throw Error(locate_cell(table, gap.row, time_column),
                 fmt::format("gap in the time stamps: {:.10g} to {:.10g} is {:.4g} sample intervals of {:.6g}, {} "
                             "sample(s) missing (time column {}; the gap policy 'split' or 'interpolate' accepts it)",
-                            gap.time_before, gap.time_after, ratio, report.sample_interval, gap.missing, name));
+                            gap.time_before, gap.time_after, (gap.time_after - gap.time_before) / report.sample_interval,
+                            report.sample_interval, gap.missing, name));
   }
 
   if (options.policy == GapPolicy::kInterpolate && !report.gaps.empty()) {

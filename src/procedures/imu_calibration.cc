@@ -20,6 +20,7 @@
 #include "inertest/io/channel_record.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
+#include "inertest/io/time_stamps.h"
 #include "inertest/numerics/least_squares.h"
 
 namespace inertest {
@@ -398,24 +399,20 @@ std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals)
   return accepted;
 }
 
-// Gaps in the time stamps: a step of more than 1.5 times the median step (io/time_stamps.h's rule, as
-// `inspect` reports them). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
+// Gaps in the time stamps, as `inspect` reports them (io/time_stamps.h: a step of more than 1.5 times the
+// median step). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
 // rate interpolated linearly over it), the turn made while samples were missing is lost and the
 // rotation's residual with it: an Error at the line after the gap. Elsewhere (in a static interval, or
 // in a motion between statics that no fit uses) it changes nothing the fits use: a warning.
 void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions, std::vector<std::string>& warnings) {
-  const std::size_t n = record.time_s.size();
-  std::vector<double> steps(n - 1);
-  for (std::size_t i = 0; i + 1 < n; ++i) steps[i] = record.time_s[i + 1] - record.time_s[i];
-  const double step = median_of(steps);
-  constexpr double kGapFactor = 1.5;
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    if (!(steps[k] > kGapFactor * step)) continue;
-    const std::size_t missing = std::max<long>(1, std::lround(steps[k] / step) - 1);
+  const TimeGaps found = find_time_gaps(record.time_s, record.lines, {});
+  for (const TimeGap& time_gap : found.gaps) {
+    const std::size_t k = time_gap.row - 1;  // the gap lies between samples k and k + 1
     const std::string where =
-        record.lines.empty() ? fmt::format("after sample {}", k + 1) : fmt::format("before line {}", record.lines[k + 1]);
+        record.lines.empty() ? fmt::format("after sample {}", k + 1) : fmt::format("before line {}", time_gap.line);
     const std::string gap = fmt::format("a gap in the time stamps: {:.6g} s to {:.6g} s, {} sample(s) of {:.6g} s missing",
-                                        record.time_s[k], record.time_s[k + 1], missing, step);
+                                        time_gap.time_before, time_gap.time_after, time_gap.missing,
+                                        found.sample_interval);
     const auto inside = std::find_if(motions.begin(), motions.end(),
                                      [k](const Motion& motion) { return motion.from <= k && k < motion.to; });
     if (inside == motions.end()) {
@@ -423,7 +420,7 @@ void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions
       continue;
     }
     const SourceLocation location =
-        record.lines.empty() ? at_file(record.source) : SourceLocation{record.source, record.lines[k + 1], 0};
+        record.lines.empty() ? at_file(record.source) : SourceLocation{record.source, time_gap.line, 0};
     throw Error(location, fmt::format("{}{}, inside the rotation from the static interval ending at {:.6g} s to the one "
                                       "starting at {:.6g} s: the gyro's integration would lose the turn made in it",
                                       gap, record.lines.empty() ? " " + where : "", record.time_s[inside->from],

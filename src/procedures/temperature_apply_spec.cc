@@ -57,14 +57,7 @@ ProcedureSpec temperature_apply_spec() {
         const ThermalRecord record = read_thermal_record(path, options.time_column, options.output_column, {sensor});
         // A complaint about the record (too short for its windows) names it: of the two files the
         // command reads, the coefficients' errors already name theirs.
-        try {
-          return apply_thermal_compensation(record, compensation, options);
-        } catch (const ParameterError&) {
-          throw;
-        } catch (const Error& e) {
-          if (e.location()) throw;
-          throw Error(SourceLocation{path, 0, 0}, e.message());
-        }
+        return with_file_context(path, [&] { return apply_thermal_compensation(record, compensation, options); });
       });
 }
 

@@ -34,19 +34,32 @@ enum class ThermalTerm { power, rate, temperature_rate, hysteresis };
 struct TermOfCoefficient {
   ThermalTerm term = ThermalTerm::power;
   std::size_t power = 0;  // of ΔT, for ThermalTerm::power
-  std::string unit;       // the unit the model takes it in
 };
 
 // The term of a coefficient by its name: D_0, D_T, D_T2 ... D_T6, D_dT, D_TdT, D_H; none for another.
+// Read, not formatted: thermal_bias_deg_h asks at every interval.
 std::optional<TermOfCoefficient> term_of(const std::string& name) {
-  if (name == "D_0") return TermOfCoefficient{ThermalTerm::power, 0, "deg/h"};
-  if (name == "D_dT") return TermOfCoefficient{ThermalTerm::rate, 0, "deg/h/(degC/min)"};
-  if (name == "D_TdT") return TermOfCoefficient{ThermalTerm::temperature_rate, 0, "deg/h/degC/(degC/min)"};
-  if (name == "D_H") return TermOfCoefficient{ThermalTerm::hysteresis, 0, "deg/h"};
-  for (std::size_t k = 1; k <= kHighestOrder; ++k) {
-    if (name == power_name(k)) return TermOfCoefficient{ThermalTerm::power, k, power_unit(k)};
+  if (name == "D_0") return TermOfCoefficient{ThermalTerm::power, 0};
+  if (name == "D_T") return TermOfCoefficient{ThermalTerm::power, 1};
+  if (name == "D_dT") return TermOfCoefficient{ThermalTerm::rate, 0};
+  if (name == "D_TdT") return TermOfCoefficient{ThermalTerm::temperature_rate, 0};
+  if (name == "D_H") return TermOfCoefficient{ThermalTerm::hysteresis, 0};
+  if (name.size() == 4 && name.starts_with("D_T") && name[3] >= '2' &&
+      static_cast<std::size_t>(name[3] - '0') <= kHighestOrder) {
+    return TermOfCoefficient{ThermalTerm::power, static_cast<std::size_t>(name[3] - '0')};
   }
   return std::nullopt;
+}
+
+// The unit the model takes the coefficient of a term in.
+std::string unit_of(const TermOfCoefficient& term) {
+  switch (term.term) {
+    case ThermalTerm::power: return term.power == 0 ? "deg/h" : power_unit(term.power);
+    case ThermalTerm::rate: return "deg/h/(degC/min)";
+    case ThermalTerm::temperature_rate: return "deg/h/degC/(degC/min)";
+    case ThermalTerm::hysteresis: return "deg/h";
+  }
+  return "deg/h";
 }
 
 // A coefficient of an exported file (named `what` in messages: its key or row, at `where`, its unit at
@@ -59,18 +72,19 @@ ThermalCoefficient checked_coefficient(const std::string& name, const Figure& gi
                                    "D_TdT and D_H)",
                                    what, name, kHighestOrder));
   }
+  const std::string unit = unit_of(*term);
   if (given.unit.empty()) {
-    throw Error(unit_where, fmt::format("{}: no unit (the model takes {} in {})", what, name, term->unit));
+    throw Error(unit_where, fmt::format("{}: no unit (the model takes {} in {})", what, name, unit));
   }
   try {
     const Unit from = Unit::parse(given.unit);
-    const Unit to = Unit::parse(term->unit);
+    const Unit to = Unit::parse(unit);
     std::optional<double> uncertainty;
     if (given.uncertainty) uncertainty = convert(*given.uncertainty, from, to);
-    return {name, {convert(given.value, from, to), term->unit, uncertainty}};
+    return {name, {convert(given.value, from, to), unit, uncertainty}};
   } catch (const Error& e) {
     throw Error(unit_where, fmt::format("{}: the unit '{}' of {} is not one of {}: {}", what, given.unit, name,
-                                        term->unit, e.message()));
+                                        unit, e.message()));
   }
 }
 

@@ -198,10 +198,8 @@ constexpr Translation kTable[] = {
     // Members of curves that are no axis quantity of the table above.
     {"tau_s", "Averaging time τ", "平均时间 τ"},
     {"value", "Value", "数值"},
-    {"frequency_hz", "Frequency", "频率"},
     {"gain", "Gain", "增益"},
     {"fitted_gain", "Fitted gain", "拟合增益"},
-    {"phase_deg", "Phase", "相位"},
     {"fitted_phase_deg", "Fitted phase", "拟合相位"},
     {"relative_change", "Relative change", "相对变化"},
     {"model", "Model", "模型"},
@@ -235,8 +233,15 @@ std::string humanise_key(std::string_view key) {
 std::string Labels::operator()(std::string_view key) const {
   const auto& table = index();
   auto found = table.find(key);
-  // A curve's member ("time", "residual") is labelled as the axis quantity of its name.
-  if (found == table.end() && key.find('.') == std::string_view::npos) found = table.find("axis." + std::string(key));
+  // A curve's member ("time", "residual", "frequency_hz") is labelled as the axis quantity of its
+  // name, its unit suffix aside.
+  if (found == table.end() && key.find('.') == std::string_view::npos) {
+    std::string_view quantity = key;
+    for (std::string_view suffix : {"_hz", "_deg", "_s"}) {
+      if (quantity.ends_with(suffix)) quantity.remove_suffix(suffix.size());
+    }
+    found = table.find("axis." + std::string(quantity));
+  }
   if (found == table.end()) return humanise_key(key);
   const Translation& t = *found->second;
   if (language_ == Language::chinese && !t.chinese.empty()) return std::string(t.chinese);

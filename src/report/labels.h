@@ -18,7 +18,8 @@ class Labels {
   explicit Labels(Language language) : language_(language) {}
   Language language() const { return language_; }
   // The label for the key in this language: the table's, else that of "axis.<key>" (a curve's
-  // member named as an axis quantity, "time"), else the key made readable (humanise_key).
+  // member named as an axis quantity, "time", or with its unit, "phase_deg"), else the key made
+  // readable (humanise_key).
   std::string operator()(std::string_view key) const;
   // A procedure's title: its spec's (procedure_spec.h), else the table's "kind.<kind>".
   std::string title_of(const std::string& kind) const;

@@ -73,6 +73,21 @@ void check_parameter(const std::string& name, const Check& check) {
   }
 }
 
+// Runs work on one input file: an Error without a place gets the file as its place, so that a
+// complaint about the data ("too short for two windows") names the file it came from. A
+// ParameterError is about a parameter, not the file: it passes as it is.
+template <typename Work>
+auto with_file_context(const std::string& file, Work&& work) {
+  try {
+    return work();
+  } catch (const ParameterError&) {
+    throw;
+  } catch (const Error& e) {
+    if (e.location()) throw;
+    throw Error(SourceLocation{file, 0, 0}, e.message());
+  }
+}
+
 // A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
 // setters below, e.g. .unit_is("deg/s").required_on_command_line().
 struct ParameterSpec {

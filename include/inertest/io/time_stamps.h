@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -58,6 +59,16 @@ struct TimeStampReport {
   std::size_t interpolated_samples = 0;  // kInterpolate: rows added in all
   nlohmann::json to_json() const;
 };
+
+// The gaps of increasing time stamps: steps longer than options.gap_factor sample intervals (the
+// options' interval, else the median step), in order; `lines` (empty: unknown) gives the file line
+// of each sample. The policy is not applied. Needs at least 2 time stamps.
+struct TimeGaps {
+  double sample_interval = 0.0;
+  std::vector<TimeGap> gaps;
+};
+TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,
+                        const TimeStampOptions& options);
 
 // Checks table column `time_column` (an index into table.columns) and applies the policy.
 // Throws Error at the time stamp's file:line:column when time stands still or goes backwards, when

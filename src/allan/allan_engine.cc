@@ -30,18 +30,26 @@ constexpr std::size_t index_of(Estimator e) { return static_cast<std::size_t>(e)
 // (the freed pages still warm) unchanged within the noise.
 class PhaseBuffer {
  public:
+  static constexpr std::size_t kHugePage = std::size_t{2} << 20;
+
+  // Allocates room for `count` values; prefault() then faults it in.
   void reset(std::size_t count) {
     if (prefault_.joinable()) prefault_.join();  // before its pages go
-    constexpr std::size_t kHugePage = std::size_t{2} << 20;
     const std::size_t bytes = (count * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
     data_.reset(bytes == 0 ? nullptr : static_cast<double*>(std::aligned_alloc(kHugePage, bytes)));
     if (bytes != 0 && !data_) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (bytes != 0) madvise(data_.get(), bytes, MADV_HUGEPAGE);  // advice only: no huge pages is fine
 #endif
+    bytes_ = bytes;
+  }
+  // Starts faulting the pages in. Last in the engine's set-up: while the thread faults, a mapping
+  // call of any other thread of the process (a thread's stack, a large allocation) waits for the
+  // address space's lock behind it; started before the workers, it held the reader up 0.1 s.
+  void prefault() {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    if (bytes > kHugePage) {  // advice only too: a page it has not reached faults as usual
-      prefault_ = std::thread([base = reinterpret_cast<char*>(data_.get()), bytes] {
+    if (bytes_ > kHugePage) {  // advice only too: a page it has not reached faults as usual
+      prefault_ = std::thread([base = reinterpret_cast<char*>(data_.get()), bytes = bytes_] {
         for (std::size_t at = 0; at < bytes; at += kHugePage) madvise(base + at, kHugePage, MADV_POPULATE_WRITE);
       });
     }
@@ -58,6 +66,7 @@ class PhaseBuffer {
     void operator()(double* p) const { std::free(p); }
   };
   std::unique_ptr<double[], Free> data_;
+  std::size_t bytes_ = 0;
   std::thread prefault_;
 };
 
@@ -1182,6 +1191,7 @@ AllanEngine::AllanEngine(std::size_t sample_count, double offset, AllanEngineOpt
       s.workers.emplace_back([&s, w] { s.worker_loop(w); });
     }
   }
+  if (samples_in_place == nullptr) s.ring.prefault();
 }
 
 AllanEngine::~AllanEngine() {

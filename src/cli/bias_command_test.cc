@@ -95,7 +95,7 @@ TEST(BiasCommandTest, ClearErrors) {
   EXPECT_THAT(too_long_json.at("warnings").dump(), ::testing::HasSubstr("longer than the record"));
   const auto bad_rate = run_cli({"bias", file, "--rate", "0", "--scale-factor", "5", "--smoothing", "1"});
   EXPECT_EQ(bad_rate.exit_code, 2);
-  EXPECT_THAT(bad_rate.err, ::testing::HasSubstr("sample rate must be positive"));
+  EXPECT_THAT(bad_rate.err, ::testing::HasSubstr("--rate must be positive, got 0 Hz"));
   const auto no_k = run_cli({"bias", file, "--rate", "10", "--smoothing", "1"});
   EXPECT_EQ(no_k.exit_code, 2);
   EXPECT_THAT(no_k.err, ::testing::HasSubstr("scale factor"));

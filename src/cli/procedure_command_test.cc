@@ -62,6 +62,14 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   EXPECT_THAT(run.err, HasSubstr(stored + ": the sample rate given, 100 Hz, contradicts the 200 Hz stored"));
   run = run_cli({"bias", stored, "--column", "imu/gyro_x", "--rate", "200", "--input-deg-h", "--json"});
   EXPECT_EQ(run.exit_code, 0) << run.err;
+  // Without --rate the stored one is taken (the same figures); a record storing none needs it.
+  const auto given_json = nlohmann::json::parse(run.out);
+  run = run_cli({"bias", stored, "--column", "imu/gyro_x", "--input-deg-h", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out), given_json);
+  run = run_cli({"bias", first, "--input-deg-h"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr(first + ": --rate is needed: the record stores no sample rate"));
   const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
   run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);

@@ -149,10 +149,14 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
 }
 
 double record_sample_rate(const OutputRecordSource& source, double given) {
+  const std::optional<double> rate = given != 0.0 ? std::optional<double>(given) : std::nullopt;
   const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source);
-  if (!channel_format) return given;
+  if (!channel_format) {
+    if (!rate) throw ParameterError("sample_rate_hz", "sample_rate_hz is needed: the record stores no sample rate");
+    return *rate;
+  }
   const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);
-  return resolve_sample_rate(*file, file->find(channel_selector(source.column)), given);
+  return resolve_sample_rate(*file, file->find(channel_selector(source.column)), rate);
 }
 
 void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,

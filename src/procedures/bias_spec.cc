@@ -1,5 +1,8 @@
 // The bias procedure's one description (issue 22): the CLI command `inertest bias`, the plan kind
 // "bias", its JSON and its text report are all generated from it.
+#include <cmath>
+
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "inertest/procedures/bias.h"
@@ -49,12 +52,19 @@ ProcedureSpec bias_spec() {
           "The bias is the mean output over the record; the bias stability is the standard deviation of the output averaged over the smoothing time, expressed as an input rate.",
           "零偏为记录时间内输出的平均值折算成输入角速度；零偏稳定性为按平滑时间平均后输出的标准偏差折算成输入角速度。")
       .input(InputSpec("record", "instrument output record").read_from_file("FILE", "file").output_records().samples_at_least(2))
-      .parameter(ParameterSpec("sample_rate_hz", "sample rate")
+      .parameter(ParameterSpec("sample_rate_hz", "sample rate (default: the rate the record stores, an HDF5 or TDMS "
+                                                 "channel's; one that contradicts it is an error)")
                      .unit_is("Hz")
-                     .required_on_command_line()
                      .command_line_name_is("rate")
                      .instrument_gives("sample_rate_hz"),
-                 &BiasOptions::sample_rate_hz)
+                 [](BiasOptions& options, const nlohmann::json& value) {
+                   // Given, it must be a rate: 0 stands for none given (the record's, at compute).
+                   options.sample_rate_hz = value.get<double>();
+                   if (!(options.sample_rate_hz > 0.0) || !std::isfinite(options.sample_rate_hz)) {
+                     throw ParameterError("sample_rate_hz", fmt::format("sample_rate_hz must be positive, got {} Hz",
+                                                                        options.sample_rate_hz));
+                   }
+                 })
       .parameter(ParameterSpec("smoothing_s", "smoothing times for the bias stability")
                      .unit_is("s")
                      .command_line_name_is("smoothing"),
@@ -91,13 +101,15 @@ ProcedureSpec bias_spec() {
       .field_from({"smoothed_record", FieldRole::curve, "smoothed records", "平滑后记录", "eq. (20)"},
                   smoothed_record_json)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &BiasResult::warnings)
-      .checked_by([](const ProcedureCall& call, const BiasOptions& options) {
+      .checked_by([](const ProcedureCall& call, BiasOptions options) {
         check_bias_conversion(call, options, "bias");
+        // A rate not given comes from the record when it is read (compute): the rest is checked now.
+        if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;
         options.validate();
       })
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
-        options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // as the file stores it
+        options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored
         return bias(call.read_record(file), options);
       });
 }

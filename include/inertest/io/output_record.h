@@ -50,7 +50,8 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
 
 // The sample rate of a record sampled at `given` Hz: `given`, checked against the rate a record of
 // named channels stores for the channel (io/channel_record.h resolve_sample_rate: a contradiction
-// is an Error naming both). Text and raw binary records store none: `given`.
+// is an Error naming both). Text and raw binary records store none: `given`. `given` 0 is none
+// given: the stored rate, else a ParameterError on sample_rate_hz.
 double record_sample_rate(const OutputRecordSource& source, double given);
 
 // Sets the record readers of a procedure's call (read_record, read_timed_record and

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -26,6 +27,10 @@ using campaign::PlanTable;
 // A specification limit on one figure of a procedure's result (IEEE Std 952-1997 specification
 // format: "bias stability at most 0.01 deg/h"). `figure` is a key of the result or a JSON pointer
 // into it (e.g. "/bias_stability/1").
+// A specification limit on one figure. `max` alone bounds the magnitude |value| (a specification
+// "bias <= 0.05 deg/h" or "misalignment <= 1'" is one, IEEE Std 952-1997 clause 8 writes them so:
+// judged on the signed value, a bias of -7000 deg/h passed it); `min` alone bounds the signed value
+// from below, and `min` with `max` the signed value on both sides (a scale factor's range).
 struct Limit {
   std::string figure;
   std::optional<double> min;
@@ -241,11 +246,14 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   } catch (const Error& e) {
     throw Error(limit.where, "limit on '" + limit.figure + "': " + e.message());
   }
-  const bool pass = identified ? (!limit.min || value >= *limit.min) && (!limit.max || value <= *limit.max)
+  const bool magnitude = limit.max && !limit.min;
+  const double judged = magnitude ? std::abs(value) : value;
+  const bool pass = identified ? (!limit.min || judged >= *limit.min) && (!limit.max || judged <= *limit.max)
                                : !limit.min && limit.max && value <= *limit.max;
   nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", value},
                             {"unit", unit},           {"pass", pass}};
   if (!identified) verdict["identified"] = false;  // value: the upper bound
+  if (magnitude && value < 0.0) verdict["magnitude"] = true;  // judged as |value|
   if (limit.min) verdict["min"] = *limit.min;
   if (limit.max) verdict["max"] = *limit.max;
   return verdict;

@@ -87,6 +87,25 @@ TEST(Campaign, LimitsConvertUnits) {
   EXPECT_EQ(run_campaign(fail, dir.path() + "/b").results["verdict"], "FAIL");
 }
 
+// A max alone bounds the magnitude: K = -2.03 (reversed polarity) fails max 2 and passes max 2.1;
+// min with max bound the signed value (GJB/IEEE specifications "bias <= X" are magnitudes).
+TEST(Campaign, AMaximumAloneBoundsTheMagnitude) {
+  testing::ScratchDirectory dir;
+  dir.write("points.csv", "rate,output\n0,-1\n-2,2.1\n-1,0\n1,-4.1\n2,-6\n0,-3\n");
+  const auto verdict_of = [&](const std::string& name, const std::string& limit) {
+    const std::string plan = dir.write(name + ".toml", plan_text("", "[procedure.limits]\nscale_factor = " + limit + "\n"));
+    return run_campaign(plan, dir.path() + "/" + name).results["verdicts"][0];
+  };
+  const auto over = verdict_of("over", "{ max = 2.0 }");
+  EXPECT_FALSE(over["pass"].get<bool>());
+  EXPECT_NEAR(over["value"].get<double>(), -2.03, 1e-12);  // reported signed
+  EXPECT_TRUE(over["magnitude"].get<bool>());
+  EXPECT_TRUE(verdict_of("within", "{ max = 2.1 }")["pass"].get<bool>());
+  EXPECT_TRUE(verdict_of("range", "{ min = -2.1, max = 2.0 }")["pass"].get<bool>());
+  EXPECT_FALSE(verdict_of("range", "{ min = -2.1, max = 2.0 }").contains("magnitude"));
+  EXPECT_FALSE(verdict_of("below", "{ min = -2.0 }")["pass"].get<bool>());
+}
+
 struct BadPlan {
   const char* name;
   std::string plan;

@@ -245,14 +245,15 @@ std::pair<std::string, std::string> format_figure(const json& figure, const Labe
   return {fmt::format("{:.{}f}", value, decimals), fmt::format("{:.{}f}", uncertainty, decimals)};
 }
 
-// "≤ 100 ppm", "≥ 4999", "4999 … 5001 pulse/s/(°/s)".
+// "≤ 100 ppm", "|value| ≤ 0.05 °/h" (a negative value judged by its magnitude), "≥ 4999",
+// "4999 … 5001 pulse/s/(°/s)".
 std::string limit_text(const json& verdict) {
   const std::string unit = pretty_unit(verdict.value("unit", ""));
   const std::string suffix = unit.empty() ? "" : " " + unit;
   const auto* min = member(verdict, "min");
   const auto* max = member(verdict, "max");
   if (min && max) return format_number(min->get<double>()) + " … " + format_number(max->get<double>()) + suffix;
-  if (max) return "≤ " + format_number(max->get<double>()) + suffix;
+  if (max) return (verdict.value("magnitude", false) ? "|value| ≤ " : "≤ ") + format_number(max->get<double>()) + suffix;
   if (min) return "≥ " + format_number(min->get<double>()) + suffix;
   return "";
 }

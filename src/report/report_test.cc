@@ -98,6 +98,18 @@ scale_factor = { min = 4990, max = 5010 }
   EXPECT_THAT(page, HasSubstr(">Specification Kn ≤ 100 ppm<"));  // the limit drawn on the nonlinearity curve
 }
 
+// A negative figure judged by its magnitude (a max alone) says so beside the limit.
+TEST(Report, AMagnitudeVerdictShowsTheAbsoluteValueAgainstTheLimit) {
+  ScratchDirectory scratch;
+  auto results = run_plan(scratch, plan_with_limits("zero_offset = { max = 100 }\n"));
+  nlohmann::json& verdict = results["verdicts"][0];
+  verdict["value"] = -250.0;
+  verdict["magnitude"] = true;
+  verdict["pass"] = false;
+  const std::string text = render_text_report(results, {Language::english, ""});
+  EXPECT_THAT(text, HasSubstr("FAIL  SF 20 degC / zero_offset = -250 pulse/s (|value| ≤ 100 pulse/s)"));
+}
+
 TEST(Report, WithoutLimitsThereIsNoVerdictColumn) {
   ScratchDirectory scratch;
   auto results = run_plan(scratch, plan_with_limits("nonlinearity = { max = 100 }\n"));

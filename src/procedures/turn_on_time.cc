@@ -1,5 +1,6 @@
 #include "inertest/procedures/turn_on_time.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -17,21 +18,31 @@ struct Series {
   std::vector<double> output;
 };
 
-// Means over windows [k·s, (k+1)·s) of time since power-on, each stamped at (k+1)·s. A window holding
-// no sample is skipped, and so is a last window the record ends inside (its stamp would lie after
-// the record: a turn-on time longer than the test); the record ends half a sample interval after
-// its last sample. A record shorter than one window is an Error.
+// The window (k·s, (k+1)·s] of a sample stamped t: a sample's stamp is the end of the interval
+// whose mean it is (sample i of a rate at (i + 1)/HZ), so the sample stamped s is the first
+// window's last, not the second's first (that put the first second's last sample, still settling,
+// into the next window and added a whole window to the time). A stamp within 1e-9 s of a window's
+// end is that window's (decimal rates: 3 x 0.1 s is 0.30000000000000004 s); a stamp at power-on
+// (t = 0), the first window's.
+double window_of(double t, double smoothing_s) {
+  return std::max(0.0, std::ceil((t - 1e-9) / smoothing_s) - 1.0);
+}
+
+// Means over windows (k·s, (k+1)·s] of time since power-on, each stamped at (k+1)·s. A window
+// holding no sample is skipped, and so is a last window the record ends inside (its stamp would lie
+// after the record: a turn-on time longer than the test); the record ends half a sample interval
+// after its last sample. A record shorter than one window is an Error.
 Series smooth(const PowerOnRun& run, double smoothing_s, const char* what) {
   const std::size_t n = run.time_s.size();
   const double record_end = run.time_s.back() + 0.5 * (run.time_s.back() - run.time_s.front()) / static_cast<double>(n - 1);
   Series series;
   std::size_t i = 0;
   while (i < n) {
-    const double window = std::floor(run.time_s[i] / smoothing_s);
+    const double window = window_of(run.time_s[i], smoothing_s);
     if ((window + 1.0) * smoothing_s > record_end) break;
     CompensatedSum sum;
     std::size_t count = 0;
-    while (i < n && std::floor(run.time_s[i] / smoothing_s) == window) {
+    while (i < n && window_of(run.time_s[i], smoothing_s) == window) {
       sum.add(run.output[i]);
       ++count;
       ++i;
@@ -91,8 +102,11 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
     }
     const Series series =
         options.smoothing_s > 0.0 ? smooth(run, options.smoothing_s, what) : Series{run.time_s, run.output};
+    // GJB 2426A 5.5.4: the rate test removes the Earth rate and the calibrated zero from the output,
+    // the position test (at rest, IRA east or west) the calibrated zero only.
+    const double removed_deg_s = at_rest ? 0.0 : earth_deg_s;
     auto within = [&](double output) {
-      const double indicated = (output - options.zero_output) / options.scale_factor - earth_deg_s;  // deg/s
+      const double indicated = (output - options.zero_output) / options.scale_factor - removed_deg_s;  // deg/s
       if (at_rest) return std::abs(indicated) * kSecondsPerHour <= options.rest_band_deg_h;
       return std::abs(indicated - run.input_rate_deg_s) <= options.rate_band * std::abs(run.input_rate_deg_s);
     };

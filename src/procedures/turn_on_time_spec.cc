@@ -17,13 +17,15 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
       kind, warm_up ? "Warm-up time" : "Turn-on time",
       warm_up ? "GJB 2426A-2004 5.6.4 (as 5.5.4)" : "GJB 2426A-2004 5.5.4",
       "from records that start at power-on, the time until the indicated rate\n"
-      "(F - F0)/K - Earth rate stays within the band to the end of the record; the largest over the runs.\n"
+      "(F - F0)/K (at rate less the Earth rate too) stays within the band to the end of the record; the\n"
+      "largest over the runs.\n"
       "Each --run is INPUT_RATE_DEG_S:FILE (0 for a run at rest). Record layout: a text record with a time\n"
       "column (s since power-on; --time-column, default the first) and an output column (--column, default\n"
       "the second); or, with --rate HZ, the output column alone (text or binary --format), sample i (from 0)\n"
       "at time (i + 1)/HZ. Bands: at rate |rate error| <= --rate-band x |input rate| (a fraction, e.g.\n"
       "0.001); at rest |indicated rate| <= --rest-band deg/h. --smoothing S averages into S-second windows\n"
-      "from power-on (stamped at their end) before the test.");
+      "(0, S], (S, 2S], ... from power-on (a sample's time ends its interval; each window stamped at its\n"
+      "end) before the test.");
   definition.chinese_title(warm_up ? "预热时间" : "启动时间")
       .report_method(
           fmt::format("From power-on, the output with the calibrated zero removed (and, at rate, the Earth rate) is "

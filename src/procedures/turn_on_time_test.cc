@@ -55,20 +55,27 @@ TEST(TurnOnTimeTest, AtRestAndAtRateLargestOverRuns) {
   EXPECT_EQ(turn_on_time_spec().fields_of(&result).at("turn_on_time").at("unit"), "s");
 }
 
-TEST(TurnOnTimeTest, EarthRateRemovedFromTheIndicatedRate) {
-  // IRA north at 45 deg N: Ωe cos 45° rides on the output; unremoved it exceeds a 1 deg/h band.
+TEST(TurnOnTimeTest, EarthRateRemovedFromTheRateTestOnly) {
+  // GJB 2426A 5.5.4. At 1 deg/s with the IRA up at 45 deg N, Ωe sin 45° rides on the output:
+  // unremoved it exceeds a relative band of 1e-3 (3.6 deg/h).
   TurnOnTimeOptions options;
   options.scale_factor = 1.0;
+  options.rate_band = 1e-3;
   options.rest_band_deg_h = 1.0;
-  const double earth = kEarthDegS * std::cos(45.0 * kPi / 180.0);
-  const PowerOnRun run = decaying_run(0.0, 0.01, 10.0, 1.0, 0.0, earth, 1.0, 200.0);
-  const std::vector<PowerOnRun> runs = {run};
-  EXPECT_THROW(turn_on_time(runs, options), Error);  // never settles with Earth rate left in
-  options.earth_rate = AxisOrientation{45.0, 0.0, 0.0};
+  const double earth = kEarthDegS * std::sin(45.0 * kPi / 180.0);
+  PowerOnRun at_rate = decaying_run(1.0, 0.01, 10.0, 1.0, 0.0, earth, 1.0, 200.0);
+  at_rate.name = "at rate";
+  EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{at_rate}, options), Error);  // never settles with Earth rate in
+  options.earth_rate = AxisOrientation{45.0, 0.0, 90.0};
   options.warm_up = true;
-  const TurnOnTimeResult result = turn_on_time(runs, options);
-  EXPECT_NEAR(result.time.value, first_sample_within(0.01, 10.0, 1.0 / 3600.0, 1.0), 1e-9);
+  const TurnOnTimeResult result = turn_on_time(std::vector<PowerOnRun>{at_rate}, options);
+  EXPECT_NEAR(result.time.value, first_sample_within(0.01, 10.0, 1e-3, 1.0), 1e-9);
   EXPECT_TRUE(warm_up_time_spec().fields_of(&result).contains("warm_up_time"));
+  // At rest (the position test, IRA east or west) only the calibrated zero is removed: the same
+  // Earth rate subtracted from a run at rest put it 10.6 deg/h off, outside its 1 deg/h band.
+  const PowerOnRun rest = decaying_run(0.0, 0.01, 10.0, 1.0, 0.0, 0.0, 1.0, 200.0);
+  const TurnOnTimeResult both = turn_on_time(std::vector<PowerOnRun>{rest, at_rate}, options);
+  EXPECT_NEAR(both.runs[0].time.value, first_sample_within(0.01, 10.0, 1.0 / 3600.0, 1.0), 1e-9);
 }
 
 TEST(TurnOnTimeTest, SmoothingAveragesWindowsFromPowerOn) {
@@ -81,11 +88,23 @@ TEST(TurnOnTimeTest, SmoothingAveragesWindowsFromPowerOn) {
   const std::vector<PowerOnRun> runs = {run};
   EXPECT_DOUBLE_EQ(turn_on_time(runs, options).time.value, 2.5);
   options.smoothing_s = 1.0;
-  // Windows [0,1) holds t = 0.5 only; [1,2) holds 1.0 and 1.5 -> mean 5, fails; [2,3) 2.0, 2.5 -> -0.25;
-  // [3,4) 3.0, 3.5 -> 0.25; [4,5) 4.0 -> 0. Turn-on at the end of [2,3): 3 s.
-  EXPECT_DOUBLE_EQ(turn_on_time(runs, options).time.value, 3.0);
-  // A window the record ends inside is no mean of the smoothing time: with 3 s, [3,6) holds the
-  // settled 3.0-4.0 s only, and stamped at 6 s it gave a turn-on time after the record's end.
+  // A stamp ends its sample's interval: window (0,1] holds t = 0.5 and 1.0 -> mean 9, fails; (1,2]
+  // 1.5, 2.0 -> 0; (2,3] 2.5, 3.0 -> 0.5; (3,4] 3.5, 4.0 -> 0. Turn-on at the end of (1,2]: 2 s.
+  EXPECT_DOUBLE_EQ(turn_on_time(runs, options).time.value, 2.0);
+  // Ten samples of 100 then ninety of 0 at 10 Hz (stamps 0.1 .. 10.0 s, 3 x 0.1 not exactly 0.3):
+  // 1.1 s unsmoothed, 2 s in 1 s windows (the sample stamped 1.0 s is the first window's).
+  PowerOnRun step{"step", 0.0, {}, {}};
+  for (int i = 0; i < 100; ++i) {
+    step.time_s.push_back((i + 1) * 0.1);
+    step.output.push_back(i < 10 ? 100.0 : 0.0);
+  }
+  const std::vector<PowerOnRun> steps = {step};
+  options.smoothing_s = 0.0;
+  EXPECT_NEAR(turn_on_time(steps, options).time.value, 1.1, 1e-12);
+  options.smoothing_s = 1.0;
+  EXPECT_DOUBLE_EQ(turn_on_time(steps, options).time.value, 2.0);
+  // A window the record ends inside is no mean of the smoothing time: with 3 s, (3,6] holds the
+  // settled 3.5-4.0 s only, and stamped at 6 s it gave a turn-on time after the record's end.
   PowerOnRun late{"late", 0.0, run.time_s, {9, 9, 9, 9, 9, 0, 0, 0}};
   options.smoothing_s = 3.0;
   EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{late}, options), Error);

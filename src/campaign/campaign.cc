@@ -169,8 +169,10 @@ Plan load_plan(const std::string& path) {
   if (site) {
     auto& s = plan.context.site;
     s.name = site->string_or("name", "");
-    s.latitude_deg = site->number_or("latitude_deg", 0.0);
-    if (s.latitude_deg < -90 || s.latitude_deg > 90) site->fail_at("latitude_deg", "must lie in [-90, 90]");
+    s.latitude_deg = site->optional_number("latitude_deg");
+    if (s.latitude_deg && (*s.latitude_deg < -90 || *s.latitude_deg > 90)) {
+      site->fail_at("latitude_deg", "must lie in [-90, 90]");
+    }
     s.gravity_m_s2 = site->number_or("gravity_m_s2", 9.80665);
     if (s.gravity_m_s2 <= 0) site->fail_at("gravity_m_s2", "must be positive");
     s.heading_deg = site->number_or("heading_deg", 0.0);

@@ -29,7 +29,7 @@ std::string choice_list(const std::vector<std::string>& choices, const std::stri
 nlohmann::json instrument_value(const PlanContext& context, const ParameterSpec& parameter) {
   const std::string& key = parameter.instrument_default;
   const auto optional = [](const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(); };
-  if (parameter.site_default && key == "latitude_deg") return context.site.latitude_deg;
+  if (parameter.site_default && key == "latitude_deg") return optional(context.site.latitude_deg);
   if (parameter.site_default && key == "heading_deg") return context.site.heading_deg;
   if (parameter.site_default && key == "gravity_m_s2") return context.site.gravity_m_s2;
   if (key == "output_unit") return context.instrument.output_unit;

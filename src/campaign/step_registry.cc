@@ -59,7 +59,9 @@ nlohmann::json Instrument::to_json() const {
 }
 
 nlohmann::json Site::to_json() const {
-  return {{"name", name}, {"latitude_deg", latitude_deg}, {"gravity_m_s2", gravity_m_s2}, {"heading_deg", heading_deg}};
+  nlohmann::json json = {{"name", name}, {"gravity_m_s2", gravity_m_s2}, {"heading_deg", heading_deg}};
+  if (latitude_deg) json["latitude_deg"] = *latitude_deg;
+  return json;
 }
 
 }  // namespace inertest::campaign

@@ -27,7 +27,9 @@ struct Instrument {
 
 struct Site {
   std::string name;
-  double latitude_deg = 0.0;
+  // Absent when the plan does not give it: a procedure whose figure depends on it asks for it (0
+  // assumed unsaid gave Earth-rate inputs at the equator's, 1/cos(latitude) off).
+  std::optional<double> latitude_deg;
   double gravity_m_s2 = 9.80665;
   double heading_deg = 0.0;  // azimuth of the instrument's IRA from north, for Earth-rate methods
   nlohmann::json to_json() const;

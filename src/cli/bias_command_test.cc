@@ -103,6 +103,11 @@ TEST(BiasCommandTest, ClearErrors) {
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_THAT(missing.err, ::testing::HasSubstr("none.txt"));
   EXPECT_TRUE(missing.out.empty());
+  // The Earth rate removed depends on the latitude: not given, it is asked for (0 was assumed).
+  const auto no_latitude = run_cli({"bias", file, "--rate", "10", "--scale-factor", "5", "--remove-earth-rate"});
+  EXPECT_EQ(no_latitude.exit_code, 2);
+  EXPECT_THAT(no_latitude.err, ::testing::HasSubstr("--latitude is needed to remove the Earth rate"));
+  EXPECT_TRUE(no_latitude.out.empty());
 }
 
 TEST(BiasCommandTest, RepeatabilityAndTemperature) {

@@ -4,11 +4,15 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
 
 namespace inertest {
 
 void AxisOrientation::validate() const {
+  if (std::isnan(latitude_deg)) {
+    throw ParameterError("latitude_deg", "latitude_deg is needed to remove the Earth rate (in a plan, [site] latitude_deg)");
+  }
   if (!std::isfinite(latitude_deg) || std::abs(latitude_deg) > 90.0) {
     throw Error(fmt::format("latitude {} deg is not in [-90, 90]", latitude_deg));
   }

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
 #include "inertest/numerics/statistics.h"
 #include "procedures/fifty_percent_criterion.h"
@@ -101,14 +102,23 @@ void ThresholdOptions::validate() const {
     throw Error(fmt::format("threshold: the scale factor K must be a nonzero number (output units per deg/s), got {}",
                             scale_factor));
   }
-  if (!std::isfinite(latitude_deg) || std::abs(latitude_deg) > 90.0) {
-    throw Error(fmt::format("threshold: latitude {} deg is not in [-90, 90]", latitude_deg));
+  if (latitude_deg && (!std::isfinite(*latitude_deg) || std::abs(*latitude_deg) > 90.0)) {
+    throw Error(fmt::format("threshold: latitude {} deg is not in [-90, 90]", *latitude_deg));
   }
   if (!std::isfinite(heading_deg)) throw Error("threshold: the heading is not a finite number");
   if (zero_output && !std::isfinite(*zero_output)) throw Error("threshold: the zero output is not a finite number");
   if (Unit::parse(rate_unit).dimension() != Unit::parse("rad/s").dimension()) {
     throw Error("threshold: rate unit '" + rate_unit + "' is not an angular rate");
   }
+}
+
+double ThresholdOptions::latitude_for(const char* method) const {
+  if (!latitude_deg) {
+    throw ParameterError("latitude", fmt::format("latitude is needed by {}: its input is the Earth rate's horizontal "
+                                                 "component, Omega_e cos(latitude) (GJB 2426A eqs. 16-17)",
+                                                 method));
+  }
+  return *latitude_deg;
 }
 
 ThresholdResult threshold_rate_table(std::span<const RateTablePoint> points, const ThresholdOptions& options) {
@@ -140,7 +150,7 @@ ThresholdResult threshold_rate_table(std::span<const RateTablePoint> points, con
 
 ThresholdResult threshold_dividing_head(std::span<const DividingHeadPoint> points, const ThresholdOptions& options) {
   options.validate();
-  const double horizontal = kEarthRateDegH * std::cos(options.latitude_deg * constants::kDegree);
+  const double horizontal = kEarthRateDegH * std::cos(options.latitude_for("method 2") * constants::kDegree);
   std::vector<Sample> north;
   std::vector<Sample> south;
   std::vector<double> static_outputs;
@@ -176,7 +186,7 @@ ThresholdResult threshold_rotating(std::span<const double> time_s, std::span<con
   if (output.size() < 4) {
     throw Error(fmt::format("threshold (method 3): {} sample(s); at least 4 are needed", output.size()));
   }
-  const double horizontal = kEarthRateDegH * std::cos(options.latitude_deg * constants::kDegree);
+  const double horizontal = kEarthRateDegH * std::cos(options.latitude_for("method 3") * constants::kDegree);
   const double zero = options.zero_output ? *options.zero_output : mean(output);
   // Quadrants of θ = ωt + Φ: [0, 90) positive toward the crossing at 90, (90, 180] negative away
   // from it, [180, 270) negative toward the crossing at 270, (270, 360) positive away from it.

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -113,6 +114,15 @@ TEST(ThresholdTest, MethodTwoHeadingOffsetsTheAngles) {
   options.heading_deg = 90.0;
   options.zero_output = 0.0;
   const std::vector<DividingHeadPoint> points = {{-90.0, kEarthDegH}, {90.0, -kEarthDegH}};
+  // The latitude is the input's: not given, it is asked for (0 assumed gave Omega_e, not Omega_e cos ψ).
+  try {
+    threshold_dividing_head(points, options);
+    ADD_FAILURE() << "method 2 ran without a latitude";
+  } catch (const ParameterError& e) {
+    EXPECT_EQ(e.parameter, "latitude");
+    EXPECT_THAT(e.message(), ::testing::HasSubstr("latitude is needed by method 2"));
+  }
+  options.latitude_deg = 0.0;
   EXPECT_NEAR_RELATIVE(threshold_dividing_head(points, options).threshold.value, kEarthDegH, 1e-12);
 }
 
@@ -146,6 +156,7 @@ TEST(ThresholdTest, MethodThreeSamplesAtTheCrossingsBelongToNoBranch) {
   // smallest nonzero input, 1 deg from a crossing, and every input keeps its branch's sign.
   ThresholdOptions options = unit_options();
   options.zero_output = 0.0;
+  options.latitude_deg = 0.0;
   const double horizontal = kEarthDegH;  // latitude 0
   std::vector<double> time, output;
   for (int j = 0; j < 360; ++j) {

@@ -218,6 +218,9 @@ id = "FOG-MIX"
 output_unit = "pulse/s"
 sample_rate_hz = 10
 
+[site]
+latitude_deg = 45.75
+
 [[procedure]]
 kind = "scale_factor"
 file = ")" + source_path("examples/scale_factor/points.csv") +

@@ -11,7 +11,8 @@ struct AxisOrientation {
   double heading_deg = 0.0;    // azimuth of the IRA's horizontal projection from north, east positive
   double elevation_deg = 0.0;  // angle of the IRA above the horizontal plane, up positive
 
-  // Throws Error when the latitude or elevation lies outside [-90, 90] or a value is not finite.
+  // Throws Error when the latitude or elevation lies outside [-90, 90] or a value is not finite; a
+  // latitude left NaN (not given) is a ParameterError on latitude_deg: the Earth rate depends on it.
   void validate() const;
 };
 

@@ -59,12 +59,16 @@ struct ThresholdOptions {
   // output over the record (the input averages to zero over whole revolutions).
   std::optional<double> zero_output;
   std::string rate_unit = "deg/s";  // method 1: unit of the table rates
-  double latitude_deg = 0.0;        // ψ, methods 2 and 3
+  // ψ, methods 2 and 3 (their input is Ωe cos ψ, eqs. 16-17): required by them, no default (a
+  // latitude of 0 assumed unsaid inflated the threshold by 1/cos ψ, +43 % at 45.75 deg N).
+  std::optional<double> latitude_deg;
   // Method 2: azimuth of the dividing head's zero mark from north (β_j = reading + heading).
   // Method 3: Φ, the IRA's azimuth from north at t = 0.
   double heading_deg = 0.0;
 
   void validate() const;  // throws Error for a zero scale factor, a latitude outside [-90, 90], a bad unit
+  // ψ for methods 2 and 3; a ParameterError on "latitude" when it was not given.
+  double latitude_for(const char* method) const;
 };
 
 struct ThresholdPoint {

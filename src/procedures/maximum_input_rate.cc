@@ -53,9 +53,19 @@ MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> poin
   // Check the whole set first, so missing static runs etc. get scale_factor()'s own message.
   scale_factor(points, options.scale_factor);
   const double first = smallest_range(points);
+  // A range [-R, R] is tested only where both directions reach R (GJB 2426A 5.9 and 5.8.1.3 take
+  // the rates in both directions up to the maximum): rates beyond the smaller of the two extremes
+  // were tested one way only, and a range reaching them would claim the other way untested.
+  double positive_reach = 0.0;
+  double negative_reach = 0.0;
+  for (const auto& p : points) {
+    positive_reach = std::max(positive_reach, p.rate);
+    negative_reach = std::max(negative_reach, -p.rate);
+  }
+  const double reach = std::min(positive_reach, negative_reach);
   std::vector<double> candidates;
   for (const auto& p : points) {
-    if (std::abs(p.rate) >= first) candidates.push_back(std::abs(p.rate));
+    if (std::abs(p.rate) >= first && std::abs(p.rate) <= reach) candidates.push_back(std::abs(p.rate));
   }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
@@ -91,6 +101,12 @@ MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> poin
     result.warnings.push_back(fmt::format("the requirement holds up to the largest tested rate ({} {}); the maximum "
                                           "input rate may be higher",
                                           chosen.rate, result.rate_unit));
+  }
+  if (positive_reach != negative_reach) {
+    result.warnings.push_back(fmt::format(
+        "the rates reach {} {} in the positive direction and {} {} in the negative: ranges beyond {} {} were "
+        "tested one way only and are left out (GJB 2426A 5.9 tests both directions)",
+        positive_reach, result.rate_unit, -negative_reach, result.rate_unit, reach, result.rate_unit));
   }
   return result;
 }

@@ -48,6 +48,25 @@ TEST(MaximumInputRate, AllRangesPassGivesTheLargestTestedRateAndAWarning) {
   EXPECT_THAT(result.warnings[0], HasSubstr("may be higher"));
 }
 
+// Ranges must be tested both ways: with the negative rates stopping at 5 deg/s, a point at 400
+// deg/s (positive only) gave a maximum input rate of 400 deg/s, never tested in the negative.
+TEST(MaximumInputRate, OnlyRangesTestedInBothDirectionsCount) {
+  std::vector<ScaleFactorPoint> points = {{0.0, 0.0}};
+  for (double r : {1.0, 2.0, 5.0}) {
+    points.push_back({r, 100.0 * r});
+    points.push_back({-r, -100.0 * r});
+  }
+  points.push_back({400.0, 40000.0});
+  points.push_back({0.0, 0.0});
+  MaximumInputRateOptions options;
+  options.nonlinearity_limit_ppm = 100.0;
+  const auto result = maximum_input_rate(points, options);
+  EXPECT_EQ(result.maximum_input_rate.value, 5.0);
+  ASSERT_EQ(result.ranges.size(), 2u);  // R = 2, 5
+  ASSERT_EQ(result.warnings.size(), 2u);
+  EXPECT_THAT(result.warnings[1], HasSubstr("400 deg/s in the positive direction and -5 deg/s in the negative"));
+}
+
 TEST(MaximumInputRate, RequirementMetNowhereIsAnError) {
   std::vector<ScaleFactorPoint> points = {{0.0, 0.0}};
   for (double r : {1.0, 2.0, 5.0}) {

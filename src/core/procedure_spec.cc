@@ -1,6 +1,7 @@
 #include "inertest/core/procedure_spec.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 
@@ -63,7 +64,32 @@ std::string kebab_case(const std::string& name) {
   return flag;
 }
 
+namespace {
+
+// The JSON pointer of the first number in `value` that is NaN or infinite ("" when none).
+std::string first_non_finite(const nlohmann::json& value, const std::string& at) {
+  if (value.is_number_float()) return std::isfinite(value.get<double>()) ? std::string() : (at.empty() ? "/" : at);
+  if (value.is_object()) {
+    for (const auto& [key, item] : value.items()) {
+      if (std::string found = first_non_finite(item, at + "/" + key); !found.empty()) return found;
+    }
+  } else if (value.is_array()) {
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      if (std::string found = first_non_finite(value[i], at + "/" + std::to_string(i)); !found.empty()) return found;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields) {
+  // A figure that overflowed or cancelled to NaN would be written as null, exit 0 (a scale factor of
+  // outputs near 1e300 gave "fit_residual_rms": null): every procedure's output is refused instead.
+  if (const std::string at = first_non_finite(fields, ""); !at.empty()) {
+    throw Error(fmt::format("{}: {} is not a finite number: the data overflow a double (give them in a larger unit)",
+                            spec.kind, at));
+  }
   nlohmann::json json = {{"procedure", spec.json_procedure}, {"clause", spec.clause}};
   for (const auto& [name, value] : fields.items()) {
     if (!value.is_null() || spec.writes_own_json) json[name] = value;

@@ -69,6 +69,22 @@ TEST(ProcedureSpec, JsonHasProcedureClauseAndTheFieldsThatAreNotNull) {
                                   {"flag", true}}));
 }
 
+// A figure that overflowed (NaN, Inf) is an error naming where it is, not a null in the JSON.
+TEST(ProcedureSpec, ANonFiniteNumberAnywhereInTheFieldsIsAnError) {
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    nlohmann::json fields = nlohmann::json::object();
+    fields["figure"] = nlohmann::json{{"value", 1.5}, {"unit", "ppm"}};
+    fields["curve"] = nlohmann::json::array({nlohmann::json{{"x", 1.0}, {"y", 2.0}}, nlohmann::json{{"x", 2.0}, {"y", bad}}});
+    try {
+      procedure_json(example_spec(), fields);
+      ADD_FAILURE() << "a non-finite number was written";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.message(), "example: /curve/1/y is not a finite number: the data overflow a double (give them in a "
+                             "larger unit)");
+    }
+  }
+}
+
 TEST(ProcedureSpec, TextPrintsEveryShownFieldTheSameWay) {
   const nlohmann::json fields = {{"figure", {{"value", 1.5}, {"unit", "ppm"}, {"uncertainty", 0.25}}},
                                  {"flag", false},

@@ -1,6 +1,7 @@
 // The procedure registry and the generic JSON and text writers (issue 22).
 #include "inertest/core/procedure_spec.h"
 
+#include <limits>
 #include <set>
 
 #include "test_util/test_util.h"

@@ -12,6 +12,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/huge_pages.h"
 #include "inertest/io/mapped_file.h"
+#include "io/decimal.h"
 #include "io/text_rows.h"
 
 namespace inertest {
@@ -109,6 +110,29 @@ std::vector<RowChunk> parse_chunks(std::string_view data, std::size_t first_line
   return results;
 }
 
+// The options to read the first line with: as given, except that a first line of blank-separated
+// fields over rows of one field is one column whose name holds blanks ("gyro_x (pulse/s)"), read
+// whole (split, it named two columns and every row was short of one).
+TextTableOptions single_column_header(const Line& first, const LineCursor& cursor, const TextTableOptions& options,
+                                      const std::string& source) {
+  if (options.delimiter != '\0' || first.text.find_first_of(",;\t") != std::string_view::npos) return options;
+  std::vector<io_detail::Field> fields;
+  io_detail::split(first.text, ' ', fields, source, first.number);
+  if (fields.size() < 2) return options;
+  LineCursor peek = cursor;
+  const std::optional<Line> row = io_detail::next_content_line(peek, options.comment);
+  if (!row) return options;
+  io_detail::split(row->text, ' ', fields, source, row->number);
+  if (fields.size() != 1) return options;
+  const std::string_view only = fields.front().text;
+  double value = 0.0;
+  const auto parsed = io_detail::parse_decimal(only.data(), only.data() + only.size(), value);
+  if (parsed.ec != std::errc() || parsed.ptr != only.data() + only.size()) return options;  // not one number
+  TextTableOptions whole_line = options;
+  whole_line.delimiter = ',';
+  return whole_line;
+}
+
 }  // namespace
 
 ColumnSelector ColumnSelector::parse(std::string_view text) {
@@ -157,7 +181,7 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
   LineCursor cursor(text);
   const std::optional<Line> first = io_detail::next_content_line(cursor, options.comment);
   if (!first) io_detail::fail_no_content(source);
-  const RowLayout layout = io_detail::read_row_layout(*first, source, options);
+  const RowLayout layout = io_detail::read_row_layout(*first, source, single_column_header(*first, cursor, options, source));
   for (std::size_t p : layout.positions) table.names.push_back(layout.header_names[p]);
   table.delimiter = layout.delimiter;
   table.header_line = layout.has_header ? first->number : 0;

@@ -162,6 +162,21 @@ TEST(TextTable, ByteOrderMarkIsSkipped) {
   EXPECT_THAT(error_of("\xEF\xBB\xBF" "1,2\n3,4x\n"), HasSubstr("rec.csv:2:3: expected a number"));
 }
 
+// A one-column record whose name holds blanks ("gyro_x (pulse/s)") is one column, not a header of
+// two over rows short of one; blank-separated columns stay columns.
+TEST(TextTable, AHeaderWithBlanksOverOneFieldRowsIsOneColumn) {
+  TextTableOptions by_name;
+  by_name.columns = {ColumnSelector::parse("gyro_x (pulse/s)")};
+  for (const TextTableOptions& options : {TextTableOptions{}, by_name}) {
+    const TextTable table = parse("gyro_x (pulse/s)\n5\n6\n# note\n7\n", options);
+    EXPECT_EQ(table.names, (std::vector<std::string>{"gyro_x (pulse/s)"}));
+    EXPECT_EQ(table.columns[0], (std::vector<double>{5.0, 6.0, 7.0}));
+  }
+  const TextTable two = parse("time rate\n0 5\n1 6\n");
+  EXPECT_EQ(two.names, (std::vector<std::string>{"time", "rate"}));
+  EXPECT_THAT(error_of("time rate\n0 5\n1\n"), HasSubstr("rec.csv:3:"));
+}
+
 TEST(TextTable, SplitTextLineUnquotesFields) {
   const std::vector<TextField> fields = split_text_line(" 10 ,\"run 1, \"\"cold\"\".csv\" ,x", ',', "l.csv", 2);
   ASSERT_EQ(fields.size(), 3u);

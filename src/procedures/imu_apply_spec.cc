@@ -98,7 +98,9 @@ ProcedureSpec imu_apply_spec() {
                      .command_line_name_is("gravity")
                      .site_gives("gravity_m_s2"),
                  &Options::gravity_m_s2)
-      .parameter(ParameterSpec("output", "write the calibrated record to FILE (.csv)"), &Options::output_file)
+      .parameter(ParameterSpec("output", "write the calibrated record to FILE (.csv); in a plan a relative FILE is "
+                                         "beside results.json"),
+                 &Options::output_file)
       .field({"gravity_residual_rms", FieldRole::headline, "rms of |specific force| - g over the statics",
               "静止区间比力模与重力之差均方根", ""},
              &Result::gravity_residual_rms)
@@ -107,7 +109,9 @@ ProcedureSpec imu_apply_spec() {
       .field({"samples", FieldRole::detail, "samples", "样本数", ""}, &Result::samples)
       .field({"static_intervals", FieldRole::detail, "static intervals", "静止区间数", ""}, &Result::static_intervals)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
-      .compute([](const ProcedureCall& call, const Options& options) {
+      .compute([](const ProcedureCall& call, Options options) {
+        // In a plan, into the campaign's staging directory: beside results.json once every step has run.
+        if (!options.output_file.empty()) options.output_file = call.output_path(options.output_file);
         return apply_imu_calibration(read_imu_calibration(call.files.at("calibration")),
                                      read_imu_record(call.files.at("record"), options.columns), options);
       });

@@ -35,5 +35,24 @@ TEST(ImuApply, AFailureWritesNoOutput) {
   EXPECT_TRUE(std::filesystem::exists(output));
 }
 
+// In a plan a relative --output goes beside results.json (staged with the campaign's other files: a
+// failing later step leaves none), not in the working directory.
+TEST(ImuApply, APlanWritesTheOutputBesideItsResults) {
+  const testing::ScratchDirectory scratch;
+  const std::string step = "[[procedure]]\nkind = \"imu_apply\"\ncalibration = \"" +
+                           testing::source_path("examples/imu_calibration/calibration.json") + "\"\nfile = \"" +
+                           testing::source_path("examples/imu_calibration/tumble.csv") +
+                           "\"\noutput = \"calibrated/cal.csv\"\n";
+  const std::string plan = scratch.write("plan.toml", "[instrument]\nid = \"IMU-1\"\n" + step);
+  const testing::CliRun run = testing::run_cli({"run", plan, "--out", scratch.path() + "/out"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() + "/out/calibrated/cal.csv"));
+  const std::string failing = scratch.write(
+      "failing.toml", "[instrument]\nid = \"IMU-1\"\n" + step + "[[procedure]]\nkind = \"bias\"\nfile = \"" +
+                          scratch.write("short.txt", "1\n") + "\"\nsample_rate_hz = 1\ninput = \"deg/h\"\n");
+  EXPECT_EQ(testing::run_cli({"run", failing, "--out", scratch.path() + "/failed"}).exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/failed"));
+}
+
 }  // namespace
 }  // namespace inertest

@@ -34,6 +34,7 @@ NoiseGenerator::NoiseGenerator(const NoiseParameters& parameters, double sample_
     }
   }
   if (parameters_.quantization > 0.0) previous_angle_noise_ = parameters_.quantization * random_.normal();
+  if (parameters_.rate_random_walk > 0.0) bridge_random_ = random_.stream("rate random walk bridge");
 }
 
 double NoiseGenerator::next() {
@@ -52,10 +53,17 @@ double NoiseGenerator::next() {
     }
     rate += process.value;
   }
-  // Rate random walk: dΩ = K·dW; the mean over the interval is the mid value (IEEE 952 C.7).
+  // Rate random walk: dΩ = K·dW, sampled as its mean over the interval. Given the ends Ω0 and
+  // Ω0 + step, that mean is (Ω0 + step/2) plus the mean of a Brownian bridge pinned at both ends,
+  // which is independent of the ends and normal with variance dt/12 per unit diffusion (∫∫ of the
+  // bridge covariance min(s,u) − s·u/dt over the interval, divided by dt²): K·√(dt/12)·z. Without
+  // it the Allan variance at τ = m·dt falls short of K²τ/3 (IEEE Std 952-1997 Annex C, C.7) by the
+  // factor 1 − 1/(4m²), 25 % at τ0; with it σ²(τ) = K²τ/3 holds down to τ0. z comes from a stream
+  // of its own (bridge_random_, made only when K > 0), so the other terms' draws are unchanged.
   if (parameters_.rate_random_walk > 0.0) {
     const double step = parameters_.rate_random_walk * std::sqrt(dt_) * random_.normal();
-    rate += walk_ + 0.5 * step;
+    const double bridge = parameters_.rate_random_walk * std::sqrt(dt_ / 12.0) * bridge_random_->normal();
+    rate += walk_ + 0.5 * step + bridge;
     walk_ += step;
   }
   // Rate ramp: Ω = R·t, mean over the interval at its centre (IEEE 952 C.8).

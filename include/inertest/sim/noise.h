@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "inertest/sim/random.h"
@@ -61,6 +62,9 @@ class NoiseGenerator {
   std::vector<GaussMarkov> flicker_;
   double previous_angle_noise_ = 0.0;  // quantization: white angle noise e_k, rate (e_k - e_{k-1})/dt
   double walk_ = 0.0;                  // rate random walk state, rad/s
+  // The rate random walk's Brownian-bridge term (noise.cc), when K > 0: a stream of its own, so
+  // that adding it left the draws of every other term as they were.
+  std::optional<Random> bridge_random_;
   double time_s_ = 0.0;
   std::size_t sample_ = 0;
 };

@@ -84,8 +84,35 @@ TEST(BiasTest, LargeOffsetDoesNotCancelTheSpread) {
   std::vector<double> output(w * n);
   for (std::size_t i = 0; i < output.size(); ++i) output[i] = (i / w) % 2 == 0 ? offset + 1e-3 : offset - 1e-3;
   const BiasResult result = bias(output, unit_options(100.0, {1.0}));
-  EXPECT_NEAR_RELATIVE(result.bias_stability[0].value.value, 0.5 * (up + down) * std::sqrt(1000.0 / 999.0), 1e-6);
+  EXPECT_NEAR_RELATIVE(result.bias_stability[0].value.value, 0.5 * (up + down) * std::sqrt(1000.0 / 999.0), 1e-12);
   EXPECT_NEAR_RELATIVE(result.bias.value, offset + 0.5 * (up - down), 1e-15);
+}
+
+// The window means (eq. 20) and the pair averages of the normalised curve (eq. 23) are taken about
+// the first sample: the record at an offset of 1e9 gives the figures of the same record less 1e9
+// (the subtraction exact, Sterbenz). Stored near the offset, the means were rounded to 1.2e-7: Bs(100
+// s) 1.4e-3 off, the curve's last point 2.4e-2.
+TEST(BiasTest, StabilityAndCurveDoNotDependOnTheOutputOffset) {
+  std::mt19937_64 engine(7);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  std::vector<double> at_offset(1 << 18);
+  std::vector<double> shifted(at_offset.size());
+  for (std::size_t i = 0; i < at_offset.size(); ++i) {
+    at_offset[i] = 1e9 + noise(engine);
+    shifted[i] = at_offset[i] - 1e9;
+  }
+  const BiasOptions options = unit_options(100.0, {1.0, 10.0, 100.0}, true);
+  const BiasResult big = bias(at_offset, options);
+  const BiasResult small = bias(shifted, options);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR_RELATIVE(big.bias_stability[k].value.value, small.bias_stability[k].value.value, 1e-13) << k;
+  }
+  ASSERT_EQ(big.normalised_stability_curve.size(), small.normalised_stability_curve.size());
+  for (std::size_t k = 0; k < big.normalised_stability_curve.size(); ++k) {
+    EXPECT_NEAR_RELATIVE(big.normalised_stability_curve[k].stability, small.normalised_stability_curve[k].stability,
+                         1e-12)
+        << big.normalised_stability_curve[k].tau_s;
+  }
 }
 
 TEST(BiasTest, WhiteNoiseStabilityEqualsTheWindowMeansComputedDirectly) {

@@ -13,9 +13,11 @@ double mean(std::span<const double> values);
 // large common offset does not cancel the spread). Throws Error for fewer than two values.
 double sample_standard_deviation(std::span<const double> values);
 
-// Means of consecutive, non-overlapping windows of `window` samples; a partial last window is
-// dropped. Throws Error if window is zero or longer than the record.
-std::vector<double> window_means(std::span<const double> values, std::size_t window);
+// Means of consecutive, non-overlapping windows of `window` samples, less `reference`; a partial
+// last window is dropped. Throws Error if window is zero or longer than the record. A reference
+// near the values (e.g. the first) keeps the means' small differences: a mean stored near an
+// offset of 1e9 is rounded to 1.2e-7, what a bias stability of 1e-5 cannot lose.
+std::vector<double> window_means(std::span<const double> values, std::size_t window, double reference = 0.0);
 
 // True when there are two or more values and all are equal: a channel stuck at one value (or a
 // wrong column). A procedure given such a record computes zero spread, zero harmonics or zero

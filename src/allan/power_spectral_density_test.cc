@@ -344,6 +344,27 @@ TEST(WelchPsd, NoiseFitScalesWithTheRecordAtAnyMagnitude) {
   }
 }
 
+// The segments' means are taken about the first sample: the record at an offset of 1e8 has the
+// density of the same record less 1e8 (exact, Sterbenz). Stored near the offset, the means were
+// rounded to 1.5e-8 and the DC left in leaked into the lowest band (8e-5 of it for noise of 1e-3).
+TEST(WelchPsd, TheDensityDoesNotDependOnTheOffset) {
+  sim::Random random(6);
+  std::vector<double> at_offset(1 << 16);
+  std::vector<double> shifted(at_offset.size());
+  for (std::size_t i = 0; i < at_offset.size(); ++i) {
+    at_offset[i] = 1e8 + 1e-3 * random.normal();
+    shifted[i] = at_offset[i] - 1e8;
+  }
+  WelchOptions options;
+  options.sample_rate_hz = 100.0;
+  const PowerSpectralDensity big = welch_power_spectral_density(at_offset, "deg/h", options);
+  const PowerSpectralDensity small = welch_power_spectral_density(shifted, "deg/h", options);
+  ASSERT_EQ(big.density.size(), small.density.size());
+  for (std::size_t k = 1; k < big.density.size(); ++k) {  // 0 Hz: the segments' means are removed
+    EXPECT_NEAR_RELATIVE(big.density[k], small.density[k], 1e-12) << k;
+  }
+}
+
 TEST(WelchPsd, SinusoidOnNoiseIsFoundAndLeftOutOfTheNoiseFit) {
   const Simulated s = white_and_random_walk();
   std::vector<double> x = simulated_rate(s.parameters, s.dt, s.samples, 77);

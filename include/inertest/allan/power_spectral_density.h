@@ -78,8 +78,13 @@
 // (false_alarm_probability; neighbouring bins being correlated, somewhat less). Bins above the
 // threshold closer than a main lobe are one component; it covers the main lobe around its highest
 // bin. Its frequency is the centroid of the excess S1 - floor over its bins, its peak amplitude
-// A = sqrt(2 sum (S1 - floor) fs / L) in U; their 1-sigma uncertainties from the variance of each
-// bin, (2 (S1 - floor) floor + floor^2) 2 / nu (a sinusoid in Gaussian noise), and that of the floor.
+// A = sqrt(2 sum (S1 - floor) fs / L) in U. The frequency's 1-sigma uncertainty from the variance of
+// each bin, (2 (S1 - floor) floor + floor^2) 2 / nu (a sinusoid in Gaussian noise); the amplitude's
+// from the variance of the summed excess, whose bins correlate: the noise's (2 / nu) sum_{i,j}
+// floor_i floor_j |c(i - j)|^2, the sinusoid-noise cross term's 2 P floor fs sum w^4 / (sum w^2)^2
+// (1 + 2 sum_m (1 - m/K) r4(m)) / K for a power P = A^2 / 2 (by Parseval, the cross term summed over
+// the bins is (2 / sum w^2) sum_n w_n^2 x_n e_n; r4(m) = sum w_n^2 w_{n+mD}^2 / sum w^4 its
+// correlation between segments m steps apart), and the floor's.
 #pragma once
 
 #include <array>

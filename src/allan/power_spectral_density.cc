@@ -35,7 +35,7 @@ constexpr std::size_t kShortestAutomaticSegment = 16;
 constexpr std::size_t kLongestAutomaticSegment = std::size_t{1} << 20;
 constexpr int kTerms = 5;  // Q, N, B, K, R: index p + 2 of NoiseTerms' A_p
 constexpr int kWeightIterations = 3;
-constexpr double kSignificance = 2.0;  // as the Allan fit: Q and R held at zero within 2 sigma of it
+constexpr double kSignificance = 2.0;  // Q and R held at zero within 2 sigma of it (the header)
 // The largest bin distance at which two bins of a cosine-sum window correlate: the square of a
 // 4-term window holds cosines up to 6 x.
 constexpr std::size_t kLargestBinCorrelation = 6;
@@ -489,7 +489,7 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
   };
   solve();
   reweight();
-  // Backward elimination of Q (0) and R (4), as the Allan fit does.
+  // Backward elimination of Q (0) and R (4) (the header: the Allan fit eliminates R only).
   for (;;) {
     const std::vector<Eigen::Index> columns = free_columns(free);
     if (columns.size() <= 1) break;

@@ -53,9 +53,11 @@
 // bands correlate too), with S from the observed band means on the first pass and from the fitted
 // model on the following ones (observed weights bias the fit low). Bins at 0 Hz, at the Nyquist
 // frequency, within the window's main lobe of 0 Hz (its response to the mean removal) and those of
-// periodic components are left out. As in the Allan fit, Q and R (which act only at the ends of the
-// spectrum and trade off against N and K) are held at zero while within 2 of their 1-sigma
-// uncertainties of zero. Each coefficient's 1-sigma uncertainty is from the covariance
+// periodic components are left out. Q and R (which act only at the ends of the spectrum and trade
+// off against N and K) are held at zero while within 2 of their 1-sigma uncertainties of zero. (The
+// Allan fit no longer eliminates Q, noise_terms.h; here Q's f^2 rise is seen over the whole upper
+// decade, and left free on records without quantisation its bound pulled N low: over 1000 seeds of
+// white noise and rate random walk, N's mean z went from -0.27 to -0.59.) Each coefficient's 1-sigma uncertainty is from the covariance
 // (J^T V^-1 J)^-1, scaled by the reduced chi-squared when that exceeds 1; a coefficient held at zero
 // is "not identified", with the upper bound max(0, a) + 2 s of its unconstrained estimate a and
 // uncertainty s. The figures have the names and units of NoiseTerms: deg/sqrt(h), deg/h,

@@ -245,12 +245,13 @@ void set_goodness(Fit& fit, std::size_t points) {
   }
 }
 
-// The fit over the points, then backward elimination of the end terms at the covariance of the
-// full model: while the weaker of Q (A_-2) and R (A_2) lies within kSignificance of its 1-sigma
-// uncertainty of zero, it is held at zero and the others refitted. Q and R act only at the ends of
-// the curve, where they trade off against N and K: a Q or R the data do not distinguish from zero
-// is not measured, and left free it biases N or K through the non-negativity bound (Q >= 0 pulls
-// N down). The covariance is then updated from the final model.
+// The fit over the points, then backward elimination of the rate ramp at the covariance of the
+// full model: while R (A_2) lies within kSignificance of its 1-sigma uncertainty of zero, it is held
+// at zero and the others refitted. R acts only at the long end of the curve, where it trades off
+// against K: an R the data do not distinguish from zero is not measured, and left free it biases K
+// through the non-negativity bound. Q (A_-2) stays free (the header): holding a weak but real Q at
+// zero moves its share of the short-tau variance into N. The covariance is then updated from the
+// final model.
 Fit fit_points(const PointSet& points, const NoiseFitOptions& options) {
   const Eigen::MatrixXd design = design_of(points);
   const Eigen::VectorXd observed = Eigen::Map<const Eigen::VectorXd>(points.variance.data(), design.rows());
@@ -285,7 +286,7 @@ Fit fit_points(const PointSet& points, const NoiseFitOptions& options) {
     std::optional<std::size_t> weakest;
     double weakest_z = kSignificance;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (columns[c] != 0 && columns[c] != kTerms - 1) continue;  // only Q and R (see above)
+      if (columns[c] != kTerms - 1) continue;  // only R (see above)
       const auto e = static_cast<Eigen::Index>(c);
       const double z = fit.a[static_cast<std::size_t>(columns[c])] / std::sqrt(inflation * coefficients(e, e));
       if (z < weakest_z) {

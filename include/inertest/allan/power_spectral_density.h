@@ -53,9 +53,11 @@
 // bands correlate too), with S from the observed band means on the first pass and from the fitted
 // model on the following ones (observed weights bias the fit low). Bins at 0 Hz, at the Nyquist
 // frequency, within the window's main lobe of 0 Hz (its response to the mean removal) and those of
-// periodic components are left out. As in the Allan fit, Q and R (which act only at the ends of the
-// spectrum and trade off against N and K) are held at zero while within 2 of their 1-sigma
-// uncertainties of zero. Each coefficient's 1-sigma uncertainty is from the covariance
+// periodic components are left out. Q and R (which act only at the ends of the spectrum and trade
+// off against N and K) are held at zero while within 2 of their 1-sigma uncertainties of zero. (The
+// Allan fit no longer eliminates Q, noise_terms.h; here Q's f^2 rise is seen over the whole upper
+// decade, and left free on records without quantisation its bound pulled N low: over 1000 seeds of
+// white noise and rate random walk, N's mean z went from -0.27 to -0.59.) Each coefficient's 1-sigma uncertainty is from the covariance
 // (J^T V^-1 J)^-1, scaled by the reduced chi-squared when that exceeds 1; a coefficient held at zero
 // is "not identified", with the upper bound max(0, a) + 2 s of its unconstrained estimate a and
 // uncertainty s. The figures have the names and units of NoiseTerms: deg/sqrt(h), deg/h,
@@ -78,8 +80,13 @@
 // (false_alarm_probability; neighbouring bins being correlated, somewhat less). Bins above the
 // threshold closer than a main lobe are one component; it covers the main lobe around its highest
 // bin. Its frequency is the centroid of the excess S1 - floor over its bins, its peak amplitude
-// A = sqrt(2 sum (S1 - floor) fs / L) in U; their 1-sigma uncertainties from the variance of each
-// bin, (2 (S1 - floor) floor + floor^2) 2 / nu (a sinusoid in Gaussian noise), and that of the floor.
+// A = sqrt(2 sum (S1 - floor) fs / L) in U. The frequency's 1-sigma uncertainty from the variance of
+// each bin, (2 (S1 - floor) floor + floor^2) 2 / nu (a sinusoid in Gaussian noise); the amplitude's
+// from the variance of the summed excess, whose bins correlate: the noise's (2 / nu) sum_{i,j}
+// floor_i floor_j |c(i - j)|^2, the sinusoid-noise cross term's 2 P floor fs sum w^4 / (sum w^2)^2
+// (1 + 2 sum_m (1 - m/K) r4(m)) / K for a power P = A^2 / 2 (by Parseval, the cross term summed over
+// the bins is (2 / sum w^2) sum_n w_n^2 x_n e_n; r4(m) = sum w_n^2 w_{n+mD}^2 / sum w^4 its
+// correlation between segments m steps apart), and the floor's.
 #pragma once
 
 #include <array>

@@ -4,6 +4,7 @@
 // hand.
 #include "inertest/allan/allan_channels.h"
 
+#include <array>
 #include <cmath>
 #include <gmock/gmock.h>
 #include <fmt/format.h>
@@ -48,8 +49,10 @@ std::vector<sim::ImuAxisNoise> axes() {
     axis.noise.angle_random_walk = convert(t.n, n_unit, "(" + axis.unit + ")*sqrt(s)");
     axis.noise.bias_instability = convert(t.b, b_unit, axis.unit);
     axis.noise.rate_random_walk = convert(t.k, k_unit, "(" + axis.unit + ")/sqrt(s)");
-    // The flicker's Gauss-Markov processes start well below the sample interval, so that its PSD is
-    // 1/f up to the Nyquist frequency (the PSD fit reads N there).
+    // The flicker's Gauss-Markov processes are asked to start at dt/16, but NoiseGenerator starts
+    // them at the sample interval dt (faster ones would alias) and does not oversample: the flicker's
+    // PSD falls short of B^2 / (2 pi f) near the Nyquist frequency, where the PSD fit reads N (the
+    // accelerometers' N reads ~1 sigma low; see ThePsdGivesTheSameCoefficientsAndFindsTheSinusoid).
     axis.noise.flicker_shortest_s = 1.0 / (16.0 * kRate);
     axis.noise.flicker_longest_s = 1e5;
     result.push_back(axis);
@@ -60,9 +63,8 @@ std::vector<sim::ImuAxisNoise> axes() {
   return result;
 }
 
-const AllanChannels& analysed() {
-  static const AllanChannels channels = [] {
-    const auto columns = sim::simulate_imu_noise(axes(), kRate, kSamples, 19);
+AllanChannels analyse(std::uint64_t seed) {
+    const auto columns = sim::simulate_imu_noise(axes(), kRate, kSamples, seed);
     std::vector<std::span<const double>> spans(columns.begin(), columns.end());
     std::vector<std::string> names;
     for (const AxisTruth& t : kTruth) names.push_back(t.name);
@@ -72,7 +74,10 @@ const AllanChannels& analysed() {
     common.psd = WelchOptions{};
     return allan_variance_of_channels(spans, names,
                                       channel_options(common, names, names, "deg/s,ax=m/s^2,ay=m/s^2,az=m/s^2"));
-  }();
+}
+
+const AllanChannels& analysed() {
+  static const AllanChannels channels = analyse(19);
   return channels;
 }
 
@@ -106,42 +111,125 @@ TEST(AllanChannels, EveryCoefficientOfEveryAxisComesBackWithinItsUncertainty) {
 
 // The PSD beside the Allan variance (IEEE Std 952-1997 Annex C): the same N, B, K from the spectrum
 // of every axis, the sinusoid on gz found at its frequency and amplitude, no peak on the others, and
-// no disagreement between the two fits.
-TEST(AllanChannels, ThePsdGivesTheSameCoefficientsAndFindsTheSinusoid) {
-  const AllanChannels& channels = analysed();
+// no disagreement between the two fits. Every condition is one the record meets by construction
+// except with a stated small chance. Monte Carlo over 200 further seeds of the record (1000-1199):
+// all met in 198 (one false peak on gx, the 5 x 1e-3 false-alarm chance below; one ax B 4.9 sigma
+// low, the flicker's estimate having a heavier tail than a normal); with the former conditions
+// about 15 % of seeds passed.
+//
+// Checks against the truth, 18 figures (N, B, K on six axes):
+// - A figure the PSD identifies lies within kSigma = 4 of its uncertainty of the truth, plus the
+//   known bias below: a Bonferroni bound, 18 x P(|z| > 4) = 0.1 % chance of a false failure.
+// - A figure it does not identify (K, in ~30 % of axes: with the automatic segment length the
+//   lowest band is 3.7e-3 Hz, and K dominates only below ~1.8e-4 Hz) is a bound: the truth must lie
+//   below the reported upper bound (the demo's truth check), unconstrained estimate + 2 sigma.
+// - Known biases, in units of the figure's uncertainty (measured over the 200 seeds):
+//   the accelerometers' N reads ~0.2 % (~1 sigma) low: the simulator starts the flicker's
+//   Gauss-Markov processes at the sample interval dt (NoiseGenerator clamps the shortest time to
+//   dt) and does not oversample, so the missing faster processes leave the flicker's PSD short of
+//   B^2 / (2 pi f) by a nearly white amount near the Nyquist frequency, which the fit takes from N^2
+//   (on the accelerometers B^2 / (2 pi f_N) is 0.8 % of N^2; on the gyros 0.25 %, bias negligible);
+//   K, when identified, reads ~1 sigma high: it is identified only when it stands clear of zero, so
+//   the figures that pass are the high ones.
+// - The rms of the z-scores of the identified figures, each less its known bias, is that of unit
+//   normals: in [0.4, 1.7] (13 to 18 figures: chi-squared tails below 1e-3 each side; over 200
+//   seeds it was 0.49 to 1.62, median 0.98).
+// The Allan fit and the PSD fit (figures identified by both) differ by at most kSigma combined
+// sigma plus the PSD's known K bias (the library's own warning fires at 3 combined sigma, which a
+// record of 24 pairs trips by chance in ~7 % of seeds: it is not the test's condition).
+constexpr double kSigma = 4.0;
+
+// The known bias, in sigma, of a PSD figure (term 0 N, 1 B, 2 K) of axis t when identified.
+double known_psd_bias(const AxisTruth& t, int term) {
+  if (term == 2) return 1.0;
+  if (term == 0 && !is_gyro(t)) return -1.0;
+  return 0.0;
+}
+
+// The conditions above that the analysed record fails, each a message (none: all hold).
+std::vector<std::string> psd_failures(const AllanChannels& channels) {
+  std::vector<std::string> failures;
   double sum_z2 = 0.0;
   int count = 0;
+  if (channels.channels.size() != 6) return {"not six channels"};
   for (std::size_t i = 0; i < 6; ++i) {
     const AxisTruth& t = kTruth[i];
     const AllanResult& result = channels.channels[i].result;
-    ASSERT_TRUE(result.psd.has_value()) << t.name;
+    if (!result.psd.has_value()) {
+      failures.push_back(fmt::format("{}: no PSD", t.name));
+      continue;
+    }
     const SpectralNoiseTerms& noise = result.psd->noise;
-    const std::pair<const Figure*, double> terms[] = {
-        {&noise.angle_random_walk, t.n}, {&noise.bias_instability, t.b}, {&noise.rate_random_walk, t.k}};
-    for (const auto& [figure, truth] : terms) {
-      ASSERT_TRUE(figure->uncertainty.has_value()) << t.name << " " << figure->unit << " not identified by the PSD";
-      const double z = (figure->value - truth) / *figure->uncertainty;
-      EXPECT_LT(std::abs(z), 3.0) << t.name << " (PSD): " << figure->value << " ± " << *figure->uncertainty << " "
-                                  << figure->unit << ", truth " << truth;
-      sum_z2 += z * z;
+    const std::array<const Figure*, 3> figures = {&noise.angle_random_walk, &noise.bias_instability,
+                                                  &noise.rate_random_walk};
+    const std::array<double, 3> truths = {t.n, t.b, t.k};
+    for (int term = 0; term < 3; ++term) {
+      const std::size_t index = static_cast<std::size_t>(term) + 1;  // N, B, K of Q, N, B, K, R
+      const Figure& figure = *figures[static_cast<std::size_t>(term)];
+      const double truth = truths[static_cast<std::size_t>(term)];
+      if (!noise.identified[index]) {
+        if (!noise.upper_bounds[index].has_value() || !(truth <= noise.upper_bounds[index]->value)) {
+          failures.push_back(fmt::format("{} (PSD): {} not identified, truth {} above the bound {}", t.name,
+                                         figure.unit, truth,
+                                         noise.upper_bounds[index] ? noise.upper_bounds[index]->value : -1.0));
+        }
+        continue;
+      }
+      if (!figure.uncertainty.has_value() || !(*figure.uncertainty > 0.0)) {
+        failures.push_back(fmt::format("{} (PSD): {} identified without an uncertainty", t.name, figure.unit));
+        continue;
+      }
+      const double bias = known_psd_bias(t, term);
+      const double z = (figure.value - truth) / *figure.uncertainty;
+      if (!(std::abs(z) <= kSigma + std::abs(bias))) {
+        failures.push_back(fmt::format("{} (PSD): {} +- {} {}, truth {} (z {:.2f})", t.name, figure.value,
+                                       *figure.uncertainty, figure.unit, truth, z));
+      }
+      sum_z2 += (z - bias) * (z - bias);
       ++count;
+      // Against the Allan fit's figure of the same term.
+      if (!result.noise.has_value() || !result.noise->identified[index]) continue;
+      const std::array<const Figure*, 3> allan = {&result.noise->angle_random_walk,
+                                                  &result.noise->bias_instability,
+                                                  &result.noise->rate_random_walk};
+      const Figure& a = *allan[static_cast<std::size_t>(term)];
+      const Figure b = figure.in(a.unit);
+      const double sigma = std::hypot(a.uncertainty.value_or(0.0), b.uncertainty.value_or(0.0));
+      if (!(std::abs(a.value - b.value) <= (kSigma + std::abs(bias)) * sigma)) {
+        failures.push_back(fmt::format("{}: Allan {} +- {} and PSD {} +- {} {} differ by {:.2f} combined sigma",
+                                       t.name, a.value, a.uncertainty.value_or(0.0), b.value,
+                                       b.uncertainty.value_or(0.0), a.unit, std::abs(a.value - b.value) / sigma));
+      }
     }
-    for (const std::string& warning : result.warnings) {
-      EXPECT_EQ(warning.find("combined sigma"), std::string::npos) << t.name << ": " << warning;
-    }
+    const auto& peaks = result.psd->peaks;
     if (std::string(t.name) == "gz") {
-      ASSERT_EQ(result.psd->peaks.size(), 1u);
-      const PeriodicComponent& peak = result.psd->peaks.front();
-      EXPECT_NEAR(peak.frequency.value, 1.25, result.psd->resolution_hz);
-      EXPECT_NEAR(peak.amplitude.value, 0.01, 3.0 * peak.amplitude.uncertainty.value_or(0.0) + 0.0005);
-      EXPECT_EQ(peak.amplitude.unit, "deg/s");
-    } else {
-      EXPECT_TRUE(result.psd->peaks.empty()) << t.name;
+      if (peaks.size() != 1) {
+        failures.push_back(fmt::format("gz: {} peaks, not 1", peaks.size()));
+        continue;
+      }
+      const PeriodicComponent& peak = peaks.front();
+      if (!(std::abs(peak.frequency.value - 1.25) <= result.psd->resolution_hz)) {
+        failures.push_back(fmt::format("gz: peak at {} Hz", peak.frequency.value));
+      }
+      // kSigma of the amplitude's uncertainty, plus a floor of 5 % of it.
+      if (!(std::abs(peak.amplitude.value - 0.01) <= kSigma * peak.amplitude.uncertainty.value_or(0.0) + 0.0005)) {
+        failures.push_back(fmt::format("gz: amplitude {} +- {}", peak.amplitude.value,
+                                       peak.amplitude.uncertainty.value_or(0.0)));
+      }
+      if (peak.amplitude.unit != "deg/s") failures.push_back("gz: amplitude unit " + peak.amplitude.unit);
+    } else if (!peaks.empty()) {  // by chance in 5 x 1e-3 of records (WelchOptions' false-alarm probability)
+      failures.push_back(fmt::format("{}: {} peaks where there is none", t.name, peaks.size()));
     }
   }
-  const double rms_z = std::sqrt(sum_z2 / count);
-  EXPECT_GT(rms_z, 0.4);
-  EXPECT_LT(rms_z, 1.6);
+  const double rms_z = count > 0 ? std::sqrt(sum_z2 / count) : 0.0;
+  if (!(rms_z >= 0.4 && rms_z <= 1.7)) failures.push_back(fmt::format("rms z {:.3f} over {} figures", rms_z, count));
+  return failures;
+}
+
+TEST(AllanChannels, ThePsdGivesTheSameCoefficientsAndFindsTheSinusoid) {
+  const std::vector<std::string> failures = psd_failures(analysed());
+  for (const std::string& failure : failures) ADD_FAILURE() << failure;
+  EXPECT_TRUE(failures.empty());
 }
 
 TEST(AllanChannels, AnAccelerometerChannelHasItsOwnNoiseTermsAndUnits) {

@@ -26,11 +26,10 @@ using campaign::PlanTable;
 
 // A specification limit on one figure of a procedure's result (IEEE Std 952-1997 specification
 // format: "bias stability at most 0.01 deg/h"). `figure` is a key of the result or a JSON pointer
-// into it (e.g. "/bias_stability/1").
-// A specification limit on one figure. `max` alone bounds the magnitude |value| (a specification
-// "bias <= 0.05 deg/h" or "misalignment <= 1'" is one, IEEE Std 952-1997 clause 8 writes them so:
-// judged on the signed value, a bias of -7000 deg/h passed it); `min` alone bounds the signed value
-// from below, and `min` with `max` the signed value on both sides (a scale factor's range).
+// into it (e.g. "/bias_stability/1"). `max` alone bounds the magnitude |value|, as a specification
+// "bias <= 0.05 deg/h" or "misalignment <= 1'" does (judged on the signed value, a bias of -7000
+// deg/h passed it); `min` alone bounds the signed value from below, and `min` with `max` the signed
+// value on both sides (a scale factor's range).
 struct Limit {
   std::string figure;
   std::optional<double> min;

@@ -252,6 +252,9 @@ void set_goodness(Fit& fit, std::size_t points) {
 // through the non-negativity bound. Q (A_-2) stays free (the header): holding a weak but real Q at
 // zero moves its share of the short-tau variance into N. The covariance is then updated from the
 // final model.
+// The most of the longest taus the automatic fit range drops (fit_noise_terms).
+constexpr std::size_t kLongestDropped = 2;
+
 Fit fit_points(const PointSet& points, const NoiseFitOptions& options) {
   const Eigen::MatrixXd design = design_of(points);
   const Eigen::VectorXd observed = Eigen::Map<const Eigen::VectorXd>(points.variance.data(), design.rows());
@@ -506,31 +509,48 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
     terms.fit_range_chosen_by = "user";
     terms.fit_range_reason = "given by the user";
   } else {
-    // Drop the shortest taus while the fit is inconsistent, keeping at least kTerms + 1 points (one
-    // degree of freedom with every term free); if none is consistent, keep the least inconsistent.
+    // Drop the fewest taus that make the fit consistent, keeping at least kTerms + 1 points (one
+    // degree of freedom with every term free): the shortest first, where the model fails by design
+    // (an anti-alias filter, quantisation), and, at the same count, up to kLongestDropped of the
+    // longest, whose few degrees of freedom let a random walk's excursion break every range that
+    // keeps them (dropping from the short end only, one such record was trimmed to 204.8 s and read
+    // N at 3 times the truth). If none is consistent, keep the least inconsistent.
     fit = fit_points(points_between(all, first, last), options);
     const double full_reduced_chi_squared = fit.reduced_chi_squared;
     Fit best = fit;
     std::size_t best_first = first;
-    for (std::size_t start = 1; !best.consistent && last + 1 - start >= kTerms + 1; ++start) {
-      Fit trial = fit_points(points_between(all, start, last), options);
-      if (trial.consistent || trial.reduced_chi_squared < best.reduced_chi_squared) {
-        best = std::move(trial);
-        best_first = start;
+    std::size_t best_last = last;
+    for (std::size_t dropped = 1; !best.consistent && last + 1 - dropped >= kTerms + 1; ++dropped) {
+      for (std::size_t longest = 0; !best.consistent && longest <= std::min(dropped, kLongestDropped); ++longest) {
+        const std::size_t start = dropped - longest;
+        const std::size_t end = last - longest;
+        Fit trial = fit_points(points_between(all, start, end), options);
+        if (trial.consistent || trial.reduced_chi_squared < best.reduced_chi_squared) {
+          best = std::move(trial);
+          best_first = start;
+          best_last = end;
+        }
       }
     }
     first = best_first;
+    last = best_last;
     fit = std::move(best);
     terms.fit_range_chosen_by = "automatic";
-    if (first == 0) {
+    if (first == 0 && last + 1 == tau_s.size()) {
       terms.fit_range_reason = fit.consistent || fit.degrees_of_freedom == 0
                                    ? "the whole curve: the model fits it"
                                    : "the whole curve: no shorter range fits better";
-    } else {
+    } else if (last + 1 == tau_s.size()) {
       terms.fit_range_reason = fmt::format(
           "taus below {} dropped: the model does not hold there (anti-alias filter or quantisation at short tau); "
           "reduced chi-squared {:.3g} over the whole curve, {:.3g} from {}",
           tau_text(tau_s[first]), full_reduced_chi_squared, fit.reduced_chi_squared, tau_text(tau_s[first]));
+    } else {
+      terms.fit_range_reason = fmt::format(
+          "{}taus above {} dropped: the model does not hold over the whole curve (reduced chi-squared {:.3g}), and the "
+          "longest taus, of few degrees of freedom, broke every range keeping them; {:.3g} from {} to {}",
+          first == 0 ? "" : fmt::format("taus below {} and ", tau_text(tau_s[first])), tau_text(tau_s[last]),
+          full_reduced_chi_squared, fit.reduced_chi_squared, tau_text(tau_s[first]), tau_text(tau_s[last]));
     }
   }
   terms.fit_range = FitRange{tau_s[first], tau_s[last]};

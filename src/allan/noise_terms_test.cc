@@ -124,6 +124,20 @@ TEST(NoiseTerms, FitRangeIsChosenAutomaticallyOrGiven) {
   EXPECT_THROW(fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h", narrow), Error);
 }
 
+// A curve that eq. (30) describes but at its longest tau (a random walk's excursion over the last,
+// fewest-edf point): the automatic range drops that tau, not the whole short end (dropping from the
+// short end only, no range was consistent and the least inconsistent kept the last few taus).
+TEST(NoiseTerms, FitRangeCanDropTheLongestTaus) {
+  Curve curve = exact_curve({0.0, 1.0, 0.01, 1e-5, 0.0}, 0.125, 4096.0);
+  curve.variance.back() *= 3.0;
+  const NoiseTerms automatic = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  EXPECT_DOUBLE_EQ(automatic.fit_range.tau_min_s, 0.125);
+  EXPECT_DOUBLE_EQ(automatic.fit_range.tau_max_s, 2048.0);
+  EXPECT_THAT(automatic.fit_range_reason, ::testing::HasSubstr("taus above 2048 s dropped"));
+  EXPECT_EQ(automatic.verdict, "consistent");
+  EXPECT_NEAR_RELATIVE(automatic.angle_random_walk.value, 1.0 / 60.0, 1e-6);
+}
+
 // A dense grid (every averaging factor) is fitted without the correlation model, and says so.
 TEST(NoiseTerms, DenseGridWarnsThatUncertaintiesAreUnderstated) {
   Curve curve;

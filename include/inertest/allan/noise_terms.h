@@ -32,10 +32,12 @@
 // warning says the uncertainties may be understated.
 //
 // Fit range: eq. (30) describes the gyro's noise, not its anti-alias filter or coarse quantisation,
-// which flatten or bend the shortest taus. Unless a range is given, the shortest taus are dropped one
-// by one while the fit is inconsistent (reduced chi-squared above 1 + 3 sqrt(2 / dof)); if no range
-// is consistent, the one of least reduced chi-squared is kept and the verdict says the model does not
-// fit. The range and the reason are reported.
+// which flatten or bend the shortest taus. Unless a range is given, the fewest taus are dropped that
+// make the fit consistent (reduced chi-squared at most 1 + 3 sqrt(2 / dof)): the shortest first and,
+// at the same count, up to two of the longest, whose few degrees of freedom let a random walk's
+// excursion break every range keeping them; if no range is consistent, the one of least reduced
+// chi-squared is kept and the verdict says the model does not fit. The range and the reason are
+// reported.
 //
 // R acts only at the long end of the curve, where it trades off against K: an R within 2 of its
 // 1-sigma uncertainties of zero is held at zero (backward elimination), since left free its

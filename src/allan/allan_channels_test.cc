@@ -97,6 +97,13 @@ const AllanChannels& analysed() {
 // 2036 failed until the automatic fit range could drop the longest taus: noise_terms.h.)
 constexpr double kSigma = 4.0;
 
+// N, B, K of an Allan fit (NoiseTerms) or a PSD fit (SpectralNoiseTerms), and of the truth.
+template <typename Terms>
+std::array<const Figure*, 3> nbk_figures(const Terms& noise) {
+  return {&noise.angle_random_walk, &noise.bias_instability, &noise.rate_random_walk};
+}
+std::array<double, 3> nbk_truths(const AxisTruth& t) { return {t.n, t.b, t.k}; }
+
 double known_allan_bias(const AxisTruth& t, int term) {
   if (term != 0) return 0.0;
   return is_gyro(t) ? -0.6 : -1.2;
@@ -113,13 +120,10 @@ TEST(AllanChannels, EveryCoefficientOfEveryAxisComesBackWithinItsUncertainty) {
     EXPECT_EQ(channels.channels[i].name, t.name);
     ASSERT_TRUE(result.noise.has_value()) << t.name;
     const NoiseTerms& noise = *result.noise;
-    const std::array<const Figure*, 3> figures = {&noise.angle_random_walk, &noise.bias_instability,
-                                                  &noise.rate_random_walk};
-    const std::array<double, 3> truths = {t.n, t.b, t.k};
     for (int term = 0; term < 3; ++term) {
       const std::size_t index = static_cast<std::size_t>(term) + 1;  // N, B, K of Q, N, B, K, R
-      const Figure& figure = *figures[static_cast<std::size_t>(term)];
-      const double truth = truths[static_cast<std::size_t>(term)];
+      const Figure& figure = *nbk_figures(noise)[static_cast<std::size_t>(term)];
+      const double truth = nbk_truths(t)[static_cast<std::size_t>(term)];
       if (!noise.identified[index]) {
         ASSERT_TRUE(noise.upper_bounds[index].has_value()) << t.name << " " << figure.unit;
         EXPECT_LE(truth, noise.upper_bounds[index]->value) << t.name << " " << figure.unit << " (a bound)";
@@ -189,13 +193,10 @@ std::vector<std::string> psd_failures(const AllanChannels& channels) {
       continue;
     }
     const SpectralNoiseTerms& noise = result.psd->noise;
-    const std::array<const Figure*, 3> figures = {&noise.angle_random_walk, &noise.bias_instability,
-                                                  &noise.rate_random_walk};
-    const std::array<double, 3> truths = {t.n, t.b, t.k};
     for (int term = 0; term < 3; ++term) {
       const std::size_t index = static_cast<std::size_t>(term) + 1;  // N, B, K of Q, N, B, K, R
-      const Figure& figure = *figures[static_cast<std::size_t>(term)];
-      const double truth = truths[static_cast<std::size_t>(term)];
+      const Figure& figure = *nbk_figures(noise)[static_cast<std::size_t>(term)];
+      const double truth = nbk_truths(t)[static_cast<std::size_t>(term)];
       if (!noise.identified[index]) {
         if (!noise.upper_bounds[index].has_value() || !(truth <= noise.upper_bounds[index]->value)) {
           failures.push_back(fmt::format("{} (PSD): {} not identified, truth {} above the bound {}", t.name,
@@ -218,10 +219,7 @@ std::vector<std::string> psd_failures(const AllanChannels& channels) {
       ++count;
       // Against the Allan fit's figure of the same term.
       if (!result.noise.has_value() || !result.noise->identified[index]) continue;
-      const std::array<const Figure*, 3> allan = {&result.noise->angle_random_walk,
-                                                  &result.noise->bias_instability,
-                                                  &result.noise->rate_random_walk};
-      const Figure& a = *allan[static_cast<std::size_t>(term)];
+      const Figure& a = *nbk_figures(*result.noise)[static_cast<std::size_t>(term)];
       const Figure b = figure.in(a.unit);
       const double sigma = std::hypot(a.uncertainty.value_or(0.0), b.uncertainty.value_or(0.0));
       if (!(std::abs(a.value - b.value) <= (kSigma + std::abs(bias)) * sigma)) {

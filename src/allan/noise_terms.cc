@@ -245,6 +245,9 @@ void set_goodness(Fit& fit, std::size_t points) {
   }
 }
 
+// The most of the longest taus the automatic fit range drops (fit_noise_terms).
+constexpr std::size_t kLongestDropped = 2;
+
 // The fit over the points, then backward elimination of the rate ramp at the covariance of the
 // full model: while R (A_2) lies within kSignificance of its 1-sigma uncertainty of zero, it is held
 // at zero and the others refitted. R acts only at the long end of the curve, where it trades off
@@ -252,9 +255,6 @@ void set_goodness(Fit& fit, std::size_t points) {
 // through the non-negativity bound. Q (A_-2) stays free (the header): holding a weak but real Q at
 // zero moves its share of the short-tau variance into N. The covariance is then updated from the
 // final model.
-// The most of the longest taus the automatic fit range drops (fit_noise_terms).
-constexpr std::size_t kLongestDropped = 2;
-
 Fit fit_points(const PointSet& points, const NoiseFitOptions& options) {
   const Eigen::MatrixXd design = design_of(points);
   const Eigen::VectorXd observed = Eigen::Map<const Eigen::VectorXd>(points.variance.data(), design.rows());

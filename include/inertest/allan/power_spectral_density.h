@@ -57,12 +57,12 @@
 // off against N and K) are held at zero while within 2 of their 1-sigma uncertainties of zero. (The
 // Allan fit no longer eliminates Q, noise_terms.h; here Q's f^2 rise is seen over the whole upper
 // decade, and left free on records without quantisation its bound pulled N low: over 1000 seeds of
-// white noise and rate random walk, N's mean z went from -0.27 to -0.59.) Each coefficient's 1-sigma uncertainty is from the covariance
-// (J^T V^-1 J)^-1, scaled by the reduced chi-squared when that exceeds 1; a coefficient held at zero
-// is "not identified", with the upper bound max(0, a) + 2 s of its unconstrained estimate a and
-// uncertainty s. The figures have the names and units of NoiseTerms: deg/sqrt(h), deg/h,
-// deg/h/sqrt(h) (and arcsec, deg/h/h) for an angular-rate input unit; (U)*sqrt(s), U, (U)/sqrt(s)
-// (and (U)*s, (U)/s) otherwise.
+// white noise and rate random walk, N's mean z went from -0.27 to -0.59.) Each coefficient's
+// 1-sigma uncertainty is from the covariance (J^T V^-1 J)^-1, scaled by the reduced chi-squared
+// when that exceeds 1; a coefficient held at zero is "not identified", with the upper bound
+// max(0, a) + 2 s of its unconstrained estimate a and uncertainty s. The figures have the names and
+// units of NoiseTerms: deg/sqrt(h), deg/h, deg/h/sqrt(h) (and arcsec, deg/h/h) for an angular-rate
+// input unit; (U)*sqrt(s), U, (U)/sqrt(s) (and (U)*s, (U)/s) otherwise.
 // The rate ramp is deterministic: the form R^2 / (2 pi f)^3 does not describe what a ramp leaves in a
 // Welch PSD whose segments have their means removed (and Hann confines most of the remaining trend to
 // the bins the fit leaves out). R stays in the model so that a ramp's leakage does not bias K or B,

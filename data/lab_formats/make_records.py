@@ -6,6 +6,7 @@ readers are checked against files written by another implementation:
 record_v5.mat   scipy.io.savemat, MAT level 5 (v5), uncompressed
 record_v7.mat   scipy.io.savemat(do_compression=True), v7 (zlib-compressed variables)
 record.h5       h5py: a chunked, gzip-compressed dataset with `units` and `sample_rate_hz`
+rate_deg_s.h5   h5py: one gyro channel logged in deg/s, as IMUs log (`units` deg/s, 100 Hz)
 
 The values follow from the formulas below (known_values), which the tests repeat.
 """
@@ -41,6 +42,10 @@ def main(out):
         gyro.attrs["sample_rate_hz"] = 200.0
         f.create_dataset("imu/temperature", data=np.repeat(temperature, 10))
         f.create_dataset("matrix", data=np.arange(6.0).reshape(2, 3))
+    with h5py.File(f"{out}/rate_deg_s.h5", "w") as f:
+        gyro = f.create_dataset("gyro_z", data=rate)
+        gyro.attrs["units"] = "deg/s"
+        gyro.attrs["sample_rate_hz"] = 100.0
 
 
 if __name__ == "__main__":

@@ -70,6 +70,22 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   run = run_cli({"bias", first, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr(first + ": --rate is needed: the record stores no sample rate"));
+  // A record that stores its unit: deg/s is not the deg/h --input-deg-h says (the bias was read
+  // 3600 times too small), for each procedure of eq. (19); with K (output units per deg/s) the
+  // output is in its own units: 0.2495 deg/s (the mean, make_records.py) is 898.2 deg/h at K = 1.
+  const std::string deg_s = testing::source_path("data/lab_formats/rate_deg_s.h5");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"bias", deg_s, "--input-deg-h"},
+        std::vector<std::string>{"bias-repeatability", deg_s, deg_s, "--input-deg-h"},
+        std::vector<std::string>{"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + deg_s, "--input-deg-h"}}) {
+    run = run_cli(args);
+    EXPECT_EQ(run.exit_code, 2) << args[0];
+    EXPECT_THAT(run.err, HasSubstr(deg_s + ": the unit given, deg/h, contradicts the unit deg/s stored for channel 'gyro_z'"))
+        << args[0];
+  }
+  run = run_cli({"bias", deg_s, "--scale-factor", "1", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NEAR(nlohmann::json::parse(run.out)["bias"]["value"].get<double>(), 0.2495 * 3600.0, 1e-9);
   const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
   run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);

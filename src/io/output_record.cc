@@ -159,6 +159,13 @@ double record_sample_rate(const OutputRecordSource& source, double given) {
   return resolve_sample_rate(*file, file->find(channel_selector(source.column)), rate);
 }
 
+std::optional<std::string> record_unit(const OutputRecordSource& source, const std::optional<std::string>& given) {
+  const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source);
+  if (!channel_format) return given;
+  const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);
+  return resolve_unit(*file, file->find(channel_selector(source.column)), given);
+}
+
 void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,
                         std::optional<double> sample_rate_hz, const std::string& time_column) {
   // The source of one file; its errors without a place named at the file.
@@ -177,6 +184,9 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
   };
   call.record_sample_rate = [of_file](const std::string& file, double given) {
     return of_file(file, [&](const OutputRecordSource& record) { return record_sample_rate(record, given); });
+  };
+  call.record_unit = [of_file](const std::string& file, const std::optional<std::string>& given) {
+    return of_file(file, [&](const OutputRecordSource& record) { return record_unit(record, given); });
   };
 }
 

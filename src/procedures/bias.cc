@@ -48,6 +48,11 @@ void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options
   options.validate_conversion();
 }
 
+std::vector<double> read_bias_record(const ProcedureCall& call, const std::string& file, const BiasOptions& options) {
+  if (options.input_in_deg_h) call.record_unit(file, "deg/h");
+  return call.read_record(file);
+}
+
 double BiasOptions::deg_h_per_output() const { return input_in_deg_h ? 1.0 : kSecondsPerHour / scale_factor; }
 
 namespace {

@@ -37,7 +37,7 @@ ProcedureSpec bias_repeatability_spec() {
       })
       .compute([](const ProcedureCall& call, const BiasOptions& options) {
         std::vector<double> biases;
-        for (const RunInput& run : call.runs.at("runs")) biases.push_back(bias_deg_h(call.read_record(run.file), options));
+        for (const RunInput& run : call.runs.at("runs")) biases.push_back(bias_deg_h(read_bias_record(call, run.file, options), options));
         return bias_repeatability(biases);
       });
 }

@@ -110,7 +110,7 @@ ProcedureSpec bias_spec() {
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
         options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored
-        return bias(call.read_record(file), options);
+        return bias(read_bias_record(call, file, options), options);
       });
 }
 

@@ -65,7 +65,7 @@ ProcedureSpec bias_temperature_spec() {
       .compute([](const ProcedureCall& call, const Options& options) {
         std::vector<TemperatureRunBias> runs;
         for (const RunInput& run : call.runs.at("runs")) {
-          runs.push_back({run.number, bias_deg_h(call.read_record(run.file), options.conversion)});
+          runs.push_back({run.number, bias_deg_h(read_bias_record(call, run.file, options.conversion), options.conversion)});
         }
         return bias_temperature_sensitivity(runs, options.temperature);
       });

@@ -345,6 +345,10 @@ struct ProcedureCall {
   // named channels): a contradiction is an Error naming both; `given` 0 (none given): the stored
   // rate, or a ParameterError on sample_rate_hz when the file stores none. Set with read_record.
   std::function<double(const std::string& file, double given)> record_sample_rate;
+  // The unit of a record's samples, `given` checked against the unit the file stores (a record of
+  // named channels): a contradiction is an Error naming both. Set with read_record.
+  std::function<std::optional<std::string>(const std::string& file, const std::optional<std::string>& given)>
+      record_unit;
   // Progress of a long computation (a terminal's on the command line, the campaign's in a plan).
   ProgressCallback progress;
   // Where a plan's exports go (the campaign's staging directory, moved beside its results.json once

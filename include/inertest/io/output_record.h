@@ -54,8 +54,14 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
 // given: the stored rate, else a ParameterError on sample_rate_hz.
 double record_sample_rate(const OutputRecordSource& source, double given);
 
-// Sets the record readers of a procedure's call (read_record, read_timed_record and
-// record_sample_rate) for records stored as `source` says (its path each file's), as the command
+// The unit of a record's samples: `given`, checked against the unit a record of named channels
+// stores for the channel (io/channel_record.h resolve_unit: a contradiction is an Error naming
+// both; a stored unit inertest does not know yields to `given`). Text and raw binary records store
+// none: `given`. Without `given`, the stored unit, if any.
+std::optional<std::string> record_unit(const OutputRecordSource& source, const std::optional<std::string>& given);
+
+// Sets the record readers of a procedure's call (read_record, read_timed_record,
+// record_sample_rate and record_unit) for records stored as `source` says (its path each file's), as the command
 // line, a plan step and Python give it: at least `minimum_samples` samples, timed by
 // `sample_rate_hz` or the time column. An Error without a place gets the file's.
 void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,

@@ -83,6 +83,12 @@ ProcedureSpec bias_spec();
 // and not given when they do (it would go unused), then validate_conversion(). Throws Error.
 void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options, const std::string& procedure);
 
+// One run's record for eq. (19), read as `call` says it is stored. Records said to hold deg/h are
+// checked against the unit the file stores (an HDF5 or TDMS channel's): deg/s stored is an Error
+// naming both, not a bias 3600 times too small. Records of the output are in output units, whatever
+// their name. Throws Error naming the file.
+std::vector<double> read_bias_record(const ProcedureCall& call, const std::string& file, const BiasOptions& options);
+
 // Declares eq. (19)'s conversion on `definition`, alike for bias, its repeatability and temperature
 // sensitivity: scale_factor (K; a plan without it takes [instrument] nominal_scale_factor, unless its
 // records hold deg/h) and input

@@ -60,7 +60,8 @@ std::optional<double> parse_number(std::string_view text) {
   if (text.empty()) return std::nullopt;
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (*begin == '+') ++begin;  // fast_float rejects a leading '+'
+  // fast_float rejects a leading '+': one is skipped, unless a sign follows ("+-1" is no number)
+  if (*begin == '+' && !(end - begin > 1 && (begin[1] == '-' || begin[1] == '+'))) ++begin;
   double value = 0.0;
   const auto result = parse_decimal(begin, end, value);
   if (result.ec != std::errc() || result.ptr != end) return std::nullopt;
@@ -366,7 +367,8 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
     while (p < end && is_blank(*p)) ++p;
     if (p < end && *p == '"') return nullptr;
     if (slots[field] >= 0) {
-      if (p < end && *p == '+') ++p;  // as parse_number: fast_float rejects a leading '+'
+      // as parse_number: a leading '+' skipped unless a sign follows
+      if (p < end && *p == '+' && !(end - p > 1 && (p[1] == '-' || p[1] == '+'))) ++p;
       double value = 0.0;
       const auto parsed = parse_decimal(p, end, value);
       if (parsed.ec != std::errc() || !std::isfinite(value)) return nullptr;

@@ -101,6 +101,8 @@ INSTANTIATE_TEST_SUITE_P(
     TextTable, MalformedText,
     ::testing::Values(
         BadInput{"malformed_number", "rate,output\n1,2\n3,4x\n", "rec.csv:3:3: expected a number in column 'output', found '4x'"},
+        // One '+' is a sign ("+1"); a second sign is no number: "+-1" was read as -1.
+        BadInput{"two_signs", "rate,output\n1,2\n3,+-4\n", "rec.csv:3:3: expected a number in column 'output', found '+-4'"},
         BadInput{"too_few_columns", "rate,output\n1,2\n3\n", "rec.csv:3:2: expected 2 columns, found 1"},
         BadInput{"too_many_columns", "rate,output\n1,2,5\n", "rec.csv:2:5: expected 2 columns, found 3"},
         BadInput{"nan", "rate,output\n1,nan\n", "rec.csv:2:3: 'nan' is not a finite number"},

@@ -1,5 +1,8 @@
 #include "inertest/io/time_stamps.h"
 
+#include <cmath>
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "inertest/core/error.h"
@@ -35,6 +38,33 @@ TEST(TimeStamps, RegularRecordIsOneSegment) {
   EXPECT_EQ(report.segments[0].size(), 4u);
   EXPECT_EQ(report.segments[0].first_line, 2u);
   EXPECT_EQ(report.segments[0].last_line, 5u);
+}
+
+// Epoch seconds (1.7e9) at 1 kHz, written to the millisecond: doubles there are 2.4e-7 s apart and
+// the median step read 0.99992752 ms (72 ppm; a gap of 1e5 intervals miscounted by 7). The mean
+// step between the gaps gives the interval to within two roundings a run over the steps (0.17 ppm
+// here); a gap of 100 samples is counted exactly.
+TEST(TimeStamps, CoarseEpochStampsGiveTheIntervalAndTheMissingCount) {
+  std::string text = "time,gyro\n";
+  for (int i = 0; i < 3000; ++i) {
+    if (i >= 1000 && i < 1100) continue;  // 100 samples missing
+    text += fmt::format("{:.3f},{}\n", 1.7e9 + i / 1000.0, i);
+  }
+  TextTable table = table_of(text);
+  TimeStampOptions options;
+  options.policy = GapPolicy::kSplit;
+  const TimeStampReport report = check_time_stamps(table, 0, options);
+  // Two runs, each end rounded by at most half the spacing 2^-22 s: 4 x 2^-23 s over 2899 steps.
+  EXPECT_NEAR(report.sample_interval, 1e-3, 4.0 * std::ldexp(1.0, -23) / 2899.0);
+  ASSERT_EQ(report.gaps.size(), 1u);
+  EXPECT_EQ(report.gaps[0].missing, 100u);
+}
+
+// Steps that truly vary (0.9, 1.1, ...) keep the median step (the lower: 0.9): the mean is no
+// rounding of it.
+TEST(TimeStamps, VaryingStepsKeepTheMedian) {
+  TextTable table = table_of("t,v\n0,1\n0.9,2\n2.0,3\n2.9,4\n4.0,5\n");
+  EXPECT_DOUBLE_EQ(check_time_stamps(table, 0, {}).sample_interval, 0.9);
 }
 
 TEST(TimeStamps, StopNamesTheGap) {

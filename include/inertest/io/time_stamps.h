@@ -26,7 +26,8 @@ std::string to_string(GapPolicy policy);
 
 struct TimeStampOptions {
   GapPolicy policy = GapPolicy::kStop;
-  // The nominal sample interval in the time column's unit; absent: the median step of the record.
+  // The nominal sample interval in the time column's unit; absent: the median step of the record
+  // (refined by the mean step between gaps where the stamps are coarse, see time_stamps.cc).
   std::optional<double> sample_interval;
   // A step longer than gap_factor sample intervals is a gap (1.5: one sample or more is missing).
   double gap_factor = 1.5;

@@ -26,6 +26,38 @@ namespace py = pybind11;
 // C-contiguous by pybind11 only when it is not already, so a float64 array is never copied.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+}  // namespace inertest::python
+
+namespace pybind11::detail {
+
+// DoubleArray's conversion, as array_t's (python/bindings.h above), for arrays of real numbers only:
+// numpy's cast would drop a complex array's imaginary part (with a warning) and turn datetime64
+// stamps into counts of seconds, to be taken as rates. Integers, booleans and floats convert;
+// complex, datetime, timedelta, text and raw bytes are a TypeError naming the dtype.
+template <>
+struct pyobject_caster<inertest::python::DoubleArray> {
+  using type = inertest::python::DoubleArray;
+  bool load(handle src, bool convert) {
+    if (!convert && !type::check_(src)) return false;
+    const array given = array::ensure(src);  // an ndarray as it is; a sequence as numpy infers it
+    if (given) {
+      const char kind = given.dtype().kind();
+      if (kind == 'c' || kind == 'M' || kind == 'm' || kind == 'S' || kind == 'U' || kind == 'V') {
+        throw type_error("an array of real numbers is expected, not of dtype " +
+                         std::string(str(given.dtype()).cast<std::string>()));
+      }
+    }
+    value = type::ensure(src);
+    return static_cast<bool>(value);
+  }
+  static handle cast(const handle& src, return_value_policy /* policy */, handle /* parent */) { return src.inc_ref(); }
+  PYBIND11_TYPE_CASTER(type, handle_type_name<type>::name);
+};
+
+}  // namespace pybind11::detail
+
+namespace inertest::python {
+
 // A view of a one-dimensional array's buffer; `name` is the argument's name for the error. A NaN or
 // an infinity is an Error naming its place (as a record's is), unless `values` is Values::any.
 enum class Values { finite, any };

@@ -156,3 +156,22 @@ def test_a_nan_in_an_array_is_an_error_naming_its_place():
         inertest.bias(output, sample_rate_hz=1.0, scale_factor=1.0)
     with pytest.raises(inertest.Error, match=r"scale_factors: value 3 \(inf\) is not a finite number"):
         inertest.scale_factor_repeatability(np.array([1000.0, 1001.0, np.inf, 1000.0, 1000.0, 1000.0]))
+
+
+@pytest.mark.parametrize("values, dtype", [
+    (np.arange(10) + 5j, "complex128"),                 # numpy's cast dropped the imaginary part
+    (np.arange(10).astype("datetime64[s]"), "datetime64"),  # read as rates: a bias of 358200 deg/h
+    (np.arange(10).astype("timedelta64[ms]"), "timedelta64"),
+    (np.array([str(v) for v in range(10)]), "<U1"),
+])
+def test_an_array_of_no_real_numbers_is_refused_naming_its_dtype(values, dtype):
+    with pytest.raises(TypeError, match="an array of real numbers is expected, not of dtype " + dtype):
+        inertest.bias(values, sample_rate_hz=1.0, scale_factor=1.0)
+
+
+def test_integers_and_single_precision_convert_to_the_same_figures():
+    rate = np.array([0, 0, 1, 2, -1, -2, 0, 0])
+    output = np.array([1, 1, 11, 21, -9, -19, 1, 1])
+    expected = inertest.scale_factor(rate.astype(float), output.astype(float)).to_dict()
+    assert inertest.scale_factor(rate.astype(np.int16), output.astype(np.float32)).to_dict() == expected
+    assert inertest.scale_factor(list(rate), list(output)).to_dict() == expected

@@ -163,7 +163,8 @@ TEST(ChannelRecord, TdmsBigEndianWrittenByLabview) {
   for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(first[i], expected[i], 5e-8) << i;
 }
 
-// DAQmx raw data: int16 samples in a strided buffer, scaled by the channel's NI_Scale[1] (linear).
+// DAQmx raw data: int16 samples in a strided buffer, scaled by the channel's NI_Scale[1] (linear),
+// whose input source 0 is NI_Scale[0]: no Scale_Type, so the DAQmx scaler's own (raw) value.
 TEST(ChannelRecord, TdmsDaqmxRawDataScaled) {
   const auto record = open_channel_record(tdms_file("raw1.tdms"), ChannelRecordFormat::kTdms);
   const std::size_t first_channel = record->find(ColumnSelector::parse("Layer Data/First  Channel"));
@@ -265,6 +266,112 @@ TEST(ChannelRecord, TdmsInterleavedThenContiguousSegmentsAndIndexFile) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.message(), HasSubstr("byte offset 0: the segment lead-in differs from the one in the index file"));
+  }
+}
+
+}  // namespace
+}  // namespace inertest
+
+namespace inertest {
+namespace {
+
+constexpr std::uint32_t kTocMetaData = 2, kTocNewObjList = 4, kTocRawData = 8, kTocInterleaved = 32, kTocDaqmx = 128;
+constexpr std::uint32_t kRawDataInputSource = 0xFFFFFFFF;
+
+// A DAQmx segment of one channel "/'g'/'c'": i16 raw values in a 2-byte stride (format changing
+// scaler, index 0x1269), the NI_Scale[n] properties given as (type, name, number or text).
+struct ScaleProperty {
+  std::string name;
+  std::uint32_t type;  // 7 u32, 10 f64, 0x20 string
+  double number = 0.0;
+  std::string text = {};
+};
+
+std::string daqmx_file(const std::vector<std::int16_t>& raw, const std::vector<ScaleProperty>& properties) {
+  TdmsBytes meta;
+  meta.u32(1);
+  meta.text("/'g'/'c'");
+  meta.u32(0x1269);
+  meta.u32(0xFFFFFFFF);  // DAQmx raw data type
+  meta.u32(1);
+  meta.u64(raw.size());
+  meta.u32(1);  // one scaler: i16 (DAQmx type 3), buffer 0, byte offset 0, sample format bitmap, scale id 0
+  for (const std::uint32_t v : {3u, 0u, 0u, 0u, 0u}) meta.u32(v);
+  meta.u32(1);  // one raw buffer, 2 bytes wide
+  meta.u32(2);
+  meta.u32(static_cast<std::uint32_t>(properties.size()));
+  for (const ScaleProperty& p : properties) {
+    meta.text(p.name);
+    meta.u32(p.type);
+    if (p.type == 0x20) {
+      meta.text(p.text);
+    } else if (p.type == 7) {
+      meta.u32(static_cast<std::uint32_t>(p.number));
+    } else {
+      meta.f64(p.number);
+    }
+  }
+  std::string data;
+  for (const std::int16_t v : raw) data.append(reinterpret_cast<const char*>(&v), 2);
+  return lead_in("TDSm", kTocMetaData | kTocNewObjList | kTocRawData | kTocDaqmx, meta.bytes.size() + data.size(),
+                 meta.bytes.size()) +
+         meta.bytes + data;
+}
+
+// NI_Scale[n]: linear y = slope x + intercept of the output of scale `source` (0xFFFFFFFF: the raw data).
+std::vector<ScaleProperty> linear_scale(std::size_t n, double slope, double intercept, double source) {
+  const std::string prefix = fmt::format("NI_Scale[{}]_", n);
+  return {{prefix + "Scale_Type", 0x20, 0.0, "Linear"},
+          {prefix + "Linear_Slope", 10, slope},
+          {prefix + "Linear_Y_Intercept", 10, intercept},
+          {prefix + "Linear_Input_Source", 7, source}};
+}
+
+std::vector<ScaleProperty> scales(std::initializer_list<std::vector<ScaleProperty>> each) {
+  std::vector<ScaleProperty> all{{"NI_Number_Of_Scales", 7, static_cast<double>(each.size())}};
+  for (const auto& scale : each) all.insert(all.end(), scale.begin(), scale.end());
+  return all;
+}
+
+// Input source 0xFFFFFFFF is the raw data and N the output of NI_Scale[N] (npTDMS's
+// RAW_DATA_INPUT_SOURCE): raw 1, 2, 3 through x + 1, then 2x + 2, then 3x + 3 read 21, 27, 33. The
+// reader took an input source of 0 for the raw data and read 15, 21, 27.
+TEST(ChannelRecord, TdmsDaqmxScaleChainFollowsInputSources) {
+  testing::ScratchDirectory dir;
+  const std::string path =
+      dir.write("chain.tdms", daqmx_file({1, 2, 3}, scales({linear_scale(0, 1.0, 1.0, kRawDataInputSource),
+                                                              linear_scale(1, 2.0, 2.0, 0), linear_scale(2, 3.0, 3.0, 1)})));
+  const auto record = open_channel_record(path, ChannelRecordFormat::kTdms);
+  EXPECT_THAT(read_channel(*record, 0), ::testing::ElementsAre(21, 27, 33));
+  // A scale whose input source is a scale without a Scale_Type takes the DAQmx scaler's value (raw).
+  const std::string undefined =
+      dir.write("undefined.tdms", daqmx_file({1, 2, 3}, scales({{}, linear_scale(1, 2.0, 0.5, 0)})));
+  EXPECT_THAT(read_channel(*open_channel_record(undefined, ChannelRecordFormat::kTdms), 0),
+              ::testing::ElementsAre(2.5, 4.5, 6.5));
+}
+
+TEST(ChannelRecord, TdmsDaqmxScaleInputSourceOutOfRangeOrCyclicIsAnError) {
+  testing::ScratchDirectory dir;
+  const std::string beyond =
+      dir.write("beyond.tdms", daqmx_file({1, 2, 3}, scales({linear_scale(0, 1.0, 0.0, kRawDataInputSource),
+                                                               linear_scale(1, 2.0, 0.0, 5)})));
+  try {
+    open_channel_record(beyond, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, beyond);
+    EXPECT_EQ(e.message(), "channel 'g/c': NI_Scale[1]_Linear_Input_Source is 5, neither 0xFFFFFFFF (the raw data) "
+                           "nor one of the channel's 2 scales (NI_Number_Of_Scales)");
+  }
+  const std::string cycle = dir.write(
+      "cycle.tdms", daqmx_file({1, 2, 3}, scales({linear_scale(0, 1.0, 0.0, 1), linear_scale(1, 2.0, 0.0, 0)})));
+  try {
+    open_channel_record(cycle, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, cycle);
+    EXPECT_EQ(e.message(), "channel 'g/c': the input sources of its scales form a cycle, NI_Scale[0] <- NI_Scale[1] "
+                           "<- NI_Scale[0] (each takes the output of the next)");
   }
 }
 

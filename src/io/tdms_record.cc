@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -321,11 +322,15 @@ std::optional<std::string> text_property(const Object& object, const std::string
 }
 
 // A DAQmx scale: NI_Scale[n]_Scale_Type "Linear" (y = slope x + intercept) or "Polynomial"
-// (y = sum c_i x^i), applied to NI_Scale[n]_..._Input_Source's result (0: the raw value).
+// (y = sum c_i x^i), applied to the value NI_Scale[n]_..._Input_Source names. NI's convention (as
+// npTDMS's scaling.py reads it, RAW_DATA_INPUT_SOURCE): 0xFFFFFFFF, or no such property, is the raw
+// data; m < NI_Number_Of_Scales is the output of NI_Scale[m]. A scale m without a Scale_Type is the
+// DAQmx scaler's own value, which is the raw value read here.
 struct Scale {
   std::vector<double> coefficients;  // polynomial coefficients, lowest power first
   std::optional<std::size_t> input;  // scale applied before, nullopt: the raw value
 };
+constexpr double kRawDataInputSource = 4294967295.0;  // 0xFFFFFFFF, as a u32 property reads
 
 class TdmsRecord final : public ChannelRecord {
  public:
@@ -665,8 +670,10 @@ class TdmsRecord final : public ChannelRecord {
     data.digital = digital;
   }
 
-  // The scales of a DAQmx channel, from its NI_Scale[n] properties.
-  void read_scales(std::size_t id, const Object& object) {
+  // The scales of a DAQmx channel, from its NI_Scale[n] properties. An input source that is neither
+  // the raw data nor one of the channel's scales, or input sources that form a cycle, are an Error
+  // naming the channel.
+  void read_scales(std::size_t id, const Object& object, const std::string& channel) {
     const std::optional<double> count = number_property(object, "NI_Number_Of_Scales");
     if (!count || *count < 1 || *count > 64) return;
     std::vector<std::optional<Scale>> scales(static_cast<std::size_t>(*count));
@@ -692,11 +699,32 @@ class TdmsRecord final : public ChannelRecord {
         unsupported_scale_[id] = *kind;
         continue;
       }
-      const double source = number_property(object, source_key).value_or(0.0);
-      if (source >= 1 && source < static_cast<double>(n) + 1 && source != static_cast<double>(n)) {
+      const double source = number_property(object, source_key).value_or(kRawDataInputSource);
+      if (source != kRawDataInputSource) {
+        if (!(source >= 0.0 && source < static_cast<double>(scales.size()) && source == std::floor(source))) {
+          throw Error(SourceLocation{path(), 0, 0},
+                      fmt::format("channel '{}': {} is {}, neither 0xFFFFFFFF (the raw data) nor one of the "
+                                  "channel's {} scales (NI_Number_Of_Scales)",
+                                  channel, source_key, source, scales.size()));
+        }
         scale.input = static_cast<std::size_t>(source);
       }
       scales[n] = scale;
+    }
+    // Each scale's chain of inputs must end at the raw data (or a DAQmx scaler's value).
+    for (std::size_t n = 0; n < scales.size(); ++n) {
+      std::vector<std::size_t> chain{n};
+      for (std::size_t at = n; scales[at] && scales[at]->input && scales[*scales[at]->input];) {
+        at = *scales[at]->input;
+        const bool repeated = std::find(chain.begin(), chain.end(), at) != chain.end();
+        chain.push_back(at);
+        if (repeated) {
+          throw Error(SourceLocation{path(), 0, 0},
+                      fmt::format("channel '{}': the input sources of its scales form a cycle, NI_Scale[{}] (each "
+                                  "takes the output of the next)",
+                                  channel, fmt::join(chain, "] <- NI_Scale[")));
+        }
+      }
     }
     // The last scale defined gives the channel's values.
     for (std::size_t n = scales.size(); n-- > 0;) {
@@ -712,15 +740,13 @@ class TdmsRecord final : public ChannelRecord {
     const std::size_t id = channel_objects_[channel];
     const auto found = last_scale_.find(id);
     if (found == last_scale_.end()) return raw;
-    return apply(scales_.at(id), found->second, raw, 0);
+    return apply(scales_.at(id), found->second, raw);
   }
 
-  static double apply(const std::vector<std::optional<Scale>>& scales, std::size_t n, double raw, int depth) {
+  // Scale n of a chain read_scales has checked (no cycle, every input within the scales).
+  static double apply(const std::vector<std::optional<Scale>>& scales, std::size_t n, double raw) {
     const Scale& scale = *scales[n];
-    double x = raw;
-    if (scale.input && *scale.input < scales.size() && scales[*scale.input] && depth < 8) {
-      x = apply(scales, *scale.input, raw, depth + 1);
-    }
+    const double x = scale.input && scales[*scale.input] ? apply(scales, *scale.input, raw) : raw;
     double y = 0.0;
     for (std::size_t i = scale.coefficients.size(); i-- > 0;) y = y * x + scale.coefficients[i];
     return y;
@@ -735,7 +761,7 @@ class TdmsRecord final : public ChannelRecord {
       ChannelData& data = data_[id];
       ChannelInfo info;
       info.name = parts[0] + "/" + parts[1];
-      if (data.daqmx) read_scales(id, object);
+      if (data.daqmx) read_scales(id, object, info.name);
       std::uint32_t type = data.type;
       if (type == kVoid && object.index) type = object.index->daqmx ? kVoid : object.index->type;
       info.type = type == kVoid ? "none" : type_name(type, info.numeric);

@@ -333,6 +333,50 @@ std::vector<ScaleProperty> scales(std::initializer_list<std::vector<ScalePropert
   return all;
 }
 
+// The metadata of objects "/'g'/'a'", "/'g'/'b'"... each with a raw data index of `type` and its count.
+std::string object_list(std::uint32_t type, const std::vector<std::uint64_t>& counts) {
+  TdmsBytes meta;
+  meta.u32(static_cast<std::uint32_t>(counts.size()));
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    meta.text(fmt::format("/'g'/'{}'", static_cast<char>('a' + i)));
+    meta.u32(20);
+    meta.u32(type);
+    meta.u32(1);
+    meta.u64(counts[i]);
+    meta.u32(0);  // no properties
+  }
+  return meta.bytes;
+}
+
+std::string tdms_segment(std::uint32_t toc, const std::string& metadata, const std::string& data) {
+  return lead_in("TDSm", toc, metadata.size() + data.size(), metadata.size()) + metadata + data;
+}
+
+// Interleaved data holds one value of each object a frame: objects of different counts in one
+// interleaved segment were read frame by frame past the shorter one's values (QA's
+// t11_inter_counts.tdms: f64 means of -3e304) with no error.
+TEST(ChannelRecord, TdmsInterleavedObjectsOfDifferentCountsAreAnError) {
+  constexpr std::uint32_t kI32 = 3;
+  TdmsBytes values;
+  for (int i = 0; i < 5; ++i) values.i32(i);
+  const std::string first = tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, object_list(kI32, {2, 2}),
+                                         values.bytes.substr(0, 16));
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write(
+      "counts.tdms", first + tdms_segment(kTocMetaData | kTocRawData | kTocInterleaved, object_list(kI32, {3, 2}),
+                                          values.bytes.substr(0, 20)));
+  try {
+    open_channel_record(path, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, path);
+    EXPECT_EQ(e.message(), fmt::format("byte offset {}: interleaved raw data with 3 values of object /'g'/'a' but 2 of "
+                                       "object /'g'/'b': interleaved data holds the same number of values of every "
+                                       "object",
+                                       first.size()));
+  }
+}
+
 // Input source 0xFFFFFFFF is the raw data and N the output of NI_Scale[N] (npTDMS's
 // RAW_DATA_INPUT_SOURCE): raw 1, 2, 3 through x + 1, then 2x + 2, then 3x + 3 read 21, 27, 33. The
 // reader took an input source of 0 for the raw data and read 15, 21, 27.

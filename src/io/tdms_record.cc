@@ -619,10 +619,12 @@ class TdmsRecord final : public ChannelRecord {
     }
   }
 
+  // Interleaved data holds its values frame by frame, one value of each object a frame (NI, "TDMS
+  // File Format Internal Structure", Raw Data): every object of the segment has the same count.
   void add_interleaved(const std::vector<std::size_t>& ids, std::uint64_t start, std::uint64_t available,
                        bool big_endian, std::uint64_t segment) {
     std::uint64_t frame = 0;
-    std::uint64_t count = 0;
+    const std::uint64_t count = objects_[ids.front()].index->count;
     for (const std::size_t id : ids) {
       const RawDataIndex& index = *objects_[id].index;
       if (type_size(index.type) == 0 || index.type == kString) {
@@ -630,8 +632,13 @@ class TdmsRecord final : public ChannelRecord {
                     fmt::format("byte offset {}: interleaved raw data of object {} has no fixed size", segment,
                                 objects_[id].path));
       }
+      if (index.count != count) {
+        throw Error(SourceLocation{path(), 0, 0},
+                    fmt::format("byte offset {}: interleaved raw data with {} values of object {} but {} of object {}: "
+                                "interleaved data holds the same number of values of every object",
+                                segment, count, objects_[ids.front()].path, index.count, objects_[id].path));
+      }
       frame += type_size(index.type);
-      count = std::max(count, index.count);
     }
     const std::uint64_t frames = std::min(count, available / frame);
     std::uint64_t offset = start;

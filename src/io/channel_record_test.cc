@@ -377,6 +377,44 @@ TEST(ChannelRecord, TdmsInterleavedObjectsOfDifferentCountsAreAnError) {
   }
 }
 
+// A raw data index's count times the value size must fit in 64 bits and, in a segment whose lead-in
+// gives its length, within the segment's raw data. QA's t12_overflow.tdms: 2^61 + 1000 f64 values
+// wrapped to 8000 bytes and read as 1000 samples with no error.
+TEST(ChannelRecord, TdmsValueCountBeyondTheSegmentIsAnError) {
+  constexpr std::uint32_t kF64 = 10;
+  TdmsBytes values;
+  for (int i = 0; i < 1000; ++i) values.f64(i);
+  testing::ScratchDirectory dir;
+  const std::string overflow = dir.write(
+      "overflow.tdms", tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData,
+                                    object_list(kF64, {(std::uint64_t{1} << 61) + 1000}), values.bytes));
+  try {
+    open_channel_record(overflow, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, overflow);
+    // The object's path follows the lead-in (28 bytes) and the object count (4).
+    EXPECT_EQ(e.message(), "byte offset 32: object /'g'/'a' has 2305843009213694952 values of 8 bytes, more than "
+                           "2^64 bytes (a corrupt raw data index)");
+  }
+  const std::string beyond = dir.write(
+      "beyond.tdms", tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, object_list(kF64, {1000}),
+                                  values.bytes.substr(0, 4000)));
+  try {
+    open_channel_record(beyond, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "byte offset 0: the raw data indices of the segment's objects give 8000 bytes a chunk, but "
+                           "the segment holds 4000 bytes of raw data (a corrupt raw data index)");
+  }
+  // A segment the writer could not finish (next segment offset 0xFFFFFFFFFFFFFFFF) holds what fits.
+  const std::string metadata = object_list(kF64, {1000});
+  const std::string unfinished = dir.write(
+      "unfinished.tdms", lead_in("TDSm", kTocMetaData | kTocNewObjList | kTocRawData, ~std::uint64_t{0}, metadata.size()) +
+                             metadata + values.bytes.substr(0, 4000));
+  EXPECT_EQ(read_channel(*open_channel_record(unfinished, ChannelRecordFormat::kTdms), 0).size(), 500u);
+}
+
 // Input source 0xFFFFFFFF is the raw data and N the output of NI_Scale[N] (npTDMS's
 // RAW_DATA_INPUT_SOURCE): raw 1, 2, 3 through x + 1, then 2x + 2, then 3x + 3 read 21, 27, 33. The
 // reader took an input source of 0 for the raw data and read 15, 21, 27.

@@ -409,7 +409,8 @@ class TdmsRecord final : public ChannelRecord {
       const bool is_index = source.path() != file_.path();
       if (is_index) check_data_lead_in(data_position, toc);
       const std::uint64_t data_end_available = file_.size() - std::min(file_.size(), data_position + kLeadInBytes);
-      if (next_offset == kIncompleteSegment) {
+      const bool complete = next_offset != kIncompleteSegment;
+      if (!complete) {
         // A writer that stopped before finishing the segment: its raw data runs to the end of the file.
         next_offset = data_end_available;
       } else if (next_offset > data_end_available) {
@@ -436,7 +437,8 @@ class TdmsRecord final : public ChannelRecord {
         read_metadata(metadata, (toc & kTocNewObjList) != 0, list);
       }
       if ((toc & kTocRawData) != 0) {
-        add_raw_data(list, data_position + kLeadInBytes + raw_offset, next_offset - raw_offset, toc, data_position);
+        add_raw_data(list, data_position + kLeadInBytes + raw_offset, next_offset - raw_offset, toc, data_position,
+                     complete);
       }
       position += kLeadInBytes + (is_index ? raw_offset : next_offset);
       data_position += kLeadInBytes + next_offset;
@@ -487,8 +489,11 @@ class TdmsRecord final : public ChannelRecord {
           throw Error(SourceLocation{path(), 0, 0},
                       fmt::format("byte offset {}: object {} has raw data of unknown type 0x{:x}", object_offset,
                                   object_path, index.type));
-        } else {
-          index.bytes = index.count * type_size(index.type);
+        } else if (__builtin_mul_overflow(index.count, type_size(index.type), &index.bytes)) {
+          throw Error(SourceLocation{path(), 0, 0},
+                      fmt::format("byte offset {}: object {} has {} values of {} bytes, more than 2^64 bytes (a corrupt "
+                                  "raw data index)",
+                                  object_offset, object_path, index.count, type_size(index.type)));
         }
         objects_[id].index = index;
       }
@@ -565,12 +570,18 @@ class TdmsRecord final : public ChannelRecord {
     }
   }
 
+  // The raw data of the segment at byte offset `segment`: `size` bytes from `start`, in chunks as the
+  // objects' raw data indices lay out. A chunk that does not fit in 64 bits, or a complete segment
+  // (its lead-in gives its length) shorter than one chunk, is an Error naming the segment: its indices
+  // claim more values than it holds. The last chunk may be partial (a segment the writer could not
+  // finish, or one cut short): it holds what fits.
   void add_raw_data(const std::vector<std::size_t>& list, std::uint64_t start, std::uint64_t size, std::uint32_t toc,
-                    std::uint64_t segment) {
+                    std::uint64_t segment, bool complete) {
     const bool big_endian = (toc & kTocBigEndian) != 0;
     std::vector<std::size_t> with_data;
     std::uint64_t chunk = 0;
     bool daqmx_counted = false;
+    bool overflow = false;
     for (const std::size_t id : list) {
       if (!has_data_[id] || !objects_[id].index) continue;
       const RawDataIndex& index = *objects_[id].index;
@@ -578,14 +589,30 @@ class TdmsRecord final : public ChannelRecord {
       if (index.daqmx) {
         // The channels of a DAQmx segment share its raw buffers: counted once.
         if (!daqmx_counted) {
-          for (const std::uint32_t width : index.widths) chunk += index.count * width;
+          for (const std::uint32_t width : index.widths) {
+            std::uint64_t bytes = 0;
+            overflow = overflow || __builtin_mul_overflow(index.count, width, &bytes) ||
+                       __builtin_add_overflow(chunk, bytes, &chunk);
+          }
         }
         daqmx_counted = true;
       } else {
-        chunk += index.bytes;
+        overflow = overflow || __builtin_add_overflow(chunk, index.bytes, &chunk);
       }
     }
+    if (overflow) {
+      throw Error(SourceLocation{path(), 0, 0},
+                  fmt::format("byte offset {}: the raw data indices of the segment's objects add up to more than 2^64 "
+                              "bytes a chunk (a corrupt raw data index)",
+                              segment));
+    }
     if (chunk == 0 || size == 0) return;
+    if (complete && chunk > size) {
+      throw Error(SourceLocation{path(), 0, 0},
+                  fmt::format("byte offset {}: the raw data indices of the segment's objects give {} bytes a chunk, "
+                              "but the segment holds {} bytes of raw data (a corrupt raw data index)",
+                              segment, chunk, size));
+    }
     const bool interleaved = (toc & kTocInterleavedData) != 0 && !daqmx_counted;
     const std::uint64_t chunks = size / chunk;
     const std::uint64_t left_over = size % chunk;

@@ -415,6 +415,67 @@ TEST(ChannelRecord, TdmsValueCountBeyondTheSegmentIsAnError) {
   EXPECT_EQ(read_channel(*open_channel_record(unfinished, ChannelRecordFormat::kTdms), 0).size(), 500u);
 }
 
+// Metadata of the object "/'g'/'a'" with an i32 raw data index of `count` values (0: the index of
+// the previous segment) and the property wf_increment.
+std::string object_with_increment(std::uint64_t count, double increment) {
+  TdmsBytes meta;
+  meta.u32(1);
+  meta.text("/'g'/'a'");
+  if (count == 0) {
+    meta.u32(0);
+  } else {
+    meta.u32(20);
+    meta.u32(3);
+    meta.u32(1);
+    meta.u64(count);
+  }
+  meta.u32(1);
+  meta.text("wf_increment");
+  meta.u32(10);
+  meta.f64(increment);
+  return meta.bytes;
+}
+
+// A wf_increment that changes between segments: the samples are readable, but no one rate applies,
+// given or stored (as a type that changes between segments makes a channel unreadable). The reader
+// took the last increment for every sample: QA's t7_rate_change.tdms (0.01 s, then 0.02 s) read as 50 Hz.
+TEST(ChannelRecord, TdmsIncrementChangingBetweenSegmentsHasNoSampleRate) {
+  TdmsBytes values;
+  for (int i = 0; i < 2; ++i) values.i32(7 + i);
+  const std::string first = tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, object_with_increment(2, 0.01),
+                                         values.bytes);
+  testing::ScratchDirectory dir;
+  const std::string changed =
+      dir.write("changed.tdms", first + tdms_segment(kTocMetaData | kTocRawData, object_with_increment(0, 0.02), values.bytes));
+  const auto record = open_channel_record(changed, ChannelRecordFormat::kTdms);
+  EXPECT_THAT(read_channel(*record, 0), ::testing::ElementsAre(7, 8, 7, 8));
+  EXPECT_EQ(record->channels()[0].sample_rate_hz, std::nullopt);
+  const std::string problem = "channel 'g/a': wf_increment is 0.01 s for samples 1..2, then 0.02 s: the samples are not "
+                              "evenly spaced, so no one sample rate applies";
+  for (const std::optional<double> given : {std::optional<double>(), std::optional<double>(100.0)}) {
+    try {
+      resolve_sample_rate(*record, 0, given);
+      FAIL() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.location()->file, changed);
+      EXPECT_EQ(e.message(), problem);
+    }
+  }
+  EXPECT_THROW(stored_sample_rate({changed, RateRecordFormat::kAuto, ColumnSelector::parse("g/a")}), Error);
+  // Changed by a last segment without raw data: the samples' increment is not the file's.
+  const std::string after = dir.write(
+      "after.tdms", first + tdms_segment(kTocMetaData, object_with_increment(0, 0.02), ""));
+  EXPECT_EQ(open_channel_record(after, ChannelRecordFormat::kTdms)->channels()[0].sample_rate_problem,
+            "wf_increment is 0.01 s for samples 1..2, then 0.02 s (set after the last sample): the samples are not "
+            "evenly spaced, so no one sample rate applies");
+  // The same increment stated again is one rate.
+  const std::string same =
+      dir.write("same.tdms", first + tdms_segment(kTocMetaData | kTocRawData, object_with_increment(0, 0.01), values.bytes));
+  const auto same_record = open_channel_record(same, ChannelRecordFormat::kTdms);
+  EXPECT_EQ(same_record->channels()[0].sample_rate_problem, "");
+  EXPECT_EQ(resolve_sample_rate(*same_record, 0, std::nullopt), 100.0);
+}
+
 // Input source 0xFFFFFFFF is the raw data and N the output of NI_Scale[N] (npTDMS's
 // RAW_DATA_INPUT_SOURCE): raw 1, 2, 3 through x + 1, then 2x + 2, then 3x + 3 read 21, 27, 33. The
 // reader took an input source of 0 for the raw data and read 15, 21, 27.

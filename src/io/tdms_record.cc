@@ -267,6 +267,8 @@ struct ChannelData {
   bool digital = false;
   bool mixed_types = false;
   std::uint32_t bit_offset = 0;  // DAQmx digital lines: the line's bit in its byte
+  std::optional<double> increment;  // the wf_increment of the first samples that had one
+  std::string increment_change;     // the first other wf_increment, described; empty when none
   void add(Piece piece) {
     piece.first_sample = length;
     length += piece.count;
@@ -607,6 +609,7 @@ class TdmsRecord final : public ChannelRecord {
                               segment));
     }
     if (chunk == 0 || size == 0) return;
+    for (const std::size_t id : with_data) note_increment(id, false);
     if (complete && chunk > size) {
       throw Error(SourceLocation{path(), 0, 0},
                   fmt::format("byte offset {}: the raw data indices of the segment's objects give {} bytes a chunk, "
@@ -694,6 +697,25 @@ class TdmsRecord final : public ChannelRecord {
     data_[id].add(Piece{0, std::min(index.count, fits), buffer_start + scaler.byte_offset, width, scaler.type, big_endian});
     note_type(id, scaler.type, true, scaler.digital);
     data_[id].bit_offset = scaler.bit_offset;
+  }
+
+  // The wf_increment in effect for the samples a segment adds is the object's property as the
+  // metadata so far left it (a later segment's metadata overwrites it). Samples with another
+  // increment than earlier ones are not evenly spaced: the first such change is noted, with the
+  // number of samples before it; `after_last_sample`: the increment as the file ends.
+  void note_increment(std::size_t id, bool after_last_sample) {
+    const std::optional<double> increment = number_property(objects_[id], "wf_increment");
+    ChannelData& data = data_[id];
+    if (!increment || !data.increment_change.empty()) return;
+    if (!data.increment) {
+      if (!after_last_sample) data.increment = increment;
+      return;
+    }
+    if (std::abs(*increment - *data.increment) <= 1e-9 * std::abs(*data.increment)) return;
+    data.increment_change = fmt::format(
+        "wf_increment is {} s for samples 1..{}, then {} s{}: the samples are not evenly spaced, so no one sample "
+        "rate applies",
+        *data.increment, data.length, *increment, after_last_sample ? " (set after the last sample)" : "");
   }
 
   void note_type(std::size_t id, std::uint32_t type, bool daqmx, bool digital) {
@@ -808,7 +830,10 @@ class TdmsRecord final : public ChannelRecord {
       }
       info.length = data.length;
       info.unit = text_property(object, "unit_string").value_or("");
-      if (const auto increment = number_property(object, "wf_increment"); increment && *increment > 0.0) {
+      note_increment(id, true);
+      if (!data.increment_change.empty()) {
+        info.sample_rate_problem = data.increment_change;
+      } else if (const auto increment = number_property(object, "wf_increment"); increment && *increment > 0.0) {
         info.sample_rate_hz = 1.0 / *increment;
       }
       info.start_time_s = number_property(object, "wf_start_time");

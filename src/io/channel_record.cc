@@ -179,8 +179,9 @@ double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std
 std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
                                         const std::optional<std::string>& given) {
   const ChannelInfo& info = record.channels().at(channel);
-  if (info.unit.empty()) return given;
   const SourceLocation where{record.path(), 0, 0};
+  if (!info.unit_problem.empty()) throw Error(where, fmt::format("channel '{}': {}", info.name, info.unit_problem));
+  if (info.unit.empty()) return given;
   std::optional<Unit> stored;
   try {
     stored = Unit::parse(info.unit);

@@ -41,9 +41,14 @@ struct ChannelInfo {
   bool numeric = true;
   std::uint64_t length = 0;
   std::string unit;                       // the file's `units` / `unit_string`; empty when absent
+  // Why the file's unit cannot be used although it states one (an HDF5 `units` attribute that is
+  // not one string); empty when there is no such problem. unit is then empty, and resolve_unit
+  // refuses the channel.
+  std::string unit_problem;
   std::optional<double> sample_rate_hz;   // stored: 1 / wf_increment, or a sample_rate_hz attribute
   // Why no stored rate applies although the file states one (a TDMS wf_increment that changes
-  // between segments); empty when there is no such problem. sample_rate_hz is then nullopt, and
+  // between segments, an HDF5 rate attribute that is not one number); empty when there is no such
+  // problem. sample_rate_hz is then nullopt, and
   // resolve_sample_rate refuses the channel: the samples are readable, their rate is not.
   std::string sample_rate_problem;
   std::optional<double> start_time_s;     // stored wf_start_time, in seconds since 1970-01-01 UTC
@@ -100,8 +105,9 @@ double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std
 
 // The unit of the samples to use: `given`, or the stored one (HDF5 `units`, TDMS `unit_string`)
 // when none is given; nullopt when neither is known. Throws Error naming the file, the channel and
-// both units when they differ (as units: "deg/s" and "°/s" agree), and for a stored unit inertest
-// does not know when none is given.
+// both units when they differ (as units: "deg/s" and "°/s" agree), for a stored unit inertest
+// does not know when none is given, and naming the problem when the channel has a unit_problem
+// (given or not).
 std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
                                         const std::optional<std::string>& given);
 

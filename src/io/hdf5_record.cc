@@ -12,8 +12,10 @@
 #include <cmath>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 #include "io/channel_readers.h"
 
 namespace inertest {
@@ -261,31 +263,63 @@ class Hdf5Record final : public ChannelRecord {
     channels_.push_back(std::move(info));
   }
 
-  // The unit: the string attribute `units`, or `unit`. One in another form is the channel's
-  // unit_problem, not a unit left out.
+  // The unit: the string attribute `units`, or `unit`. One in another form, or both naming
+  // different units, is the channel's unit_problem, not a unit left out or chosen.
   static void read_unit(hid_t dataset, ChannelInfo& info) {
     const std::optional<std::string> units = attribute_value<std::string>(dataset, "units", info.unit_problem);
     const std::optional<std::string> unit = attribute_value<std::string>(dataset, "unit", info.unit_problem);
     if (!info.unit_problem.empty()) return;
+    if (units && unit && !same_unit(*units, *unit)) {
+      info.unit_problem =
+          fmt::format("the dataset's attributes units = {:?} and unit = {:?} contradict each other", *units, *unit);
+      return;
+    }
     info.unit = units.value_or(unit.value_or(""));
   }
 
+  // The same text, or units that convert 1 to 1 ("deg/s" and "°/s").
+  static bool same_unit(const std::string& first, const std::string& second) {
+    if (first == second) return true;
+    try {
+      return std::abs(convert(1.0, Unit::parse(first), Unit::parse(second)) - 1.0) <= 1e-12;
+    } catch (const Error&) {
+      return false;  // not a unit inertest knows, or of another dimension
+    }
+  }
+
   // The sample rate: the numeric attribute `sample_rate_hz`, or `sample_rate` (Hz), or 1 /
-  // `wf_increment` (s; one of 0 or less is no rate). One in another form is the channel's
-  // sample_rate_problem, not a rate left out.
+  // `wf_increment` (s; one of 0 or less is no rate). One in another form, or two that differ by
+  // more than 1e-9 relative (as resolve_sample_rate compares a given rate), is the channel's
+  // sample_rate_problem, not a rate left out or chosen.
   static void read_sample_rate(hid_t dataset, ChannelInfo& info) {
     std::string& problem = info.sample_rate_problem;
     const std::optional<double> rate = attribute_value<double>(dataset, "sample_rate_hz", problem);
     const std::optional<double> rate_alias = attribute_value<double>(dataset, "sample_rate", problem);
     const std::optional<double> increment = attribute_value<double>(dataset, "wf_increment", problem);
     if (!problem.empty()) return;
-    if (rate) {
-      info.sample_rate_hz = rate;
-    } else if (rate_alias) {
-      info.sample_rate_hz = rate_alias;
-    } else if (increment && *increment > 0.0) {
-      info.sample_rate_hz = 1.0 / *increment;
+    struct Stated {
+      const char* attribute;
+      double value;
+      double rate_hz;
+    };
+    std::vector<Stated> stated;
+    if (rate) stated.push_back({"sample_rate_hz", *rate, *rate});
+    if (rate_alias) stated.push_back({"sample_rate", *rate_alias, *rate_alias});
+    if (increment && *increment > 0.0) stated.push_back({"wf_increment", *increment, 1.0 / *increment});
+    if (stated.empty()) return;
+    const Stated& first = stated.front();
+    for (const Stated& other : stated) {
+      if (!(std::abs(other.rate_hz - first.rate_hz) <= 1e-9 * std::abs(first.rate_hz))) {
+        const auto described = [](const Stated& s) {
+          return std::string(s.attribute) == "wf_increment" ? fmt::format("{} = {} s ({} Hz)", s.attribute, s.value, s.rate_hz)
+                                                            : fmt::format("{} = {} Hz", s.attribute, s.value);
+        };
+        problem = fmt::format("the dataset's attributes {} and {} contradict each other", described(first),
+                              described(other));
+        return;
+      }
     }
+    info.sample_rate_hz = first.rate_hz;
   }
 
   Handle file_;

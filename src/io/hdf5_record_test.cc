@@ -130,5 +130,37 @@ TEST(Hdf5Record, UnitAttributeThatIsNotOneStringIsAnError) {
   }
 }
 
+// Attributes that state the rate or the unit twice must agree: the reader took the first and left
+// the other unread (QA's rate_conflict.h5, sample_rate_hz = 100 and wf_increment = 0.005;
+// unit_conflict.h5, units = "deg/s" and unit = "deg/h"). Agreeing ones are one rate, one unit.
+TEST(Hdf5Record, AttributesThatContradictEachOtherAreAnError) {
+  testing::ScratchDirectory dir;
+  const std::string rates = dir.path() + "/rates.h5";
+  const std::string aliases = dir.path() + "/aliases.h5";
+  const std::string units = dir.path() + "/units.h5";
+  Hdf5File(rates).numbers("sample_rate_hz", {100.0}).numbers("wf_increment", {0.005});
+  Hdf5File(aliases).numbers("sample_rate_hz", {100.0}).numbers("sample_rate", {100.5});
+  Hdf5File(units).strings("units", {"deg/s"}).strings("unit", {"deg/h"});
+  expect_error([&] { resolve_sample_rate(*open_channel_record(rates, ChannelRecordFormat::kHdf5), 0, 100.0); }, rates,
+               "channel 'g': the dataset's attributes sample_rate_hz = 100 Hz and wf_increment = 0.005 s (200 Hz) "
+               "contradict each other");
+  expect_error([&] { resolve_sample_rate(*open_channel_record(aliases, ChannelRecordFormat::kHdf5), 0, std::nullopt); },
+               aliases, "channel 'g': the dataset's attributes sample_rate_hz = 100 Hz and sample_rate = 100.5 Hz "
+                        "contradict each other");
+  expect_error([&] { resolve_unit(*open_channel_record(units, ChannelRecordFormat::kHdf5), 0, std::nullopt); }, units,
+               "channel 'g': the dataset's attributes units = \"deg/s\" and unit = \"deg/h\" contradict each other");
+
+  const std::string agreeing = dir.path() + "/agreeing.h5";
+  Hdf5File(agreeing)
+      .numbers("sample_rate_hz", {100.0})
+      .numbers("sample_rate", {100.0 * (1.0 + 5e-10)})
+      .numbers("wf_increment", {0.01})
+      .strings("units", {"deg/s"})
+      .strings("unit", {"\u00b0/s"});
+  const auto record = open_channel_record(agreeing, ChannelRecordFormat::kHdf5);
+  EXPECT_EQ(resolve_sample_rate(*record, 0, std::nullopt), 100.0);
+  EXPECT_EQ(resolve_unit(*record, 0, std::nullopt), "deg/s");
+}
+
 }  // namespace
 }  // namespace inertest

@@ -53,6 +53,9 @@ nlohmann::json describe_channel(ChannelRecord& record, std::size_t index, nlohma
   if (!info.unit.empty()) channel["unit"] = info.unit;
   if (info.sample_rate_hz) channel["sample_rate_hz"] = *info.sample_rate_hz;
   if (info.start_time_s) channel["start_time_s"] = *info.start_time_s;
+  for (const std::string* problem : {&info.sample_rate_problem, &info.unit_problem}) {
+    if (!problem->empty()) warnings.push_back(fmt::format("channel '{}': {}", info.name, *problem));
+  }
   if (!info.numeric || info.length == 0) return channel;
   double running_mean = 0.0;
   double squares = 0.0;

@@ -156,6 +156,9 @@ std::vector<double> read_channel(ChannelRecord& record, std::size_t channel) {
 double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given) {
   const ChannelInfo& info = record.channels().at(channel);
   const SourceLocation where{record.path(), 0, 0};
+  if (!info.sample_rate_problem.empty()) {
+    throw Error(where, fmt::format("channel '{}': {}", info.name, info.sample_rate_problem));
+  }
   if (info.sample_rate_hz && !(*info.sample_rate_hz > 0.0 && std::isfinite(*info.sample_rate_hz))) {
     if (given) return *given;  // a stored rate of 0 or NaN is no rate: the given one stands
     throw Error(where, fmt::format("channel '{}' stores the sample rate {} Hz, which is no rate: give it (--rate / "
@@ -176,8 +179,9 @@ double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std
 std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
                                         const std::optional<std::string>& given) {
   const ChannelInfo& info = record.channels().at(channel);
-  if (info.unit.empty()) return given;
   const SourceLocation where{record.path(), 0, 0};
+  if (!info.unit_problem.empty()) throw Error(where, fmt::format("channel '{}': {}", info.name, info.unit_problem));
+  if (info.unit.empty()) return given;
   std::optional<Unit> stored;
   try {
     stored = Unit::parse(info.unit);

@@ -163,7 +163,8 @@ TEST(ChannelRecord, TdmsBigEndianWrittenByLabview) {
   for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(first[i], expected[i], 5e-8) << i;
 }
 
-// DAQmx raw data: int16 samples in a strided buffer, scaled by the channel's NI_Scale[1] (linear).
+// DAQmx raw data: int16 samples in a strided buffer, scaled by the channel's NI_Scale[1] (linear),
+// whose input source 0 is NI_Scale[0]: no Scale_Type, so the DAQmx scaler's own (raw) value.
 TEST(ChannelRecord, TdmsDaqmxRawDataScaled) {
   const auto record = open_channel_record(tdms_file("raw1.tdms"), ChannelRecordFormat::kTdms);
   const std::size_t first_channel = record->find(ColumnSelector::parse("Layer Data/First  Channel"));
@@ -265,6 +266,255 @@ TEST(ChannelRecord, TdmsInterleavedThenContiguousSegmentsAndIndexFile) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.message(), HasSubstr("byte offset 0: the segment lead-in differs from the one in the index file"));
+  }
+}
+
+}  // namespace
+}  // namespace inertest
+
+namespace inertest {
+namespace {
+
+constexpr std::uint32_t kTocMetaData = 2, kTocNewObjList = 4, kTocRawData = 8, kTocInterleaved = 32, kTocDaqmx = 128;
+constexpr std::uint32_t kRawDataInputSource = 0xFFFFFFFF;
+
+// A DAQmx segment of one channel "/'g'/'c'": i16 raw values in a 2-byte stride (format changing
+// scaler, index 0x1269), the NI_Scale[n] properties given as (type, name, number or text).
+struct ScaleProperty {
+  std::string name;
+  std::uint32_t type;  // 7 u32, 10 f64, 0x20 string
+  double number = 0.0;
+  std::string text = {};
+};
+
+std::string daqmx_file(const std::vector<std::int16_t>& raw, const std::vector<ScaleProperty>& properties) {
+  TdmsBytes meta;
+  meta.u32(1);
+  meta.text("/'g'/'c'");
+  meta.u32(0x1269);
+  meta.u32(0xFFFFFFFF);  // DAQmx raw data type
+  meta.u32(1);
+  meta.u64(raw.size());
+  meta.u32(1);  // one scaler: i16 (DAQmx type 3), buffer 0, byte offset 0, sample format bitmap, scale id 0
+  for (const std::uint32_t v : {3u, 0u, 0u, 0u, 0u}) meta.u32(v);
+  meta.u32(1);  // one raw buffer, 2 bytes wide
+  meta.u32(2);
+  meta.u32(static_cast<std::uint32_t>(properties.size()));
+  for (const ScaleProperty& p : properties) {
+    meta.text(p.name);
+    meta.u32(p.type);
+    if (p.type == 0x20) {
+      meta.text(p.text);
+    } else if (p.type == 7) {
+      meta.u32(static_cast<std::uint32_t>(p.number));
+    } else {
+      meta.f64(p.number);
+    }
+  }
+  std::string data;
+  for (const std::int16_t v : raw) data.append(reinterpret_cast<const char*>(&v), 2);
+  return lead_in("TDSm", kTocMetaData | kTocNewObjList | kTocRawData | kTocDaqmx, meta.bytes.size() + data.size(),
+                 meta.bytes.size()) +
+         meta.bytes + data;
+}
+
+// NI_Scale[n]: linear y = slope x + intercept of the output of scale `source` (0xFFFFFFFF: the raw data).
+std::vector<ScaleProperty> linear_scale(std::size_t n, double slope, double intercept, double source) {
+  const std::string prefix = fmt::format("NI_Scale[{}]_", n);
+  return {{prefix + "Scale_Type", 0x20, 0.0, "Linear"},
+          {prefix + "Linear_Slope", 10, slope},
+          {prefix + "Linear_Y_Intercept", 10, intercept},
+          {prefix + "Linear_Input_Source", 7, source}};
+}
+
+std::vector<ScaleProperty> scales(std::initializer_list<std::vector<ScaleProperty>> each) {
+  std::vector<ScaleProperty> all{{"NI_Number_Of_Scales", 7, static_cast<double>(each.size())}};
+  for (const auto& scale : each) all.insert(all.end(), scale.begin(), scale.end());
+  return all;
+}
+
+// The metadata of objects "/'g'/'a'", "/'g'/'b'"... each with a raw data index of `type` and its count.
+std::string object_list(std::uint32_t type, const std::vector<std::uint64_t>& counts) {
+  TdmsBytes meta;
+  meta.u32(static_cast<std::uint32_t>(counts.size()));
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    meta.text(fmt::format("/'g'/'{}'", static_cast<char>('a' + i)));
+    meta.u32(20);
+    meta.u32(type);
+    meta.u32(1);
+    meta.u64(counts[i]);
+    meta.u32(0);  // no properties
+  }
+  return meta.bytes;
+}
+
+std::string tdms_segment(std::uint32_t toc, const std::string& metadata, const std::string& data) {
+  return lead_in("TDSm", toc, metadata.size() + data.size(), metadata.size()) + metadata + data;
+}
+
+// Interleaved data holds one value of each object a frame: objects of different counts in one
+// interleaved segment were read frame by frame past the shorter one's values (QA's
+// t11_inter_counts.tdms: f64 means of -3e304) with no error.
+TEST(ChannelRecord, TdmsInterleavedObjectsOfDifferentCountsAreAnError) {
+  constexpr std::uint32_t kI32 = 3;
+  TdmsBytes values;
+  for (int i = 0; i < 5; ++i) values.i32(i);
+  const std::string first = tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, object_list(kI32, {2, 2}),
+                                         values.bytes.substr(0, 16));
+  testing::ScratchDirectory dir;
+  const std::string path = dir.write(
+      "counts.tdms", first + tdms_segment(kTocMetaData | kTocRawData | kTocInterleaved, object_list(kI32, {3, 2}),
+                                          values.bytes.substr(0, 20)));
+  try {
+    open_channel_record(path, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, path);
+    EXPECT_EQ(e.message(), fmt::format("byte offset {}: interleaved raw data with 3 values of object /'g'/'a' but 2 of "
+                                       "object /'g'/'b': interleaved data holds the same number of values of every "
+                                       "object",
+                                       first.size()));
+  }
+}
+
+// A raw data index's count times the value size must fit in 64 bits and, in a segment whose lead-in
+// gives its length, within the segment's raw data. QA's t12_overflow.tdms: 2^61 + 1000 f64 values
+// wrapped to 8000 bytes and read as 1000 samples with no error.
+TEST(ChannelRecord, TdmsValueCountBeyondTheSegmentIsAnError) {
+  constexpr std::uint32_t kF64 = 10;
+  TdmsBytes values;
+  for (int i = 0; i < 1000; ++i) values.f64(i);
+  testing::ScratchDirectory dir;
+  const std::string overflow = dir.write(
+      "overflow.tdms", tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData,
+                                    object_list(kF64, {(std::uint64_t{1} << 61) + 1000}), values.bytes));
+  try {
+    open_channel_record(overflow, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, overflow);
+    // The object's path follows the lead-in (28 bytes) and the object count (4).
+    EXPECT_EQ(e.message(), "byte offset 32: object /'g'/'a' has 2305843009213694952 values of 8 bytes, more than "
+                           "2^64 bytes (a corrupt raw data index)");
+  }
+  const std::string beyond = dir.write(
+      "beyond.tdms", tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, object_list(kF64, {1000}),
+                                  values.bytes.substr(0, 4000)));
+  try {
+    open_channel_record(beyond, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "byte offset 0: the raw data indices of the segment's objects give 8000 bytes a chunk, but "
+                           "the segment holds 4000 bytes of raw data (a corrupt raw data index)");
+  }
+  // A segment the writer could not finish (next segment offset 0xFFFFFFFFFFFFFFFF) holds what fits.
+  const std::string metadata = object_list(kF64, {1000});
+  const std::string unfinished = dir.write(
+      "unfinished.tdms", lead_in("TDSm", kTocMetaData | kTocNewObjList | kTocRawData, ~std::uint64_t{0}, metadata.size()) +
+                             metadata + values.bytes.substr(0, 4000));
+  EXPECT_EQ(read_channel(*open_channel_record(unfinished, ChannelRecordFormat::kTdms), 0).size(), 500u);
+}
+
+// Metadata of the object "/'g'/'a'" with an i32 raw data index of `count` values (0: the index of
+// the previous segment) and the property wf_increment.
+std::string object_with_increment(std::uint64_t count, double increment) {
+  TdmsBytes meta;
+  meta.u32(1);
+  meta.text("/'g'/'a'");
+  if (count == 0) {
+    meta.u32(0);
+  } else {
+    meta.u32(20);
+    meta.u32(3);
+    meta.u32(1);
+    meta.u64(count);
+  }
+  meta.u32(1);
+  meta.text("wf_increment");
+  meta.u32(10);
+  meta.f64(increment);
+  return meta.bytes;
+}
+
+// A wf_increment that changes between segments: the samples are readable, but no one rate applies,
+// given or stored (as a type that changes between segments makes a channel unreadable). The reader
+// took the last increment for every sample: QA's t7_rate_change.tdms (0.01 s, then 0.02 s) read as 50 Hz.
+TEST(ChannelRecord, TdmsIncrementChangingBetweenSegmentsHasNoSampleRate) {
+  TdmsBytes values;
+  for (int i = 0; i < 2; ++i) values.i32(7 + i);
+  const std::string first = tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, object_with_increment(2, 0.01),
+                                         values.bytes);
+  testing::ScratchDirectory dir;
+  const std::string changed =
+      dir.write("changed.tdms", first + tdms_segment(kTocMetaData | kTocRawData, object_with_increment(0, 0.02), values.bytes));
+  const auto record = open_channel_record(changed, ChannelRecordFormat::kTdms);
+  EXPECT_THAT(read_channel(*record, 0), ::testing::ElementsAre(7, 8, 7, 8));
+  EXPECT_EQ(record->channels()[0].sample_rate_hz, std::nullopt);
+  const std::string problem = "channel 'g/a': wf_increment is 0.01 s for samples 1..2, then 0.02 s: the samples are not "
+                              "evenly spaced, so no one sample rate applies";
+  for (const std::optional<double> given : {std::optional<double>(), std::optional<double>(100.0)}) {
+    try {
+      resolve_sample_rate(*record, 0, given);
+      FAIL() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.location()->file, changed);
+      EXPECT_EQ(e.message(), problem);
+    }
+  }
+  EXPECT_THROW(stored_sample_rate({changed, RateRecordFormat::kAuto, ColumnSelector::parse("g/a")}), Error);
+  // Changed by a last segment without raw data: the samples' increment is not the file's.
+  const std::string after = dir.write(
+      "after.tdms", first + tdms_segment(kTocMetaData, object_with_increment(0, 0.02), ""));
+  EXPECT_EQ(open_channel_record(after, ChannelRecordFormat::kTdms)->channels()[0].sample_rate_problem,
+            "wf_increment is 0.01 s for samples 1..2, then 0.02 s (set after the last sample): the samples are not "
+            "evenly spaced, so no one sample rate applies");
+  // The same increment stated again is one rate.
+  const std::string same =
+      dir.write("same.tdms", first + tdms_segment(kTocMetaData | kTocRawData, object_with_increment(0, 0.01), values.bytes));
+  const auto same_record = open_channel_record(same, ChannelRecordFormat::kTdms);
+  EXPECT_EQ(same_record->channels()[0].sample_rate_problem, "");
+  EXPECT_EQ(resolve_sample_rate(*same_record, 0, std::nullopt), 100.0);
+}
+
+// Input source 0xFFFFFFFF is the raw data and N the output of NI_Scale[N] (npTDMS's
+// RAW_DATA_INPUT_SOURCE): raw 1, 2, 3 through x + 1, then 2x + 2, then 3x + 3 read 21, 27, 33. The
+// reader took an input source of 0 for the raw data and read 15, 21, 27.
+TEST(ChannelRecord, TdmsDaqmxScaleChainFollowsInputSources) {
+  testing::ScratchDirectory dir;
+  const std::string path =
+      dir.write("chain.tdms", daqmx_file({1, 2, 3}, scales({linear_scale(0, 1.0, 1.0, kRawDataInputSource),
+                                                              linear_scale(1, 2.0, 2.0, 0), linear_scale(2, 3.0, 3.0, 1)})));
+  const auto record = open_channel_record(path, ChannelRecordFormat::kTdms);
+  EXPECT_THAT(read_channel(*record, 0), ::testing::ElementsAre(21, 27, 33));
+  // A scale whose input source is a scale without a Scale_Type takes the DAQmx scaler's value (raw).
+  const std::string undefined =
+      dir.write("undefined.tdms", daqmx_file({1, 2, 3}, scales({{}, linear_scale(1, 2.0, 0.5, 0)})));
+  EXPECT_THAT(read_channel(*open_channel_record(undefined, ChannelRecordFormat::kTdms), 0),
+              ::testing::ElementsAre(2.5, 4.5, 6.5));
+}
+
+TEST(ChannelRecord, TdmsDaqmxScaleInputSourceOutOfRangeOrCyclicIsAnError) {
+  testing::ScratchDirectory dir;
+  const std::string beyond =
+      dir.write("beyond.tdms", daqmx_file({1, 2, 3}, scales({linear_scale(0, 1.0, 0.0, kRawDataInputSource),
+                                                               linear_scale(1, 2.0, 0.0, 5)})));
+  try {
+    open_channel_record(beyond, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, beyond);
+    EXPECT_EQ(e.message(), "channel 'g/c': NI_Scale[1]_Linear_Input_Source is 5, neither 0xFFFFFFFF (the raw data) "
+                           "nor one of the channel's 2 scales (NI_Number_Of_Scales)");
+  }
+  const std::string cycle = dir.write(
+      "cycle.tdms", daqmx_file({1, 2, 3}, scales({linear_scale(0, 1.0, 0.0, 1), linear_scale(1, 2.0, 0.0, 0)})));
+  try {
+    open_channel_record(cycle, ChannelRecordFormat::kTdms);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.location()->file, cycle);
+    EXPECT_EQ(e.message(), "channel 'g/c': the input sources of its scales form a cycle, NI_Scale[0] <- NI_Scale[1] "
+                           "<- NI_Scale[0] (each takes the output of the next)");
   }
 }
 

@@ -2,15 +2,20 @@
 // path ("group/dataset"). One-dimensional datasets (or N x 1 and 1 x N) of integers or floats are
 // read as samples, in hyperslabs of the range asked for, so a chunked, compressed dataset of 10^9
 // samples is never copied whole. Units come from a string attribute `units` (or `unit`), the
-// sample rate from a numeric attribute `sample_rate_hz` (or `sample_rate`), or `wf_increment` (s).
+// sample rate from a numeric attribute `sample_rate_hz` (or `sample_rate`), or `wf_increment` (s):
+// one number or one string each (a scalar or an array of one). Such an attribute in another form
+// leaves the channel's rate or unit unusable (ChannelInfo::sample_rate_problem, unit_problem).
 #include <fmt/format.h>
 #include <hdf5.h>
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 #include "io/channel_readers.h"
 
 namespace inertest {
@@ -88,20 +93,19 @@ std::string type_name(hid_t type, bool& numeric) {
 // H5T_VARIABLE, without the C cast of its macro.
 constexpr std::size_t kVariableLength = static_cast<std::size_t>(-1);
 
-std::optional<std::string> string_attribute(hid_t object, const char* name) {
-  if (H5Aexists(object, name) <= 0) return std::nullopt;
-  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-  if (!attribute.valid()) return std::nullopt;
-  Handle type(H5Aget_type(attribute.get()), H5Tclose);
+// The single string of a string attribute (a scalar, or an array of one); nullopt when it holds
+// anything else or cannot be read.
+std::optional<std::string> read_string(hid_t attribute) {
+  Handle type(H5Aget_type(attribute), H5Tclose);
   if (H5Tget_class(type.get()) != H5T_STRING) return std::nullopt;
-  Handle space(H5Aget_space(attribute.get()), H5Sclose);
+  Handle space(H5Aget_space(attribute), H5Sclose);
   if (H5Sget_simple_extent_npoints(space.get()) != 1) return std::nullopt;
   Handle memory_type(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_cset(memory_type.get(), H5Tget_cset(type.get()));
   if (H5Tis_variable_str(type.get()) > 0) {
     H5Tset_size(memory_type.get(), kVariableLength);
     char* text = nullptr;
-    if (H5Aread(attribute.get(), memory_type.get(), &text) < 0 || text == nullptr) return std::nullopt;
+    if (H5Aread(attribute, memory_type.get(), &text) < 0 || text == nullptr) return std::nullopt;
     std::string value(text);
     H5free_memory(text);
     return value;
@@ -110,22 +114,65 @@ std::optional<std::string> string_attribute(hid_t object, const char* name) {
   std::string value(size + 1, '\0');
   H5Tset_size(memory_type.get(), size + 1);
   H5Tset_strpad(memory_type.get(), H5T_STR_NULLTERM);
-  if (H5Aread(attribute.get(), memory_type.get(), value.data()) < 0) return std::nullopt;
+  if (H5Aread(attribute, memory_type.get(), value.data()) < 0) return std::nullopt;
   value.resize(value.find('\0'));
   return value;
 }
 
-std::optional<double> number_attribute(hid_t object, const char* name) {
-  if (H5Aexists(object, name) <= 0) return std::nullopt;
-  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-  Handle type(H5Aget_type(attribute.get()), H5Tclose);
-  Handle space(H5Aget_space(attribute.get()), H5Sclose);
+// The single number of a numeric attribute (integer or float, a scalar or an array of one);
+// nullopt when it holds anything else or cannot be read.
+std::optional<double> read_number(hid_t attribute) {
+  Handle type(H5Aget_type(attribute), H5Tclose);
+  Handle space(H5Aget_space(attribute), H5Sclose);
   const H5T_class_t type_class = H5Tget_class(type.get());
   if ((type_class != H5T_FLOAT && type_class != H5T_INTEGER) || H5Sget_simple_extent_npoints(space.get()) != 1) {
     return std::nullopt;
   }
   double value = 0.0;
-  if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) < 0) return std::nullopt;
+  if (H5Aread(attribute, H5T_NATIVE_DOUBLE, &value) < 0) return std::nullopt;
+  return value;
+}
+
+// What an attribute holds, for a message: "the string \"200\"", "2 numbers", "an enum value".
+std::string describe_attribute(hid_t attribute) {
+  Handle type(H5Aget_type(attribute), H5Tclose);
+  Handle space(H5Aget_space(attribute), H5Sclose);
+  const H5T_class_t type_class = H5Tget_class(type.get());
+  const hssize_t points = H5Sget_simple_extent_npoints(space.get());
+  if (type_class == H5T_STRING) {
+    if (const std::optional<std::string> text = read_string(attribute)) return fmt::format("the string {:?}", *text);
+    return fmt::format("{} strings", points);
+  }
+  if (type_class == H5T_FLOAT || type_class == H5T_INTEGER) {
+    if (const std::optional<double> number = read_number(attribute)) return fmt::format("the number {}", *number);
+    return fmt::format("{} numbers", points);
+  }
+  bool numeric = false;
+  const std::string name = type_name(type.get(), numeric);
+  return fmt::format("{} {} value{}", points == 1 ? "one" : std::to_string(points), name, points == 1 ? "" : "s");
+}
+
+// An attribute of a dataset read as one number or one string: absent (nullopt, no problem), the
+// value, or a problem saying what it holds instead (HDF5 attributes carry any type and shape).
+template <typename T>
+std::optional<T> attribute_value(hid_t object, const char* name, std::string& problem) {
+  if (H5Aexists(object, name) <= 0) return std::nullopt;
+  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
+  const char* expected = std::is_same_v<T, double> ? "one number" : "one string";
+  if (!attribute.valid()) {
+    if (problem.empty()) problem = fmt::format("the dataset's attribute {} is unreadable: {}", name, hdf5_error_text());
+    return std::nullopt;
+  }
+  std::optional<T> value;
+  if constexpr (std::is_same_v<T, double>) {
+    value = read_number(attribute.get());
+  } else {
+    value = read_string(attribute.get());
+  }
+  if (!value && problem.empty()) {
+    problem = fmt::format("the dataset's attribute {} is unreadable: expected {}, found {}", name, expected,
+                          describe_attribute(attribute.get()));
+  }
   return value;
 }
 
@@ -210,16 +257,69 @@ class Hdf5Record final : public ChannelRecord {
       info.type += rank == 0 ? "scalar" : shape;
       info.numeric = false;
     }
-    info.unit = string_attribute(dataset, "units").value_or(string_attribute(dataset, "unit").value_or(""));
-    if (auto rate = number_attribute(dataset, "sample_rate_hz")) {
-      info.sample_rate_hz = rate;
-    } else if (auto rate_alias = number_attribute(dataset, "sample_rate")) {
-      info.sample_rate_hz = rate_alias;
-    } else if (auto increment = number_attribute(dataset, "wf_increment"); increment && *increment > 0.0) {
-      info.sample_rate_hz = 1.0 / *increment;
-    }
+    read_unit(dataset, info);
+    read_sample_rate(dataset, info);
     H5Eclear2(H5E_DEFAULT);
     channels_.push_back(std::move(info));
+  }
+
+  // The unit: the string attribute `units`, or `unit`. One in another form, or both naming
+  // different units, is the channel's unit_problem, not a unit left out or chosen.
+  static void read_unit(hid_t dataset, ChannelInfo& info) {
+    const std::optional<std::string> units = attribute_value<std::string>(dataset, "units", info.unit_problem);
+    const std::optional<std::string> unit = attribute_value<std::string>(dataset, "unit", info.unit_problem);
+    if (!info.unit_problem.empty()) return;
+    if (units && unit && !same_unit(*units, *unit)) {
+      info.unit_problem =
+          fmt::format("the dataset's attributes units = {:?} and unit = {:?} contradict each other", *units, *unit);
+      return;
+    }
+    info.unit = units.value_or(unit.value_or(""));
+  }
+
+  // The same text, or units that convert 1 to 1 ("deg/s" and "°/s").
+  static bool same_unit(const std::string& first, const std::string& second) {
+    if (first == second) return true;
+    try {
+      return std::abs(convert(1.0, Unit::parse(first), Unit::parse(second)) - 1.0) <= 1e-12;
+    } catch (const Error&) {
+      return false;  // not a unit inertest knows, or of another dimension
+    }
+  }
+
+  // The sample rate: the numeric attribute `sample_rate_hz`, or `sample_rate` (Hz), or 1 /
+  // `wf_increment` (s; one of 0 or less is no rate). One in another form, or two that differ by
+  // more than 1e-9 relative (as resolve_sample_rate compares a given rate), is the channel's
+  // sample_rate_problem, not a rate left out or chosen.
+  static void read_sample_rate(hid_t dataset, ChannelInfo& info) {
+    std::string& problem = info.sample_rate_problem;
+    const std::optional<double> rate = attribute_value<double>(dataset, "sample_rate_hz", problem);
+    const std::optional<double> rate_alias = attribute_value<double>(dataset, "sample_rate", problem);
+    const std::optional<double> increment = attribute_value<double>(dataset, "wf_increment", problem);
+    if (!problem.empty()) return;
+    struct Stated {
+      const char* attribute;
+      double value;
+      double rate_hz;
+    };
+    std::vector<Stated> stated;
+    if (rate) stated.push_back({"sample_rate_hz", *rate, *rate});
+    if (rate_alias) stated.push_back({"sample_rate", *rate_alias, *rate_alias});
+    if (increment && *increment > 0.0) stated.push_back({"wf_increment", *increment, 1.0 / *increment});
+    if (stated.empty()) return;
+    const Stated& first = stated.front();
+    for (const Stated& other : stated) {
+      if (!(std::abs(other.rate_hz - first.rate_hz) <= 1e-9 * std::abs(first.rate_hz))) {
+        const auto described = [](const Stated& s) {
+          return std::string(s.attribute) == "wf_increment" ? fmt::format("{} = {} s ({} Hz)", s.attribute, s.value, s.rate_hz)
+                                                            : fmt::format("{} = {} Hz", s.attribute, s.value);
+        };
+        problem = fmt::format("the dataset's attributes {} and {} contradict each other", described(first),
+                              described(other));
+        return;
+      }
+    }
+    info.sample_rate_hz = first.rate_hz;
   }
 
   Handle file_;

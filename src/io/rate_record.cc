@@ -127,8 +127,10 @@ std::optional<double> stored_sample_rate(const RateRecordSource& source) {
   if (!format) return std::nullopt;
   const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *format);
   const std::size_t channel = record->find(source.column);
-  if (!record->channels()[channel].sample_rate_hz) return std::nullopt;
-  return resolve_sample_rate(*record, channel, std::nullopt);  // a stored 0 or NaN is an error naming it
+  const ChannelInfo& info = record->channels()[channel];
+  if (!info.sample_rate_hz && info.sample_rate_problem.empty()) return std::nullopt;
+  // A stored 0 or NaN, or a rate stated but not applicable, is an error naming it.
+  return resolve_sample_rate(*record, channel, std::nullopt);
 }
 
 std::optional<std::string> resolved_unit(const RateRecordSource& source, const std::optional<std::string>& given) {

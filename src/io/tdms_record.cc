@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -266,6 +267,8 @@ struct ChannelData {
   bool digital = false;
   bool mixed_types = false;
   std::uint32_t bit_offset = 0;  // DAQmx digital lines: the line's bit in its byte
+  std::optional<double> increment;  // the wf_increment of the first samples that had one
+  std::string increment_change;     // the first other wf_increment, described; empty when none
   void add(Piece piece) {
     piece.first_sample = length;
     length += piece.count;
@@ -321,11 +324,15 @@ std::optional<std::string> text_property(const Object& object, const std::string
 }
 
 // A DAQmx scale: NI_Scale[n]_Scale_Type "Linear" (y = slope x + intercept) or "Polynomial"
-// (y = sum c_i x^i), applied to NI_Scale[n]_..._Input_Source's result (0: the raw value).
+// (y = sum c_i x^i), applied to the value NI_Scale[n]_..._Input_Source names. NI's convention (as
+// npTDMS's scaling.py reads it, RAW_DATA_INPUT_SOURCE): 0xFFFFFFFF, or no such property, is the raw
+// data; m < NI_Number_Of_Scales is the output of NI_Scale[m]. A scale m without a Scale_Type is the
+// DAQmx scaler's own value, which is the raw value read here.
 struct Scale {
   std::vector<double> coefficients;  // polynomial coefficients, lowest power first
   std::optional<std::size_t> input;  // scale applied before, nullopt: the raw value
 };
+constexpr double kRawDataInputSource = 4294967295.0;  // 0xFFFFFFFF, as a u32 property reads
 
 class TdmsRecord final : public ChannelRecord {
  public:
@@ -404,7 +411,8 @@ class TdmsRecord final : public ChannelRecord {
       const bool is_index = source.path() != file_.path();
       if (is_index) check_data_lead_in(data_position, toc);
       const std::uint64_t data_end_available = file_.size() - std::min(file_.size(), data_position + kLeadInBytes);
-      if (next_offset == kIncompleteSegment) {
+      const bool complete = next_offset != kIncompleteSegment;
+      if (!complete) {
         // A writer that stopped before finishing the segment: its raw data runs to the end of the file.
         next_offset = data_end_available;
       } else if (next_offset > data_end_available) {
@@ -431,7 +439,8 @@ class TdmsRecord final : public ChannelRecord {
         read_metadata(metadata, (toc & kTocNewObjList) != 0, list);
       }
       if ((toc & kTocRawData) != 0) {
-        add_raw_data(list, data_position + kLeadInBytes + raw_offset, next_offset - raw_offset, toc, data_position);
+        add_raw_data(list, data_position + kLeadInBytes + raw_offset, next_offset - raw_offset, toc, data_position,
+                     complete);
       }
       position += kLeadInBytes + (is_index ? raw_offset : next_offset);
       data_position += kLeadInBytes + next_offset;
@@ -482,8 +491,11 @@ class TdmsRecord final : public ChannelRecord {
           throw Error(SourceLocation{path(), 0, 0},
                       fmt::format("byte offset {}: object {} has raw data of unknown type 0x{:x}", object_offset,
                                   object_path, index.type));
-        } else {
-          index.bytes = index.count * type_size(index.type);
+        } else if (__builtin_mul_overflow(index.count, type_size(index.type), &index.bytes)) {
+          throw Error(SourceLocation{path(), 0, 0},
+                      fmt::format("byte offset {}: object {} has {} values of {} bytes, more than 2^64 bytes (a corrupt "
+                                  "raw data index)",
+                                  object_offset, object_path, index.count, type_size(index.type)));
         }
         objects_[id].index = index;
       }
@@ -560,12 +572,18 @@ class TdmsRecord final : public ChannelRecord {
     }
   }
 
+  // The raw data of the segment at byte offset `segment`: `size` bytes from `start`, in chunks as the
+  // objects' raw data indices lay out. A chunk that does not fit in 64 bits, or a complete segment
+  // (its lead-in gives its length) shorter than one chunk, is an Error naming the segment: its indices
+  // claim more values than it holds. The last chunk may be partial (a segment the writer could not
+  // finish, or one cut short): it holds what fits.
   void add_raw_data(const std::vector<std::size_t>& list, std::uint64_t start, std::uint64_t size, std::uint32_t toc,
-                    std::uint64_t segment) {
+                    std::uint64_t segment, bool complete) {
     const bool big_endian = (toc & kTocBigEndian) != 0;
     std::vector<std::size_t> with_data;
     std::uint64_t chunk = 0;
     bool daqmx_counted = false;
+    bool overflow = false;
     for (const std::size_t id : list) {
       if (!has_data_[id] || !objects_[id].index) continue;
       const RawDataIndex& index = *objects_[id].index;
@@ -573,14 +591,31 @@ class TdmsRecord final : public ChannelRecord {
       if (index.daqmx) {
         // The channels of a DAQmx segment share its raw buffers: counted once.
         if (!daqmx_counted) {
-          for (const std::uint32_t width : index.widths) chunk += index.count * width;
+          for (const std::uint32_t width : index.widths) {
+            std::uint64_t bytes = 0;
+            overflow = overflow || __builtin_mul_overflow(index.count, width, &bytes) ||
+                       __builtin_add_overflow(chunk, bytes, &chunk);
+          }
         }
         daqmx_counted = true;
       } else {
-        chunk += index.bytes;
+        overflow = overflow || __builtin_add_overflow(chunk, index.bytes, &chunk);
       }
     }
+    if (overflow) {
+      throw Error(SourceLocation{path(), 0, 0},
+                  fmt::format("byte offset {}: the raw data indices of the segment's objects add up to more than 2^64 "
+                              "bytes a chunk (a corrupt raw data index)",
+                              segment));
+    }
     if (chunk == 0 || size == 0) return;
+    for (const std::size_t id : with_data) note_increment(id, false);
+    if (complete && chunk > size) {
+      throw Error(SourceLocation{path(), 0, 0},
+                  fmt::format("byte offset {}: the raw data indices of the segment's objects give {} bytes a chunk, "
+                              "but the segment holds {} bytes of raw data (a corrupt raw data index)",
+                              segment, chunk, size));
+    }
     const bool interleaved = (toc & kTocInterleavedData) != 0 && !daqmx_counted;
     const std::uint64_t chunks = size / chunk;
     const std::uint64_t left_over = size % chunk;
@@ -614,10 +649,12 @@ class TdmsRecord final : public ChannelRecord {
     }
   }
 
+  // Interleaved data holds its values frame by frame, one value of each object a frame (NI, "TDMS
+  // File Format Internal Structure", Raw Data): every object of the segment has the same count.
   void add_interleaved(const std::vector<std::size_t>& ids, std::uint64_t start, std::uint64_t available,
                        bool big_endian, std::uint64_t segment) {
     std::uint64_t frame = 0;
-    std::uint64_t count = 0;
+    const std::uint64_t count = objects_[ids.front()].index->count;
     for (const std::size_t id : ids) {
       const RawDataIndex& index = *objects_[id].index;
       if (type_size(index.type) == 0 || index.type == kString) {
@@ -625,8 +662,13 @@ class TdmsRecord final : public ChannelRecord {
                     fmt::format("byte offset {}: interleaved raw data of object {} has no fixed size", segment,
                                 objects_[id].path));
       }
+      if (index.count != count) {
+        throw Error(SourceLocation{path(), 0, 0},
+                    fmt::format("byte offset {}: interleaved raw data with {} values of object {} but {} of object {}: "
+                                "interleaved data holds the same number of values of every object",
+                                segment, count, objects_[ids.front()].path, index.count, objects_[id].path));
+      }
       frame += type_size(index.type);
-      count = std::max(count, index.count);
     }
     const std::uint64_t frames = std::min(count, available / frame);
     std::uint64_t offset = start;
@@ -657,6 +699,25 @@ class TdmsRecord final : public ChannelRecord {
     data_[id].bit_offset = scaler.bit_offset;
   }
 
+  // The wf_increment in effect for the samples a segment adds is the object's property as the
+  // metadata so far left it (a later segment's metadata overwrites it). Samples with another
+  // increment than earlier ones are not evenly spaced: the first such change is noted, with the
+  // number of samples before it; `after_last_sample`: the increment as the file ends.
+  void note_increment(std::size_t id, bool after_last_sample) {
+    const std::optional<double> increment = number_property(objects_[id], "wf_increment");
+    ChannelData& data = data_[id];
+    if (!increment || !data.increment_change.empty()) return;
+    if (!data.increment) {
+      if (!after_last_sample) data.increment = increment;
+      return;
+    }
+    if (std::abs(*increment - *data.increment) <= 1e-9 * std::abs(*data.increment)) return;
+    data.increment_change = fmt::format(
+        "wf_increment is {} s for samples 1..{}, then {} s{}: the samples are not evenly spaced, so no one sample "
+        "rate applies",
+        *data.increment, data.length, *increment, after_last_sample ? " (set after the last sample)" : "");
+  }
+
   void note_type(std::size_t id, std::uint32_t type, bool daqmx, bool digital) {
     ChannelData& data = data_[id];
     if (data.type != kVoid && data.type != type) data.mixed_types = true;
@@ -665,8 +726,10 @@ class TdmsRecord final : public ChannelRecord {
     data.digital = digital;
   }
 
-  // The scales of a DAQmx channel, from its NI_Scale[n] properties.
-  void read_scales(std::size_t id, const Object& object) {
+  // The scales of a DAQmx channel, from its NI_Scale[n] properties. An input source that is neither
+  // the raw data nor one of the channel's scales, or input sources that form a cycle, are an Error
+  // naming the channel.
+  void read_scales(std::size_t id, const Object& object, const std::string& channel) {
     const std::optional<double> count = number_property(object, "NI_Number_Of_Scales");
     if (!count || *count < 1 || *count > 64) return;
     std::vector<std::optional<Scale>> scales(static_cast<std::size_t>(*count));
@@ -692,11 +755,32 @@ class TdmsRecord final : public ChannelRecord {
         unsupported_scale_[id] = *kind;
         continue;
       }
-      const double source = number_property(object, source_key).value_or(0.0);
-      if (source >= 1 && source < static_cast<double>(n) + 1 && source != static_cast<double>(n)) {
+      const double source = number_property(object, source_key).value_or(kRawDataInputSource);
+      if (source != kRawDataInputSource) {
+        if (!(source >= 0.0 && source < static_cast<double>(scales.size()) && source == std::floor(source))) {
+          throw Error(SourceLocation{path(), 0, 0},
+                      fmt::format("channel '{}': {} is {}, neither 0xFFFFFFFF (the raw data) nor one of the "
+                                  "channel's {} scales (NI_Number_Of_Scales)",
+                                  channel, source_key, source, scales.size()));
+        }
         scale.input = static_cast<std::size_t>(source);
       }
       scales[n] = scale;
+    }
+    // Each scale's chain of inputs must end at the raw data (or a DAQmx scaler's value).
+    for (std::size_t n = 0; n < scales.size(); ++n) {
+      std::vector<std::size_t> chain{n};
+      for (std::size_t at = n; scales[at] && scales[at]->input && scales[*scales[at]->input];) {
+        at = *scales[at]->input;
+        const bool repeated = std::find(chain.begin(), chain.end(), at) != chain.end();
+        chain.push_back(at);
+        if (repeated) {
+          throw Error(SourceLocation{path(), 0, 0},
+                      fmt::format("channel '{}': the input sources of its scales form a cycle, NI_Scale[{}] (each "
+                                  "takes the output of the next)",
+                                  channel, fmt::join(chain, "] <- NI_Scale[")));
+        }
+      }
     }
     // The last scale defined gives the channel's values.
     for (std::size_t n = scales.size(); n-- > 0;) {
@@ -712,15 +796,13 @@ class TdmsRecord final : public ChannelRecord {
     const std::size_t id = channel_objects_[channel];
     const auto found = last_scale_.find(id);
     if (found == last_scale_.end()) return raw;
-    return apply(scales_.at(id), found->second, raw, 0);
+    return apply(scales_.at(id), found->second, raw);
   }
 
-  static double apply(const std::vector<std::optional<Scale>>& scales, std::size_t n, double raw, int depth) {
+  // Scale n of a chain read_scales has checked (no cycle, every input within the scales).
+  static double apply(const std::vector<std::optional<Scale>>& scales, std::size_t n, double raw) {
     const Scale& scale = *scales[n];
-    double x = raw;
-    if (scale.input && *scale.input < scales.size() && scales[*scale.input] && depth < 8) {
-      x = apply(scales, *scale.input, raw, depth + 1);
-    }
+    const double x = scale.input && scales[*scale.input] ? apply(scales, *scale.input, raw) : raw;
     double y = 0.0;
     for (std::size_t i = scale.coefficients.size(); i-- > 0;) y = y * x + scale.coefficients[i];
     return y;
@@ -735,7 +817,7 @@ class TdmsRecord final : public ChannelRecord {
       ChannelData& data = data_[id];
       ChannelInfo info;
       info.name = parts[0] + "/" + parts[1];
-      if (data.daqmx) read_scales(id, object);
+      if (data.daqmx) read_scales(id, object, info.name);
       std::uint32_t type = data.type;
       if (type == kVoid && object.index) type = object.index->daqmx ? kVoid : object.index->type;
       info.type = type == kVoid ? "none" : type_name(type, info.numeric);
@@ -748,7 +830,10 @@ class TdmsRecord final : public ChannelRecord {
       }
       info.length = data.length;
       info.unit = text_property(object, "unit_string").value_or("");
-      if (const auto increment = number_property(object, "wf_increment"); increment && *increment > 0.0) {
+      note_increment(id, true);
+      if (!data.increment_change.empty()) {
+        info.sample_rate_problem = data.increment_change;
+      } else if (const auto increment = number_property(object, "wf_increment"); increment && *increment > 0.0) {
         info.sample_rate_hz = 1.0 / *increment;
       }
       info.start_time_s = number_property(object, "wf_start_time");

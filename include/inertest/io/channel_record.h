@@ -41,7 +41,16 @@ struct ChannelInfo {
   bool numeric = true;
   std::uint64_t length = 0;
   std::string unit;                       // the file's `units` / `unit_string`; empty when absent
+  // Why the file's unit cannot be used although it states one (an HDF5 `units` attribute that is
+  // not one string); empty when there is no such problem. unit is then empty, and resolve_unit
+  // refuses the channel.
+  std::string unit_problem;
   std::optional<double> sample_rate_hz;   // stored: 1 / wf_increment, or a sample_rate_hz attribute
+  // Why no stored rate applies although the file states one (a TDMS wf_increment that changes
+  // between segments, an HDF5 rate attribute that is not one number); empty when there is no such
+  // problem. sample_rate_hz is then nullopt, and
+  // resolve_sample_rate refuses the channel: the samples are readable, their rate is not.
+  std::string sample_rate_problem;
   std::optional<double> start_time_s;     // stored wf_start_time, in seconds since 1970-01-01 UTC
 };
 
@@ -89,14 +98,16 @@ std::size_t stream_channel(ChannelRecord& record, std::size_t channel,
 std::vector<double> read_channel(ChannelRecord& record, std::size_t channel);
 
 // The sample rate to use: the stored one, or `given` when the record stores none. Throws Error
-// naming the file, the channel and both values when they differ by more than 1e-9 relative, and
-// when neither is known.
+// naming the file, the channel and both values when they differ by more than 1e-9 relative, when
+// neither is known, and naming the file, the channel and the problem when the channel has a
+// sample_rate_problem (given or not).
 double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given);
 
 // The unit of the samples to use: `given`, or the stored one (HDF5 `units`, TDMS `unit_string`)
 // when none is given; nullopt when neither is known. Throws Error naming the file, the channel and
-// both units when they differ (as units: "deg/s" and "°/s" agree), and for a stored unit inertest
-// does not know when none is given.
+// both units when they differ (as units: "deg/s" and "°/s" agree), for a stored unit inertest
+// does not know when none is given, and naming the problem when the channel has a unit_problem
+// (given or not).
 std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
                                         const std::optional<std::string>& given);
 

@@ -42,7 +42,8 @@ RateRecordFormat resolve_rate_record_format(const RateRecordSource& source);
 std::optional<ChannelRecordFormat> channel_record_format_of(RateRecordFormat format);
 
 // The sample rate the record stores for the channel (io/channel_record.h), nullopt when it stores
-// none or is text or raw binary. Throws Error as read_rate_record.
+// none or is text or raw binary. Throws Error as read_rate_record, and as resolve_sample_rate for a
+// stored rate that is no rate or a channel with a sample_rate_problem.
 std::optional<double> stored_sample_rate(const RateRecordSource& source);
 
 // The unit of the samples: resolve_unit (io/channel_record.h) for a record of named channels,

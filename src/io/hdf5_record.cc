@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -308,7 +309,7 @@ class Hdf5Record final : public ChannelRecord {
     if (increment && *increment > 0.0) stated.push_back({"wf_increment", *increment, 1.0 / *increment});
     if (stated.empty()) return;
     const Stated& first = stated.front();
-    for (const Stated& other : stated) {
+    for (const Stated& other : std::span(stated).subspan(1)) {  // not first itself: a NaN equals nothing
       if (!(std::abs(other.rate_hz - first.rate_hz) <= 1e-9 * std::abs(first.rate_hz))) {
         const auto described = [](const Stated& s) {
           return std::string(s.attribute) == "wf_increment" ? fmt::format("{} = {} s ({} Hz)", s.attribute, s.value, s.rate_hz)

@@ -355,9 +355,12 @@ FigurePoint point_from_row(const Row& row, const std::string& unit) {
 }
 
 // The limits of the latest test that set any, converted into unit (rows ordered by test date
-// within an instrument; across instruments the latest date wins).
+// within an instrument; across instruments the latest date wins). A max alone bounds the magnitude,
+// as the campaign judged it (campaign.cc: |value| <= max): the spec is then [-max, max], lower is
+// -max and on_magnitude is set. Derived here, at query time, from the stored limits, so that
+// campaigns archived before need no migration.
 void take_limits(const std::vector<Row>& rows, const std::string& unit, std::optional<double>& lower,
-                 std::optional<double>& upper) {
+                 std::optional<double>& upper, bool& on_magnitude) {
   std::string limits_tested_on;
   for (const auto& row : rows) {
     if ((row.is_null(6) && row.is_null(7)) || row.text(0) < limits_tested_on) continue;
@@ -369,6 +372,8 @@ void take_limits(const std::vector<Row>& rows, const std::string& unit, std::opt
     lower = in_unit(row.optional_real(6));
     upper = in_unit(row.optional_real(7));
   }
+  on_magnitude = upper && !lower && *upper >= 0.0;
+  if (on_magnitude) lower = -*upper;
 }
 
 constexpr const char* figure_columns =
@@ -455,9 +460,9 @@ class DatabaseArchive final : public Archive {
       }
       throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
     }
-    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
+    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
     for (const auto& row : rows) history.points.push_back(point_from_row(row, history.unit));
-    take_limits(rows, history.unit, history.lower_limit, history.upper_limit);
+    take_limits(rows, history.unit, history.lower_limit, history.upper_limit, history.limit_on_magnitude);
     return history;
   }
 
@@ -472,9 +477,9 @@ class DatabaseArchive final : public Archive {
     if (rows.empty()) {
       throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
     }
-    FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
+    FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
     for (const auto& row : rows) fleet.points.push_back(point_from_row(row, fleet.unit));
-    take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit);
+    take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit, fleet.limit_on_magnitude);
     return fleet;
   }
 
@@ -513,7 +518,8 @@ nlohmann::json FigureHistory::to_json() const {
   const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   return {{"instrument", instrument},         {"figure", figure},
           {"unit", unit},                     {"points", std::move(list)},
-          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)}};
+          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)},
+          {"limit_on_magnitude", limit_on_magnitude}};
 }
 
 void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }

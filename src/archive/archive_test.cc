@@ -183,7 +183,8 @@ TEST_P(ArchiveBackend, AFigureALimitNamesInAListIsArchivedWithItsLimit) {
   EXPECT_EQ(stability.unit, "deg/h");
   ASSERT_TRUE(stability.upper_limit);
   EXPECT_NEAR(*stability.upper_limit, 0.02, 1e-15);  // the plan's limit, in the figure's unit
-  EXPECT_FALSE(stability.lower_limit);
+  EXPECT_TRUE(stability.limit_on_magnitude);  // a max alone: |value| <= 0.02
+  EXPECT_EQ(stability.lower_limit, -*stability.upper_limit);
   EXPECT_EQ(archive->figures(true),
             (std::vector<std::string>{"bias_static/bias_stability/1", "scale_factor/scale_factor"}));
   const auto all = archive->figures(false);
@@ -543,6 +544,43 @@ TEST_P(ArchiveBackend, DemoResultsRoundTripExactly) {
   }
   EXPECT_EQ(found, 1);
   EXPECT_EQ(points[0]["campaign"], campaigns[0]["id"]);
+}
+
+// A plan's max alone bounds the magnitude (campaign.cc judges |value| <= max): the history and the
+// fleet take the spec as [-max, max] and say so. Biases -0.04, -0.06, -0.05 deg/h under max 0.05:
+// x̄ = -0.05, MR̄ = (0.02 + 0.01)/2, σ = MR̄/1.128379; Cp = 0.1/6σ, Cpk = min(0.05 - x̄, x̄ + 0.05)/3σ
+// = 0 (against the max alone, one-sided, it read Cp null and Cpk 2.51).
+TEST_P(ArchiveBackend, AMaxAloneIsALimitOnTheMagnitude) {
+  auto archive = open();
+  const double biases[] = {-0.04, -0.06, -0.05};
+  for (int i = 0; i < 3; ++i) {
+    nlohmann::json results = campaign(fmt::format("FOG-{}", i), "2026-02-01", 36000.0);
+    results["procedures"][1]["result"]["bias"]["value"] = biases[i];
+    results["verdicts"].push_back({{"procedure", "bias_static"}, {"figure", "bias"}, {"value", biases[i]},
+                                   {"unit", "deg/h"}, {"pass", std::abs(biases[i]) <= 0.05}, {"max", 0.05}});
+    archive->add(results, "r.json");
+  }
+  const FigureHistory history = archive->history("FOG-1", "bias_static/bias");
+  EXPECT_EQ(history.lower_limit, -0.05);
+  EXPECT_EQ(history.upper_limit, 0.05);
+  EXPECT_TRUE(history.limit_on_magnitude);
+  EXPECT_EQ(history.to_json()["limit_on_magnitude"], true);
+  EXPECT_EQ(history.to_json()["lower_limit"], -0.05);
+  // min with max: the signed value, as before.
+  EXPECT_FALSE(archive->history("FOG-1", "scale_factor/scale_factor").limit_on_magnitude);
+  EXPECT_EQ(archive->history("FOG-1", "scale_factor/scale_factor").to_json()["limit_on_magnitude"], false);
+
+  const auto run = testing::run_cli({"archive", "fleet", "--figure", "bias_static/bias", "--db", location_, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto fleet = nlohmann::json::parse(run.out);
+  EXPECT_EQ(fleet["limit_on_magnitude"], true);
+  EXPECT_EQ(fleet["lower_limit"], -0.05);
+  const double sigma = ((0.02 + 0.01) / 2.0) / 1.1283791670955126;
+  ASSERT_TRUE(fleet["capability"]["cp"].is_number());
+  EXPECT_NEAR(fleet["capability"]["cp"].get<double>(), 0.1 / (6 * sigma), 1e-9);
+  EXPECT_NEAR(fleet["capability"]["cpk"].get<double>(), 0.0, 1e-9);
+  const auto text = testing::run_cli({"archive", "history", "FOG-1", "--figure", "bias_static/bias", "--db", location_});
+  EXPECT_THAT(text.out, HasSubstr("\n  limits: |value| <= 0.05\n"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),

@@ -1,5 +1,6 @@
 #include "inertest/report/archive_pages.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
@@ -38,6 +39,7 @@ constexpr PageWord page_words[] = {
     {"lower_limit", "lower specification limit", "指标下限"},
     {"upper_limit", "upper specification limit", "指标上限"},
     {"out_of_control", "Out of control", "失控点"},
+    {"magnitude", "(−max: the max bounds |value|)", "（−max：上限约束 |值|）"},
     {"instrument_number", "instrument, in order of first test", "仪表（按首次测试顺序）"},
     {"rule.beyond_3_sigma", "beyond 3σ (rule 1)", "超出 3σ 控制限（准则 1）"},
     {"rule.8_on_one_side", "8 on one side of the center (rule 4)", "连续 8 点位于中心线同侧（准则 4）"},
@@ -100,8 +102,14 @@ double days(const std::string& date) {
   return static_cast<double>(day.time_since_epoch().count());
 }
 
-void add_limits(Panel& panel, const json& figure, const Page& page) {
+// The specification limits as lines. A limit on the magnitude (|value| <= max: "limit_on_magnitude")
+// draws its -max only when a plotted value is negative: a figure that is never negative (a bias
+// stability) keeps the scale of its values rather than stretching to a line below zero.
+void add_limits(Panel& panel, const json& figure, const std::vector<double>& plotted, const Page& page) {
+  const bool on_magnitude = figure.value("limit_on_magnitude", false);
+  const bool any_negative = std::any_of(plotted.begin(), plotted.end(), [](double v) { return v < 0.0; });
   for (const char* key : {"lower_limit", "upper_limit"}) {
+    if (on_magnitude && std::string(key) == "lower_limit" && !any_negative) continue;
     if (figure.contains(key) && figure.at(key).is_number()) {
       panel.references.push_back({ReferenceLine::Direction::horizontal, figure.at(key).get<double>(), page.word(key), "#b3261e"});
     }
@@ -135,8 +143,9 @@ std::string render_history_page(const json& history, const ReportOptions& option
     panel.x = make_axis(page.word("days") + " (" + first + ")", "");
     panel.y = make_axis(page.figure_label(figure.at("figure").get<std::string>()),
                         figure.at("unit").get<std::string>());
+    const std::vector<double> plotted = series.y;
     panel.series.push_back(std::move(series));
-    add_limits(panel, figure, page);
+    add_limits(panel, figure, plotted, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
                               escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
     page.out() += fmt::format("<table><tr><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
@@ -172,7 +181,9 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
         "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
         escape_xml(f.at("figure").get<std::string>()), escape_xml(f.at("unit").get<std::string>()),
         f.at("instruments").size(), number(chart.is_null() ? none : chart.at("center")),
-        number(chart.is_null() ? none : chart.at("sigma")), number(f.at("lower_limit")), number(f.at("upper_limit")),
+        number(chart.is_null() ? none : chart.at("sigma")),
+        number(f.at("lower_limit")) + (f.value("limit_on_magnitude", false) ? " " + escape_xml(page.word("magnitude")) : ""),
+        number(f.at("upper_limit")),
         number(chart.is_null() ? none : chart.at("lcl")), number(chart.is_null() ? none : chart.at("ucl")),
         number(f.at("capability").at("cp")), number(f.at("capability").at("cpk")),
         chart.is_null() ? 0 : chart.at("out_of_control").size());
@@ -208,6 +219,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
     panel.x = make_axis(page.word("instrument_number"), "");
     panel.y = make_axis(page.figure_label(f.at("figure").get<std::string>()),
                         f.at("unit").get<std::string>());
+    const std::vector<double> plotted = values.y;
     panel.series.push_back(std::move(values));
     if (!flagged.x.empty()) panel.series.push_back(std::move(flagged));
     if (!chart.is_null()) {
@@ -215,7 +227,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
       panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("ucl").get<double>(), page.word("ucl"), "#1f6feb"});
       panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("lcl").get<double>(), page.word("lcl"), "#1f6feb"});
     }
-    add_limits(panel, f, page);
+    add_limits(panel, f, plotted, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
                               escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
     page.out() += fmt::format("<table><tr><th>#</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",

@@ -67,5 +67,32 @@ TEST(ArchivePages, FleetShowsTheChartTheFlaggedPointAndTheCapability) {
   EXPECT_THAT(zh, HasSubstr("过程能力"));
 }
 
+// A limit on the magnitude (|value| <= 0.05: the archive gives lower_limit -0.05) draws its -0.05
+// only when a value plotted is negative: a positive figure keeps its scale.
+TEST(ArchivePages, AMagnitudeLimitDrawsItsLowerLineOnlyUnderANegativeValue) {
+  nlohmann::json data = history();
+  nlohmann::json& figure = data["figures"][0];
+  figure["unit"] = "deg/h";
+  figure["lower_limit"] = -0.05;
+  figure["upper_limit"] = 0.05;
+  figure["limit_on_magnitude"] = true;
+  figure["points"][0]["value"] = 0.01;
+  figure["points"][1]["value"] = 0.02;
+  const std::string positive = render_history_page(data, {Language::english, ""});
+  EXPECT_THAT(positive, HasSubstr("upper specification limit"));
+  EXPECT_THAT(positive, Not(HasSubstr("lower specification limit")));
+  figure["points"][1]["value"] = -0.02;
+  EXPECT_THAT(render_history_page(data, {Language::english, ""}), HasSubstr("lower specification limit"));
+  figure["limit_on_magnitude"] = false;  // a plan's own min: always drawn
+  figure["points"][1]["value"] = 0.02;
+  EXPECT_THAT(render_history_page(data, {Language::english, ""}), HasSubstr("lower specification limit"));
+
+  nlohmann::json magnitude = fleet();
+  magnitude[0]["lower_limit"] = -0.05;
+  magnitude[0]["limit_on_magnitude"] = true;
+  EXPECT_THAT(render_fleet_page(magnitude, {Language::english, ""}),
+              HasSubstr("<td>-0.05 (−max: the max bounds |value|)</td>"));
+}
+
 }  // namespace
 }  // namespace inertest::report

@@ -61,23 +61,29 @@ struct FigureHistory {
   std::string figure;  // PROCEDURE/FIGURE
   std::string unit;
   std::vector<FigurePoint> points;
-  // The specification limits the campaigns' plans set on it (the latest test's), in unit.
+  // The specification limits the campaigns' plans set on it (the latest test's), in unit. A plan's
+  // max alone bounds the magnitude (|value| <= max, as the campaign judged it): lower_limit is then
+  // -max and limit_on_magnitude is set.
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
+  bool limit_on_magnitude = false;
   // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}],
-  // "lower_limit", "upper_limit"}; "uncertainty" and the limits are null where none is known.
+  // "lower_limit", "upper_limit", "limit_on_magnitude"}; "uncertainty" and the limits are null where
+  // none is known.
   nlohmann::json to_json() const;
 };
 
 // The values of one figure across every instrument (optionally tested on or after a date),
 // ordered by instrument then test date, with the specification limits the campaigns' plans set
-// on it (the last campaign's, when they differ).
+// on it (the last campaign's, when they differ; a max alone is the spec |value| <= max, as in
+// FigureHistory).
 struct FleetFigure {
   std::string figure;
   std::string unit;
   std::vector<FigurePoint> points;
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
+  bool limit_on_magnitude = false;
 };
 
 // What one add did.
@@ -120,10 +126,11 @@ class Archive {
 
 // The fleet's view of one figure (`inertest archive fleet --json`): each instrument's latest
 // value, ordered by the instrument's first test (the order a batch came off the line),
-// {"figure", "unit", "since", "lower_limit", "upper_limit", "instruments": [{"instrument",
+// {"figure", "unit", "since", "lower_limit", "upper_limit", "limit_on_magnitude", "instruments": [{"instrument",
 // "value", "uncertainty", "tested_on", "campaign", "tests"}], "control_chart": {"center", "ucl",
 // "lcl", "moving_range_mean", "sigma", "out_of_control": [{"instrument", "value", "rule"}]} (null
-// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack)}.
+// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack;
+// against [-max, max] when limit_on_magnitude)}.
 // The chart and indices: numerics/control_chart.h.
 nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since);
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 
 #include <fast_float/fast_float.h>
 #include <fmt/format.h>
@@ -301,6 +302,21 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
     collect_figures(result, name, "", source, record.figures);
     collect_limited_figures(result, name, verdicts, first, source, record.figures);
   }
+  // One row per figure: two steps of one name (a plan's two steps of one kind, both named by it)
+  // would store one figure twice, and which of the two a history shows would be chance.
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& row : record.figures) {
+    if (!seen.emplace(row.procedure, row.figure).second) {
+      const auto& procedures = results.at("procedures");
+      const auto named = std::count_if(procedures.begin(), procedures.end(), [&](const nlohmann::json& p) {
+        return p.is_object() && p.value("name", "") == row.procedure;
+      });
+      malformed(source, "figure '" + row.procedure + "/" + row.figure + "' appears twice" +
+                            (named > 1 ? fmt::format(" ({} procedures are named '{}': give each step a name of its own)",
+                                                     named, row.procedure)
+                                       : std::string()));
+    }
+  }
   for (auto& row : record.figures) {
     const auto it = verdicts.find({row.procedure, row.figure});
     if (it == verdicts.end()) continue;
@@ -380,9 +396,9 @@ constexpr const char* figure_columns =
     "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit "
     "FROM figure f JOIN campaign c ON c.id = f.campaign ";
 
-// Fault injection for the kill test (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N
+// Fault injection for the kill tests (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N
 // makes an add kill its own process (SIGKILL: no clean-up, as a power cut or `kill -9`) after
-// writing N figure rows inside its transaction. -1 (unset) never.
+// writing N figure rows inside its transaction (of all its files). -1 (unset) never.
 long fault_injection_kill_after() {
   const char* value = std::getenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
   return value == nullptr ? -1 : std::strtol(value, nullptr, 10);
@@ -396,31 +412,22 @@ class DatabaseArchive final : public Archive {
 
   AddOutcome add(const nlohmann::json& results, const std::string& source) override {
     const CampaignRecord record = read_campaign(results, source);
-    AddOutcome outcome{record.entry.id, record.entry.instrument, false};
     Transaction transaction(*db_, true);
-    const auto inserted = db_->query(
-        "INSERT INTO campaign (id, instrument, title, tested_on, processed_at, operator, station, verdict,"
-        " inertest_version, results) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)"
-        " ON CONFLICT (id) DO NOTHING RETURNING id",
-        {record.entry.id, record.entry.instrument, record.entry.title, record.entry.tested_on,
-         record.entry.processed_at, record.operator_name, record.station, record.entry.verdict,
-         record.inertest_version, record.results_text});
-    if (!inserted.empty()) {
-      const long kill_after = fault_injection_kill_after();
-      long written = 0;
-      for (const auto& row : record.figures) {
-        if (++written > kill_after && kill_after >= 0) ::raise(SIGKILL);
-        const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
-        db_->query(
-            "INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
-            " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
-            {record.entry.id, row.procedure, row.figure, row.value, row.unit, optional(row.uncertainty),
-             optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
-      }
-      outcome.added = true;
-    }
+    long figures_written = 0;
+    const AddOutcome outcome = insert(record, figures_written);
     transaction.commit();
     return outcome;
+  }
+
+  std::vector<AddOutcome> add_all(const std::vector<std::pair<nlohmann::json, std::string>>& files) override {
+    std::vector<CampaignRecord> records;
+    for (const auto& [results, source] : files) records.push_back(read_campaign(results, source));
+    std::vector<AddOutcome> outcomes;
+    Transaction transaction(*db_, true);
+    long figures_written = 0;
+    for (const auto& record : records) outcomes.push_back(insert(record, figures_written));
+    transaction.commit();
+    return outcomes;
   }
 
   std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) override {
@@ -502,6 +509,34 @@ class DatabaseArchive final : public Archive {
   std::string backend() const override { return db_->backend(); }
 
  private:
+  // Stores one campaign read and checked, inside the caller's transaction; nothing when the same
+  // content is archived already. figures_written counts the figure rows of the transaction (for
+  // the fault injection).
+  AddOutcome insert(const CampaignRecord& record, long& figures_written) {
+    AddOutcome outcome{record.entry.id, record.entry.instrument, false};
+    const auto inserted = db_->query(
+        "INSERT INTO campaign (id, instrument, title, tested_on, processed_at, operator, station, verdict,"
+        " inertest_version, results) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)"
+        " ON CONFLICT (id) DO NOTHING RETURNING id",
+        {record.entry.id, record.entry.instrument, record.entry.title, record.entry.tested_on,
+         record.entry.processed_at, record.operator_name, record.station, record.entry.verdict,
+         record.inertest_version, record.results_text});
+    if (!inserted.empty()) {
+      const long kill_after = fault_injection_kill_after();
+      for (const auto& row : record.figures) {
+        if (++figures_written > kill_after && kill_after >= 0) ::raise(SIGKILL);
+        const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
+        db_->query(
+            "INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
+            " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+            {record.entry.id, row.procedure, row.figure, row.value, row.unit, optional(row.uncertainty),
+             optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
+      }
+      outcome.added = true;
+    }
+    return outcome;
+  }
+
   std::unique_ptr<Database> db_;
 };
 

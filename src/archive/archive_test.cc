@@ -583,6 +583,42 @@ TEST_P(ArchiveBackend, AMaxAloneIsALimitOnTheMagnitude) {
   EXPECT_THAT(text.out, HasSubstr("\n  limits: |value| <= 0.05\n"));
 }
 
+// Two steps of one name (a plan's two scale factor steps) give the same figure twice: the file is
+// refused by name, and a multi-file add that holds it adds nothing, the good files before it neither.
+TEST_P(ArchiveBackend, AFigureTwiceIsRefusedAndAMultiFileAddIsAllOrNothing) {
+  nlohmann::json twice = campaign("FOG-2", "2026-02-01", 36000.0);
+  twice["procedures"].push_back(twice["procedures"][0]);
+  twice["procedures"][2]["result"]["scale_factor"]["value"] = 36000.5;
+  auto archive = open();
+  EXPECT_EQ(error_of_add(*archive, twice),
+            "bad/results.json: not an inertest results file: figure 'scale_factor/nonlinearity' appears twice (2 "
+            "procedures are named 'scale_factor': give each step a name of its own)");
+  const std::string good = scratch_.write("good.json", campaign("FOG-1", "2026-02-01", 36000.0).dump());
+  const std::string bad = scratch_.write("twice.json", twice.dump());
+  const auto refused = testing::run_cli({"archive", "add", good, bad, "--db", location_});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr(bad + ": not an inertest results file: figure 'scale_factor/nonlinearity' appears twice"));
+  EXPECT_THAT(refused.err, Not(HasSubstr("UNIQUE")));
+  EXPECT_TRUE(archive->list(std::nullopt).empty());
+
+  // Several files in one transaction: the outcome of each, and a process killed while it writes
+  // the second file's figures leaves neither file (the first one was committed on its own).
+  const std::vector<std::pair<nlohmann::json, std::string>> files = {
+      {campaign("FOG-1", "2026-02-01", 36000.0), "a.json"}, {campaign("FOG-3", "2026-02-03", 36000.0), "b.json"}};
+  const auto outcomes = archive->add_all(files);
+  ASSERT_EQ(outcomes.size(), 2u);
+  EXPECT_TRUE(outcomes[0].added && outcomes[1].added);
+  EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
+  EXPECT_FALSE(archive->add_all(files)[1].added);  // the same content: stored once
+  const std::string third = scratch_.write("c.json", campaign("FOG-4", "2026-02-04", 36000.0).dump());
+  const std::string fourth = scratch_.write("d.json", campaign("FOG-5", "2026-02-05", 36000.0).dump());
+  ::setenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES", "5", 1);  // killed in the second file's figures
+  const auto killed = testing::run_cli({"archive", "add", third, fourth, "--db", location_});
+  ::unsetenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
+  EXPECT_EQ(killed.exit_code, 128 + 9) << killed.err;
+  EXPECT_EQ(open()->list(std::nullopt).size(), 2u);  // neither FOG-4 nor FOG-5
+}
+
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),
                          [](const ::testing::TestParamInfo<const char*>& param) { return std::string(param.param); });
 

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -101,6 +102,10 @@ class Archive {
   // Throws Error, changing nothing, when the results are malformed (a missing or mistyped key, a
   // results_schema_version this inertest does not know, a figure without a finite value or unit).
   virtual AddOutcome add(const nlohmann::json& results, const std::string& source) = 0;
+
+  // Adds several campaigns (results, source) in one transaction: all are checked as add() checks
+  // one, then all are stored, or (an Error, a failure of the database) none is.
+  virtual std::vector<AddOutcome> add_all(const std::vector<std::pair<nlohmann::json, std::string>>& files) = 0;
 
   // Campaigns, oldest test first; only the instrument's when instrument is given.
   virtual std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) = 0;

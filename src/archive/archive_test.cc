@@ -513,6 +513,18 @@ TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_THAT(unknown.err, HasSubstr("figure 'x/y' is not archived"));
   EXPECT_FALSE(std::filesystem::exists(scratch_.path() + "/none"));
+
+  // An id with a '/' (a lab's LAB2/FOG-001) or a '%' names a file of its own in the directory.
+  archive->add(campaign("LAB2/FOG-001", "2026-01-03", 36000.1), "c");
+  archive->add(campaign("50%", "2026-01-04", 36000.2), "d");
+  const auto slash = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/slash", "--db", location_});
+  ASSERT_EQ(slash.exit_code, 0) << slash.err;
+  for (const char* page : {"fleet.html", "history-FOG-A.html", "history-LAB2%2FFOG-001.html", "history-50%25.html"}) {
+    EXPECT_TRUE(std::filesystem::exists(scratch_.path() + "/slash/" + page)) << page;
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(scratch_.path() + "/slash"),
+                          std::filesystem::directory_iterator()),
+            5);  // the pages and nothing else (no staging left)
 }
 
 // The demo's results.json (inertest demo).

@@ -1,6 +1,9 @@
 #include "inertest/report/archive_pages.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
@@ -253,18 +256,47 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
   return page.close();
 }
 
-std::vector<std::string> write_archive_pages(const json& data, const std::string& out_dir, const ReportOptions& options) {
-  std::filesystem::create_directories(out_dir);
-  std::vector<std::string> written;
-  const std::string fleet_path = (std::filesystem::path(out_dir) / "fleet.html").string();
-  write_file_atomically(fleet_path, render_fleet_page(data.at("fleet"), options));
-  written.push_back(fleet_path);
-  for (const auto& history : data.at("histories")) {
-    const std::string path =
-        (std::filesystem::path(out_dir) / ("history-" + history.at("instrument").get<std::string>() + ".html")).string();
-    write_file_atomically(path, render_history_page(history, options));
-    written.push_back(path);
+std::string history_page_file_name(const std::string& instrument) {
+  std::string name = "history-";
+  for (const char c : instrument) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (std::isalnum(byte) != 0 || c == '-' || c == '.' || c == '_') {
+      name += c;
+    } else {
+      name += fmt::format("%{:02X}", byte);
+    }
   }
+  return name + ".html";
+}
+
+std::vector<std::string> write_archive_pages(const json& data, const std::string& out_dir, const ReportOptions& options) {
+  namespace fs = std::filesystem;
+  // Every page is rendered before any is written.
+  std::vector<std::pair<std::string, std::string>> pages = {{"fleet.html", render_fleet_page(data.at("fleet"), options)}};
+  for (const auto& history : data.at("histories")) {
+    pages.emplace_back(history_page_file_name(history.at("instrument").get<std::string>()),
+                       render_history_page(history, options));
+  }
+  fs::create_directories(out_dir);
+  // Then written into a staging directory beside them, and moved into place only when all are
+  // there: a full disk leaves the pages as they were.
+  const fs::path staging = fs::path(out_dir) / fmt::format(".archive-pages-{}", ::getpid());
+  fs::remove_all(staging);
+  fs::create_directory(staging);
+  try {
+    for (const auto& [name, content] : pages) write_file_atomically((staging / name).string(), content);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(staging, ignored);
+    throw;
+  }
+  std::vector<std::string> written;
+  for (const auto& [name, content] : pages) {
+    const fs::path path = fs::path(out_dir) / name;
+    fs::rename(staging / name, path);
+    written.push_back(path.string());
+  }
+  fs::remove(staging);
   return written;
 }
 

@@ -3,7 +3,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
+
+#include "test_util/test_util.h"
 
 namespace inertest::report {
 namespace {
@@ -92,6 +96,29 @@ TEST(ArchivePages, AMagnitudeLimitDrawsItsLowerLineOnlyUnderANegativeValue) {
   magnitude[0]["limit_on_magnitude"] = true;
   EXPECT_THAT(render_fleet_page(magnitude, {Language::english, ""}),
               HasSubstr("<td>-0.05 (−max: the max bounds |value|)</td>"));
+}
+
+// The pages of an archive: one file per instrument whatever its id, and all of them or none.
+TEST(ArchivePages, EveryIdNamesAFileOfItsOwnAndAFailureWritesNothing) {
+  EXPECT_EQ(history_page_file_name("FOG-0417"), "history-FOG-0417.html");
+  EXPECT_EQ(history_page_file_name("LAB2/FOG-001"), "history-LAB2%2FFOG-001.html");
+  EXPECT_EQ(history_page_file_name("50%"), "history-50%25.html");
+  EXPECT_EQ(history_page_file_name(".."), "history-...html");
+  EXPECT_EQ(history_page_file_name("A B"), "history-A%20B.html");
+
+  testing::ScratchDirectory scratch;
+  nlohmann::json data = {{"fleet", fleet()}, {"histories", nlohmann::json::array({history(), history()})}};
+  data["histories"][1]["instrument"] = "FOG-0418";
+  data["histories"][1]["figures"][0].erase("unit");  // a page that cannot be rendered
+  EXPECT_ANY_THROW(write_archive_pages(data, scratch.path() + "/pages", {Language::english, ""}));
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/pages/fleet.html"));
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/pages/history-FOG-0417.html"));
+  data["histories"][1] = history();
+  data["histories"][1]["instrument"] = "LAB2/FOG-001";
+  const auto written = write_archive_pages(data, scratch.path() + "/pages", {Language::english, ""});
+  EXPECT_EQ(written, (std::vector<std::string>{scratch.path() + "/pages/fleet.html",
+                                               scratch.path() + "/pages/history-FOG-0417.html",
+                                               scratch.path() + "/pages/history-LAB2%2FFOG-001.html"}));
 }
 
 }  // namespace

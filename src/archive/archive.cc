@@ -159,10 +159,12 @@ std::optional<std::string> optional_string(const nlohmann::json& object, const c
   return it->get<std::string>();
 }
 
-// A test date is YYYY-MM-DD, a day of the Gregorian calendar, optionally followed by a time: what
-// sorts and compares as text (2026-13-45 would sort, and mean nothing).
-bool is_iso_date(const std::string& text) {
-  if (text.size() < 10 || text[4] != '-' || text[7] != '-') return false;
+}  // namespace
+
+// Exactly YYYY-MM-DD, a day of the Gregorian calendar: what sorts and compares as text (2026-13-45
+// would sort, and mean nothing; "2026-04-04x" or a time after the day compared after the day itself).
+bool is_test_date(const std::string& text) {
+  if (text.size() != 10 || text[4] != '-' || text[7] != '-') return false;
   for (const int i : {0, 1, 2, 3, 5, 6, 8, 9}) {
     if (text[static_cast<std::size_t>(i)] < '0' || text[static_cast<std::size_t>(i)] > '9') return false;
   }
@@ -171,6 +173,34 @@ bool is_iso_date(const std::string& text) {
                                         std::chrono::month{static_cast<unsigned>(number(5, 2))},
                                         std::chrono::day{static_cast<unsigned>(number(8, 2))}};
   return day.ok();
+}
+
+namespace {
+
+// Results nest about ten levels (a procedure's result, a figure, a 3x3 value). The archive walks
+// them recursively (collecting figures, dumping the JSON), so a file nested deeper than this is
+// refused: 20 000 levels ran out of stack.
+constexpr int max_results_nesting = 64;
+
+// Whether node nests more than levels arrays or objects deep; recurses at most levels deep.
+bool nested_deeper_than(const nlohmann::json& node, int levels) {
+  if (!node.is_structured()) return false;
+  if (levels == 0) return true;
+  for (const auto& child : node) {
+    if (nested_deeper_than(child, levels - 1)) return true;
+  }
+  return false;
+}
+
+// An instrument id names pages and routes of `inertest serve`: no control character, not made of
+// dots only ("." and ".." are path segments a browser or a file system resolves), at most 256 bytes.
+void check_instrument_id(const std::string& id, const std::string& source) {
+  if (id.empty()) malformed(source, "instrument: \"id\" is empty");
+  if (id.size() > 256) malformed(source, "instrument: \"id\" is longer than 256 bytes");
+  if (std::any_of(id.begin(), id.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+    malformed(source, "instrument: \"id\" contains a control character");
+  }
+  if (id.find_first_not_of('.') == std::string::npos) malformed(source, "instrument: \"id\" '" + id + "' is only dots");
 }
 
 // One figure's value (a number, or the numbers of an array figure, e.g. a triad's [x, y, z] or a 3x3,
@@ -189,6 +219,11 @@ void collect_values(const nlohmann::json& value, const nlohmann::json* uncertain
     return;
   }
   if (!value.is_number()) malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
+  try {
+    Unit::parse(unit);  // a unit nothing converts would fail every fleet and history of the figure
+  } catch (const Error& e) {
+    malformed(source, "figure '" + procedure + "/" + path + "': \"unit\" '" + unit + "': " + e.message());
+  }
   FigureRow row;
   row.procedure = procedure;
   row.figure = path;
@@ -247,6 +282,9 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
 CampaignRecord read_campaign(const nlohmann::json& results, const std::string& source) {
   using type = nlohmann::json::value_t;
   if (!results.is_object()) malformed(source, "expected a JSON object");
+  if (nested_deeper_than(results, max_results_nesting)) {
+    malformed(source, fmt::format("nested more than {} levels deep", max_results_nesting));
+  }
   if (const auto it = results.find("results_schema_version"); it != results.end()) {
     if (!it->is_number_integer() || it->get<std::int64_t>() != results_schema_version) {
       throw Error(SourceLocation{source, 0, 0},
@@ -258,7 +296,7 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
   record.inertest_version = member(results, "inertest_version", type::string, source, "").get<std::string>();
   const auto& instrument = member(results, "instrument", type::object, source, "");
   record.entry.instrument = member(instrument, "id", type::string, source, "instrument: ").get<std::string>();
-  if (record.entry.instrument.empty()) malformed(source, "instrument: \"id\" is empty");
+  check_instrument_id(record.entry.instrument, source);
   record.entry.verdict = member(results, "verdict", type::string, source, "").get<std::string>();
   if (record.entry.verdict != "PASS" && record.entry.verdict != "FAIL" && record.entry.verdict != "NONE") {
     malformed(source, "\"verdict\" must be PASS, FAIL or NONE, not '" + record.entry.verdict + "'");
@@ -275,7 +313,7 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
                                .value_or(optional_string(plan, "date", source)
                                              .value_or(record.entry.processed_at.substr(0, std::min<std::size_t>(
                                                                                          10, record.entry.processed_at.size()))));
-  if (!is_iso_date(record.entry.tested_on)) {
+  if (!is_test_date(record.entry.tested_on)) {
     malformed(source, "the test date '" + record.entry.tested_on + "' is not YYYY-MM-DD (\"tested_on\" or plan \"date\")");
   }
 
@@ -477,7 +515,7 @@ class DatabaseArchive final : public Archive {
     const auto [procedure, name] = split_figure(figure);
     const std::string where = "WHERE f.procedure = $1 AND f.figure = $2";
     const std::string order = " ORDER BY c.instrument, c.tested_on, c.processed_at, c.id";
-    if (since && !is_iso_date(*since)) throw Error("--since '" + *since + "': expected YYYY-MM-DD");
+    if (since && !is_test_date(*since)) throw Error("--since '" + *since + "': expected YYYY-MM-DD");
     const auto rows = since ? db_->query(std::string(figure_columns) + where + " AND c.tested_on >= $3" + order,
                                          {procedure, name, *since})
                             : db_->query(std::string(figure_columns) + where + order, {procedure, name});

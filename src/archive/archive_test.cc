@@ -271,7 +271,7 @@ TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
   EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }), "figure 'nope/nope' is not archived");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),
             "--since '2026-13': expected YYYY-MM-DD");
-  for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29"}) {
+  for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29", "2026-04-04x", "2026-04-04T00:00:00Z"}) {
     EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string(no_day)); }),
               std::string("--since '") + no_day + "': expected YYYY-MM-DD");
   }
@@ -629,6 +629,34 @@ TEST_P(ArchiveBackend, AFigureTwiceIsRefusedAndAMultiFileAddIsAllOrNothing) {
   ::unsetenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
   EXPECT_EQ(killed.exit_code, 128 + 9) << killed.err;
   EXPECT_EQ(open()->list(std::nullopt).size(), 2u);  // neither FOG-4 nor FOG-5
+}
+
+// What add refuses, naming the file: a unit nothing converts (the figure's fleet then failed for every
+// instrument), a nesting deep enough to exhaust the stack, a date with text after the day, and
+// instrument ids that no page can reach.
+TEST_P(ArchiveBackend, UnknownUnitsDeepNestingLooseDatesAndUnreachableIdsAreRefused) {
+  auto archive = open();
+  nlohmann::json unit = campaign("FOG-1", "2026-02-01", 36000.0);
+  unit["procedures"][0]["result"]["scale_factor"]["unit"] = "furlong/fortnight";
+  EXPECT_THAT(error_of_add(*archive, unit),
+              HasSubstr("bad/results.json: not an inertest results file: figure 'scale_factor/scale_factor': \"unit\" "
+                        "'furlong/fortnight': "));
+  nlohmann::json deep = campaign("FOG-1", "2026-02-01", 36000.0);
+  std::string nested;
+  for (int i = 0; i < 20000; ++i) nested += "{\"a\":";
+  nested += "1" + std::string(20000, '}');
+  deep["procedures"][0]["result"]["deep"] = nlohmann::json::parse(nested);  // parsed without recursion
+  EXPECT_EQ(error_of_add(*archive, deep), "bad/results.json: not an inertest results file: nested more than 64 levels deep");
+  for (const char* date : {"2026-03-01garbage", "2026-03-01T10:00:00Z", "2026-03-01 10:00"}) {
+    nlohmann::json loose = campaign("FOG-1", "2026-02-01", 36000.0);
+    loose["tested_on"] = date;
+    EXPECT_THAT(error_of_add(*archive, loose), HasSubstr(std::string("the test date '") + date + "' is not YYYY-MM-DD"));
+  }
+  for (const char* id : {".", "..", "FOG\n01", "FOG\x7f"}) {
+    EXPECT_THAT(error_of_add(*archive, campaign(id, "2026-02-01", 36000.0)), HasSubstr("instrument: \"id\"")) << id;
+  }
+  EXPECT_TRUE(archive->list(std::nullopt).empty());
+  EXPECT_EQ(error_of_add(*archive, campaign("FOG-1", "2026-02-01", 36000.0)), "no error");
 }
 
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),

@@ -168,6 +168,10 @@ std::string default_archive_location();
 // Checks results as add() does (throws the same Error) without touching any archive.
 void check_results(const nlohmann::json& results, const std::string& source);
 
+// Whether text is a test date as the archive stores and compares them: exactly YYYY-MM-DD, a day of
+// the Gregorian calendar ("2026-02-30", "2026-04-04x" and a time after the day are not).
+bool is_test_date(const std::string& text);
+
 // Reads and parses a results.json; a syntax error names the file, line and column.
 nlohmann::json read_results_file(const std::string& path);
 

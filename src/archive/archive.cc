@@ -643,6 +643,22 @@ nlohmann::json read_results_file(const std::string& path) {
       message += " (JSON has no NaN or Infinity: null stands for a missing number)";
     }
     throw Error(SourceLocation{path, line, column}, "not valid JSON: " + message);
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond a double ("[json.exception.out_of_range.406] number overflow parsing
+    // '1e400'"): a fault of the file, at the number's first place in it.
+    std::string message = e.what();
+    if (const auto bracket = message.find("] "); bracket != std::string::npos) message.erase(0, bracket + 2);
+    std::size_t line = 0, column = 0;
+    const auto quote = message.find('\'');
+    const auto end_quote = quote == std::string::npos ? std::string::npos : message.find('\'', quote + 1);
+    if (end_quote != std::string::npos) {
+      if (const auto at = text.find(message.substr(quote + 1, end_quote - quote - 1)); at != std::string::npos) {
+        line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+        const auto line_start = text.rfind('\n', at);
+        column = at - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
+      }
+    }
+    throw Error(SourceLocation{path, line, column}, "not valid JSON: " + message);
   }
 }
 

@@ -696,6 +696,22 @@ TEST(ArchiveOpening, ASilentServerIsATimeoutNotAHang) {
   ::close(listener);
 }
 
+// A number beyond a double is the file's fault, named with its place (it was exit 3, "internal
+// error: [json.exception.out_of_range.406]", no file named).
+TEST(ArchiveFiles, ANumberBeyondADoubleIsTheFilesFault) {
+  testing::ScratchDirectory scratch;
+  const std::string file = scratch.write("results.json", "{\n  \"a\": {\n    \"value\": 1e400}}\n");
+  try {
+    read_results_file(file);
+    FAIL() << "1e400 read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), file + ":3:14: not valid JSON: number overflow parsing '1e400'");
+  }
+  const auto run = testing::run_cli({"archive", "add", file, "--db", scratch.path() + "/archive.sqlite"});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_THAT(run.err, HasSubstr(file + ":3:14: not valid JSON: number overflow parsing '1e400'"));
+}
+
 TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {
   const char* saved = std::getenv("INERTEST_DB");
   const std::string saved_value = saved ? saved : "";

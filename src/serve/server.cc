@@ -193,6 +193,10 @@ struct Server::Impl {
       results = nlohmann::json::parse(*body);
     } catch (const nlohmann::json::parse_error&) {
       throw Refusal{400, "the body is not valid JSON"};
+    } catch (const nlohmann::json::exception& e) {  // a number beyond a double: 1e400
+      std::string message = e.what();
+      if (const auto bracket = message.find("] "); bracket != std::string::npos) message.erase(0, bracket + 2);
+      throw Refusal{400, "the body is not valid JSON: " + message};
     }
     try {
       archive::check_results(results, "request body");

@@ -263,6 +263,40 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_EQ(as_form.json()["added"][0]["instrument"], "FOG-10");
 }
 
+// Results the archive refuses are the client's fault, a 400 naming what is wrong, never a 500 or a
+// crash: two steps of one name (the same figure twice: a UNIQUE constraint failed, 500), a number
+// beyond a double (500), a nesting that exhausted the stack (the server crashed).
+TEST_F(ServeApi, RefusedResultsAreA400) {
+  const std::string before = file_bytes(db_);
+  start(true);
+  const std::string token = "Authorization: Bearer " + server_->token() + "\r\n";
+  nlohmann::json twice = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0);
+  twice["procedures"].push_back(twice["procedures"][0]);
+  const auto duplicate = post(port(), "/api/campaigns", twice.dump(), token);
+  EXPECT_EQ(duplicate.status, 400) << duplicate.body;
+  EXPECT_NE(duplicate.json().value("error", "").find("appears twice"), std::string::npos) << duplicate.body;
+
+  std::string overflow = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0).dump();
+  overflow.replace(overflow.find("36000.0"), 7, "1e400");
+  const auto huge = post(port(), "/api/campaigns", overflow, token);
+  EXPECT_EQ(huge.status, 400) << huge.body;
+  EXPECT_EQ(huge.json().value("error", ""), "the body is not valid JSON: number overflow parsing '1e400'");
+
+  nlohmann::json deep = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0);
+  deep["procedures"][0]["result"]["deep"] = "PLACEHOLDER";
+  std::string nested;  // 8000 levels: within --max-body (64 KiB here)
+  for (int i = 0; i < 8000; ++i) nested += "{\"a\":";
+  nested += "1" + std::string(8000, '}');
+  std::string deep_body = deep.dump();
+  deep_body.replace(deep_body.find("\"PLACEHOLDER\""), 13, nested);
+  const auto crash = post(port(), "/api/campaigns", deep_body, token);
+  EXPECT_EQ(crash.status, 400) << crash.body;
+  EXPECT_NE(crash.json().value("error", "").find("nested more than 64 levels deep"), std::string::npos) << crash.body;
+  EXPECT_EQ(get(port(), "/api/campaigns").status, 200);  // still serving
+  stop();
+  EXPECT_EQ(file_bytes(db_), before);
+}
+
 std::size_t count(const std::string& text, const std::string& part) {
   std::size_t n = 0;
   for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;

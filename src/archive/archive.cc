@@ -607,6 +607,16 @@ std::unique_ptr<Archive> open_archive(const std::string& location, ArchiveOpenin
   return std::make_unique<DatabaseArchive>(std::move(db), location);
 }
 
+void refuse_foreign_database(const std::vector<std::string>& tables, const std::string& location) {
+  if (tables.empty() || std::find(tables.begin(), tables.end(), "schema_version") != tables.end()) return;
+  std::string names;
+  for (std::size_t i = 0; i < tables.size() && i < 5; ++i) names += (i == 0 ? "" : ", ") + tables[i];
+  if (tables.size() > 5) names += ", ...";
+  throw Error(SourceLocation{location, 0, 0},
+              "not an inertest archive: the database holds other tables (" + names +
+                  ") and no inertest schema; give a new file or an empty database");
+}
+
 std::string default_archive_location() {
   if (const char* db = std::getenv("INERTEST_DB"); db != nullptr && *db != '\0') return db;
   const char* home = std::getenv("HOME");

@@ -712,6 +712,38 @@ TEST(ArchiveFiles, ANumberBeyondADoubleIsTheFilesFault) {
   EXPECT_THAT(run.err, HasSubstr(file + ":3:14: not valid JSON: number overflow parsing '1e400'"));
 }
 
+// Another program's SQLite file named by --db (a typo, a wrong variable) is refused before anything
+// in it changes: a read-only `archive list` created the archive's tables in it and turned it to WAL.
+TEST(ArchiveOpening, AForeignDatabaseIsRefusedAndLeftAsItWas) {
+  testing::ScratchDirectory scratch;
+  const std::string foreign = scratch.path() + "/notes.sqlite";
+  const auto sqlite = [](const std::string& path, const std::string& script) {
+    const std::string command = fmt::format(
+        "/usr/bin/python3 -c \"import sqlite3; c = sqlite3.connect('{}'); {}\"", path, script);
+    return std::system(command.c_str());
+  };
+  ASSERT_EQ(sqlite(foreign, "c.execute('CREATE TABLE notes (x)'); c.commit()"), 0);
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"archive", "list", "--db", foreign}, {"archive", "instruments", "--db", foreign},
+        {"archive", "fleet", "--figure", "a/b", "--db", foreign}}) {
+    const auto run = testing::run_cli(command);
+    EXPECT_EQ(run.exit_code, 2) << command[1];
+    EXPECT_THAT(run.err, HasSubstr(foreign + ": not an inertest archive: the database holds other tables (notes) and "
+                                             "no inertest schema"))
+        << command[1];
+  }
+  const std::string good = scratch.write("good.json", campaign("FOG-1", "2026-02-01", 36000.0).dump());
+  EXPECT_EQ(testing::run_cli({"archive", "add", good, "--db", foreign}).exit_code, 2);
+  // Its tables and its rollback journal, as they were.
+  EXPECT_EQ(sqlite(foreign, "import sys; sys.exit(0 if [r[0] for r in c.execute('SELECT name FROM sqlite_master')] == "
+                            "['notes'] and c.execute('PRAGMA journal_mode').fetchone()[0] == 'delete' else 1)"),
+            0);
+  // An empty file (touched beforehand) is a new archive.
+  const std::string empty = scratch.write("empty.sqlite", "");
+  EXPECT_EQ(testing::run_cli({"archive", "add", good, "--db", empty}).exit_code, 0);
+  EXPECT_EQ(testing::run_cli({"archive", "list", "--db", empty}).exit_code, 0);
+}
+
 TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {
   const char* saved = std::getenv("INERTEST_DB");
   const std::string saved_value = saved ? saved : "";

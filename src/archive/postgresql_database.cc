@@ -40,6 +40,18 @@ class PostgresqlDatabase final : public Database {
     }
     // CREATE ... IF NOT EXISTS and the like send notices; they are not the user's business.
     PQsetNoticeProcessor(connection_, [](void*, const char*) {}, nullptr);
+    try {
+      std::vector<std::string> tables;
+      for (const auto& row : query("SELECT table_name FROM information_schema.tables WHERE table_schema = "
+                                   "current_schema() ORDER BY table_name",
+                                   {})) {
+        tables.push_back(row.text(0));
+      }
+      refuse_foreign_database(tables, where_);
+    } catch (...) {
+      PQfinish(connection_);  // the destructor does not run for a constructor that throws
+      throw;
+    }
   }
   ~PostgresqlDatabase() override { PQfinish(connection_); }
   PostgresqlDatabase(const PostgresqlDatabase&) = delete;

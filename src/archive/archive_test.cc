@@ -16,6 +16,7 @@
 #include <fstream>
 #include <fmt/format.h>
 
+#include "archive/database.h"
 #include "archive/sha256.h"
 #include "inertest/core/error.h"
 #include "test_util/postgresql_server.h"
@@ -742,6 +743,40 @@ TEST(ArchiveOpening, AForeignDatabaseIsRefusedAndLeftAsItWas) {
   const std::string empty = scratch.write("empty.sqlite", "");
   EXPECT_EQ(testing::run_cli({"archive", "add", good, "--db", empty}).exit_code, 0);
   EXPECT_EQ(testing::run_cli({"archive", "list", "--db", empty}).exit_code, 0);
+}
+
+// A password in the URL is not printed, given as user:password@ or as a password= parameter.
+TEST(ArchiveOpening, ThePasswordOfAUrlIsRedacted) {
+  EXPECT_EQ(redact_postgresql_url("postgresql://lab:s3cret@db.lab:5432/archive"), "postgresql://lab:***@db.lab:5432/archive");
+  EXPECT_EQ(redact_postgresql_url("postgresql://lab@127.0.0.1:1/archive?password=s3cret"),
+            "postgresql://lab@127.0.0.1:1/archive?password=***");
+  EXPECT_EQ(redact_postgresql_url("postgres://lab:a@h/db?sslmode=disable&password=s3cret&connect_timeout=2"),
+            "postgres://lab:***@h/db?sslmode=disable&password=***&connect_timeout=2");
+  EXPECT_EQ(redact_postgresql_url("postgresql://h/db?passfile=x"), "postgresql://h/db?passfile=x");
+  const auto run = testing::run_cli({"archive", "list", "--db", "postgresql://lab@127.0.0.1:1/archive?password=s3cret"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("postgresql://lab@127.0.0.1:1/archive?password=***"));
+  EXPECT_THAT(run.err, Not(HasSubstr("s3cret")));
+}
+
+// The PostgreSQL server dropping the connection (a restart; here the backend terminated): the next
+// query connects again, as `inertest serve` needs to go on after a restart of the lab's server
+// (every request was a 500 "no connection to the server" until serve itself was restarted).
+TEST(ArchivePostgresql, ABrokenConnectionIsMadeAgainOnce) {
+  auto& server = testing::PostgresqlServer::instance();
+  ASSERT_TRUE(server.available()) << server.why_unavailable();
+  const std::string location = server.create_database();
+  auto archive = open_archive(location);
+  archive->add(campaign("FOG-1", "2026-02-01", 36000.0), "a.json");
+  const std::string command = fmt::format(
+      "/usr/lib/postgresql/15/bin/psql -q '{}' -c 'SELECT pg_terminate_backend(pid) FROM pg_stat_activity WHERE "
+      "datname = current_database() AND pid <> pg_backend_pid()' > /dev/null",
+      location);
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  EXPECT_EQ(archive->list(std::nullopt).size(), 1u);
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  EXPECT_TRUE(archive->add(campaign("FOG-2", "2026-02-01", 36000.0), "b.json").added);  // a transaction too
+  EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
 }
 
 TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {

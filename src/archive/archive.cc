@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 
 #include <fast_float/fast_float.h>
 #include <fmt/format.h>
@@ -158,10 +159,12 @@ std::optional<std::string> optional_string(const nlohmann::json& object, const c
   return it->get<std::string>();
 }
 
-// A test date is YYYY-MM-DD, a day of the Gregorian calendar, optionally followed by a time: what
-// sorts and compares as text (2026-13-45 would sort, and mean nothing).
-bool is_iso_date(const std::string& text) {
-  if (text.size() < 10 || text[4] != '-' || text[7] != '-') return false;
+}  // namespace
+
+// Exactly YYYY-MM-DD, a day of the Gregorian calendar: what sorts and compares as text (2026-13-45
+// would sort, and mean nothing; "2026-04-04x" or a time after the day compared after the day itself).
+bool is_test_date(const std::string& text) {
+  if (text.size() != 10 || text[4] != '-' || text[7] != '-') return false;
   for (const int i : {0, 1, 2, 3, 5, 6, 8, 9}) {
     if (text[static_cast<std::size_t>(i)] < '0' || text[static_cast<std::size_t>(i)] > '9') return false;
   }
@@ -170,6 +173,34 @@ bool is_iso_date(const std::string& text) {
                                         std::chrono::month{static_cast<unsigned>(number(5, 2))},
                                         std::chrono::day{static_cast<unsigned>(number(8, 2))}};
   return day.ok();
+}
+
+namespace {
+
+// Results nest about ten levels (a procedure's result, a figure, a 3x3 value). The archive walks
+// them recursively (collecting figures, dumping the JSON), so a file nested deeper than this is
+// refused: 20 000 levels ran out of stack.
+constexpr int max_results_nesting = 64;
+
+// Whether node nests more than levels arrays or objects deep; recurses at most levels deep.
+bool nested_deeper_than(const nlohmann::json& node, int levels) {
+  if (!node.is_structured()) return false;
+  if (levels == 0) return true;
+  for (const auto& child : node) {
+    if (nested_deeper_than(child, levels - 1)) return true;
+  }
+  return false;
+}
+
+// An instrument id names pages and routes of `inertest serve`: no control character, not made of
+// dots only ("." and ".." are path segments a browser or a file system resolves), at most 256 bytes.
+void check_instrument_id(const std::string& id, const std::string& source) {
+  if (id.empty()) malformed(source, "instrument: \"id\" is empty");
+  if (id.size() > 256) malformed(source, "instrument: \"id\" is longer than 256 bytes");
+  if (std::any_of(id.begin(), id.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+    malformed(source, "instrument: \"id\" contains a control character");
+  }
+  if (id.find_first_not_of('.') == std::string::npos) malformed(source, "instrument: \"id\" '" + id + "' is only dots");
 }
 
 // One figure's value (a number, or the numbers of an array figure, e.g. a triad's [x, y, z] or a 3x3,
@@ -188,6 +219,11 @@ void collect_values(const nlohmann::json& value, const nlohmann::json* uncertain
     return;
   }
   if (!value.is_number()) malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
+  try {
+    Unit::parse(unit);  // a unit nothing converts would fail every fleet and history of the figure
+  } catch (const Error& e) {
+    malformed(source, "figure '" + procedure + "/" + path + "': \"unit\" '" + unit + "': " + e.message());
+  }
   FigureRow row;
   row.procedure = procedure;
   row.figure = path;
@@ -246,6 +282,9 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
 CampaignRecord read_campaign(const nlohmann::json& results, const std::string& source) {
   using type = nlohmann::json::value_t;
   if (!results.is_object()) malformed(source, "expected a JSON object");
+  if (nested_deeper_than(results, max_results_nesting)) {
+    malformed(source, fmt::format("nested more than {} levels deep", max_results_nesting));
+  }
   if (const auto it = results.find("results_schema_version"); it != results.end()) {
     if (!it->is_number_integer() || it->get<std::int64_t>() != results_schema_version) {
       throw Error(SourceLocation{source, 0, 0},
@@ -257,7 +296,7 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
   record.inertest_version = member(results, "inertest_version", type::string, source, "").get<std::string>();
   const auto& instrument = member(results, "instrument", type::object, source, "");
   record.entry.instrument = member(instrument, "id", type::string, source, "instrument: ").get<std::string>();
-  if (record.entry.instrument.empty()) malformed(source, "instrument: \"id\" is empty");
+  check_instrument_id(record.entry.instrument, source);
   record.entry.verdict = member(results, "verdict", type::string, source, "").get<std::string>();
   if (record.entry.verdict != "PASS" && record.entry.verdict != "FAIL" && record.entry.verdict != "NONE") {
     malformed(source, "\"verdict\" must be PASS, FAIL or NONE, not '" + record.entry.verdict + "'");
@@ -274,7 +313,7 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
                                .value_or(optional_string(plan, "date", source)
                                              .value_or(record.entry.processed_at.substr(0, std::min<std::size_t>(
                                                                                          10, record.entry.processed_at.size()))));
-  if (!is_iso_date(record.entry.tested_on)) {
+  if (!is_test_date(record.entry.tested_on)) {
     malformed(source, "the test date '" + record.entry.tested_on + "' is not YYYY-MM-DD (\"tested_on\" or plan \"date\")");
   }
 
@@ -300,6 +339,21 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
     const std::size_t first = record.figures.size();
     collect_figures(result, name, "", source, record.figures);
     collect_limited_figures(result, name, verdicts, first, source, record.figures);
+  }
+  // One row per figure: two steps of one name (a plan's two steps of one kind, both named by it)
+  // would store one figure twice, and which of the two a history shows would be chance.
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& row : record.figures) {
+    if (!seen.emplace(row.procedure, row.figure).second) {
+      const auto& procedures = results.at("procedures");
+      const auto named = std::count_if(procedures.begin(), procedures.end(), [&](const nlohmann::json& p) {
+        return p.is_object() && p.value("name", "") == row.procedure;
+      });
+      malformed(source, "figure '" + row.procedure + "/" + row.figure + "' appears twice" +
+                            (named > 1 ? fmt::format(" ({} procedures are named '{}': give each step a name of its own)",
+                                                     named, row.procedure)
+                                       : std::string()));
+    }
   }
   for (auto& row : record.figures) {
     const auto it = verdicts.find({row.procedure, row.figure});
@@ -355,9 +409,12 @@ FigurePoint point_from_row(const Row& row, const std::string& unit) {
 }
 
 // The limits of the latest test that set any, converted into unit (rows ordered by test date
-// within an instrument; across instruments the latest date wins).
+// within an instrument; across instruments the latest date wins). A max alone bounds the magnitude,
+// as the campaign judged it (campaign.cc: |value| <= max): the spec is then [-max, max], lower is
+// -max and on_magnitude is set. Derived here, at query time, from the stored limits, so that
+// campaigns archived before need no migration.
 void take_limits(const std::vector<Row>& rows, const std::string& unit, std::optional<double>& lower,
-                 std::optional<double>& upper) {
+                 std::optional<double>& upper, bool& on_magnitude) {
   std::string limits_tested_on;
   for (const auto& row : rows) {
     if ((row.is_null(6) && row.is_null(7)) || row.text(0) < limits_tested_on) continue;
@@ -369,15 +426,17 @@ void take_limits(const std::vector<Row>& rows, const std::string& unit, std::opt
     lower = in_unit(row.optional_real(6));
     upper = in_unit(row.optional_real(7));
   }
+  on_magnitude = upper && !lower && *upper >= 0.0;
+  if (on_magnitude) lower = -*upper;
 }
 
 constexpr const char* figure_columns =
     "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit "
     "FROM figure f JOIN campaign c ON c.id = f.campaign ";
 
-// Fault injection for the kill test (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N
+// Fault injection for the kill tests (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N
 // makes an add kill its own process (SIGKILL: no clean-up, as a power cut or `kill -9`) after
-// writing N figure rows inside its transaction. -1 (unset) never.
+// writing N figure rows inside its transaction (of all its files). -1 (unset) never.
 long fault_injection_kill_after() {
   const char* value = std::getenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
   return value == nullptr ? -1 : std::strtol(value, nullptr, 10);
@@ -391,31 +450,22 @@ class DatabaseArchive final : public Archive {
 
   AddOutcome add(const nlohmann::json& results, const std::string& source) override {
     const CampaignRecord record = read_campaign(results, source);
-    AddOutcome outcome{record.entry.id, record.entry.instrument, false};
     Transaction transaction(*db_, true);
-    const auto inserted = db_->query(
-        "INSERT INTO campaign (id, instrument, title, tested_on, processed_at, operator, station, verdict,"
-        " inertest_version, results) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)"
-        " ON CONFLICT (id) DO NOTHING RETURNING id",
-        {record.entry.id, record.entry.instrument, record.entry.title, record.entry.tested_on,
-         record.entry.processed_at, record.operator_name, record.station, record.entry.verdict,
-         record.inertest_version, record.results_text});
-    if (!inserted.empty()) {
-      const long kill_after = fault_injection_kill_after();
-      long written = 0;
-      for (const auto& row : record.figures) {
-        if (++written > kill_after && kill_after >= 0) ::raise(SIGKILL);
-        const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
-        db_->query(
-            "INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
-            " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
-            {record.entry.id, row.procedure, row.figure, row.value, row.unit, optional(row.uncertainty),
-             optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
-      }
-      outcome.added = true;
-    }
+    long figures_written = 0;
+    const AddOutcome outcome = insert(record, figures_written);
     transaction.commit();
     return outcome;
+  }
+
+  std::vector<AddOutcome> add_all(const std::vector<std::pair<nlohmann::json, std::string>>& files) override {
+    std::vector<CampaignRecord> records;
+    for (const auto& [results, source] : files) records.push_back(read_campaign(results, source));
+    std::vector<AddOutcome> outcomes;
+    Transaction transaction(*db_, true);
+    long figures_written = 0;
+    for (const auto& record : records) outcomes.push_back(insert(record, figures_written));
+    transaction.commit();
+    return outcomes;
   }
 
   std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) override {
@@ -455,9 +505,9 @@ class DatabaseArchive final : public Archive {
       }
       throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
     }
-    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
+    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
     for (const auto& row : rows) history.points.push_back(point_from_row(row, history.unit));
-    take_limits(rows, history.unit, history.lower_limit, history.upper_limit);
+    take_limits(rows, history.unit, history.lower_limit, history.upper_limit, history.limit_on_magnitude);
     return history;
   }
 
@@ -465,16 +515,16 @@ class DatabaseArchive final : public Archive {
     const auto [procedure, name] = split_figure(figure);
     const std::string where = "WHERE f.procedure = $1 AND f.figure = $2";
     const std::string order = " ORDER BY c.instrument, c.tested_on, c.processed_at, c.id";
-    if (since && !is_iso_date(*since)) throw Error("--since '" + *since + "': expected YYYY-MM-DD");
+    if (since && !is_test_date(*since)) throw Error("--since '" + *since + "': expected YYYY-MM-DD");
     const auto rows = since ? db_->query(std::string(figure_columns) + where + " AND c.tested_on >= $3" + order,
                                          {procedure, name, *since})
                             : db_->query(std::string(figure_columns) + where + order, {procedure, name});
     if (rows.empty()) {
       throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
     }
-    FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt};
+    FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
     for (const auto& row : rows) fleet.points.push_back(point_from_row(row, fleet.unit));
-    take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit);
+    take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit, fleet.limit_on_magnitude);
     return fleet;
   }
 
@@ -497,6 +547,34 @@ class DatabaseArchive final : public Archive {
   std::string backend() const override { return db_->backend(); }
 
  private:
+  // Stores one campaign read and checked, inside the caller's transaction; nothing when the same
+  // content is archived already. figures_written counts the figure rows of the transaction (for
+  // the fault injection).
+  AddOutcome insert(const CampaignRecord& record, long& figures_written) {
+    AddOutcome outcome{record.entry.id, record.entry.instrument, false};
+    const auto inserted = db_->query(
+        "INSERT INTO campaign (id, instrument, title, tested_on, processed_at, operator, station, verdict,"
+        " inertest_version, results) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)"
+        " ON CONFLICT (id) DO NOTHING RETURNING id",
+        {record.entry.id, record.entry.instrument, record.entry.title, record.entry.tested_on,
+         record.entry.processed_at, record.operator_name, record.station, record.entry.verdict,
+         record.inertest_version, record.results_text});
+    if (!inserted.empty()) {
+      const long kill_after = fault_injection_kill_after();
+      for (const auto& row : record.figures) {
+        if (++figures_written > kill_after && kill_after >= 0) ::raise(SIGKILL);
+        const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
+        db_->query(
+            "INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
+            " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
+            {record.entry.id, row.procedure, row.figure, row.value, row.unit, optional(row.uncertainty),
+             optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
+      }
+      outcome.added = true;
+    }
+    return outcome;
+  }
+
   std::unique_ptr<Database> db_;
 };
 
@@ -513,7 +591,8 @@ nlohmann::json FigureHistory::to_json() const {
   const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   return {{"instrument", instrument},         {"figure", figure},
           {"unit", unit},                     {"points", std::move(list)},
-          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)}};
+          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)},
+          {"limit_on_magnitude", limit_on_magnitude}};
 }
 
 void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }
@@ -526,6 +605,16 @@ std::unique_ptr<Archive> open_archive(const std::string& location, ArchiveOpenin
   }
   auto db = is_url ? open_postgresql(location) : open_sqlite(location);
   return std::make_unique<DatabaseArchive>(std::move(db), location);
+}
+
+void refuse_foreign_database(const std::vector<std::string>& tables, const std::string& location) {
+  if (tables.empty() || std::find(tables.begin(), tables.end(), "schema_version") != tables.end()) return;
+  std::string names;
+  for (std::size_t i = 0; i < tables.size() && i < 5; ++i) names += (i == 0 ? "" : ", ") + tables[i];
+  if (tables.size() > 5) names += ", ...";
+  throw Error(SourceLocation{location, 0, 0},
+              "not an inertest archive: the database holds other tables (" + names +
+                  ") and no inertest schema; give a new file or an empty database");
 }
 
 std::string default_archive_location() {
@@ -562,6 +651,22 @@ nlohmann::json read_results_file(const std::string& path) {
     }
     if (end < text.size() && (text[end] == 'N' || text[end] == 'I')) {
       message += " (JSON has no NaN or Infinity: null stands for a missing number)";
+    }
+    throw Error(SourceLocation{path, line, column}, "not valid JSON: " + message);
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond a double ("[json.exception.out_of_range.406] number overflow parsing
+    // '1e400'"): a fault of the file, at the number's first place in it.
+    std::string message = e.what();
+    if (const auto bracket = message.find("] "); bracket != std::string::npos) message.erase(0, bracket + 2);
+    std::size_t line = 0, column = 0;
+    const auto quote = message.find('\'');
+    const auto end_quote = quote == std::string::npos ? std::string::npos : message.find('\'', quote + 1);
+    if (end_quote != std::string::npos) {
+      if (const auto at = text.find(message.substr(quote + 1, end_quote - quote - 1)); at != std::string::npos) {
+        line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+        const auto line_start = text.rfind('\n', at);
+        column = at - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
+      }
     }
     throw Error(SourceLocation{path, line, column}, "not valid JSON: " + message);
   }

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <fmt/format.h>
 
+#include "archive/database.h"
 #include "archive/sha256.h"
 #include "inertest/core/error.h"
 #include "test_util/postgresql_server.h"
@@ -183,7 +184,8 @@ TEST_P(ArchiveBackend, AFigureALimitNamesInAListIsArchivedWithItsLimit) {
   EXPECT_EQ(stability.unit, "deg/h");
   ASSERT_TRUE(stability.upper_limit);
   EXPECT_NEAR(*stability.upper_limit, 0.02, 1e-15);  // the plan's limit, in the figure's unit
-  EXPECT_FALSE(stability.lower_limit);
+  EXPECT_TRUE(stability.limit_on_magnitude);  // a max alone: |value| <= 0.02
+  EXPECT_EQ(stability.lower_limit, -*stability.upper_limit);
   EXPECT_EQ(archive->figures(true),
             (std::vector<std::string>{"bias_static/bias_stability/1", "scale_factor/scale_factor"}));
   const auto all = archive->figures(false);
@@ -270,7 +272,7 @@ TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
   EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }), "figure 'nope/nope' is not archived");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),
             "--since '2026-13': expected YYYY-MM-DD");
-  for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29"}) {
+  for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29", "2026-04-04x", "2026-04-04T00:00:00Z"}) {
     EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string(no_day)); }),
               std::string("--since '") + no_day + "': expected YYYY-MM-DD");
   }
@@ -512,6 +514,18 @@ TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_THAT(unknown.err, HasSubstr("figure 'x/y' is not archived"));
   EXPECT_FALSE(std::filesystem::exists(scratch_.path() + "/none"));
+
+  // An id with a '/' (a lab's LAB2/FOG-001) or a '%' names a file of its own in the directory.
+  archive->add(campaign("LAB2/FOG-001", "2026-01-03", 36000.1), "c");
+  archive->add(campaign("50%", "2026-01-04", 36000.2), "d");
+  const auto slash = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/slash", "--db", location_});
+  ASSERT_EQ(slash.exit_code, 0) << slash.err;
+  for (const char* page : {"fleet.html", "history-FOG-A.html", "history-LAB2%2FFOG-001.html", "history-50%25.html"}) {
+    EXPECT_TRUE(std::filesystem::exists(scratch_.path() + "/slash/" + page)) << page;
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(scratch_.path() + "/slash"),
+                          std::filesystem::directory_iterator()),
+            5);  // the pages and nothing else (no staging left)
 }
 
 // The demo's results.json (inertest demo).
@@ -543,6 +557,107 @@ TEST_P(ArchiveBackend, DemoResultsRoundTripExactly) {
   }
   EXPECT_EQ(found, 1);
   EXPECT_EQ(points[0]["campaign"], campaigns[0]["id"]);
+}
+
+// A plan's max alone bounds the magnitude (campaign.cc judges |value| <= max): the history and the
+// fleet take the spec as [-max, max] and say so. Biases -0.04, -0.06, -0.05 deg/h under max 0.05:
+// x̄ = -0.05, MR̄ = (0.02 + 0.01)/2, σ = MR̄/1.128379; Cp = 0.1/6σ, Cpk = min(0.05 - x̄, x̄ + 0.05)/3σ
+// = 0 (against the max alone, one-sided, it read Cp null and Cpk 2.51).
+TEST_P(ArchiveBackend, AMaxAloneIsALimitOnTheMagnitude) {
+  auto archive = open();
+  const double biases[] = {-0.04, -0.06, -0.05};
+  for (int i = 0; i < 3; ++i) {
+    nlohmann::json results = campaign(fmt::format("FOG-{}", i), "2026-02-01", 36000.0);
+    results["procedures"][1]["result"]["bias"]["value"] = biases[i];
+    results["verdicts"].push_back({{"procedure", "bias_static"}, {"figure", "bias"}, {"value", biases[i]},
+                                   {"unit", "deg/h"}, {"pass", std::abs(biases[i]) <= 0.05}, {"max", 0.05}});
+    archive->add(results, "r.json");
+  }
+  const FigureHistory history = archive->history("FOG-1", "bias_static/bias");
+  EXPECT_EQ(history.lower_limit, -0.05);
+  EXPECT_EQ(history.upper_limit, 0.05);
+  EXPECT_TRUE(history.limit_on_magnitude);
+  EXPECT_EQ(history.to_json()["limit_on_magnitude"], true);
+  EXPECT_EQ(history.to_json()["lower_limit"], -0.05);
+  // min with max: the signed value, as before.
+  EXPECT_FALSE(archive->history("FOG-1", "scale_factor/scale_factor").limit_on_magnitude);
+  EXPECT_EQ(archive->history("FOG-1", "scale_factor/scale_factor").to_json()["limit_on_magnitude"], false);
+
+  const auto run = testing::run_cli({"archive", "fleet", "--figure", "bias_static/bias", "--db", location_, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto fleet = nlohmann::json::parse(run.out);
+  EXPECT_EQ(fleet["limit_on_magnitude"], true);
+  EXPECT_EQ(fleet["lower_limit"], -0.05);
+  const double sigma = ((0.02 + 0.01) / 2.0) / 1.1283791670955126;
+  ASSERT_TRUE(fleet["capability"]["cp"].is_number());
+  EXPECT_NEAR(fleet["capability"]["cp"].get<double>(), 0.1 / (6 * sigma), 1e-9);
+  EXPECT_NEAR(fleet["capability"]["cpk"].get<double>(), 0.0, 1e-9);
+  const auto text = testing::run_cli({"archive", "history", "FOG-1", "--figure", "bias_static/bias", "--db", location_});
+  EXPECT_THAT(text.out, HasSubstr("\n  limits: |value| <= 0.05\n"));
+}
+
+// Two steps of one name (a plan's two scale factor steps) give the same figure twice: the file is
+// refused by name, and a multi-file add that holds it adds nothing, the good files before it neither.
+TEST_P(ArchiveBackend, AFigureTwiceIsRefusedAndAMultiFileAddIsAllOrNothing) {
+  nlohmann::json twice = campaign("FOG-2", "2026-02-01", 36000.0);
+  twice["procedures"].push_back(twice["procedures"][0]);
+  twice["procedures"][2]["result"]["scale_factor"]["value"] = 36000.5;
+  auto archive = open();
+  EXPECT_EQ(error_of_add(*archive, twice),
+            "bad/results.json: not an inertest results file: figure 'scale_factor/nonlinearity' appears twice (2 "
+            "procedures are named 'scale_factor': give each step a name of its own)");
+  const std::string good = scratch_.write("good.json", campaign("FOG-1", "2026-02-01", 36000.0).dump());
+  const std::string bad = scratch_.write("twice.json", twice.dump());
+  const auto refused = testing::run_cli({"archive", "add", good, bad, "--db", location_});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr(bad + ": not an inertest results file: figure 'scale_factor/nonlinearity' appears twice"));
+  EXPECT_THAT(refused.err, Not(HasSubstr("UNIQUE")));
+  EXPECT_TRUE(archive->list(std::nullopt).empty());
+
+  // Several files in one transaction: the outcome of each, and a process killed while it writes
+  // the second file's figures leaves neither file (the first one was committed on its own).
+  const std::vector<std::pair<nlohmann::json, std::string>> files = {
+      {campaign("FOG-1", "2026-02-01", 36000.0), "a.json"}, {campaign("FOG-3", "2026-02-03", 36000.0), "b.json"}};
+  const auto outcomes = archive->add_all(files);
+  ASSERT_EQ(outcomes.size(), 2u);
+  EXPECT_TRUE(outcomes[0].added && outcomes[1].added);
+  EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
+  EXPECT_FALSE(archive->add_all(files)[1].added);  // the same content: stored once
+  const std::string third = scratch_.write("c.json", campaign("FOG-4", "2026-02-04", 36000.0).dump());
+  const std::string fourth = scratch_.write("d.json", campaign("FOG-5", "2026-02-05", 36000.0).dump());
+  ::setenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES", "5", 1);  // killed in the second file's figures
+  const auto killed = testing::run_cli({"archive", "add", third, fourth, "--db", location_});
+  ::unsetenv("INERTEST_ARCHIVE_KILL_AFTER_FIGURES");
+  EXPECT_EQ(killed.exit_code, 128 + 9) << killed.err;
+  EXPECT_EQ(open()->list(std::nullopt).size(), 2u);  // neither FOG-4 nor FOG-5
+}
+
+// What add refuses, naming the file: a unit nothing converts (the figure's fleet then failed for every
+// instrument), a nesting deep enough to exhaust the stack, a date with text after the day, and
+// instrument ids that no page can reach.
+TEST_P(ArchiveBackend, UnknownUnitsDeepNestingLooseDatesAndUnreachableIdsAreRefused) {
+  auto archive = open();
+  nlohmann::json unit = campaign("FOG-1", "2026-02-01", 36000.0);
+  unit["procedures"][0]["result"]["scale_factor"]["unit"] = "furlong/fortnight";
+  EXPECT_THAT(error_of_add(*archive, unit),
+              HasSubstr("bad/results.json: not an inertest results file: figure 'scale_factor/scale_factor': \"unit\" "
+                        "'furlong/fortnight': "));
+  nlohmann::json deep = campaign("FOG-1", "2026-02-01", 36000.0);
+  std::string nested;
+  for (int i = 0; i < 20000; ++i) nested += "{\"a\":";
+  nested += "1" + std::string(20000, '}');
+  deep["procedures"][0]["result"]["deep"] = nlohmann::json::parse(nested);  // parsed without recursion
+  EXPECT_EQ(error_of_add(*archive, deep), "bad/results.json: not an inertest results file: nested more than 64 levels deep");
+  for (const char* date : {"2026-03-01garbage", "2026-03-01T10:00:00Z", "2026-03-01 10:00"}) {
+    nlohmann::json loose = campaign("FOG-1", "2026-02-01", 36000.0);
+    loose["tested_on"] = date;
+    EXPECT_THAT(error_of_add(*archive, loose), HasSubstr(std::string("the test date '") + date + "' is not YYYY-MM-DD"));
+  }
+  for (const char* id : {".", "..", "FOG\n01", "FOG\x7f"}) {
+    EXPECT_THAT(error_of_add(*archive, campaign(id, "2026-02-01", 36000.0)), HasSubstr("instrument: \"id\"")) << id;
+  }
+  EXPECT_TRUE(archive->list(std::nullopt).empty());
+  EXPECT_EQ(error_of_add(*archive, campaign("FOG-1", "2026-02-01", 36000.0)), "no error");
 }
 
 INSTANTIATE_TEST_SUITE_P(Archive, ArchiveBackend, ::testing::Values("sqlite", "postgresql"),
@@ -580,6 +695,88 @@ TEST(ArchiveOpening, ASilentServerIsATimeoutNotAHang) {
   EXPECT_THROW(open_archive(fmt::format("postgresql://lab@127.0.0.1:{}/archive", ntohs(address.sin_port))), Error);
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
   ::close(listener);
+}
+
+// A number beyond a double is the file's fault, named with its place (it was exit 3, "internal
+// error: [json.exception.out_of_range.406]", no file named).
+TEST(ArchiveFiles, ANumberBeyondADoubleIsTheFilesFault) {
+  testing::ScratchDirectory scratch;
+  const std::string file = scratch.write("results.json", "{\n  \"a\": {\n    \"value\": 1e400}}\n");
+  try {
+    read_results_file(file);
+    FAIL() << "1e400 read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), file + ":3:14: not valid JSON: number overflow parsing '1e400'");
+  }
+  const auto run = testing::run_cli({"archive", "add", file, "--db", scratch.path() + "/archive.sqlite"});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_THAT(run.err, HasSubstr(file + ":3:14: not valid JSON: number overflow parsing '1e400'"));
+}
+
+// Another program's SQLite file named by --db (a typo, a wrong variable) is refused before anything
+// in it changes: a read-only `archive list` created the archive's tables in it and turned it to WAL.
+TEST(ArchiveOpening, AForeignDatabaseIsRefusedAndLeftAsItWas) {
+  testing::ScratchDirectory scratch;
+  const std::string foreign = scratch.path() + "/notes.sqlite";
+  const auto sqlite = [](const std::string& path, const std::string& script) {
+    const std::string command = fmt::format(
+        "/usr/bin/python3 -c \"import sqlite3; c = sqlite3.connect('{}'); {}\"", path, script);
+    return std::system(command.c_str());
+  };
+  ASSERT_EQ(sqlite(foreign, "c.execute('CREATE TABLE notes (x)'); c.commit()"), 0);
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"archive", "list", "--db", foreign}, {"archive", "instruments", "--db", foreign},
+        {"archive", "fleet", "--figure", "a/b", "--db", foreign}}) {
+    const auto run = testing::run_cli(command);
+    EXPECT_EQ(run.exit_code, 2) << command[1];
+    EXPECT_THAT(run.err, HasSubstr(foreign + ": not an inertest archive: the database holds other tables (notes) and "
+                                             "no inertest schema"))
+        << command[1];
+  }
+  const std::string good = scratch.write("good.json", campaign("FOG-1", "2026-02-01", 36000.0).dump());
+  EXPECT_EQ(testing::run_cli({"archive", "add", good, "--db", foreign}).exit_code, 2);
+  // Its tables and its rollback journal, as they were.
+  EXPECT_EQ(sqlite(foreign, "import sys; sys.exit(0 if [r[0] for r in c.execute('SELECT name FROM sqlite_master')] == "
+                            "['notes'] and c.execute('PRAGMA journal_mode').fetchone()[0] == 'delete' else 1)"),
+            0);
+  // An empty file (touched beforehand) is a new archive.
+  const std::string empty = scratch.write("empty.sqlite", "");
+  EXPECT_EQ(testing::run_cli({"archive", "add", good, "--db", empty}).exit_code, 0);
+  EXPECT_EQ(testing::run_cli({"archive", "list", "--db", empty}).exit_code, 0);
+}
+
+// A password in the URL is not printed, given as user:password@ or as a password= parameter.
+TEST(ArchiveOpening, ThePasswordOfAUrlIsRedacted) {
+  EXPECT_EQ(redact_postgresql_url("postgresql://lab:s3cret@db.lab:5432/archive"), "postgresql://lab:***@db.lab:5432/archive");
+  EXPECT_EQ(redact_postgresql_url("postgresql://lab@127.0.0.1:1/archive?password=s3cret"),
+            "postgresql://lab@127.0.0.1:1/archive?password=***");
+  EXPECT_EQ(redact_postgresql_url("postgres://lab:a@h/db?sslmode=disable&password=s3cret&connect_timeout=2"),
+            "postgres://lab:***@h/db?sslmode=disable&password=***&connect_timeout=2");
+  EXPECT_EQ(redact_postgresql_url("postgresql://h/db?passfile=x"), "postgresql://h/db?passfile=x");
+  const auto run = testing::run_cli({"archive", "list", "--db", "postgresql://lab@127.0.0.1:1/archive?password=s3cret"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("postgresql://lab@127.0.0.1:1/archive?password=***"));
+  EXPECT_THAT(run.err, Not(HasSubstr("s3cret")));
+}
+
+// The PostgreSQL server dropping the connection (a restart; here the backend terminated): the next
+// query connects again, as `inertest serve` needs to go on after a restart of the lab's server
+// (every request was a 500 "no connection to the server" until serve itself was restarted).
+TEST(ArchivePostgresql, ABrokenConnectionIsMadeAgainOnce) {
+  auto& server = testing::PostgresqlServer::instance();
+  ASSERT_TRUE(server.available()) << server.why_unavailable();
+  const std::string location = server.create_database();
+  auto archive = open_archive(location);
+  archive->add(campaign("FOG-1", "2026-02-01", 36000.0), "a.json");
+  const std::string command = fmt::format(
+      "/usr/lib/postgresql/15/bin/psql -q '{}' -c 'SELECT pg_terminate_backend(pid) FROM pg_stat_activity WHERE "
+      "datname = current_database() AND pid <> pg_backend_pid()' > /dev/null",
+      location);
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  EXPECT_EQ(archive->list(std::nullopt).size(), 1u);
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  EXPECT_TRUE(archive->add(campaign("FOG-2", "2026-02-01", 36000.0), "b.json").added);  // a transaction too
+  EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
 }
 
 TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {

@@ -44,6 +44,16 @@ class Database {
 std::unique_ptr<Database> open_sqlite(const std::string& path);
 std::unique_ptr<Database> open_postgresql(const std::string& url);
 
+// url with its password, given as user:password@ or as a password= parameter, replaced by ***:
+// what messages show.
+std::string redact_postgresql_url(const std::string& url);
+
+// A database is the archive's to migrate when it is empty or holds the archive's schema (a
+// schema_version table): given the names of its tables, throws Error naming location otherwise, so
+// that a mistyped --db naming another program's database is refused before anything in it (its
+// tables, SQLite's journal mode) is changed.
+void refuse_foreign_database(const std::vector<std::string>& tables, const std::string& location);
+
 // Rolls back on scope exit unless committed: an exception anywhere in an add leaves nothing behind.
 class Transaction {
  public:

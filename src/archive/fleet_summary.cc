@@ -45,6 +45,7 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
                          {"since", since ? nlohmann::json(*since) : nlohmann::json(nullptr)},
                          {"lower_limit", optional_json(fleet.lower_limit)},
                          {"upper_limit", optional_json(fleet.upper_limit)},
+                         {"limit_on_magnitude", fleet.limit_on_magnitude},
                          {"instruments", instruments},
                          {"control_chart", nullptr},
                          {"capability", {{"cp", nullptr}, {"cpk", nullptr}}}};

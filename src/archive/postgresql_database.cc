@@ -2,6 +2,9 @@
 // archive. Parameters travel separately from the SQL text (PQexecParams), never spliced into it.
 #include <libpq-fe.h>
 
+#include <algorithm>
+#include <string_view>
+
 #include <fmt/format.h>
 
 #include "archive/database.h"
@@ -15,19 +18,33 @@ namespace {
 // every process using the same database; an arbitrary constant, "inertest" in ASCII.
 constexpr const char* advisory_lock_sql = "SELECT pg_advisory_xact_lock(7597131758597743476)";
 
-// The URL without its password, for messages.
-std::string redact(const std::string& url) {
-  const auto scheme_end = url.find("://");
-  const auto at = url.find('@');
-  if (scheme_end == std::string::npos || at == std::string::npos || at < scheme_end) return url;
-  const auto colon = url.find(':', scheme_end + 3);
-  if (colon == std::string::npos || colon > at) return url;
-  return url.substr(0, colon) + ":***" + url.substr(at);
+}  // namespace
+
+std::string redact_postgresql_url(const std::string& url) {
+  std::string redacted = url;
+  // ?password=... or &password=...: the value up to the next parameter.
+  for (std::size_t at = redacted.find('?'); at != std::string::npos; at = redacted.find('&', at + 1)) {
+    static constexpr std::string_view key = "password=";
+    if (redacted.compare(at + 1, key.size(), key) != 0) continue;
+    const std::size_t value = at + 1 + key.size();
+    const std::size_t end = std::min(redacted.find('&', value), redacted.size());
+    redacted.replace(value, end - value, "***");
+  }
+  // user:password@host
+  const auto scheme_end = redacted.find("://");
+  const auto authority_end = scheme_end == std::string::npos ? std::string::npos : redacted.find_first_of("/?", scheme_end + 3);
+  const auto at = redacted.rfind('@', authority_end == std::string::npos ? redacted.size() : authority_end);
+  if (scheme_end == std::string::npos || at == std::string::npos || at < scheme_end) return redacted;
+  const auto colon = redacted.find(':', scheme_end + 3);
+  if (colon == std::string::npos || colon > at) return redacted;
+  return redacted.substr(0, colon) + ":***" + redacted.substr(at);
 }
+
+namespace {
 
 class PostgresqlDatabase final : public Database {
  public:
-  explicit PostgresqlDatabase(const std::string& url) : where_(redact(url)) {
+  explicit PostgresqlDatabase(const std::string& url) : where_(redact_postgresql_url(url)) {
     // A server that accepts and never answers would hang every command: 10 s to connect, unless
     // the URL says otherwise (its connect_timeout comes later and wins).
     const char* keywords[] = {"connect_timeout", "dbname", nullptr};
@@ -40,6 +57,18 @@ class PostgresqlDatabase final : public Database {
     }
     // CREATE ... IF NOT EXISTS and the like send notices; they are not the user's business.
     PQsetNoticeProcessor(connection_, [](void*, const char*) {}, nullptr);
+    try {
+      std::vector<std::string> tables;
+      for (const auto& row : query("SELECT table_name FROM information_schema.tables WHERE table_schema = "
+                                   "current_schema() ORDER BY table_name",
+                                   {})) {
+        tables.push_back(row.text(0));
+      }
+      refuse_foreign_database(tables, where_);
+    } catch (...) {
+      PQfinish(connection_);  // the destructor does not run for a constructor that throws
+      throw;
+    }
   }
   ~PostgresqlDatabase() override { PQfinish(connection_); }
   PostgresqlDatabase(const PostgresqlDatabase&) = delete;
@@ -61,11 +90,26 @@ class PostgresqlDatabase final : public Database {
       values[i] = texts[i].c_str();
     }
     const std::string statement(sql);
-    std::unique_ptr<PGresult, void (*)(PGresult*)> result(
-        PQexecParams(connection_, statement.c_str(), static_cast<int>(params.size()), nullptr, values.data(), nullptr,
-                     nullptr, 0),
-        PQclear);
-    const ExecStatusType status = result ? PQresultStatus(result.get()) : PGRES_FATAL_ERROR;
+    const auto execute = [&] {
+      return std::unique_ptr<PGresult, void (*)(PGresult*)>(
+          PQexecParams(connection_, statement.c_str(), static_cast<int>(params.size()), nullptr, values.data(), nullptr,
+                       nullptr, 0),
+          PQclear);
+    };
+    auto result = execute();
+    ExecStatusType status = result ? PQresultStatus(result.get()) : PGRES_FATAL_ERROR;
+    // The connection broke (the server restarted, an idle connection was cut): connect again once
+    // and repeat the statement, unless it was inside a transaction, whose work went with the
+    // connection (the transaction fails; the next one finds the connection restored).
+    if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK && PQstatus(connection_) == CONNECTION_BAD &&
+        !in_transaction_) {
+      PQreset(connection_);
+      if (PQstatus(connection_) == CONNECTION_OK) {
+        PQsetNoticeProcessor(connection_, [](void*, const char*) {}, nullptr);
+        result = execute();
+        status = result ? PQresultStatus(result.get()) : PGRES_FATAL_ERROR;
+      }
+    }
     if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
       throw DatabaseError(SourceLocation{where_, 0, 0}, "archive: " + trim(PQerrorMessage(connection_)));
     }
@@ -87,10 +131,15 @@ class PostgresqlDatabase final : public Database {
 
   void begin(bool exclusive) override {
     query("BEGIN", {});
+    in_transaction_ = true;
     if (exclusive) query(advisory_lock_sql, {});
   }
-  void commit() override { query("COMMIT", {}); }
+  void commit() override {
+    query("COMMIT", {});
+    in_transaction_ = false;
+  }
   void rollback() noexcept override {
+    in_transaction_ = false;
     PGresult* result = PQexec(connection_, "ROLLBACK");
     PQclear(result);
   }
@@ -104,6 +153,7 @@ class PostgresqlDatabase final : public Database {
 
   std::string where_;
   PGconn* connection_ = nullptr;
+  bool in_transaction_ = false;  // between begin() and commit() or rollback()
 };
 
 }  // namespace

@@ -33,6 +33,11 @@ class SqliteDatabase final : public Database {
     try {
       sqlite3_busy_timeout(db_, busy_timeout_ms);
       sqlite3_extended_result_codes(db_, 1);
+      std::vector<std::string> tables;
+      for (const auto& row : query("SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name", {})) {
+        tables.push_back(row.text(0));
+      }
+      refuse_foreign_database(tables, path);
       enter_wal_mode();
       query("PRAGMA foreign_keys=ON", {});
       query("PRAGMA synchronous=FULL", {});

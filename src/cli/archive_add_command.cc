@@ -17,24 +17,26 @@ CommandAction setup(CLI::App& archive) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = archive.add_subcommand(
       "add",
-      "Add campaigns' results.json to the archive, each in one transaction. A campaign already there\n"
+      "Add campaigns' results.json to the archive, all in one transaction. A campaign already there\n"
       "(the same content, whatever its processing time) is recognised and stored once. All files are\n"
-      "read and checked before any is added: a malformed one adds nothing.");
+      "read and checked before any is added: a malformed one adds nothing, nor does a failure of the\n"
+      "database part-way.");
   command->add_option("RESULTS", arguments->files, "results.json of inertest run")->required();
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,
                     "print {\"added\": [{\"id\", \"instrument\", \"file\", \"added\"}]} on stdout");
   return [arguments] {
-    std::vector<nlohmann::json> results;
+    std::vector<std::pair<nlohmann::json, std::string>> files;
     for (const auto& file : arguments->files) {
-      results.push_back(archive::read_results_file(file));
-      archive::check_results(results.back(), file);
+      files.emplace_back(archive::read_results_file(file), file);
+      archive::check_results(files.back().first, file);  // before the archive is opened (or created)
     }
     const auto store = open_archive_option(arguments->db, archive::ArchiveOpening::create);
+    const std::vector<archive::AddOutcome> outcomes = store->add_all(files);
     nlohmann::json added = nlohmann::json::array();
     std::string report;
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const archive::AddOutcome outcome = store->add(results[i], arguments->files[i]);
+    for (std::size_t i = 0; i < outcomes.size(); ++i) {
+      const archive::AddOutcome& outcome = outcomes[i];
       added.push_back({{"id", outcome.id}, {"instrument", outcome.instrument}, {"file", arguments->files[i]},
                        {"added", outcome.added}});
       report += fmt::format("{} {} {} ({})\n", outcome.added ? "added  " : "already", outcome.id, outcome.instrument,

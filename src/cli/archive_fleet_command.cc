@@ -21,7 +21,8 @@ CommandAction setup(CLI::App& archive) {
       "One figure across every archived instrument: each instrument's latest value, in the order of\n"
       "their first test, a Shewhart individuals / moving range control chart of them (NIST/SEMATECH\n"
       "e-Handbook 6.3.2.2; limits x̄ ± 3·MR̄/1.128; Western Electric rules 1 and 4) and the process\n"
-      "capability Cp, Cpk (6.1.6) against the plans' specification limits where they exist.");
+      "capability Cp, Cpk (6.1.6) against the plans' specification limits where they exist (a max\n"
+      "alone bounds |value|, as the campaign judged it: the spec is then [-max, max]).");
   command->add_option("--figure", arguments->figure, "PROCEDURE/FIGURE as named in results.json")->required();
   command->add_option("--since", arguments->since, "only tests on or after this date, YYYY-MM-DD");
   add_db_option(*command, arguments->db);

@@ -25,14 +25,17 @@ CommandAction setup(CLI::App& archive) {
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,
                     "print {\"instrument\", \"figure\", \"unit\", \"points\": [{\"tested_on\", \"value\", "
-                    "\"uncertainty\", \"campaign\"}], \"lower_limit\", \"upper_limit\"}");
+                    "\"uncertainty\", \"campaign\"}], \"lower_limit\", \"upper_limit\", \"limit_on_magnitude\"} (a plan's "
+                    "max alone bounds |value|: lower_limit is -max, limit_on_magnitude true)");
   return [arguments] {
     const auto store = open_archive_option(arguments->db);
     const archive::FigureHistory history = store->history(arguments->instrument, arguments->figure);
     std::string report = fmt::format("{} {} ({})\n", history.instrument, history.figure, history.unit);
     if (history.lower_limit || history.upper_limit) {  // the plans' limits, in the figure's unit
       const auto limit = [](const std::optional<double>& v) { return v ? fmt::format("{:.10g}", *v) : "-"; };
-      report += fmt::format("  limits: min {}, max {}\n", limit(history.lower_limit), limit(history.upper_limit));
+      report += history.limit_on_magnitude
+                    ? fmt::format("  limits: |value| <= {}\n", limit(history.upper_limit))
+                    : fmt::format("  limits: min {}, max {}\n", limit(history.lower_limit), limit(history.upper_limit));
     }
     for (const auto& p : history.points) {
       report += fmt::format("  {}  {:.10g}{}  {}\n", p.tested_on, p.value,

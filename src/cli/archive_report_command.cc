@@ -19,9 +19,11 @@ CommandAction setup(CLI::App& archive) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = archive.add_subcommand(
       "report",
-      "Write the archive's report pages: DIR/fleet.html (a control chart and the capability of each\n"
-      "figure) and DIR/history-<ID>.html for every instrument (trend plots with uncertainty bars and\n"
-      "the specification limits). Figures: those given, else every figure a plan set limits on.");
+      "Write the archive's report pages, all of them or none: DIR/fleet.html (a control chart and the\n"
+      "capability of each figure) and DIR/history-<ID>.html for every instrument (trend plots with\n"
+      "uncertainty bars and the specification limits; in the name, every byte of the id but letters,\n"
+      "digits, '-', '.' and '_' percent-encoded). Figures: those given, else every figure a plan set\n"
+      "limits on.");
   command->add_option("--out", arguments->out, "output directory")->required();
   command->add_option("--figure", arguments->figures, "PROCEDURE/FIGURE (repeatable)");
   command->add_option("--lang", arguments->lang, "language: en or zh (GJB terms)")->check(CLI::IsMember({"en", "zh"}));

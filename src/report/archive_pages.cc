@@ -1,5 +1,9 @@
 #include "inertest/report/archive_pages.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
@@ -38,6 +42,7 @@ constexpr PageWord page_words[] = {
     {"lower_limit", "lower specification limit", "指标下限"},
     {"upper_limit", "upper specification limit", "指标上限"},
     {"out_of_control", "Out of control", "失控点"},
+    {"magnitude", "(−max: the max bounds |value|)", "（−max：上限约束 |值|）"},
     {"instrument_number", "instrument, in order of first test", "仪表（按首次测试顺序）"},
     {"rule.beyond_3_sigma", "beyond 3σ (rule 1)", "超出 3σ 控制限（准则 1）"},
     {"rule.8_on_one_side", "8 on one side of the center (rule 4)", "连续 8 点位于中心线同侧（准则 4）"},
@@ -100,8 +105,14 @@ double days(const std::string& date) {
   return static_cast<double>(day.time_since_epoch().count());
 }
 
-void add_limits(Panel& panel, const json& figure, const Page& page) {
+// The specification limits as lines. A limit on the magnitude (|value| <= max: "limit_on_magnitude")
+// draws its -max only when a plotted value is negative: a figure that is never negative (a bias
+// stability) keeps the scale of its values rather than stretching to a line below zero.
+void add_limits(Panel& panel, const json& figure, const std::vector<double>& plotted, const Page& page) {
+  const bool on_magnitude = figure.value("limit_on_magnitude", false);
+  const bool any_negative = std::any_of(plotted.begin(), plotted.end(), [](double v) { return v < 0.0; });
   for (const char* key : {"lower_limit", "upper_limit"}) {
+    if (on_magnitude && std::string(key) == "lower_limit" && !any_negative) continue;
     if (figure.contains(key) && figure.at(key).is_number()) {
       panel.references.push_back({ReferenceLine::Direction::horizontal, figure.at(key).get<double>(), page.word(key), "#b3261e"});
     }
@@ -135,8 +146,9 @@ std::string render_history_page(const json& history, const ReportOptions& option
     panel.x = make_axis(page.word("days") + " (" + first + ")", "");
     panel.y = make_axis(page.figure_label(figure.at("figure").get<std::string>()),
                         figure.at("unit").get<std::string>());
+    const std::vector<double> plotted = series.y;
     panel.series.push_back(std::move(series));
-    add_limits(panel, figure, page);
+    add_limits(panel, figure, plotted, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
                               escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
     page.out() += fmt::format("<table><tr><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
@@ -172,7 +184,9 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
         "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
         escape_xml(f.at("figure").get<std::string>()), escape_xml(f.at("unit").get<std::string>()),
         f.at("instruments").size(), number(chart.is_null() ? none : chart.at("center")),
-        number(chart.is_null() ? none : chart.at("sigma")), number(f.at("lower_limit")), number(f.at("upper_limit")),
+        number(chart.is_null() ? none : chart.at("sigma")),
+        number(f.at("lower_limit")) + (f.value("limit_on_magnitude", false) ? " " + escape_xml(page.word("magnitude")) : ""),
+        number(f.at("upper_limit")),
         number(chart.is_null() ? none : chart.at("lcl")), number(chart.is_null() ? none : chart.at("ucl")),
         number(f.at("capability").at("cp")), number(f.at("capability").at("cpk")),
         chart.is_null() ? 0 : chart.at("out_of_control").size());
@@ -208,6 +222,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
     panel.x = make_axis(page.word("instrument_number"), "");
     panel.y = make_axis(page.figure_label(f.at("figure").get<std::string>()),
                         f.at("unit").get<std::string>());
+    const std::vector<double> plotted = values.y;
     panel.series.push_back(std::move(values));
     if (!flagged.x.empty()) panel.series.push_back(std::move(flagged));
     if (!chart.is_null()) {
@@ -215,7 +230,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
       panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("ucl").get<double>(), page.word("ucl"), "#1f6feb"});
       panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("lcl").get<double>(), page.word("lcl"), "#1f6feb"});
     }
-    add_limits(panel, f, page);
+    add_limits(panel, f, plotted, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
                               escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
     page.out() += fmt::format("<table><tr><th>#</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
@@ -241,18 +256,47 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
   return page.close();
 }
 
-std::vector<std::string> write_archive_pages(const json& data, const std::string& out_dir, const ReportOptions& options) {
-  std::filesystem::create_directories(out_dir);
-  std::vector<std::string> written;
-  const std::string fleet_path = (std::filesystem::path(out_dir) / "fleet.html").string();
-  write_file_atomically(fleet_path, render_fleet_page(data.at("fleet"), options));
-  written.push_back(fleet_path);
-  for (const auto& history : data.at("histories")) {
-    const std::string path =
-        (std::filesystem::path(out_dir) / ("history-" + history.at("instrument").get<std::string>() + ".html")).string();
-    write_file_atomically(path, render_history_page(history, options));
-    written.push_back(path);
+std::string history_page_file_name(const std::string& instrument) {
+  std::string name = "history-";
+  for (const char c : instrument) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (std::isalnum(byte) != 0 || c == '-' || c == '.' || c == '_') {
+      name += c;
+    } else {
+      name += fmt::format("%{:02X}", byte);
+    }
   }
+  return name + ".html";
+}
+
+std::vector<std::string> write_archive_pages(const json& data, const std::string& out_dir, const ReportOptions& options) {
+  namespace fs = std::filesystem;
+  // Every page is rendered before any is written.
+  std::vector<std::pair<std::string, std::string>> pages = {{"fleet.html", render_fleet_page(data.at("fleet"), options)}};
+  for (const auto& history : data.at("histories")) {
+    pages.emplace_back(history_page_file_name(history.at("instrument").get<std::string>()),
+                       render_history_page(history, options));
+  }
+  fs::create_directories(out_dir);
+  // Then written into a staging directory beside them, and moved into place only when all are
+  // there: a full disk leaves the pages as they were.
+  const fs::path staging = fs::path(out_dir) / fmt::format(".archive-pages-{}", ::getpid());
+  fs::remove_all(staging);
+  fs::create_directory(staging);
+  try {
+    for (const auto& [name, content] : pages) write_file_atomically((staging / name).string(), content);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(staging, ignored);
+    throw;
+  }
+  std::vector<std::string> written;
+  for (const auto& [name, content] : pages) {
+    const fs::path path = fs::path(out_dir) / name;
+    fs::rename(staging / name, path);
+    written.push_back(path.string());
+  }
+  fs::remove(staging);
   return written;
 }
 

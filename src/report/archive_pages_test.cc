@@ -3,7 +3,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
+
+#include "test_util/test_util.h"
 
 namespace inertest::report {
 namespace {
@@ -65,6 +69,56 @@ TEST(ArchivePages, FleetShowsTheChartTheFlaggedPointAndTheCapability) {
   const std::string zh = render_fleet_page(fleet(), {Language::chinese, ""});
   EXPECT_THAT(zh, HasSubstr("超出 3σ 控制限（准则 1）"));
   EXPECT_THAT(zh, HasSubstr("过程能力"));
+}
+
+// A limit on the magnitude (|value| <= 0.05: the archive gives lower_limit -0.05) draws its -0.05
+// only when a value plotted is negative: a positive figure keeps its scale.
+TEST(ArchivePages, AMagnitudeLimitDrawsItsLowerLineOnlyUnderANegativeValue) {
+  nlohmann::json data = history();
+  nlohmann::json& figure = data["figures"][0];
+  figure["unit"] = "deg/h";
+  figure["lower_limit"] = -0.05;
+  figure["upper_limit"] = 0.05;
+  figure["limit_on_magnitude"] = true;
+  figure["points"][0]["value"] = 0.01;
+  figure["points"][1]["value"] = 0.02;
+  const std::string positive = render_history_page(data, {Language::english, ""});
+  EXPECT_THAT(positive, HasSubstr("upper specification limit"));
+  EXPECT_THAT(positive, Not(HasSubstr("lower specification limit")));
+  figure["points"][1]["value"] = -0.02;
+  EXPECT_THAT(render_history_page(data, {Language::english, ""}), HasSubstr("lower specification limit"));
+  figure["limit_on_magnitude"] = false;  // a plan's own min: always drawn
+  figure["points"][1]["value"] = 0.02;
+  EXPECT_THAT(render_history_page(data, {Language::english, ""}), HasSubstr("lower specification limit"));
+
+  nlohmann::json magnitude = fleet();
+  magnitude[0]["lower_limit"] = -0.05;
+  magnitude[0]["limit_on_magnitude"] = true;
+  EXPECT_THAT(render_fleet_page(magnitude, {Language::english, ""}),
+              HasSubstr("<td>-0.05 (−max: the max bounds |value|)</td>"));
+}
+
+// The pages of an archive: one file per instrument whatever its id, and all of them or none.
+TEST(ArchivePages, EveryIdNamesAFileOfItsOwnAndAFailureWritesNothing) {
+  EXPECT_EQ(history_page_file_name("FOG-0417"), "history-FOG-0417.html");
+  EXPECT_EQ(history_page_file_name("LAB2/FOG-001"), "history-LAB2%2FFOG-001.html");
+  EXPECT_EQ(history_page_file_name("50%"), "history-50%25.html");
+  EXPECT_EQ(history_page_file_name(".."), "history-...html");
+  EXPECT_EQ(history_page_file_name("A B"), "history-A%20B.html");
+
+  testing::ScratchDirectory scratch;
+  nlohmann::json data = {{"fleet", fleet()}, {"histories", nlohmann::json::array({history(), history()})}};
+  data["histories"][1]["instrument"] = "FOG-0418";
+  data["histories"][1]["figures"][0].erase("unit");  // a page that cannot be rendered
+  EXPECT_ANY_THROW(write_archive_pages(data, scratch.path() + "/pages", {Language::english, ""}));
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/pages/fleet.html"));
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/pages/history-FOG-0417.html"));
+  data["histories"][1] = history();
+  data["histories"][1]["instrument"] = "LAB2/FOG-001";
+  const auto written = write_archive_pages(data, scratch.path() + "/pages", {Language::english, ""});
+  EXPECT_EQ(written, (std::vector<std::string>{scratch.path() + "/pages/fleet.html",
+                                               scratch.path() + "/pages/history-FOG-0417.html",
+                                               scratch.path() + "/pages/history-LAB2%2FFOG-001.html"}));
 }
 
 }  // namespace

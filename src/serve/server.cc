@@ -32,11 +32,10 @@ struct Refusal {
 // Names are checked before any query: an instrument id as the archive takes it (any text; here no
 // control character, not a dot segment, at most 256 bytes: it is only bound to queries and
 // escaped in pages), a campaign id (16 hex digits, the archive's content hash), PROCEDURE/FIGURE
-// keys (no segment can be "." or ".."), an ISO date.
+// keys (no segment can be "." or ".."); a date is a day of the calendar (archive::is_test_date).
 const std::regex instrument_pattern(R"((?!\.\.?$)[^\x00-\x1f\x7f]+)");
 const std::regex campaign_pattern(R"([0-9a-f]{16})");
 const std::regex figure_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]*(/[A-Za-z0-9_][A-Za-z0-9_.+\-]*)+)");
-const std::regex date_pattern(R"(\d{4}-\d{2}-\d{2})");
 
 const std::string& checked(const std::string& value, const std::regex& pattern, const char* what) {
   if (value.size() > 256 || !std::regex_match(value, pattern)) {
@@ -193,6 +192,10 @@ struct Server::Impl {
       results = nlohmann::json::parse(*body);
     } catch (const nlohmann::json::parse_error&) {
       throw Refusal{400, "the body is not valid JSON"};
+    } catch (const nlohmann::json::exception& e) {  // a number beyond a double: 1e400
+      std::string message = e.what();
+      if (const auto bracket = message.find("] "); bracket != std::string::npos) message.erase(0, bracket + 2);
+      throw Refusal{400, "the body is not valid JSON: " + message};
     }
     try {
       archive::check_results(results, "request body");
@@ -224,7 +227,10 @@ struct Server::Impl {
     http.Get("/api/fleet", route([this](const httplib::Request& request, httplib::Response&) {
       const std::string figure = checked(required_parameter(request, "figure"), figure_pattern, "the figure");
       std::optional<std::string> since;
-      if (request.has_param("since")) since = checked(request.get_param_value("since"), date_pattern, "since");
+      if (request.has_param("since")) {
+        since = request.get_param_value("since");
+        if (!archive::is_test_date(*since)) throw Refusal{400, "the query parameter 'since' is not a date YYYY-MM-DD"};
+      }
       return archive::fleet_summary(store->fleet(figure, since), since);
     }));
     // The body is read here whatever its type: `curl --data-binary @results.json` sends a form,
@@ -275,6 +281,17 @@ struct Server::Impl {
       return nlohmann::json();
     }));
 
+    // The archive is read with GET and added to with POST: any other method is not allowed (405),
+    // on a route that exists or not.
+    const auto not_allowed = [](const httplib::Request& request, httplib::Response& response) {
+      response.set_header("Allow", request.path == "/api/campaigns" ? "GET, POST" : "GET");
+      send_json(response, 405, {{"error", "the method " + request.method + " is not allowed (GET reads; POST "
+                                          "/api/campaigns adds a campaign)"}});
+    };
+    http.Put(".*", not_allowed);
+    http.Patch(".*", not_allowed);
+    http.Delete(".*", not_allowed);
+
     // No icon: an empty answer rather than a 404 in every browser's console.
     http.Get("/favicon.ico", [](const httplib::Request&, httplib::Response& response) { response.status = 204; });
 
@@ -289,6 +306,11 @@ struct Server::Impl {
       send_json(response, 500, {{"error", "internal error"}});
     });
     http.set_payload_max_length(options.max_body_bytes);
+    // Each connection holds a thread while it waits for a request: with cpp-httplib's 8, 20 idle
+    // connections (a browser's, a scanner's) kept every request waiting 10 s. 64 threads, and an idle
+    // keep-alive connection closed after 2 s rather than 5.
+    http.new_task_queue = [] { return new httplib::ThreadPool(64); };
+    http.set_keep_alive_timeout(2);
     // An answer goes out as headers then body: without TCP_NODELAY the body waits for the client's
     // delayed ACK of the headers on a keep-alive connection (about 40 ms a request on Linux).
     http.set_tcp_nodelay(true);
@@ -319,7 +341,11 @@ Server::~Server() = default;
 
 int Server::port() const { return impl_->port; }
 
-std::string Server::url() const { return fmt::format("http://{}:{}/", impl_->options.bind, impl_->port); }
+std::string Server::url() const {
+  const std::string& host = impl_->options.bind;
+  // An IPv6 address goes in brackets (RFC 3986 3.2.2): http://[::1]:8080/.
+  return fmt::format("http://{}:{}/", host.find(':') != std::string::npos ? "[" + host + "]" : host, impl_->port);
+}
 
 const std::string& Server::token() const { return impl_->token; }
 

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -61,23 +62,29 @@ struct FigureHistory {
   std::string figure;  // PROCEDURE/FIGURE
   std::string unit;
   std::vector<FigurePoint> points;
-  // The specification limits the campaigns' plans set on it (the latest test's), in unit.
+  // The specification limits the campaigns' plans set on it (the latest test's), in unit. A plan's
+  // max alone bounds the magnitude (|value| <= max, as the campaign judged it): lower_limit is then
+  // -max and limit_on_magnitude is set.
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
+  bool limit_on_magnitude = false;
   // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}],
-  // "lower_limit", "upper_limit"}; "uncertainty" and the limits are null where none is known.
+  // "lower_limit", "upper_limit", "limit_on_magnitude"}; "uncertainty" and the limits are null where
+  // none is known.
   nlohmann::json to_json() const;
 };
 
 // The values of one figure across every instrument (optionally tested on or after a date),
 // ordered by instrument then test date, with the specification limits the campaigns' plans set
-// on it (the last campaign's, when they differ).
+// on it (the last campaign's, when they differ; a max alone is the spec |value| <= max, as in
+// FigureHistory).
 struct FleetFigure {
   std::string figure;
   std::string unit;
   std::vector<FigurePoint> points;
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
+  bool limit_on_magnitude = false;
 };
 
 // What one add did.
@@ -95,6 +102,10 @@ class Archive {
   // Throws Error, changing nothing, when the results are malformed (a missing or mistyped key, a
   // results_schema_version this inertest does not know, a figure without a finite value or unit).
   virtual AddOutcome add(const nlohmann::json& results, const std::string& source) = 0;
+
+  // Adds several campaigns (results, source) in one transaction: all are checked as add() checks
+  // one, then all are stored, or (an Error, a failure of the database) none is.
+  virtual std::vector<AddOutcome> add_all(const std::vector<std::pair<nlohmann::json, std::string>>& files) = 0;
 
   // Campaigns, oldest test first; only the instrument's when instrument is given.
   virtual std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) = 0;
@@ -120,10 +131,11 @@ class Archive {
 
 // The fleet's view of one figure (`inertest archive fleet --json`): each instrument's latest
 // value, ordered by the instrument's first test (the order a batch came off the line),
-// {"figure", "unit", "since", "lower_limit", "upper_limit", "instruments": [{"instrument",
+// {"figure", "unit", "since", "lower_limit", "upper_limit", "limit_on_magnitude", "instruments": [{"instrument",
 // "value", "uncertainty", "tested_on", "campaign", "tests"}], "control_chart": {"center", "ucl",
 // "lcl", "moving_range_mean", "sigma", "out_of_control": [{"instrument", "value", "rule"}]} (null
-// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack)}.
+// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack;
+// against [-max, max] when limit_on_magnitude)}.
 // The chart and indices: numerics/control_chart.h.
 nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since);
 
@@ -155,6 +167,10 @@ std::string default_archive_location();
 
 // Checks results as add() does (throws the same Error) without touching any archive.
 void check_results(const nlohmann::json& results, const std::string& source);
+
+// Whether text is a test date as the archive stores and compares them: exactly YYYY-MM-DD, a day of
+// the Gregorian calendar ("2026-02-30", "2026-04-04x" and a time after the day are not).
+bool is_test_date(const std::string& text);
 
 // Reads and parses a results.json; a syntax error names the file, line and column.
 nlohmann::json read_results_file(const std::string& path);

@@ -21,8 +21,14 @@ std::string render_history_page(const nlohmann::json& history, const ReportOptio
 // The fleet: an array of archive::fleet_summary JSON, one per figure.
 std::string render_fleet_page(const nlohmann::json& fleet, const ReportOptions& options);
 
-// Writes out_dir/fleet.html and out_dir/history-<instrument>.html for archive::report_data's
-// {"histories", "fleet"}, each atomically; returns the paths written (fleet first).
+// The file name of an instrument's history page: "history-<id>.html", every byte of the id but
+// letters, digits, '-', '.' and '_' percent-encoded ("LAB2/FOG-001": "history-LAB2%2FFOG-001.html"),
+// so that any id names one file of the directory and no two ids the same file.
+std::string history_page_file_name(const std::string& instrument);
+
+// Writes out_dir/fleet.html and out_dir/<history_page_file_name> of each instrument for
+// archive::report_data's {"histories", "fleet"}: all of them or (an Error: a page that cannot be
+// rendered or written) none; returns the paths written (fleet first).
 std::vector<std::string> write_archive_pages(const nlohmann::json& data, const std::string& out_dir,
                                              const ReportOptions& options);
 

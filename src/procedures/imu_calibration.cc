@@ -528,6 +528,34 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
       calibration.scale_factor_uncertainty = triad.at("scale_factor").at("uncertainty").get<Vector3>();
       calibration.misalignment = triad.at("misalignment").at("value").get<Matrix3>();
       calibration.misalignment_uncertainty = triad.at("misalignment").at("uncertainty").get<Matrix3>();
+      // The scale factor and the misalignment in the units the file states, converted to those the model
+      // applies (output unit per m/s^2 or rad/s; rad), as temperature-apply converts its coefficients.
+      const std::string triad_name = t == 0 ? "accelerometer" : "gyro";
+      const auto factor_to = [&](const char* key, const std::string& unit) {
+        const nlohmann::json& stated = triad.at(key).at("unit");
+        if (!stated.is_string() || stated.get<std::string>().empty()) {
+          throw Error(at_file(path), fmt::format("{}.{}: no unit (the model takes {})", triad_name, key, unit));
+        }
+        try {
+          return convert(1.0, Unit::parse(stated.get<std::string>()), Unit::parse(unit));
+        } catch (const Error& e) {
+          throw Error(at_file(path), fmt::format("{}.{}: the unit '{}' does not convert to {}: {}", triad_name, key,
+                                                 stated.get<std::string>(), unit, e.message()));
+        }
+      };
+      const double scale_factor_factor =
+          factor_to("scale_factor", fmt::format("{}/({})", calibration.output_unit, calibration.input_unit));
+      for (int j = 0; j < 3; ++j) {
+        calibration.scale_factor[j] *= scale_factor_factor;
+        calibration.scale_factor_uncertainty[j] *= std::abs(scale_factor_factor);
+      }
+      const double misalignment_factor = factor_to("misalignment", "rad");
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          calibration.misalignment[i][j] *= misalignment_factor;
+          calibration.misalignment_uncertainty[i][j] *= std::abs(misalignment_factor);
+        }
+      }
       for (double scale : calibration.scale_factor) {
         if (!(std::abs(scale) > 0.0)) throw Error(at_file(path), "a scale factor of 0 cannot be applied");
       }

@@ -1,7 +1,9 @@
 #include "inertest/procedures/imu_calibration.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -121,6 +123,44 @@ TEST(ImuCalibration, TheGyroIntegrationIsFourthOrder) {
   EXPECT_LT(e80, 1e-6);
   EXPECT_NEAR(e20 / e40, 16.0, 3.0);
   EXPECT_NEAR(e40 / e80, 16.0, 3.0);
+}
+
+// A calibration file states its units: a gyro scale factor in count/(deg/s) and a misalignment in mrad
+// are converted to the count/(rad/s) and rad the model applies (imu-apply read the numbers as
+// count/(rad/s) and rad: rates 57.3 times too large), and a unit of another kind is refused, naming it.
+TEST(ImuCalibration, TheCalibrationFileIsReadInTheUnitsItStates) {
+  const testing::ScratchDirectory scratch;
+  const double degree = std::numbers::pi / 180.0;
+  const auto file = [&](const std::string& gyro_scale_factor_unit) {
+    return scratch.write("calibration.json", fmt::format(R"json({{
+  "accelerometer": {{"bias": {{"value": [1, 2, 3], "unit": "count", "uncertainty": [0, 0, 0]}},
+    "scale_factor": {{"value": [400, 410, 420], "unit": "count/(m/s^2)", "uncertainty": [0.1, 0.1, 0.1]}},
+    "misalignment": {{"value": [[0, 0.004, 0], [0, 0, 0], [0, 0, 0]], "unit": "rad", "uncertainty": [[0, 0, 0], [0, 0, 0], [0, 0, 0]]}}}},
+  "gyro": {{"bias": {{"value": [10, 20, 30], "unit": "count", "uncertainty": [0, 0, 0]}},
+    "scale_factor": {{"value": [{}, 100, 100], "unit": "{}", "uncertainty": [0.5, 0.5, 0.5]}},
+    "misalignment": {{"value": [[0, 12, 0], [0, 0, 0], [0, 0, 0]], "unit": "mrad", "uncertainty": [[0, 1, 0], [0, 0, 0], [0, 0, 0]]}}}}
+}})json",
+                                                         6258.0 * degree, gyro_scale_factor_unit));
+  };
+  const std::array<TriadCalibration, 2> triads = read_imu_calibration(file("count/(deg/s)"));
+  EXPECT_EQ(triads[0].scale_factor[1], 410.0);
+  EXPECT_EQ(triads[0].misalignment[0][1], 0.004);
+  const TriadCalibration& gyro = triads[1];
+  EXPECT_NEAR(gyro.scale_factor[0], 6258.0, 1e-9);
+  EXPECT_NEAR(gyro.scale_factor[1], 100.0 / degree, 1e-9);
+  EXPECT_NEAR(gyro.scale_factor_uncertainty[1], 0.5 / degree, 1e-12);
+  EXPECT_NEAR(gyro.misalignment[0][1], 0.012, 1e-15);
+  EXPECT_NEAR(gyro.misalignment_uncertainty[0][1], 0.001, 1e-15);
+  // 6258 counts above the bias on x: 1 rad/s, whatever unit the file gave the scale factor in.
+  EXPECT_NEAR(gyro.apply({10.0 + 6258.0, 20.0, 30.0})[0], 1.0, 1e-12);
+  try {
+    read_imu_calibration(file("count/(m/s^2)"));
+    FAIL() << "expected an Error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("gyro.scale_factor: the unit 'count/(m/s^2)' does not convert to count/(rad/s)"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(ImuCalibration, TooFewOrientationsIsAnErrorThatSaysSo) {

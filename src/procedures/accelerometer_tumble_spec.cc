@@ -146,18 +146,42 @@ constexpr std::array<const char*, kHarmonics> kHarmonicNames = {"A0",         "A
                                                                  "A2 (cos 2)", "B2 (sin 2)", "A3 (cos 3)",
                                                                  "E (mounting, sin)"};
 
+// The cosine and sine of an angle in degrees, reduced to [0, 360) and then to its quadrant first, so
+// that a head angle read over several turns or written negative (450, -90) gives the same design as
+// the angle within one turn, and multiples of 90 deg give exactly 0 and +-1. (sin(2 x 450 deg) in
+// radians is 1.1e-16, not 0: four positions written 0..630 deg fitted K_ip from that rounding, 1.85e9
+// +- 2.3e9 1/g, where 0..270 deg said it is not identified.)
+double within_one_turn(double degrees) {
+  double reduced = std::fmod(degrees, 360.0);  // exact
+  if (reduced < 0.0) reduced += 360.0;
+  return reduced >= 360.0 ? 0.0 : reduced;  // -1e-20 + 360 rounds to 360
+}
+
+std::array<double, 2> cos_sin_degrees(double degrees) {
+  const double reduced = within_one_turn(degrees);
+  const double quadrant = std::floor(reduced / 90.0);
+  const double x = (reduced - 90.0 * quadrant) * constants::kDegree;  // in [0, pi / 2)
+  const double c = std::cos(x), s = std::sin(x);
+  switch (static_cast<int>(quadrant)) {
+    case 0: return {c, s};
+    case 1: return {-s, c};
+    case 2: return {-c, -s};
+    default: return {s, -c};
+  }
+}
+
 // B1 and B2 follow the instrument's cross axis (s = -1 when turned), E the fixture's (header comment).
 double harmonic_at(std::size_t h, const TumblePosition& position) {
-  const double theta = position.angle_deg * constants::kDegree;
   const double s = position.turned ? -1.0 : 1.0;
+  const double angle = position.angle_deg;
   switch (h) {
     case kA0: return 1.0;
-    case kA1: return std::cos(theta);
-    case kB1: return s * std::sin(theta);
-    case kA2: return std::cos(2.0 * theta);
-    case kB2: return s * std::sin(2.0 * theta);
-    case kA3: return std::cos(3.0 * theta);
-    default: return std::sin(theta);
+    case kA1: return cos_sin_degrees(angle)[0];
+    case kB1: return s * cos_sin_degrees(angle)[1];
+    case kA2: return cos_sin_degrees(2.0 * angle)[0];
+    case kB2: return s * cos_sin_degrees(2.0 * angle)[1];
+    case kA3: return cos_sin_degrees(3.0 * angle)[0];
+    default: return cos_sin_degrees(angle)[1];
   }
 }
 
@@ -271,10 +295,14 @@ AccelerometerTumbleResult accelerometer_tumble(const std::vector<TumblePosition>
   }
   result.residual_rms = {fit.fit.residual_rms, options.output_unit, std::nullopt};
   if (!fit.fitted[kA3] || !fit.fitted[kB2]) {
+    std::vector<double> angles;
+    for (const TumblePosition& position : positions) angles.push_back(within_one_turn(position.angle_deg));
+    std::sort(angles.begin(), angles.end());
+    const auto distinct = static_cast<std::size_t>(std::unique(angles.begin(), angles.end()) - angles.begin());
     result.warnings.push_back(fmt::format(
-        "{} positions do not identify {}: taken as 0 (equally spaced positions identify harmonics up to half their "
+        "{} positions{} do not identify {}: taken as 0 (equally spaced positions identify harmonics up to half their "
         "number; 8 positions or more identify every term)",
-        positions.size(),
+        positions.size(), distinct < positions.size() ? fmt::format(" at {} head angles", distinct) : "",
         !fit.fitted[kB2] ? (head_along_output ? "K3 and K_ip" : "K3 and K_io") : "K3"));
   }
   if (fit.fit.degrees_of_freedom == 0) {

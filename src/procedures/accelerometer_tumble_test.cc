@@ -119,6 +119,46 @@ TEST(Tumble, FourPositionsIdentifyTheFirstTermsAndSaySo) {
   EXPECT_THAT(fields.at("warnings")[1].get<std::string>(), HasSubstr("no uncertainty"));
 }
 
+// The head's angle written over two turns (0..630 deg) or negative (-720..-90) is the same position
+// as within one turn: four positions identify the same terms and give the same figures. In radians
+// sin(2 x 450 deg) is 1.1e-16, not 0, and the sin 2t column of that rounding made K_ip fitted, 1.85e9
+// +- 2.3e9 1/g, from noise of 1e-6.
+TEST(Tumble, AnglesBeyondOneTurnOrNegativeAreTheSamePositions) {
+  Truth truth;
+  truth.third_order = 0.0;  // at 0, 90, 180, 270 deg cos 3t equals cos t
+  sim::AccelerometerTumbleOptions options;
+  options.truth = truth;
+  options.positions = 4;
+  options.gravity_m_s2 = kGravity;
+  const testing::ScratchDirectory scratch;
+  const auto positions = [&](double offset_deg) {
+    std::string csv = "angle_deg,output\n";
+    for (int turn = 0; turn < 2; ++turn) {
+      for (int k = 0; k < 4; ++k) {
+        const double angle = 90.0 * k;
+        const double noise = 1e-6 * ((k + turn) % 3 == 0 ? 1.0 : -0.5);  // fixed offsets: 4 degrees of freedom
+        csv += fmt::format("{},{:.17g}\n", angle + 360.0 * turn + offset_deg,
+                           sim::accelerometer_tumble_output(options, angle, false) + noise);
+      }
+    }
+    return csv;
+  };
+  const nlohmann::json parameters = {{"output_unit", "mA"}, {"gravity_m_s2", kGravity}};
+  const nlohmann::json within = run_on(scratch.write("within.csv", positions(0.0)), parameters);
+  for (const double offset_deg : {360.0, -720.0}) {
+    const nlohmann::json fields = run_on(scratch.write("turns.csv", positions(offset_deg)), parameters);
+    EXPECT_TRUE(fields.at("cross_coupling_ip").is_null()) << offset_deg << " " << fields.at("cross_coupling_ip");
+    EXPECT_TRUE(fields.at("third_order").is_null()) << offset_deg;
+    ASSERT_FALSE(fields.at("warnings").empty());
+    EXPECT_THAT(fields.at("warnings")[0].get<std::string>(),
+                HasSubstr("8 positions at 4 head angles do not identify K3 and K_ip"));
+    for (const char* name : {"bias", "scale_factor", "second_order", "misalignment_about_output_axis"}) {
+      EXPECT_EQ(value_of(fields, name), value_of(within, name)) << offset_deg << " " << name;
+    }
+    EXPECT_NEAR(value_of(fields, "scale_factor"), truth.scale_factor, 1e-5 * std::abs(truth.scale_factor));
+  }
+}
+
 // With noise, each coefficient's 1-sigma interval holds the truth in about 68 % of the tumbles:
 // 8 positions over 2 turns leave 10 degrees of freedom, P(|t_10| <= 1) = 0.659; over 400 tumbles
 // the fraction's standard error is 0.024, and the bounds are 3 of them either side.

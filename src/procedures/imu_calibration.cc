@@ -22,6 +22,7 @@
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
 #include "inertest/numerics/least_squares.h"
+#include "procedures/imu_calibration_internal.h"
 
 namespace inertest {
 namespace {
@@ -216,10 +217,7 @@ Parameters ellipsoid_start(const std::vector<Vector3>& means, double gravity, co
   return start;
 }
 
-// The attitude change over samples [from, to] of the calibrated rate (body to the body at `from`):
-// dq/dt = q (x) (0, w) / 2 by RK4, the rate linear between samples.
-using Quaternion = std::array<double, 4>;
-
+// The quaternion kinematics dq/dt = q (x) (0, w) / 2 (q: the body relative to the body at the start).
 Quaternion derivative(const Quaternion& q, const Vector3& w) {
   return {0.5 * (-q[1] * w[0] - q[2] * w[1] - q[3] * w[2]), 0.5 * (q[0] * w[0] + q[2] * w[2] - q[3] * w[1]),
           0.5 * (q[0] * w[1] + q[3] * w[0] - q[1] * w[2]), 0.5 * (q[0] * w[2] + q[1] * w[1] - q[2] * w[0])};
@@ -238,25 +236,51 @@ Vector3 rotate_back(const Quaternion& q, const Vector3& v) {
   return {v[0] + q[0] * t2[0] + c[0], v[1] + q[0] * t2[1] + c[1], v[2] + q[0] * t2[2] + c[2]};
 }
 
-struct Motion {
-  std::size_t from = 0;  // the last sample of a static
-  std::size_t to = 0;    // the first sample of the next
-  Vector3 gravity_before{};  // the unit gravity direction in the body frame, from the accelerometer
-  Vector3 gravity_after{};
-  Vector3 tangent_1{};  // orthonormal to gravity_after: the directions of the residual
-  Vector3 tangent_2{};
-};
+}  // namespace
 
-Quaternion integrate(const ImuRecord& record, const Motion& motion, const Matrix3& tk, const Vector3& bias) {
-  const auto rate = [&](std::size_t i) {
-    return multiply(tk, Vector3{record.gyro[0][i] - bias[0], record.gyro[1][i] - bias[1], record.gyro[2][i] - bias[2]});
+// The rate at the middle of the step [t_i, t_i+1] is the cubic through samples i - 1 .. i + 2 (shifted
+// inward at either end of the record) at t = (t_i + t_i+1) / 2, in Lagrange's form on the time stamps
+// (Abramowitz and Stegun, Handbook of Mathematical Functions, 25.2.2; on equal steps the weights
+// (-1, 9, 9, -1) / 16): its error is O(h^4) where the rate is smooth, so the RK4 step errs by O(h^5)
+// and the rotation by O(h^4). The rate interpolated linearly errs by (h^2 / 8) w'' at the middle: a
+// rotation whose axis moves was second order (a turn about a fixed axis is the trapezoid rule either
+// way). Samples are instantaneous rates (as sim/imu_tumble.h writes them). An IMU that logs the mean
+// rate over each interval (or the delta angle over the step) is integrated as its rate half a step
+// late, which leaves a turn from rest to rest unchanged; its smoothing, (h^2 / 24) w'', keeps the
+// error of a moving axis second order. Where the angular acceleration jumps exactly at a sample (a
+// rotation started abruptly on a sample) no rule on the samples does better than (h^2 / 12) times the
+// jump; at a random phase of the sampling that error averages to none.
+Quaternion attitude_change(const ImuRecord& record, std::size_t from, std::size_t to, const Matrix3& tk,
+                           const Vector3& bias) {
+  const std::size_t samples = record.time_s.size();
+  const auto calibrated = [&](const Vector3& output) {
+    return multiply(tk, Vector3{output[0] - bias[0], output[1] - bias[1], output[2] - bias[2]});
+  };
+  const auto output_at = [&](std::size_t i) { return Vector3{record.gyro[0][i], record.gyro[1][i], record.gyro[2][i]}; };
+  const auto middle_output = [&](std::size_t i) {
+    Vector3 output = output_at(i);
+    if (samples < 4) {
+      for (int j = 0; j < 3; ++j) output[j] = (output[j] + record.gyro[j][i + 1]) / 2;
+      return output;
+    }
+    const std::size_t first = std::min(i == 0 ? 0 : i - 1, samples - 4);
+    const double t = (record.time_s[i] + record.time_s[i + 1]) / 2;
+    for (std::size_t a = first; a < first + 4; ++a) {
+      double weight = 1.0;
+      for (std::size_t b = first; b < first + 4; ++b) {
+        if (b != a) weight *= (t - record.time_s[b]) / (record.time_s[a] - record.time_s[b]);
+      }
+      // Relative to sample i (the weights sum to 1): counts near 32768 lose no digits.
+      for (int j = 0; j < 3; ++j) output[j] += weight * (record.gyro[j][a] - record.gyro[j][i]);
+    }
+    return output;
   };
   Quaternion q{1.0, 0.0, 0.0, 0.0};
-  Vector3 w0 = rate(motion.from);
-  for (std::size_t i = motion.from; i < motion.to; ++i) {
+  Vector3 w0 = calibrated(output_at(from));
+  for (std::size_t i = from; i < to; ++i) {
     const double h = record.time_s[i + 1] - record.time_s[i];
-    const Vector3 w1 = rate(i + 1);
-    const Vector3 wm{(w0[0] + w1[0]) / 2, (w0[1] + w1[1]) / 2, (w0[2] + w1[2]) / 2};
+    const Vector3 w1 = calibrated(output_at(i + 1));
+    const Vector3 wm = calibrated(middle_output(i));
     const Quaternion k1 = derivative(q, w0);
     const Quaternion k2 = derivative(plus(q, h / 2, k1), wm);
     const Quaternion k3 = derivative(plus(q, h / 2, k2), wm);
@@ -269,13 +293,25 @@ Quaternion integrate(const ImuRecord& record, const Motion& motion, const Matrix
   return q;
 }
 
+namespace {
+
+struct Motion {
+  std::size_t from = 0;  // the last sample of a static
+  std::size_t to = 0;    // the first sample of the next
+  Vector3 gravity_before{};  // the unit gravity direction in the body frame, from the accelerometer
+  Vector3 gravity_after{};
+  Vector3 tangent_1{};  // orthonormal to gravity_after: the directions of the residual
+  Vector3 tangent_2{};
+};
+
 std::vector<double> direction_residuals(const ImuRecord& record, const std::vector<Motion>& motions, const Parameters& p,
                                         const Vector3& bias) {
   const Matrix3 tk = triad_matrix(p, 0, kGyroOffDiagonal);
   std::vector<double> r;
   r.reserve(2 * motions.size());
   for (const Motion& motion : motions) {
-    const Vector3 predicted = rotate_back(integrate(record, motion, tk, bias), motion.gravity_before);
+    const Vector3 predicted =
+        rotate_back(attitude_change(record, motion.from, motion.to, tk, bias), motion.gravity_before);
     r.push_back(dot(predicted, motion.tangent_1));
     r.push_back(dot(predicted, motion.tangent_2));
   }
@@ -401,7 +437,7 @@ std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals)
 
 // Gaps in the time stamps, as `inspect` reports them (io/time_stamps.h: a step of more than 1.5 times the
 // median step). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
-// rate interpolated linearly over it), the turn made while samples were missing is lost and the
+// rate interpolated over it), the turn made while samples were missing is lost and the
 // rotation's residual with it: an Error at the line after the gap. Elsewhere (in a static interval, or
 // in a motion between statics that no fit uses) it changes nothing the fits use: a warning.
 void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions, std::vector<std::string>& warnings) {
@@ -492,6 +528,34 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
       calibration.scale_factor_uncertainty = triad.at("scale_factor").at("uncertainty").get<Vector3>();
       calibration.misalignment = triad.at("misalignment").at("value").get<Matrix3>();
       calibration.misalignment_uncertainty = triad.at("misalignment").at("uncertainty").get<Matrix3>();
+      // The scale factor and the misalignment in the units the file states, converted to those the model
+      // applies (output unit per m/s^2 or rad/s; rad), as temperature-apply converts its coefficients.
+      const std::string triad_name = t == 0 ? "accelerometer" : "gyro";
+      const auto factor_to = [&](const char* key, const std::string& unit) {
+        const nlohmann::json& stated = triad.at(key).at("unit");
+        if (!stated.is_string() || stated.get<std::string>().empty()) {
+          throw Error(at_file(path), fmt::format("{}.{}: no unit (the model takes {})", triad_name, key, unit));
+        }
+        try {
+          return convert(1.0, Unit::parse(stated.get<std::string>()), Unit::parse(unit));
+        } catch (const Error& e) {
+          throw Error(at_file(path), fmt::format("{}.{}: the unit '{}' does not convert to {}: {}", triad_name, key,
+                                                 stated.get<std::string>(), unit, e.message()));
+        }
+      };
+      const double scale_factor_factor =
+          factor_to("scale_factor", fmt::format("{}/({})", calibration.output_unit, calibration.input_unit));
+      for (int j = 0; j < 3; ++j) {
+        calibration.scale_factor[j] *= scale_factor_factor;
+        calibration.scale_factor_uncertainty[j] *= std::abs(scale_factor_factor);
+      }
+      const double misalignment_factor = factor_to("misalignment", "rad");
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          calibration.misalignment[i][j] *= misalignment_factor;
+          calibration.misalignment_uncertainty[i][j] *= std::abs(misalignment_factor);
+        }
+      }
       for (double scale : calibration.scale_factor) {
         if (!(std::abs(scale) > 0.0)) throw Error(at_file(path), "a scale factor of 0 cannot be applied");
       }

@@ -441,6 +441,14 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
   if (record.output.size() != record.time_s.size() || record.time_s.empty()) {
     throw Error("the output and the time must have the same, non-zero number of samples");
   }
+  constexpr std::size_t chosen_sensor = 0;  // the first sensor compensates; the others are compared
+  // A model in temperature needs the temperature to vary: at one temperature D_0 would be the bias at
+  // that temperature, presented as the bias at T_ref.
+  if (is_constant(record.temperature_degC[chosen_sensor])) {
+    throw Error(fmt::format("temperature sensor '{}' reads {} degC throughout the record: a temperature model needs "
+                            "the temperature to vary (ramps between soaks)",
+                            record.sensor_names[chosen_sensor], record.temperature_degC[chosen_sensor].front()));
+  }
   std::vector<thermal::Interval> base = thermal::intervals_of(record, options.interval_s, options.scale_factor);
   const std::size_t per_window = window_intervals(options.stability_window_s, options.interval_s);
   if (base.size() < std::max(options.folds * (options.maximum_order + 5), 2 * per_window)) {
@@ -451,7 +459,6 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
   TemperatureModelResult result;
   std::optional<SensorModel> chosen;
   std::vector<thermal::Interval> chosen_intervals;
-  constexpr std::size_t chosen_sensor = 0;  // the first sensor compensates; the others are compared
   for (std::size_t s = 0; s < sensors; ++s) {
     std::vector<thermal::Interval> intervals = base;
     thermal::set_rates(intervals, s, options.rate_window_s, options.soak_rate_degC_per_min);
@@ -531,6 +538,31 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
       for (std::size_t j = 0; j < n; ++j) variance += g[i] * covariance(i, j) * g[j];
     }
     result.bias_temperature_sensitivity = {std::abs(value), "deg/h/degC", std::sqrt(variance)};
+  }
+  if (design.order == 0) {
+    // Cross-validation chose no temperature term: the record does not resolve the bias's temperature
+    // dependence at its noise, which is not a sensitivity of 0 (it was reported as 0 +- 0). The figure is
+    // eq. (22) of the order-1 fit on the same intervals, |D_T| with its 1-sigma, and a warning says so.
+    Design linear = design;
+    linear.order = 1;
+    LeastSquaresOptions strict;
+    strict.parameter_names = linear.names();
+    const LeastSquaresResult fit =
+        solve_least_squares(linear.matrix(chosen_intervals, chosen_sensor), biases(chosen_intervals), strict);
+    const Matrix map = linear.physical_map(reference);
+    double slope = 0.0, variance = 0.0;  // D_T = row 1 of M times beta, its variance M_1 C M_1^T
+    for (std::size_t k = 0; k < linear.columns(); ++k) {
+      slope += map(1, k) * fit.parameters[k];
+      for (std::size_t l = 0; l < linear.columns(); ++l) variance += map(1, k) * fit.covariance(k, l) * map(1, l);
+    }
+    const double sigma = std::sqrt(std::max(variance, 0.0));
+    result.bias_temperature_sensitivity = {std::abs(slope), "deg/h/degC", sigma};
+    result.warnings.push_back(fmt::format(
+        "cross-validation chose order 0: the record does not resolve how the bias changes with temperature; the "
+        "bias temperature sensitivity {:.3g} +- {:.3g} deg/h/degC is the order-1 fit's |D_T|{}",
+        std::abs(slope), sigma,
+        std::abs(slope) <= 2.0 * sigma ? fmt::format(", within 2 sigma of 0 (below {:.3g} at 2 sigma)", std::abs(slope) + 2.0 * sigma)
+                                       : ""));
   }
   for (std::size_t i = 0; i < chosen_intervals.size(); ++i) {
     const thermal::Interval& interval = chosen_intervals[i];

@@ -321,6 +321,38 @@ reference_temperature = nan
   }
 }
 
+// A bias that changes with temperature by less than the record resolves (D_T = 3e-5 deg/h/degC
+// under 0.002 deg/sqrt(h) of noise): cross-validation chooses order 0 on these seeds, and the
+// sensitivity is the order-1 fit's |D_T| with its 1-sigma (it was reported as 0 +- 0), within 3
+// sigma of the truth (1.0e-4, 3.0e-6, 1.5e-5, 4.4e-5, 3.4e-5 +- 6.2e-5 .. 6.5e-5), with a warning
+// saying the dependence is not resolved.
+TEST(TemperatureModel, AnUnresolvedSensitivityIsTheOrderOneSlopeWithItsUncertainty) {
+  sim::ThermalGyroParameters gyro;
+  gyro.bias_polynomial_deg_h = {0.02, 3e-5};
+  gyro.rate_deg_h_per_degC_min = 0.0;
+  gyro.temperature_rate_deg_h_per_degC2_min = 0.0;
+  gyro.hysteresis_deg_h = 0.0;
+  gyro.angle_random_walk_deg_rt_h = 0.002;
+  TemperatureModelOptions options;
+  options.scale_factor = gyro.scale_factor;
+  options.rate_terms = false;
+  int order_zero = 0;
+  for (int seed = 1; seed <= 5; ++seed) {
+    sim::Random random(static_cast<std::uint64_t>(seed));
+    const TemperatureModelResult result =
+        temperature_model(thermal_record(sim::simulate_thermal_record(short_chamber(), gyro, random)), options);
+    const Figure& sensitivity = result.bias_temperature_sensitivity;
+    if (result.order != 0) continue;
+    ++order_zero;
+    ASSERT_TRUE(sensitivity.uncertainty.has_value());
+    EXPECT_GT(*sensitivity.uncertainty, 0.0) << "seed " << seed;
+    EXPECT_NEAR(sensitivity.value, 3e-5, 3.0 * *sensitivity.uncertainty) << "seed " << seed;
+    ASSERT_FALSE(result.warnings.empty());
+    EXPECT_THAT(result.warnings.back(), HasSubstr("cross-validation chose order 0"));
+  }
+  EXPECT_EQ(order_zero, 5);
+}
+
 TEST(TemperatureModel, RefusesARecordWithoutRamps) {
   ThermalRecord record{{}, {}, {"coil"}, {{}}};
   for (int i = 0; i < 4000; ++i) {
@@ -331,6 +363,16 @@ TEST(TemperatureModel, RefusesARecordWithoutRamps) {
   TemperatureModelOptions options;
   options.scale_factor = 36000.0;
   EXPECT_THROW(temperature_model(record, options), Error);
+  // Without the rate terms too: at one temperature D_0 is the bias there, not at T_ref (it ran with exit
+  // 0, no warning, and gave the bias at 20 degC of a record held at 25 degC).
+  for (double& t : record.temperature_degC[0]) t = 25.0;
+  options.rate_terms = false;
+  try {
+    temperature_model(record, options);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("temperature sensor 'coil' reads 25 degC throughout the record"));
+  }
 }
 
 }  // namespace

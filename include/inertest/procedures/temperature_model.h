@@ -108,7 +108,9 @@ struct TemperatureModelResult {
   Figure raw_bias_stability;       // before, the same windows
   Figure residual_rms;             // of the interval means, deg/h
   // GJB 2426A-2004 5.12.4 eq. (22) from the static part of the model, at the record's lowest and
-  // highest temperature against T_ref: max |B(T) − B(T_ref)| / |T − T_ref|.
+  // highest temperature against T_ref: max |B(T) − B(T_ref)| / |T − T_ref|. When cross-validation
+  // chooses order 0 (the dependence not resolved, not absent): the order-1 fit's |D_T| with its
+  // 1-sigma, and a warning.
   Figure bias_temperature_sensitivity;
   std::vector<OrderScore> order_scores;
   std::vector<SensorFit> sensors;
@@ -117,7 +119,7 @@ struct TemperatureModelResult {
 };
 
 // Throws Error when the record is too short for the intervals and windows, the sensors' lengths
-// differ from the time's, or the design cannot identify a term (the least-squares rank check names
+// differ from the time's, the compensation sensor reads one temperature throughout, or the design cannot identify a term (the least-squares rank check names
 // it: a record without ramps cannot give D_dT).
 TemperatureModelResult temperature_model(const ThermalRecord& record, const TemperatureModelOptions& options);
 

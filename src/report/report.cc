@@ -12,6 +12,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
+#include "report/figure_format.h"
 #include "report/labels.h"
 #include "report/procedure_plots.h"
 #include "report/report_style.h"
@@ -97,23 +98,6 @@ std::string qualifier_of(const json& element) {
   }
   if (text.empty()) return text;
   return " (" + text + ")";
-}
-
-// A figure the analysis could not measure: {"value": null, "unit", "identified": false,
-// "upper_bound"} (e.g. a noise term that the fit of GJB eq. (30) holds at zero).
-bool is_unidentified_figure(const json& node) {
-  const auto* identified = member(node, "identified");
-  const auto* bound = member(node, "upper_bound");
-  const auto* unit = member(node, "unit");
-  return identified != nullptr && identified->is_boolean() && !identified->get<bool>() && bound != nullptr &&
-         bound->is_number() && unit != nullptr && unit->is_string();
-}
-
-// A figure of a triad (issue 18): {"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}.
-bool is_array_figure(const json& node) {
-  const auto* value = member(node, "value");
-  const auto* unit = member(node, "unit");
-  return value != nullptr && value->is_array() && !value->empty() && unit != nullptr && unit->is_string();
 }
 
 // One row per element of an array figure, named by its axes ("x", "xy"), its pointer the element's
@@ -221,28 +205,6 @@ std::string normalised_pointer(const std::string& figure) {
 
 std::string verdict_key(const std::string& procedure, const std::string& pointer) {
   return procedure + '\x1f' + pointer;
-}
-
-// Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits;
-// an unidentified figure as "not identified (< upper bound)".
-std::pair<std::string, std::string> format_figure(const json& figure, const Labels& labels) {
-  if (is_unidentified_figure(figure)) {
-    return {labels("ui.not_identified") + " (< " + format_number(figure.at("upper_bound").get<double>(), 2) + ")", ""};
-  }
-  // A declared text or yes/no figure (polarity's "positive", its "as specified").
-  if (figure.at("value").is_string()) return {figure.at("value").get<std::string>(), ""};
-  if (figure.at("value").is_boolean()) return {labels(figure.at("value").get<bool>() ? "ui.yes" : "ui.no"), ""};
-  const double value = figure.at("value").get<double>();
-  const auto* u = member(figure, "uncertainty");
-  if (u == nullptr || !u->is_number() || !(u->get<double>() > 0.0) || !std::isfinite(value)) {
-    return {format_number(value), ""};
-  }
-  const double uncertainty = u->get<double>();
-  const int decimals = 1 - static_cast<int>(std::floor(std::log10(uncertainty)));
-  if (decimals < 0 || decimals > 9 || std::abs(value) >= 1e9) {
-    return {format_number(value), format_number(uncertainty, 2)};
-  }
-  return {fmt::format("{:.{}f}", value, decimals), fmt::format("{:.{}f}", uncertainty, decimals)};
 }
 
 // "≤ 100 ppm", "|value| ≤ 0.05 °/h" (a negative value judged by its magnitude), "≥ 4999",

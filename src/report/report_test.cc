@@ -343,6 +343,16 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
   EXPECT_THAT(text, HasSubstr("\nVerdict: " + results.at("verdict").get<std::string>() + "\n"));
 }
 
+// A periodic component of the PSD (the golden IMU's gz sinusoid) is captioned with the uncertainties
+// of its frequency and amplitude, formatted as the tables format figures (GUM 7.2.6): the caption
+// gave "1.25 Hz, 0.0101 °/s" while the JSON holds ± 2.0e-5 Hz and ± 9.9e-5 deg/s.
+TEST(Report, PeriodicComponentsShowValueUncertaintyAndUnit) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  const nlohmann::json results = nlohmann::json::parse(in);
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("gz: periodic component 1.249999 ± 0.000020 Hz, 0.010080 ± 0.000099 °/s"));
+}
+
 TEST(Report, LanguageCodes) {
   EXPECT_EQ(parse_language("en"), Language::english);
   EXPECT_EQ(parse_language("zh"), Language::chinese);

@@ -69,6 +69,7 @@ constexpr Translation kTable[] = {
     {"ui.not_identified", "not identified", "未辨识"},
     {"ui.noise_fit", "fit of eq. (30)", "式(30)拟合"},
     {"ui.periodic_component", "periodic component", "周期分量"},
+    {"ui.nested_too_deep", "nested too deep to list: see results.json", "嵌套过深未列出，见 results.json"},
     {"ui.reduced_chi_squared", "reduced χ²", "约化χ²"},
     {"ui.smoothing", "smoothing", "平滑"},
     {"ui.bandwidth_marker", "bandwidth", "带宽"},

@@ -80,24 +80,37 @@ bool is_detail_member(const std::string& key) {
   return false;
 }
 
-// " (10 s)" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value": ...}.
-std::string qualifier_of(const json& element) {
+// The readable unit a key's suffix names ("smoothing_s" -> "s", "rate_dps" -> "°/s"), "" for none.
+std::string unit_of_key(const std::string& key) {
   static const std::pair<const char*, const char*> kSuffixes[] = {{"_s", "s"},     {"_hz", "Hz"}, {"_deg", "°"},
                                                                   {"_dps", "°/s"}, {"_g", "g"},   {"_degC", "°C"}};
+  std::string unit;
+  for (const auto& [suffix, readable] : kSuffixes) {
+    const std::string s(suffix);
+    if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0) unit = readable;
+  }
+  return unit;
+}
+
+// "10 s, power -2" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value":
+// ...}: a number with a unit in its key as that, one without under its key; "" when none.
+std::string abscissa_of(const json& element) {
   std::string text;
   for (const auto& [key, value] : element.items()) {
-    if (key == "value" || key == "uncertainty" || !value.is_number()) continue;
-    std::string unit;
-    for (const auto& [suffix, readable] : kSuffixes) {
-      const std::string s(suffix);
-      if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0) unit = readable;
-    }
+    if (key == "value" || key == "uncertainty" || key == "upper_bound" || !value.is_number()) continue;
+    const std::string unit = unit_of_key(key);
     if (!text.empty()) text += ", ";
+    if (unit.empty()) text += key + " ";
     text += format_number(value.get<double>());
     if (!unit.empty()) text += " " + unit;
   }
-  if (text.empty()) return text;
-  return " (" + text + ")";
+  return text;
+}
+
+// " (10 s)" for a figure element that carries its abscissa (abscissa_of), "" for one without.
+std::string qualifier_of(const json& element) {
+  const std::string text = abscissa_of(element);
+  return text.empty() ? text : " (" + text + ")";
 }
 
 // One row per element of an array figure, named by its axes ("x", "xy"), its pointer the element's
@@ -145,6 +158,10 @@ void collect_channels(const json& channels, const std::string& pointer, const st
   }
 }
 
+// Results nest figures up to 6 levels (an IMU channel's PSD fit); the bound only stops runaway
+// nesting, and says so in the report rather than dropping what lies below it.
+constexpr int kMaxNesting = 32;
+
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
   if (is_figure(node) || is_unidentified_figure(node)) {
@@ -155,7 +172,10 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     collect_array_figure(node, pointer, name, depth, headline, rows);
     return;
   }
-  if (depth >= 3) return;
+  if (depth >= kMaxNesting && (node.is_object() || node.is_array()) && !node.empty()) {
+    rows.push_back({pointer, name, json{{"value", labels("ui.nested_too_deep")}, {"unit", ""}}, depth, false});
+    return;
+  }
   if (node.is_object()) {
     // In the order of the label table (scale factor before its nonlinearity...), then by name.
     std::vector<std::pair<std::size_t, std::string>> keys;
@@ -183,13 +203,12 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
                         headline && depth + 1 <= 2});
         continue;
       }
-      // Elements that name themselves ("name", "label", "position") are listed under their names;
-      // other arrays of objects are tables of data, plotted rather than listed.
-      std::string element;
+      // Elements that name themselves ("name", "label", "position") are listed under their names,
+      // the others under their place (" #2"): the peaks of a PSD, the points of a short sweep.
+      std::string element = fmt::format("#{}", i + 1);
       for (const char* naming : {"name", "label", "position"}) {
         if (const auto* n = member(node[i], naming); n != nullptr && n->is_string()) element = n->get<std::string>();
       }
-      if (element.empty()) continue;
       collect_figures(node[i], fmt::format("{}/{}", pointer, i), name + " " + element, labels, depth + 1, headline,
                       rows);
     }

@@ -343,6 +343,43 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
   EXPECT_THAT(text, HasSubstr("\nVerdict: " + results.at("verdict").get<std::string>() + "\n"));
 }
 
+// The row of the figure with this pointer in the section of the procedure with this name.
+std::string figure_row(const std::string& page, const std::string& procedure, const std::string& pointer) {
+  const std::string start = "<tr data-procedure=\"" + procedure + "\" data-figure=\"" + pointer + "\"";
+  std::size_t at = page.rfind(start);  // the section's row comes after the summary's
+  if (at == std::string::npos) return "";
+  return page.substr(at, page.find("</tr>", at) - at);
+}
+
+// Figures deeper than three levels were dropped: the centrifuge's influence of each error alone
+// (/influence/<error>/shift/<coefficient>, .../sensitivity/...) and the Allan fit's coefficients
+// with their uncertainties (/noise/fit/coefficients/<i>), each an element of no name of its own.
+TEST(Report, DeclaredFiguresAreListedWhateverTheirDepth) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  const nlohmann::json results = nlohmann::json::parse(in);
+  const std::string page = render_report(results, {Language::english, ""});
+  for (const char* pointer : {"/influence/delta_omega/shift/D_I", "/influence/delta_omega/sensitivity/D_I",
+                              "/influence/k1/shift/D_O", "/influence/k2/sensitivity/D_SS"}) {
+    EXPECT_THAT(figure_row(page, "centrifuge", pointer), HasSubstr("Influence of each error alone")) << pointer;
+  }
+  const std::string coefficient = figure_row(page, "allan_long_static", "/noise/fit/coefficients/0");
+  EXPECT_THAT(coefficient, HasSubstr("(power -2)"));
+  EXPECT_THAT(coefficient, ::testing::ContainsRegex("<td class=\"num\">± [0-9.]+</td>"));
+  // The PSD's periodic components of an IMU channel, six levels down.
+  EXPECT_THAT(figure_row(page, "imu_noise", "/channels/gz/psd/peaks/0/frequency"), HasSubstr("± 0.000020"));
+}
+
+// The bound against runaway nesting says what it leaves out instead of dropping it.
+TEST(Report, NestingBeyondTheBoundIsNamedNotDropped) {
+  nlohmann::json deep = {{"inner", {{"value", 1.0}, {"unit", "s"}}}};
+  for (int level = 0; level < 40; ++level) deep = {{"level", deep}};
+  const nlohmann::json results = {{"plan", nlohmann::json::object()},
+                                  {"instrument", {{"id", "X"}}},
+                                  {"procedures", {{{"name", "deep"}, {"kind", "future_kind"}, {"result", {{"a", deep}}}}}}};
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("nested too deep to list: see results.json"));
+}
+
 // A periodic component of the PSD (the golden IMU's gz sinusoid) is captioned with the uncertainties
 // of its frequency and amplitude, formatted as the tables format figures (GUM 7.2.6): the caption
 // gave "1.25 Hz, 0.0101 °/s" while the JSON holds ± 2.0e-5 Hz and ± 9.9e-5 deg/s.

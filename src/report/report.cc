@@ -658,8 +658,9 @@ class ReportWriter {
   }
 
   // The figures of a procedure's result: for a declared procedure its headline, detail and table
-  // fields in their declared order, under the spec's labels, a table's figures marked in_table;
-  // otherwise every member that holds figures, in the label table's order.
+  // fields in their declared order, under the spec's labels (a plain number, text or yes/no field as
+  // a figure without a unit, in the words the spec gives its values), a table's figures marked
+  // in_table; otherwise every member that holds figures, in the label table's order.
   std::vector<FigureRow> figures_of(const json& procedure) const {
     std::vector<FigureRow> rows;
     const auto* result = member(procedure, "result");
@@ -680,8 +681,10 @@ class ReportWriter {
         collect_table_figures(tables, rows);
         continue;
       }
-      if (value->is_string() || value->is_boolean()) {
-        rows.push_back({pointer, labels_.field_of(kind, field.name), json{{"value", *value}, {"unit", ""}}, 1,
+      if (value->is_string() || value->is_boolean() || value->is_number()) {
+        const auto words = field.value_words.find(value->dump());
+        const json shown = words != field.value_words.end() ? json(words->second) : *value;
+        rows.push_back({pointer, labels_.field_of(kind, field.name), json{{"value", shown}, {"unit", ""}}, 1,
                         field.role == FieldRole::headline});
         continue;
       }

@@ -89,6 +89,49 @@ TEST(DeclaredProceduresReport, EverySectionShowsItsTitleFiguresAndCurves) {
   RecordProperty("declared_curves_plotted", static_cast<int>(curves));
 }
 
+// Every declared headline, detail and table field that a result holds is in its procedure's section,
+// by its pointer: a figure row (data-figure="/field" or a figure inside it, "/field/..."), or a table
+// (data-table="/field"). A renamed key, or a value the report cannot render (a number, a member of
+// no name, a figure too deep), fails here instead of vanishing from the report.
+TEST(DeclaredProceduresReport, EveryDeclaredFieldOfAResultIsInItsSection) {
+  const nlohmann::json results = golden_results();
+  for (const Language language : {Language::english, Language::chinese}) {
+    ReportOptions options;
+    options.language = language;
+    const std::string page = render_report(results, options);
+    std::size_t checked = 0;
+    for (const ProcedureSpec& spec : procedure_specs()) {
+      const nlohmann::json& procedures = results.at("procedures");
+      for (std::size_t index = 0; index < procedures.size(); ++index) {
+        const nlohmann::json& procedure = procedures[index];
+        if (procedure.at("kind") != spec.kind) continue;
+        // The section of this step (a kind may run in several: allan_long_static, imu_noise).
+        const std::size_t begin = page.find("id=\"procedure-" + std::to_string(index + 1) + "\"");
+        ASSERT_NE(begin, std::string::npos) << procedure.at("name");
+        const std::string section = page.substr(begin, page.find("</section>", begin) - begin);
+        const nlohmann::json& result = procedure.at("result");
+        for (const FieldSpec& field : spec.fields) {
+          if (field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
+          if (!result.contains(field.name) || result.at(field.name).is_null()) continue;
+          const std::string pointer = "/" + field.name;
+          const bool shown = section.find("data-figure=\"" + pointer + "\"") != std::string::npos ||
+                             section.find("data-figure=\"" + pointer + "/") != std::string::npos ||
+                             section.find("data-table=\"" + pointer + "\"") != std::string::npos;
+          EXPECT_TRUE(shown) << spec.kind << " (" << procedure.at("name") << ") " << field.name
+                             << " is declared and in the result but not in the report";
+          if (field.role == FieldRole::table && result.at(field.name).is_array()) {
+            EXPECT_NE(section.find("data-table=\"" + pointer + "\""), std::string::npos)
+                << spec.kind << " " << field.name << " is a table field but no table";
+          }
+          ++checked;
+        }
+      }
+    }
+    EXPECT_GT(checked, 100U);
+    RecordProperty("declared_fields_shown", static_cast<int>(checked));
+  }
+}
+
 // The smoothed records of a bias run start at its start: padding the time axis below it drew a
 // fifth of the plot as negative seconds.
 TEST(DeclaredProceduresReport, TheBiasRecordPlotStartsAtTimeZero) {

@@ -12,6 +12,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
+#include "report/figure_format.h"
 #include "report/labels.h"
 #include "report/procedure_plots.h"
 #include "report/report_style.h"
@@ -68,6 +69,7 @@ struct FigureRow {
   json figure;
   int depth = 0;         // tokens in the pointer
   bool headline = true;  // shown in the summary (not a detail of a fit, an influence study...)
+  bool in_table = false;  // a cell of a declared table: in the figure tables only under a limit
 };
 
 // Members whose figures are details of the analysis: listed in the procedure's section only.
@@ -79,41 +81,37 @@ bool is_detail_member(const std::string& key) {
   return false;
 }
 
-// " (10 s)" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value": ...}.
-std::string qualifier_of(const json& element) {
+// The readable unit a key's suffix names ("smoothing_s" -> "s", "rate_dps" -> "°/s"), "" for none.
+std::string unit_of_key(const std::string& key) {
   static const std::pair<const char*, const char*> kSuffixes[] = {{"_s", "s"},     {"_hz", "Hz"}, {"_deg", "°"},
                                                                   {"_dps", "°/s"}, {"_g", "g"},   {"_degC", "°C"}};
+  std::string unit;
+  for (const auto& [suffix, readable] : kSuffixes) {
+    const std::string s(suffix);
+    if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0) unit = readable;
+  }
+  return unit;
+}
+
+// "10 s, power -2" for a figure element that carries its abscissa, e.g. {"smoothing_s": 10, "value":
+// ...}: a number with a unit in its key as that, one without under its key; "" when none.
+std::string abscissa_of(const json& element) {
   std::string text;
   for (const auto& [key, value] : element.items()) {
-    if (key == "value" || key == "uncertainty" || !value.is_number()) continue;
-    std::string unit;
-    for (const auto& [suffix, readable] : kSuffixes) {
-      const std::string s(suffix);
-      if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0) unit = readable;
-    }
+    if (key == "value" || key == "uncertainty" || key == "upper_bound" || !value.is_number()) continue;
+    const std::string unit = unit_of_key(key);
     if (!text.empty()) text += ", ";
+    if (unit.empty()) text += key + " ";
     text += format_number(value.get<double>());
     if (!unit.empty()) text += " " + unit;
   }
-  if (text.empty()) return text;
-  return " (" + text + ")";
+  return text;
 }
 
-// A figure the analysis could not measure: {"value": null, "unit", "identified": false,
-// "upper_bound"} (e.g. a noise term that the fit of GJB eq. (30) holds at zero).
-bool is_unidentified_figure(const json& node) {
-  const auto* identified = member(node, "identified");
-  const auto* bound = member(node, "upper_bound");
-  const auto* unit = member(node, "unit");
-  return identified != nullptr && identified->is_boolean() && !identified->get<bool>() && bound != nullptr &&
-         bound->is_number() && unit != nullptr && unit->is_string();
-}
-
-// A figure of a triad (issue 18): {"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}.
-bool is_array_figure(const json& node) {
-  const auto* value = member(node, "value");
-  const auto* unit = member(node, "unit");
-  return value != nullptr && value->is_array() && !value->empty() && unit != nullptr && unit->is_string();
+// " (10 s)" for a figure element that carries its abscissa (abscissa_of), "" for one without.
+std::string qualifier_of(const json& element) {
+  const std::string text = abscissa_of(element);
+  return text.empty() ? text : " (" + text + ")";
 }
 
 // One row per element of an array figure, named by its axes ("x", "xy"), its pointer the element's
@@ -161,6 +159,10 @@ void collect_channels(const json& channels, const std::string& pointer, const st
   }
 }
 
+// Results nest figures up to 6 levels (an IMU channel's PSD fit); the bound only stops runaway
+// nesting, and says so in the report rather than dropping what lies below it.
+constexpr int kMaxNesting = 32;
+
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
   if (is_figure(node) || is_unidentified_figure(node)) {
@@ -171,7 +173,10 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     collect_array_figure(node, pointer, name, depth, headline, rows);
     return;
   }
-  if (depth >= 3) return;
+  if (depth >= kMaxNesting && (node.is_object() || node.is_array()) && !node.empty()) {
+    rows.push_back({pointer, name, json{{"value", labels("ui.nested_too_deep")}, {"unit", ""}}, depth, false});
+    return;
+  }
   if (node.is_object()) {
     // In the order of the label table (scale factor before its nonlinearity...), then by name.
     std::vector<std::pair<std::size_t, std::string>> keys;
@@ -199,15 +204,224 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
                         headline && depth + 1 <= 2});
         continue;
       }
-      // Elements that name themselves ("name", "label", "position") are listed under their names;
-      // other arrays of objects are tables of data, plotted rather than listed.
-      std::string element;
+      // Elements that name themselves ("name", "label", "position") are listed under their names,
+      // the others under their place (" #2"): the peaks of a PSD, the points of a short sweep.
+      std::string element = fmt::format("#{}", i + 1);
       for (const char* naming : {"name", "label", "position"}) {
         if (const auto* n = member(node[i], naming); n != nullptr && n->is_string()) element = n->get<std::string>();
       }
-      if (element.empty()) continue;
       collect_figures(node[i], fmt::format("{}/{}", pointer, i), name + " " + element, labels, depth + 1, headline,
                       rows);
+    }
+  }
+}
+
+// A declared table (FieldRole::table) as the report shows it: a row per element of the array, a
+// column per member of the elements (a member object's members as "amplitudes/k0"; a figure, even
+// a triad's, is one column), the element itself (column "") when it is a figure or a plain value.
+// An array of objects inside a row is a table of its own (its cell counts its rows).
+struct RowTable {
+  struct Row {
+    std::string pointer;             // the element's, e.g. "/sensors/0"
+    std::string name;                // its naming member, its abscissa ("0.5 Hz") or its place ("#1")
+    std::vector<const json*> cells;  // one per column, null where the element lacks the member
+  };
+  std::string pointer;  // the array's, e.g. "/sensors"
+  std::string title;
+  std::vector<std::string> columns;  // pointers inside an element, escaped ("residual_rms", "amplitudes/k0")
+  std::vector<std::string> headings;
+  std::vector<Row> rows;
+};
+
+// At most this many rows of a table are shown; the others are counted ("N more rows in results.json").
+constexpr std::size_t kMaxTableRows = 40;
+
+// The members whose text names an element in its table, in this order of preference.
+constexpr const char* kNamingMembers[] = {"name", "label", "position", "supply", "sensor"};
+
+bool is_figure_node(const json& node) {
+  return is_figure(node) || is_unidentified_figure(node) || is_array_figure(node);
+}
+
+// An array that is a table of its own inside a row: its elements are objects (figures or rows).
+bool is_nested_table(const json& node) {
+  return node.is_array() && !node.empty() && std::all_of(node.begin(), node.end(), [](const json& e) {
+           return e.is_object();
+         });
+}
+
+// The columns of one element, added in its order to those the elements before it gave.
+void add_columns(const json& node, const std::string& prefix, int depth, std::vector<std::string>& columns) {
+  const auto add = [&columns](const std::string& column) {
+    if (std::find(columns.begin(), columns.end(), column) == columns.end()) columns.push_back(column);
+  };
+  if (!node.is_object() || (prefix.empty() && is_figure_node(node))) {
+    add("");
+    if (!node.is_object()) return;
+  }
+  for (const auto& [key, value] : node.items()) {
+    if (prefix.empty() && is_figure_node(node) &&
+        (key == "value" || key == "unit" || key == "uncertainty" || key == "identified" || key == "upper_bound")) {
+      continue;
+    }
+    const std::string column = prefix + escape_pointer_token(key);
+    if (value.is_object() && !value.empty() && !is_figure_node(value) && depth < kMaxNesting) {
+      add_columns(value, column + "/", depth + 1, columns);
+    } else {
+      add(column);
+    }
+  }
+}
+
+const json* cell_of(const json& element, const std::string& column) {
+  if (column.empty()) return &element;
+  const json::json_pointer pointer("/" + column);
+  return element.contains(pointer) ? &element.at(pointer) : nullptr;
+}
+
+// A member's heading: its label, with the unit its key names ("Frequency (Hz)" for "frequency_hz",
+// "Smoothing (s)" for "smoothing_s"), since its cells are plain numbers.
+std::string member_heading(const std::string& key, const Labels& labels) {
+  const std::string unit = unit_of_key(key);
+  if (unit.empty()) return labels(key);
+  std::string label = labels(key);
+  if (label == humanise_key(key)) label = humanise_key(key.substr(0, key.rfind('_')));
+  return label + " (" + unit + ")";
+}
+
+// "Amplitudes · K0" for "amplitudes/k0"; the element itself is its "Value".
+std::string heading_of(const std::string& column, const Labels& labels) {
+  if (column.empty()) return labels("ui.value");
+  std::string heading;
+  std::size_t begin = 0;
+  while (begin <= column.size()) {
+    const std::size_t end = std::min(column.find('/', begin), column.size());
+    std::string key;  // the token unescaped (RFC 6901)
+    for (std::size_t i = begin; i < end; ++i) {
+      if (column[i] == '~' && i + 1 < end) {
+        key += column[++i] == '1' ? '/' : '~';
+      } else {
+        key += column[i];
+      }
+    }
+    heading += (heading.empty() ? "" : " · ") + member_heading(key, labels);
+    begin = end + 1;
+  }
+  return heading;
+}
+
+// An element's name in its table: its naming member, else its abscissa (a figure's qualifier, a
+// number whose key names a unit: "0.5 Hz"), else its place "#1".
+std::string row_name_of(const json& element, std::size_t index) {
+  for (const char* naming : kNamingMembers) {
+    if (const auto* n = member(element, naming); n != nullptr && n->is_string()) return n->get<std::string>();
+  }
+  if (is_figure_node(element)) {
+    if (std::string abscissa = abscissa_of(element); !abscissa.empty()) return abscissa;
+  } else if (element.is_object()) {
+    for (const auto& [key, value] : element.items()) {
+      if (const std::string unit = unit_of_key(key); !unit.empty() && value.is_number()) {
+        return format_number(value.get<double>()) + " " + unit;
+      }
+    }
+  }
+  return fmt::format("#{}", index + 1);
+}
+
+// The table of the array at `pointer`, then the tables inside its rows, into `tables`.
+void collect_tables(const json& array, const std::string& pointer, const std::string& title, const Labels& labels,
+                    int depth, std::vector<RowTable>& tables) {
+  RowTable table{pointer, title, {}, {}, {}};
+  for (const json& element : array) add_columns(element, "", depth, table.columns);
+  // Names first, then the other plain values (abscissas, counts), then figures and nested values.
+  const auto rank = [&](const std::string& column) {
+    for (const char* naming : kNamingMembers) {
+      if (column == naming) return 0;
+    }
+    for (const json& element : array) {
+      if (const json* cell = cell_of(element, column); cell != nullptr && !cell->is_null()) {
+        return cell->is_primitive() && !column.empty() ? 1 : 2;
+      }
+    }
+    return 2;
+  };
+  std::stable_sort(table.columns.begin(), table.columns.end(),
+                   [&](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
+  for (const std::string& column : table.columns) table.headings.push_back(heading_of(column, labels));
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    RowTable::Row row{fmt::format("{}/{}", pointer, i), row_name_of(array[i], i), {}};
+    for (const std::string& column : table.columns) row.cells.push_back(cell_of(array[i], column));
+    table.rows.push_back(std::move(row));
+  }
+  tables.push_back(table);
+  if (depth >= kMaxNesting) return;
+  for (const RowTable::Row& row : table.rows) {
+    for (std::size_t c = 0; c < table.columns.size(); ++c) {
+      const json* cell = row.cells[c];
+      if (cell == nullptr || table.columns[c].empty() || !is_nested_table(*cell)) continue;
+      collect_tables(*cell, row.pointer + "/" + table.columns[c], title + " · " + row.name + " · " + table.headings[c],
+                     labels, depth + 1, tables);
+    }
+  }
+}
+
+// The pointer of a cell of a row.
+std::string cell_pointer(const RowTable::Row& row, const std::string& column) {
+  return column.empty() ? row.pointer : row.pointer + "/" + column;
+}
+
+// "[0.1, 0.2, 0.3]" for the numbers of an array, nested for a matrix.
+std::string numbers_text(const json& node) {
+  if (node.is_number()) return format_number(node.get<double>());
+  if (!node.is_array()) return node.dump();
+  std::string text = "[";
+  for (const json& element : node) text += (text.size() > 1 ? ", " : "") + numbers_text(element);
+  return text + "]";
+}
+
+// A cell as text: a figure as value ± uncertainty and unit (format_figure); a number, a text or a
+// yes/no as itself; a table inside the row by its rows' count (it follows); a short array of plain
+// values listed, a long one counted; a missing member empty, a null "—".
+std::string cell_text(const json* cell, const Labels& labels) {
+  if (cell == nullptr) return "";
+  if (cell->is_null()) return "—";
+  if (is_figure(*cell) || is_unidentified_figure(*cell)) return figure_text(*cell, labels);
+  if (is_array_figure(*cell)) {
+    const std::string unit = pretty_unit(cell->at("unit").get<std::string>());
+    const auto* u = member(*cell, "uncertainty");
+    return numbers_text(cell->at("value")) + (u != nullptr && u->is_array() ? " ± " + numbers_text(*u) : "") +
+           (unit.empty() ? "" : " " + unit);
+  }
+  if (cell->is_boolean()) return labels(cell->get<bool>() ? "ui.yes" : "ui.no");
+  if (cell->is_number()) return format_number(cell->get<double>());
+  if (cell->is_string()) return cell->get<std::string>();
+  if (is_nested_table(*cell)) return fmt::format(fmt::runtime(labels("ui.rows_below")), cell->size());
+  if (cell->is_array()) {
+    if (cell->empty()) return "—";
+    if (is_long_array(*cell)) return fmt::format(fmt::runtime(labels("ui.values_in_results")), cell->size());
+    std::string text;
+    for (const json& element : *cell) text += (text.empty() ? "" : ", ") + cell_text(&element, labels);
+    return text;
+  }
+  return cell->empty() ? "—" : cell->dump();
+}
+
+// The figures of a table as figure rows (for limits on them and their names): an element that is a
+// figure as "Title (10 s)" or "Title #2", a figure member as "Title · coil · Residual rms".
+void collect_table_figures(const std::vector<RowTable>& tables, std::vector<FigureRow>& rows) {
+  for (const RowTable& table : tables) {
+    for (const RowTable::Row& row : table.rows) {
+      for (std::size_t c = 0; c < table.columns.size(); ++c) {
+        const json* cell = row.cells[c];
+        if (cell == nullptr || !(is_figure(*cell) || is_unidentified_figure(*cell))) continue;
+        const std::string name =
+            table.columns[c].empty()
+                ? table.title + (row.name.starts_with('#') ? " " + row.name : " (" + row.name + ")")
+                : table.title + " · " + row.name + " · " + table.headings[c];
+        FigureRow figure_row{cell_pointer(row, table.columns[c]), name, *cell, 0, false};
+        figure_row.in_table = true;
+        rows.push_back(std::move(figure_row));
+      }
     }
   }
 }
@@ -221,28 +435,6 @@ std::string normalised_pointer(const std::string& figure) {
 
 std::string verdict_key(const std::string& procedure, const std::string& pointer) {
   return procedure + '\x1f' + pointer;
-}
-
-// Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits;
-// an unidentified figure as "not identified (< upper bound)".
-std::pair<std::string, std::string> format_figure(const json& figure, const Labels& labels) {
-  if (is_unidentified_figure(figure)) {
-    return {labels("ui.not_identified") + " (< " + format_number(figure.at("upper_bound").get<double>(), 2) + ")", ""};
-  }
-  // A declared text or yes/no figure (polarity's "positive", its "as specified").
-  if (figure.at("value").is_string()) return {figure.at("value").get<std::string>(), ""};
-  if (figure.at("value").is_boolean()) return {labels(figure.at("value").get<bool>() ? "ui.yes" : "ui.no"), ""};
-  const double value = figure.at("value").get<double>();
-  const auto* u = member(figure, "uncertainty");
-  if (u == nullptr || !u->is_number() || !(u->get<double>() > 0.0) || !std::isfinite(value)) {
-    return {format_number(value), ""};
-  }
-  const double uncertainty = u->get<double>();
-  const int decimals = 1 - static_cast<int>(std::floor(std::log10(uncertainty)));
-  if (decimals < 0 || decimals > 9 || std::abs(value) >= 1e9) {
-    return {format_number(value), format_number(uncertainty, 2)};
-  }
-  return {fmt::format("{:.{}f}", value, decimals), fmt::format("{:.{}f}", uncertainty, decimals)};
 }
 
 // "≤ 100 ppm", "|value| ≤ 0.05 °/h" (a negative value judged by its magnitude), "≥ 4999",
@@ -302,11 +494,13 @@ class ReportWriter {
       const std::string kind = procedure.value("kind", "");
       text += fmt::format("\n{} ({})\n", labels_.title_of(kind), procedure.value("name", kind));
       for (const FigureRow& row : figures_of(procedure)) {
+        if (row.in_table) continue;  // in its table (row_tables_text)
         const auto [value, uncertainty] = format_figure(row.figure, labels_);
         const std::string unit = pretty_unit(row.figure.value("unit", ""));
         text += fmt::format("  {:<56} {}{}{}\n", row.name, value, uncertainty.empty() ? "" : " ± " + uncertainty,
                             unit.empty() ? "" : " " + unit);
       }
+      text += row_tables_text(procedure);
     }
     if (!verdicts().empty()) {
       text += "\nSpecification limits\n";
@@ -440,9 +634,33 @@ class ReportWriter {
     out_ += "</ol></nav>\n";
   }
 
+  // Whether a declared field is shown as a table (RowTable): a table field that is an array, or any
+  // array too long to list figure by figure.
+  static bool shown_as_table(const FieldSpec& field, const json& value) {
+    return value.is_array() && (field.role == FieldRole::table || is_long_array(value));
+  }
+
+  // The tables of a declared procedure's result (its table fields, RowTable), in their declared order.
+  std::vector<RowTable> tables_of(const json& procedure) const {
+    std::vector<RowTable> tables;
+    const auto* result = member(procedure, "result");
+    const std::string kind = procedure.value("kind", "");
+    const ProcedureSpec* spec = find_procedure_spec(kind);
+    if (result == nullptr || spec == nullptr) return tables;
+    for (const FieldSpec& field : spec->fields) {
+      const auto* value = member(*result, field.name);
+      if (value == nullptr || field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
+      if (!shown_as_table(field, *value)) continue;
+      collect_tables(*value, fmt::format("/{}", escape_pointer_token(field.name)), labels_.field_of(kind, field.name),
+                     labels_, 1, tables);
+    }
+    return tables;
+  }
+
   // The figures of a procedure's result: for a declared procedure its headline, detail and table
-  // fields in their declared order, under the spec's labels; otherwise every member that holds
-  // figures, in the label table's order.
+  // fields in their declared order, under the spec's labels (a plain number, text or yes/no field as
+  // a figure without a unit, in the words the spec gives its values), a table's figures marked
+  // in_table; otherwise every member that holds figures, in the label table's order.
   std::vector<FigureRow> figures_of(const json& procedure) const {
     std::vector<FigureRow> rows;
     const auto* result = member(procedure, "result");
@@ -456,10 +674,17 @@ class ReportWriter {
     for (const FieldSpec& field : spec->fields) {
       const auto* value = member(*result, field.name);
       if (value == nullptr || field.role == FieldRole::hidden || field.role == FieldRole::curve) continue;
-      if (is_long_array(*value)) continue;
       const std::string pointer = fmt::format("/{}", escape_pointer_token(field.name));
-      if (value->is_string() || value->is_boolean()) {
-        rows.push_back({pointer, labels_.field_of(kind, field.name), json{{"value", *value}, {"unit", ""}}, 1,
+      if (shown_as_table(field, *value)) {
+        std::vector<RowTable> tables;
+        collect_tables(*value, pointer, labels_.field_of(kind, field.name), labels_, 1, tables);
+        collect_table_figures(tables, rows);
+        continue;
+      }
+      if (value->is_string() || value->is_boolean() || value->is_number()) {
+        const auto words = field.value_words.find(value->dump());
+        const json shown = words != field.value_words.end() ? json(words->second) : *value;
+        rows.push_back({pointer, labels_.field_of(kind, field.name), json{{"value", shown}, {"unit", ""}}, 1,
                         field.role == FieldRole::headline});
         continue;
       }
@@ -471,6 +696,88 @@ class ReportWriter {
                       rows);
     }
     return rows;
+  }
+
+  // The declared tables of a procedure's section, each under its title: a column per member, a row
+  // per element (its pointer in data-row, each cell's in data-figure, a limit's verdict on a cell in
+  // data-verdict), at most kMaxTableRows rows and then the count of the others.
+  void write_row_tables(const json& procedure) {
+    const std::string name = procedure.value("name", "");
+    for (const RowTable& table : tables_of(procedure)) {
+      const std::size_t columns = std::max<std::size_t>(table.columns.size(), 1);
+      out_ += fmt::format("<h3>{}</h3>\n<table class=\"rows\" data-table=\"{}\">\n<thead><tr>", html(table.title),
+                          html(table.pointer));
+      for (const std::string& heading : table.headings) out_ += fmt::format("<th>{}</th>", html(heading));
+      out_ += "</tr></thead>\n<tbody>\n";
+      if (table.rows.empty()) {
+        out_ += fmt::format("<tr><td colspan=\"{}\">{}</td></tr>\n", columns, html(labels_("ui.no_rows")));
+      }
+      for (std::size_t i = 0; i < table.rows.size() && i < kMaxTableRows; ++i) {
+        const RowTable::Row& row = table.rows[i];
+        out_ += fmt::format("<tr data-row=\"{}\">", html(row.pointer));
+        for (std::size_t c = 0; c < table.columns.size(); ++c) {
+          const json* cell = row.cells[c];
+          if (cell == nullptr) {
+            out_ += "<td></td>";
+            continue;
+          }
+          const std::string pointer = cell_pointer(row, table.columns[c]);
+          const auto found = verdict_by_figure_.find(verdict_key(name, pointer));
+          std::string classes = cell->is_number() || is_figure_node(*cell) ? "num" : "";
+          std::string verdict;
+          if (found != verdict_by_figure_.end()) {
+            const bool pass = found->second->value("pass", false);
+            classes += classes.empty() ? "" : " ";
+            classes += pass ? "pass" : "fail";
+            verdict = fmt::format(" data-verdict=\"{}\"", pass ? "pass" : "fail");
+          }
+          out_ += fmt::format("<td{} data-figure=\"{}\"{}>{}</td>",
+                              classes.empty() ? "" : fmt::format(" class=\"{}\"", classes), html(pointer), verdict,
+                              html(cell_text(cell, labels_)));
+        }
+        out_ += "</tr>\n";
+      }
+      if (table.rows.size() > kMaxTableRows) {
+        out_ += fmt::format("<tr class=\"more\"><td colspan=\"{}\">{}</td></tr>\n", columns,
+                            html(fmt::format(fmt::runtime(labels_("ui.more_rows")), table.rows.size() - kMaxTableRows)));
+      }
+      out_ += "</tbody></table>\n";
+    }
+  }
+
+  // The declared tables as text, columns aligned: the title, the headings, at most kMaxTableRows
+  // rows and the count of the others.
+  std::string row_tables_text(const json& procedure) const {
+    std::string text;
+    for (const RowTable& table : tables_of(procedure)) {
+      text += fmt::format("  {}\n", table.title);
+      std::vector<std::vector<std::string>> lines = {table.headings};
+      for (std::size_t i = 0; i < table.rows.size() && i < kMaxTableRows; ++i) {
+        std::vector<std::string> line;
+        for (const json* cell : table.rows[i].cells) line.push_back(cell_text(cell, labels_));
+        lines.push_back(std::move(line));
+      }
+      // Widths in characters (UTF-8 code points), not bytes: "±" and "°" are one column each.
+      const auto width = [](const std::string& s) {
+        return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+      };
+      std::vector<std::size_t> widths(table.headings.size(), 0);
+      for (const auto& line : lines) {
+        for (std::size_t c = 0; c < line.size(); ++c) widths[c] = std::max(widths[c], width(line[c]));
+      }
+      for (const auto& line : lines) {
+        std::string out = "   ";
+        for (std::size_t c = 0; c < line.size(); ++c) {
+          out += " " + line[c] + (c + 1 < line.size() ? std::string(widths[c] - width(line[c]) + 1, ' ') : "");
+        }
+        text += out + "\n";
+      }
+      if (table.rows.empty()) text += "    " + labels_("ui.no_rows") + "\n";
+      if (table.rows.size() > kMaxTableRows) {
+        text += "    " + fmt::format(fmt::runtime(labels_("ui.more_rows")), table.rows.size() - kMaxTableRows) + "\n";
+      }
+    }
+    return text;
   }
 
   // The figure table: one procedure's rows, or every procedure's under group headings.
@@ -486,6 +793,7 @@ class ReportWriter {
       const auto found = verdict_by_figure_.find(verdict_key(name, row.pointer));
       const json* verdict = found == verdict_by_figure_.end() ? nullptr : found->second;
       if (group_heading && !row.headline && verdict == nullptr) continue;
+      if (row.in_table && verdict == nullptr) continue;  // shown in its table (write_row_tables)
       out_ += fmt::format(
           "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
           verdict ? fmt::format(" data-verdict=\"{}\"", verdict->value("pass", false) ? "pass" : "fail") : "");
@@ -653,6 +961,7 @@ class ReportWriter {
     out_ += "<tbody>\n";
     write_figure_rows(procedure, with_limits, with_limits ? 6 : 4, false);
     out_ += "</tbody></table>\n";
+    write_row_tables(procedure);
 
     if (const auto* warnings = member(result, "warnings");
         warnings != nullptr && warnings->is_array() && !warnings->empty()) {

@@ -33,6 +33,8 @@ td.verdict-cell { font-weight: bold; white-space: nowrap; }
 td.pass { color: var(--pass); }
 td.fail { color: #ffffff; background: var(--fail); }
 tfoot th { text-align: right; }
+table.rows { display: block; overflow-x: auto; font-size: 13px; }
+tr.more td { color: var(--muted); font-style: italic; }
 .contents ol { margin: 4px 0; padding-left: 22px; columns: 2; }
 .contents a { color: var(--accent); text-decoration: none; }
 .kind { margin: -6px 0 8px; color: var(--muted); }
@@ -52,6 +54,7 @@ footer { margin-top: 32px; padding-top: 8px; border-top: 1px solid var(--rule); 
   h2 { font-size: 14pt; }
   .contents { display: none; }
   section.procedure, section.truth { break-before: page; }
+  table.rows { display: table; overflow: visible; font-size: 8pt; }
   h2, h3 { break-after: avoid; }
   figure, tr, .facts table, .overall { break-inside: avoid; }
   thead { display: table-header-group; }

@@ -278,7 +278,10 @@ radius_m = 1.0
   EXPECT_THAT(page, HasSubstr("10 s smoothing"));
   EXPECT_THAT(page, HasSubstr("k1s, 10 g"));
   EXPECT_THAT(page, HasSubstr("α = 180°"));
-  EXPECT_THAT(page, HasSubstr("Bias stability (10 s)"));
+  // Bias stability at each smoothing time: a table of the declared field, one row per time.
+  EXPECT_THAT(page, HasSubstr("<table class=\"rows\" data-table=\"/bias_stability\">\n<thead><tr><th>Smoothing (s)</th>"
+                              "<th>Value</th></tr></thead>"));
+  EXPECT_THAT(page, HasSubstr("<td class=\"num\" data-figure=\"/bias_stability/1/smoothing_s\">10</td>"));
   EXPECT_NE(page.find("Drift coefficients · DI<"), std::string::npos);
 }
 
@@ -341,6 +344,120 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
   for (auto at = text.find("\n  FAIL  "); at != std::string::npos; at = text.find("\n  FAIL  ", at + 1)) ++limits;
   EXPECT_EQ(limits, results.at("verdicts").size());
   EXPECT_THAT(text, HasSubstr("\nVerdict: " + results.at("verdict").get<std::string>() + "\n"));
+}
+
+// The row of the figure with this pointer in the section of the procedure with this name.
+std::string figure_row(const std::string& page, const std::string& procedure, const std::string& pointer) {
+  const std::string start = "<tr data-procedure=\"" + procedure + "\" data-figure=\"" + pointer + "\"";
+  std::size_t at = page.rfind(start);  // the section's row comes after the summary's
+  if (at == std::string::npos) return "";
+  return page.substr(at, page.find("</tr>", at) - at);
+}
+
+// Figures deeper than three levels were dropped: the centrifuge's influence of each error alone
+// (/influence/<error>/shift/<coefficient>, .../sensitivity/...) and the Allan fit's coefficients
+// with their uncertainties (/noise/fit/coefficients/<i>), each an element of no name of its own.
+TEST(Report, DeclaredFiguresAreListedWhateverTheirDepth) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  const nlohmann::json results = nlohmann::json::parse(in);
+  const std::string page = render_report(results, {Language::english, ""});
+  for (const char* pointer : {"/influence/delta_omega/shift/D_I", "/influence/delta_omega/sensitivity/D_I",
+                              "/influence/k1/shift/D_O", "/influence/k2/sensitivity/D_SS"}) {
+    EXPECT_THAT(figure_row(page, "centrifuge", pointer), HasSubstr("Influence of each error alone")) << pointer;
+  }
+  const std::string coefficient = figure_row(page, "allan_long_static", "/noise/fit/coefficients/0");
+  EXPECT_THAT(coefficient, HasSubstr("(power -2)"));
+  EXPECT_THAT(coefficient, ::testing::ContainsRegex("<td class=\"num\">± [0-9.]+</td>"));
+  // The PSD's periodic components of an IMU channel, six levels down.
+  EXPECT_THAT(figure_row(page, "imu_noise", "/channels/gz/psd/peaks/0/frequency"), HasSubstr("± 0.000020"));
+}
+
+// The bound against runaway nesting says what it leaves out instead of dropping it.
+TEST(Report, NestingBeyondTheBoundIsNamedNotDropped) {
+  nlohmann::json deep = {{"inner", {{"value", 1.0}, {"unit", "s"}}}};
+  for (int level = 0; level < 40; ++level) deep = {{"level", deep}};
+  const nlohmann::json results = {{"plan", nlohmann::json::object()},
+                                  {"instrument", {{"id", "X"}}},
+                                  {"procedures", {{{"name", "deep"}, {"kind", "future_kind"}, {"result", {{"a", deep}}}}}}};
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("nested too deep to list: see results.json"));
+}
+
+// The rows of the table with this pointer in the section of the procedure with this kind.
+std::size_t table_rows(const std::string& page, const std::string& kind, const std::string& pointer) {
+  const std::size_t section = page.find("data-kind=\"" + kind + "\"");
+  const std::size_t table = page.find("data-table=\"" + pointer + "\"", section);
+  if (section == std::string::npos || table == std::string::npos) return 0;
+  const std::string body = page.substr(table, page.find("</table>", table) - table);
+  std::size_t rows = 0;
+  for (auto at = body.find("<tr data-row="); at != std::string::npos; at = body.find("<tr data-row=", at + 1)) ++rows;
+  return rows;
+}
+
+// Declared table fields whose elements do not name themselves were left out without notice: the
+// temperature model's fit with each sensor and its cross-validation by order, the bandwidth's sine
+// fits, the IMU calibration's static intervals. Each is a table: a column per member, numbers with
+// their uncertainties and units, in the HTML and in the text report.
+TEST(Report, DeclaredTablesAreTabulatedWhateverTheirElements) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  const nlohmann::json results = nlohmann::json::parse(in);
+  const std::string page = render_report(results, {Language::english, ""});
+  const auto rows_in_results = [&](const std::string& kind, const std::string& field) {
+    for (const auto& procedure : results.at("procedures")) {
+      if (procedure.at("kind") == kind) return procedure.at("result").at(field).size();
+    }
+    return std::size_t{0};
+  };
+  for (const auto& [kind, field] : {std::pair{"temperature_model", "sensors"}, {"temperature_model", "order_selection"},
+                                    {"bandwidth", "vibration_fits"}, {"imu_calibration", "static_intervals"}}) {
+    const std::size_t rows = rows_in_results(kind, field);
+    EXPECT_GT(rows, 1U) << kind << " " << field;
+    EXPECT_EQ(table_rows(page, kind, std::string("/") + field), rows) << kind << " " << field;
+  }
+  EXPECT_THAT(page, HasSubstr("<thead><tr><th>Sensor</th><th>Order</th><th>RMS residual</th></tr></thead>"));
+  EXPECT_THAT(page, HasSubstr("<tr data-row=\"/sensors/0\"><td data-figure=\"/sensors/0/sensor\">coil</td>"
+                              "<td class=\"num\" data-figure=\"/sensors/0/order\">2</td>"
+                              "<td class=\"num\" data-figure=\"/sensors/0/residual_rms\">0.00934 ± 0.00024 °/h</td></tr>"));
+  EXPECT_THAT(page, HasSubstr("<td class=\"num\" data-figure=\"/vibration_fits/0/output_amplitude\">359949 ± 20 pulse/s</td>"));
+  // An array of objects inside a row is a table of its own, its cell pointing to it.
+  EXPECT_THAT(page, HasSubstr("data-table=\"/branches/0/points\""));
+  EXPECT_THAT(page, HasSubstr(">7 rows (table below)</td>"));
+  const std::string text = render_text_report(results, {Language::english, ""});
+  EXPECT_THAT(text, HasSubstr("\n  Fit with each sensor\n    Sensor   Order  RMS residual\n"
+                              "    coil     2      0.00934 ± 0.00024 °/h\n"));
+}
+
+// A long table is cut to its first 40 rows and says how many more results.json holds; a limit on a
+// cell of a table still shows in the procedure's figures with its verdict.
+TEST(Report, ALongTableSaysHowManyRowsItLeavesOut) {
+  nlohmann::json biases = nlohmann::json::array();
+  for (int i = 0; i < 55; ++i) biases.push_back({{"value", 0.01 * i}, {"unit", "deg/h"}});
+  const nlohmann::json results = {
+      {"plan", nlohmann::json::object()},
+      {"instrument", {{"id", "X"}}},
+      {"procedures",
+       {{{"name", "repeat"},
+         {"kind", "bias_repeatability"},
+         {"result", {{"run_biases", biases}, {"bias_repeatability", {{"value", 0.2}, {"unit", "deg/h"}}}}}}}},
+      {"verdicts",
+       {{{"procedure", "repeat"}, {"figure", "/run_biases/50"}, {"value", 0.5}, {"unit", "deg/h"}, {"max", 0.4},
+         {"pass", false}}}},
+      {"verdict", "FAIL"}};
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_EQ(table_rows(page, "bias_repeatability", "/run_biases"), 40U);
+  EXPECT_THAT(page, HasSubstr("<tr class=\"more\"><td colspan=\"1\">15 more rows in results.json</td></tr>"));
+  EXPECT_THAT(figure_row(page, "repeat", "/run_biases/50"), HasSubstr("data-verdict=\"fail\""));
+  EXPECT_THAT(render_text_report(results, {Language::english, ""}), HasSubstr("\n    15 more rows in results.json\n"));
+}
+
+// A periodic component of the PSD (the golden IMU's gz sinusoid) is captioned with the uncertainties
+// of its frequency and amplitude, formatted as the tables format figures (GUM 7.2.6): the caption
+// gave "1.25 Hz, 0.0101 °/s" while the JSON holds ± 2.0e-5 Hz and ± 9.9e-5 deg/s.
+TEST(Report, PeriodicComponentsShowValueUncertaintyAndUnit) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  const nlohmann::json results = nlohmann::json::parse(in);
+  const std::string page = render_report(results, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("gz: periodic component 1.249999 ± 0.000020 Hz, 0.010080 ± 0.000099 °/s"));
 }
 
 TEST(Report, LanguageCodes) {

@@ -11,6 +11,7 @@
 
 #include "inertest/allan/noise_terms.h"
 #include "inertest/core/error.h"
+#include "report/figure_format.h"
 #include "report/procedure_plots.h"
 #include "report/result_access.h"
 
@@ -170,12 +171,12 @@ std::optional<Series> asd_series(const PlotContext& context, const nlohmann::jso
   if (!scale || values.values.size() != frequency.values.size()) return std::nullopt;
   for (double& v : values.values) v *= *scale;
   for (const auto& peak : psd->value("peaks", nlohmann::json::array())) {
+    // Each figure as value ± uncertainty and unit, as the report's tables write it (GUM 7.2.6).
     const auto* f = member(peak, "frequency");
     const auto* a = member(peak, "amplitude");
-    if (f == nullptr || a == nullptr || !number_of(*f) || !number_of(*a)) continue;
-    peaks += fmt::format("{}{}: {} {} Hz, {} {}", peaks.empty() ? "" : "; ", name,
-                         context.labels("ui.periodic_component"), format_number(*number_of(*f), 5),
-                         format_number(*number_of(*a), 3), pretty_unit(a->value("unit", "")));
+    if (f == nullptr || a == nullptr || !is_figure(*f) || !is_figure(*a)) continue;
+    peaks += fmt::format("{}{}: {} {}, {}", peaks.empty() ? "" : "; ", name, context.labels("ui.periodic_component"),
+                         figure_text(*f, context.labels), figure_text(*a, context.labels));
   }
   return make_series(name, frequency.values, values.values);
 }

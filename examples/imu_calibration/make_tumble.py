@@ -1,7 +1,8 @@
 """Writes tumble.csv, the worked example of `inertest imu-calibration`: a synthetic IMU (the model of
 include/inertest/procedures/imu_calibration.h, in counts with offsets near 32768) held still by hand
-for 10 s, then turned 11 times by 60 to 150 degrees about random axes over 2 to 3 s, each followed by
-5 s held still; 25 Hz, white noise of 3 counts (accelerometer) and 4 counts (gyro), rounded to whole
+for 10 s, then turned 11 times by 60 to 150 degrees about random axes over 2 to 3 s (a cycloidal
+profile: the rate and its acceleration rise from zero and fall to zero), each followed by 5 s held
+still; 25 Hz, white noise of 3 counts (accelerometer) and 4 counts (gyro), rounded to whole
 counts, local gravity 9.80665 m/s^2. Run: python3 make_tumble.py (numpy)."""
 import numpy as np
 
@@ -43,11 +44,11 @@ def main():
         samples = int((2.0 + random.uniform()) * RATE)
         duration = samples / RATE
         start = attitude
-        for i in range(1, samples + 1):
+        for i in range(1, samples + 1):  # the cycloidal profile: speed and acceleration 0 at both ends
             s = i / samples
-            attitude = start @ rotation(axis, angle * (1 - np.cos(np.pi * s)) / 2)
+            attitude = start @ rotation(axis, angle * (s - np.sin(2 * np.pi * s) / (2 * np.pi)))
             forces.append(attitude[2] * GRAVITY)
-            rates.append(axis * angle * np.pi / (2 * duration) * np.sin(np.pi * s))
+            rates.append(axis * angle / duration * (1 - np.cos(2 * np.pi * s)))
         hold(5.0)
     accelerometer = np.round(output(ACCELEROMETER, np.array(forces)) + 3.0 * random.normal(size=(len(forces), 3)))
     gyro = np.round(output(GYRO, np.array(rates)) + 4.0 * random.normal(size=(len(rates), 3)))

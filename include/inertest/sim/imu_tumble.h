@@ -37,8 +37,8 @@ struct ImuTumbleOptions {
 };
 
 // The record: `first_still_s` still, then `orientations` rotations, each of 60 to 150 deg about a
-// random axis of the body over 2 to 3 s with a speed (1 - cos) / 2 in the angle (no jerk at either
-// end), followed by `still_s` still. The specific force is the gravity's only (the IMU turns about
+// random axis of the body over 2 to 3 s in the cycloidal profile (speed and acceleration zero at
+// either end, see imu_tumble.cc), followed by `still_s` still. The specific force is the gravity's only (the IMU turns about
 // its own centre); no Earth rate.
 ImuRecord simulate_imu_tumble(const ImuTumbleOptions& options, std::uint64_t seed);
 

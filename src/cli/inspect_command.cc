@@ -142,7 +142,7 @@ CommandAction setup(CLI::App& root) {
       ->check(CLI::IsMember({"stop", "split", "interpolate"}))
       ->capture_default_str();
   command->add_option("--sample-interval", arguments->sample_interval,
-                      "nominal sample interval in the time column's unit (default: the median step)");
+                      "nominal sample interval in the time column's unit (default: the median step, refined by the mean step between gaps where the stamps are coarse, e.g. epoch seconds)");
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments] {
     nlohmann::json columns = nlohmann::json::array();

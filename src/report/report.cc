@@ -109,6 +109,28 @@ bool is_unidentified_figure(const json& node) {
          bound->is_number() && unit != nullptr && unit->is_string();
 }
 
+// A figure the data could not give, kept at its place with the reason: {"value": null, "unit",
+// "measured": false, "reason"} (e.g. a smoothing time longer than half the record).
+bool is_unmeasured_figure(const json& node) {
+  const auto* value = member(node, "value");
+  const auto* measured = member(node, "measured");
+  const auto* unit = member(node, "unit");
+  return value != nullptr && value->is_null() && measured != nullptr && measured->is_boolean() &&
+         !measured->get<bool>() && unit != nullptr && unit->is_string();
+}
+
+bool is_number_member(const json& node, std::string_view key) {
+  const auto* value = member(node, key);
+  return value != nullptr && value->is_number();
+}
+
+// A verdict's measured value: the number, or "not measured" for a figure the data could not give.
+std::string verdict_value_text(const json& verdict, const Labels& labels) {
+  const auto* value = member(verdict, "value");
+  if (value == nullptr || !value->is_number()) return labels("ui.not_measured");
+  return format_number(value->get<double>());
+}
+
 // A figure of a triad (issue 18): {"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}.
 bool is_array_figure(const json& node) {
   const auto* value = member(node, "value");
@@ -163,7 +185,7 @@ void collect_channels(const json& channels, const std::string& pointer, const st
 
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
-  if (is_figure(node) || is_unidentified_figure(node)) {
+  if (is_figure(node) || is_unidentified_figure(node) || is_unmeasured_figure(node)) {
     rows.push_back({pointer, name, node, depth, headline && depth <= 2});
     return;
   }
@@ -190,7 +212,8 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     }
   } else if (node.is_array()) {
     // Arrays of figures are listed, each under its qualifier (" (10 s)") or number.
-    const bool of_figures = std::all_of(node.begin(), node.end(), [](const json& e) { return is_figure(e); });
+    const bool of_figures =
+        std::all_of(node.begin(), node.end(), [](const json& e) { return is_figure(e) || is_unmeasured_figure(e); });
     for (std::size_t i = 0; i < node.size(); ++i) {
       if (of_figures) {
         const std::string qualifier = qualifier_of(node[i]);
@@ -229,6 +252,7 @@ std::pair<std::string, std::string> format_figure(const json& figure, const Labe
   if (is_unidentified_figure(figure)) {
     return {labels("ui.not_identified") + " (< " + format_number(figure.at("upper_bound").get<double>(), 2) + ")", ""};
   }
+  if (is_unmeasured_figure(figure)) return {labels("ui.not_measured"), ""};
   // A declared text or yes/no figure (polarity's "positive", its "as specified").
   if (figure.at("value").is_string()) return {figure.at("value").get<std::string>(), ""};
   if (figure.at("value").is_boolean()) return {labels(figure.at("value").get<bool>() ? "ui.yes" : "ui.no"), ""};
@@ -312,7 +336,7 @@ class ReportWriter {
       text += "\nSpecification limits\n";
       for (const json& v : verdicts()) {
         text += fmt::format("  {:<5} {} / {} = {} {} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
-                            v.value("procedure", ""), v.value("figure", ""), format_number(v.value("value", 0.0)),
+                            v.value("procedure", ""), v.value("figure", ""), verdict_value_text(v, labels_),
                             pretty_unit(v.value("unit", "")), limit_text(v));
       }
     }
@@ -553,7 +577,9 @@ class ReportWriter {
           "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
           html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
           html(name), html(limit_text(v)),
-          html(format_number(v.value("value", 0.0)) + (unit.empty() ? "" : " " + unit)), verdict_cell(pass, labels_));
+          html(verdict_value_text(v, labels_) + (unit.empty() || !is_number_member(v, "value") ? "" : " " + unit) +
+               (v.contains("reason") ? " (" + v.value("reason", "") + ")" : "")),
+          verdict_cell(pass, labels_));
     }
     const std::string overall = overall_verdict();
     out_ += fmt::format("</tbody>\n<tfoot><tr><th colspan=\"4\">{}</th>{}</tr></tfoot>\n</table>\n</section>\n",

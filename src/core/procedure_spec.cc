@@ -52,10 +52,19 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
 }
 
 std::string ProcedureCall::output_path(const std::string& path) const {
-  if (output_directory.empty() || std::filesystem::path(path).is_absolute()) return path;
+  if (output_directory.empty()) return path;
+  if (!is_inside_output_directory(path)) {
+    throw Error("'" + path + "' is outside the output directory: an export is a relative path beside results.json");
+  }
   const std::filesystem::path inside = std::filesystem::path(output_directory) / path;
   std::filesystem::create_directories(inside.parent_path());
   return inside.string();
+}
+
+bool is_inside_output_directory(const std::string& path) {
+  const std::filesystem::path normal = std::filesystem::path(path).lexically_normal();
+  if (path.empty() || normal.is_absolute() || normal.has_root_name() || normal.empty() || normal == ".") return false;
+  return *normal.begin() != "..";
 }
 
 std::string kebab_case(const std::string& name) {

@@ -123,6 +123,11 @@ ProcedureSpec bias_spec() {
         if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;
         options.validate();
       })
+      .unit_of("bias", "deg/h")
+      .unit_of("bias_stability", "deg/h")
+      .unit_of("noise_equivalent_rate", "deg/h")
+      .unit_of("random_walk_coefficient", "deg/sqrt(h)")
+      .unit_of("duration", "s")
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
         options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored

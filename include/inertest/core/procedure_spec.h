@@ -324,6 +324,14 @@ struct FieldSpec {
   // Set by ProcedureDefinition::field from the member's type; by field_from, rows for a table or a
   // curve and structured otherwise unless declared.
   FieldValue value = FieldValue::structured;
+  // The members of a structured field that are array figures ({"value": [x, y, z] or a 3x3, "unit",
+  // "uncertainty"}), each with its rank (1 a vector, 2 a matrix; a triad's "bias", "misalignment"): a
+  // plan's limit names one element ("/accelerometer/bias/value/0"), a limit on a whole one is an error.
+  std::map<std::string, int> array_figures = {};
+  // The unit the figure (or every figure of its rows) is reported in when it is fixed, whatever the
+  // parameters ("ppm", "degC"); empty when it follows the instrument's or an option's unit. A plan's
+  // limit in a unit that does not convert to it is an error before anything runs.
+  std::string unit = {};
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
@@ -601,6 +609,17 @@ class ProcedureDefinition {
     written_text_ = std::move(text);
     spec_.writes_own_json = true;
     return *this;
+  }
+
+  // The fixed unit of a field declared already (FieldSpec::unit).
+  ProcedureDefinition& unit_of(const std::string& field_name, std::string unit) {
+    for (FieldSpec& field : spec_.fields) {
+      if (field.name == field_name) {
+        field.unit = std::move(unit);
+        return *this;
+      }
+    }
+    throw Error("procedure spec " + spec_.kind + ": unit_of an undeclared field '" + field_name + "'");
   }
 
   // A key of the JSON that written_by writes: for the report, the plan's limits and the stubs.

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <map>
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -36,6 +37,11 @@ struct Limit {
   std::optional<double> max;
   std::string unit;  // empty: the figure's own unit
   SourceLocation where;
+  // Set by check_declared_figures: the key is a declared field of the procedure, so a result without
+  // it (or with it null) is a figure the data could not give: judged "not measured", FAIL.
+  bool declared = false;
+  // A declared plain number (a count such as run_count): judged as it is, without a unit.
+  bool plain_number = false;
 };
 
 struct PreparedStep {
@@ -87,6 +93,17 @@ std::vector<Limit> read_limits(PlanTable& step) {
     const auto& begin = node->source().begin;
     limit.where = {step.plan_path(), static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     if (!limit.min && !limit.max) limit_table->fail("a limit needs 'min', 'max' or both");
+    // A limit no figure can meet, or every figure meets, is a mistake in the plan, not a verdict.
+    for (const auto& [key, bound] : {std::pair{"min", limit.min}, std::pair{"max", limit.max}}) {
+      if (bound && !std::isfinite(*bound)) limit_table->fail_at(key, "must be a finite number (not nan or inf)");
+    }
+    if (limit.min && limit.max && *limit.min > *limit.max) {
+      limit_table->fail_at("min", fmt::format("({}) is above 'max' ({}): no value meets the limit", *limit.min, *limit.max));
+    }
+    if (limit.max && !limit.min && *limit.max < 0.0) {
+      limit_table->fail_at("max", fmt::format("({}) alone bounds the magnitude and cannot be negative (a signed range "
+                                              "takes 'min' too)", *limit.max));
+    }
     if (figure.front() == '/') {
       try {
         const nlohmann::json::json_pointer pointer(figure);
@@ -95,20 +112,66 @@ std::vector<Limit> read_limits(PlanTable& step) {
                                      "': not a valid JSON pointer (RFC 6901: '~' must be followed by '0' or '1')");
       }
     }
-    if (!limit.unit.empty()) Unit::parse(limit.unit);
+    if (!limit.unit.empty()) {
+      try {
+        Unit::parse(limit.unit);
+      } catch (const Error& e) {
+        limit_table->fail_at("unit", e.message());
+      }
+    }
     limit_table->require_all_used();
     limits.push_back(std::move(limit));
   }
   return limits;
 }
 
+// The reference tokens of a JSON pointer ("/a/b~1c" -> a, b/c); a key alone is one token.
+std::vector<std::string> pointer_tokens(const std::string& figure) {
+  if (figure.front() != '/') return {figure};
+  std::vector<std::string> tokens;
+  nlohmann::json::json_pointer pointer(figure);  // its syntax was checked by read_limits
+  while (!pointer.empty()) {
+    tokens.insert(tokens.begin(), pointer.back());
+    pointer.pop_back();
+  }
+  return tokens;
+}
+
+// A limit on an array figure (a triad's [x, y, z], a 3x3 matrix) names one element, as the report
+// lists it and the archive keeps it: "/accelerometer/bias/value/0", "/gyro/misalignment/value/0/1".
+// Anything else under a field that holds array figures (the triad, a whole vector) is a plan error.
+void check_array_figure_limit(const FieldSpec& field, const std::vector<std::string>& tokens, const Limit& limit) {
+  std::string elements;
+  for (const auto& [member, rank] : field.array_figures) {
+    elements += fmt::format("{}'/{}/{}/value/I{}'", elements.empty() ? "" : ", ", field.name, member,
+                            rank == 2 ? "/J" : "");
+  }
+  const auto refuse = [&](const std::string& what) {
+    throw Error(limit.where, "limit on '" + limit.figure + "': " + what + "; a limit names one element: " + elements +
+                                 " with I" + (elements.find("/J") != std::string::npos ? " and J" : "") +
+                                 " in 0, 1, 2 (x, y, z), as the report lists them");
+  };
+  if (tokens.size() < 2) refuse("'" + field.name + "' holds array figures, not one figure");
+  const auto member = field.array_figures.find(tokens[1]);
+  if (member == field.array_figures.end()) return;  // another member: judged as it is found
+  const std::size_t rank = static_cast<std::size_t>(member->second);
+  if (tokens.size() == 2 || tokens[2] != "value" || tokens.size() != 3 + rank) {
+    refuse(fmt::format("'/{}/{}' is {} figure", field.name, tokens[1], rank == 2 ? "a 3x3 (matrix)" : "an [x, y, z] (vector)"));
+  }
+  for (std::size_t i = 3; i < tokens.size(); ++i) {
+    if (tokens[i] != "0" && tokens[i] != "1" && tokens[i] != "2") refuse("no element '" + tokens[i] + "'");
+  }
+}
+
 // A declared procedure's limits are checked against its declared fields before anything runs: a
 // limit on a key (or a JSON pointer's first key) it never reports, or on a key whose value is not a
-// figure or a number (a text, a list of rows), is a plan error at the limit.
-void check_declared_figures(const ProcedureSpec& spec, const PreparedStep& step) {
-  for (const Limit& limit : step.limits) {
+// figure or a number (a text, a list of rows), is a plan error at the limit; so is a unit on a plain
+// number (it has none) and a limit on a whole array figure.
+void check_declared_figures(const ProcedureSpec& spec, PreparedStep& step) {
+  for (Limit& limit : step.limits) {
     const bool pointer = limit.figure.front() == '/';
-    const std::string key = pointer ? limit.figure.substr(1, limit.figure.find('/', 1) - 1) : limit.figure;
+    const std::vector<std::string> tokens = pointer_tokens(limit.figure);
+    const std::string key = tokens.empty() ? "" : tokens.front();
     const auto field = std::find_if(spec.fields.begin(), spec.fields.end(),
                                     [&](const FieldSpec& declared) { return declared.name == key; });
     if (field == spec.fields.end()) {
@@ -124,6 +187,25 @@ void check_declared_figures(const ProcedureSpec& spec, const PreparedStep& step)
                                    (field->value == FieldValue::rows ? "a list of rows (name one with a JSON pointer, "
                                                                        "e.g. '/" + key + "/0/...')"
                                                                      : "a text or a yes/no, not a figure or a number"));
+    }
+    limit.declared = true;
+    // A limit in a unit the figure's does not convert to failed only after the step had run.
+    if (!field->unit.empty() && !limit.unit.empty()) {
+      try {
+        convert(1.0, field->unit, limit.unit);
+      } catch (const Error& e) {
+        throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name + "' reports it in '" +
+                                     field->unit + "': " + e.message());
+      }
+    }
+    if (!field->array_figures.empty()) check_array_figure_limit(*field, tokens, limit);
+    const bool number = field->value == FieldValue::number || field->value == FieldValue::whole_number;
+    if (number && tokens.size() == 1) {
+      if (!limit.unit.empty()) {
+        throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name +
+                                     "' reports it as a plain number without a unit: give the limit without 'unit'");
+      }
+      limit.plain_number = true;
     }
   }
 }
@@ -143,9 +225,11 @@ Plan load_plan(const std::string& path) {
 
   if (header) {
     plan.header = nlohmann::json::object();
-    for (const char* key : {"title", "date", "operator", "station", "laboratory", "standard"}) {
+    for (const char* key : {"title", "operator", "station", "laboratory", "standard"}) {
       if (auto value = header->optional_string(key)) plan.header[key] = *value;
     }
+    // results.json's tested_on, by which the archive orders campaigns: a real day, checked now.
+    if (auto date = header->optional_date("date")) plan.header["date"] = *date;
     header->require_all_used();
   }
 
@@ -179,10 +263,24 @@ Plan load_plan(const std::string& path) {
   }
 
   if (steps.empty()) top.fail("no [[procedure]] tables: nothing to run");
+  // Step names key the results, the verdicts and the archive's figures (PROCEDURE/FIGURE): two
+  // steps of one name (two unnamed steps of one kind) would share their verdicts and could not be
+  // archived, so the second is an error at its name (or its table), naming the first.
+  std::map<std::string, SourceLocation> named;
+  std::size_t index = 0;
   for (auto& step : steps) {
+    ++index;
     PreparedStep prepared;
     prepared.kind = step.string("kind");
     prepared.name = step.string_or("name", prepared.kind);
+    const SourceLocation name_at = step.location_of_key(step.contains("name") ? "name" : "kind");
+    if (const auto [first, inserted] = named.emplace(prepared.name, name_at); !inserted) {
+      throw Error(name_at, fmt::format("plan.procedure[{}]: a procedure named '{}' is already at {}{}: give each "
+                                       "[[procedure]] a 'name' of its own (results, verdicts and the archive key "
+                                       "figures by it)",
+                                       index, prepared.name, first->second.to_string(),
+                                       step.contains("name") ? "" : " (a step without 'name' is named by its kind)"));
+    }
     const auto* preparer = campaign::find_step(prepared.kind);
     if (preparer == nullptr) {
       std::string known;
@@ -229,21 +327,80 @@ const nlohmann::json* find_figure(const nlohmann::json& result, const std::strin
   return result.contains(figure) ? &result.at(figure) : nullptr;
 }
 
+// The verdict on a limit whose figure the data could not give (a smoothing time longer than half the
+// record, a random walk coefficient of too short a record, a value that came out NaN): FAIL, with
+// the reason, since a specification is met only by a measurement.
+nlohmann::json not_measured_verdict(const Limit& limit, const std::string& step_name, const std::string& unit,
+                                    const std::string& reason) {
+  nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", nullptr},
+                            {"unit", limit.unit.empty() ? unit : limit.unit},
+                            {"pass", false},          {"measured", false},       {"reason", reason}};
+  if (limit.min) verdict["min"] = *limit.min;
+  if (limit.max) verdict["max"] = *limit.max;
+  return verdict;
+}
+
+// An element of an array figure named by its pointer ("/accelerometer/bias/value/0"): the element
+// with the figure's unit and the uncertainty at the same place; nothing when the pointer names none.
+std::optional<Figure> array_figure_element(const nlohmann::json& result, const std::string& figure) {
+  const std::size_t at = figure.rfind("/value/");
+  if (figure.front() != '/' || at == std::string::npos) return std::nullopt;
+  const nlohmann::json* parent = find_figure(result, figure.substr(0, at));
+  const nlohmann::json* element = find_figure(result, figure);
+  if (parent == nullptr || element == nullptr || !parent->is_object() || !parent->contains("unit") ||
+      !parent->at("value").is_array() || !element->is_number()) {
+    return std::nullopt;
+  }
+  Figure value{element->get<double>(), parent->at("unit").get<std::string>(), std::nullopt};
+  if (const auto uncertainty = parent->find("uncertainty"); uncertainty != parent->end()) {
+    const nlohmann::json::json_pointer place("/uncertainty" + figure.substr(at + 6));
+    if (parent->contains(place) && parent->at(place).is_number()) value.uncertainty = parent->at(place).get<double>();
+  }
+  return value;
+}
+
 nlohmann::json check_limit(const Limit& limit, const std::string& step_name, const nlohmann::json& result) {
   const nlohmann::json* node = find_figure(result, limit.figure);
-  if (node == nullptr || !node->is_object() || !node->contains("value") || !node->contains("unit")) {
+  const std::string key = pointer_tokens(limit.figure).front();
+  // A declared field the result leaves out or null: the data could not give it.
+  if (limit.declared && (!result.contains(key) || result.at(key).is_null())) {
+    return not_measured_verdict(limit, step_name, "", "the procedure could not give it (see its warnings)");
+  }
+  std::optional<Figure> element = array_figure_element(result, limit.figure);
+  if (node != nullptr && node->is_object() && node->contains("value") && node->at("value").is_array()) {
+    throw Error(limit.where, "limit on '" + limit.figure + "': an array figure; a limit names one element, e.g. '" +
+                                 limit.figure + "/value/0'");
+  }
+  // A declared key holding a plain number (a count a field_from gives) is judged as one, as a
+  // declared number field is; it has no unit to convert to.
+  const bool plain = node != nullptr && node->is_number() &&
+                     (limit.plain_number || (limit.declared && limit.figure.find('/', 1) == std::string::npos));
+  if (plain && !limit.unit.empty()) {
+    throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name +
+                                 "' reports it as a plain number without a unit: give the limit without 'unit'");
+  }
+  if (!element && !plain &&
+      (node == nullptr || !node->is_object() || !node->contains("value") || !node->contains("unit"))) {
     throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name + "' reports no such figure");
+  }
+  // A figure that came out null (a row the data could not give, with its reason; NaN is written null)
+  // is not measured.
+  if (!element && !plain && node->at("value").is_null() && node->value("identified", true)) {
+    return not_measured_verdict(limit, step_name, node->at("unit").get<std::string>(),
+                                node->value("reason", std::string("the procedure gave no value")));
   }
   // A figure the analysis could not identify ({"value": null, "identified": false, "upper_bound"})
   // is judged by its upper bound: it passes a maximum the bound meets, and never a minimum.
-  const bool identified = node->value("identified", true);
-  const Figure figure = identified ? node->get<Figure>()
-                                   : Figure{node->at("upper_bound").get<double>(), node->at("unit").get<std::string>(),
-                                            std::nullopt};
+  const bool identified = element || plain || node->value("identified", true);
+  const Figure figure = element  ? *element
+                        : plain  ? Figure{node->get<double>(), "", std::nullopt}
+                        : identified ? node->get<Figure>()
+                                     : Figure{node->at("upper_bound").get<double>(), node->at("unit").get<std::string>(),
+                                              std::nullopt};
   const std::string unit = limit.unit.empty() ? figure.unit : limit.unit;
-  double value = 0.0;
+  double value = figure.value;
   try {
-    value = convert(figure.value, figure.unit, unit);
+    if (!plain) value = convert(figure.value, figure.unit, unit);
   } catch (const Error& e) {
     throw Error(limit.where, "limit on '" + limit.figure + "': " + e.message());
   }

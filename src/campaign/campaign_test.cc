@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -75,6 +76,10 @@ TEST(Campaign, ResultsCarryTestDateAndProcessingTime) {
   ::unsetenv("SOURCE_DATE_EPOCH");
   EXPECT_EQ(undated_summary.results["tested_on"], "1970-01-01");
   EXPECT_EQ(undated_summary.results["processed_at"], "1970-01-01T00:00:00Z");
+
+  // A TOML date is a date as well as the string.
+  const std::string toml_date = dir.write("toml_date.toml", "[plan]\ndate = 2024-05-01\n\n" + plan_text(""));
+  EXPECT_EQ(run_campaign(toml_date, dir.path() + "/toml_date").results["tested_on"], "2024-05-01");
 }
 
 TEST(Campaign, LimitsConvertUnits) {
@@ -136,6 +141,43 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"no_procedures", "[instrument]\nid = \"x\"\n", ":1:1: plan: no [[procedure]] tables"},
         BadPlan{"bad_latitude", "[instrument]\nid = \"x\"\n[site]\nlatitude_deg = 95\n", ":4:16: plan.site: 'latitude_deg' must lie in [-90, 90]"},
         BadPlan{"bad_limit", plan_text("", "[procedure.limits]\nnonlinearity = { unit = \"ppm\" }\n"), ":12:16: plan.procedure[1].limits.nonlinearity: a limit needs 'min', 'max' or both"},
+        // Two unnamed steps of one kind share the name: the report gave both one verdict and the
+        // archive refused the results (UNIQUE constraint); the second is refused, naming the first.
+        BadPlan{"duplicate_step_name", plan_text("") + "[[procedure]]\nkind = \"scale_factor\"\nfile = \"points.csv\"\n",
+                ":12:8: plan.procedure[2]: a procedure named 'scale_factor' is already at "},
+        BadPlan{"duplicate_given_name",
+                plan_text("name = \"SF\"\n") + "[[procedure]]\nkind = \"scale_factor\"\nname = \"SF\"\nfile = \"points.csv\"\n",
+                ":14:8: plan.procedure[2]: a procedure named 'SF' is already at "},
+        // Limits no figure can meet, or any meets: max = nan failed every figure (results.json "max":
+        // null, the report "<= NaN"), inf passed every one, min 100 above max 5 failed every one.
+        BadPlan{"nan_limit", plan_text("", "[procedure.limits]\nnonlinearity = { max = nan, unit = \"ppm\" }\n"),
+                ":12:24: plan.procedure[1].limits.nonlinearity: 'max' must be a finite number (not nan or inf)"},
+        BadPlan{"infinite_limit", plan_text("", "[procedure.limits]\nnonlinearity = { min = -inf, max = 5 }\n"),
+                ":12:24: plan.procedure[1].limits.nonlinearity: 'min' must be a finite number"},
+        BadPlan{"empty_range", plan_text("", "[procedure.limits]\nnonlinearity = { min = 100, max = 5, unit = \"ppm\" }\n"),
+                ":12:24: plan.procedure[1].limits.nonlinearity: 'min' (100) is above 'max' (5): no value meets the limit"},
+        BadPlan{"negative_magnitude", plan_text("", "[procedure.limits]\nnonlinearity = { max = -1 }\n"),
+                ":12:24: plan.procedure[1].limits.nonlinearity: 'max' (-1) alone bounds the magnitude"},
+        // An unknown unit in a limit named no file or line.
+        BadPlan{"unknown_limit_unit", plan_text("", "[procedure.limits]\nnonlinearity = { max = 1, unit = \"ppmm\" }\n"),
+                ":12:34: plan.procedure[1].limits.nonlinearity: 'unit' unknown unit 'ppmm'"},
+        // "last tuesday" was written as tested_on, and the archive refused it later.
+        BadPlan{"date_not_a_date", "[plan]\ndate = \"last tuesday\"\n" + plan_text(""),
+                ":2:8: plan.plan: 'date' must be a day of the calendar written YYYY-MM-DD (e.g. 2026-03-04), not "
+                "'last tuesday'"},
+        BadPlan{"date_not_a_day", "[plan]\ndate = \"2026-02-30\"\n" + plan_text(""), ":2:8: plan.plan: 'date' must be a day"},
+        BadPlan{"date_with_time", "[plan]\ndate = 2026-03-04T10:00:00\n" + plan_text(""), ":2:8: plan.plan: 'date' must be a date"},
+        // A limit's unit is checked against the figure's declared unit before anything runs (ppm
+        // against Hz failed after the step had run); a bare temperature is never converted.
+        BadPlan{"incompatible_limit_unit", plan_text("", "[procedure.limits]\nnonlinearity = { max = 100, unit = \"Hz\" }\n"),
+                ":12:16: limit on 'nonlinearity': procedure 'scale_factor' reports it in 'ppm': cannot convert 'ppm' "
+                "(dimensionless) to 'Hz' (time^-1)"},
+        // worst_temperature -40 degC was compared with a limit in K as -40 K.
+        BadPlan{"absolute_temperature_in_another_unit",
+                "[instrument]\nid = \"x\"\n[[procedure]]\nkind = \"scale_factor_temperature\"\n[procedure.limits]\n"
+                "worst_temperature = { max = 200, unit = \"K\" }\n",
+                ":6:21: limit on 'worst_temperature': procedure 'scale_factor_temperature' reports it in 'degC': cannot "
+                "convert the temperature 'degC' to 'K'"},
         BadPlan{"unknown_top_level", "[instrument]\nid = \"x\"\n[sight]\n", ":3:2: plan: unknown key 'sight'"}),
     testing::NameOfParam());
 
@@ -145,6 +187,26 @@ TEST(Campaign, LimitOnAFigureThatDoesNotExist) {
   const std::string plan = dir.write("plan.toml", plan_text("", "[procedure.limits]\nwobble = { max = 1 }\n"));
   EXPECT_THAT(error_of(plan, dir.path() + "/out"), HasSubstr("limit on 'wobble'"));
   EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out/results.json"));
+}
+
+// The units declared with unit_of are the units the figures come in: every declared figure (or row)
+// of the golden campaign, which runs every plan kind, has its field's declared unit.
+TEST(Campaign, DeclaredUnitsAreTheFiguresUnits) {
+  const auto results = nlohmann::json::parse(testing::read_file(testing::source_path("tests/golden/demo_results.json")));
+  std::size_t checked = 0;
+  for (const auto& procedure : results.at("procedures")) {
+    const ProcedureSpec* spec = find_procedure_spec(procedure.at("kind").get<std::string>());
+    if (spec == nullptr) continue;
+    for (const FieldSpec& field : spec->fields) {
+      if (field.unit.empty() || !procedure.at("result").contains(field.name)) continue;
+      const auto& value = procedure.at("result").at(field.name);
+      for (const auto& figure : value.is_array() ? value : nlohmann::json::array({value})) {
+        EXPECT_EQ(figure.at("unit"), field.unit) << spec->kind << " " << field.name;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 14u);
 }
 
 TEST(Campaign, ValidatePlanDoesNotRun) {

@@ -27,6 +27,9 @@ class PlanTable {
   std::optional<std::string> optional_string(std::string_view key);
   std::string string_or(std::string_view key, std::string fallback);
   bool boolean_or(std::string_view key, bool fallback);
+  // A day of the Gregorian calendar, as "YYYY-MM-DD": a TOML date (2026-03-04) or a string of that
+  // form; anything else ("last tuesday", 2026-02-30, a time of day) is an error naming the line.
+  std::optional<std::string> optional_date(std::string_view key);
   std::vector<double> numbers(std::string_view key);  // an array of numbers
   std::optional<std::vector<double>> optional_numbers(std::string_view key);
   std::vector<std::string> strings(std::string_view key);

@@ -95,6 +95,17 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
       call.parameters[parameter.name] = *value;
     }
     if (step.contains(key)) given.insert(parameter.name);
+    // An export outside the output directory would escape the staging of run_campaign: a failed
+    // campaign left an earlier step's "../leak.json" (or an absolute path) behind.
+    if (parameter.output_file && call.parameters.contains(parameter.name) && step.contains(key)) {
+      const nlohmann::json& value = call.parameters.at(parameter.name);
+      const std::string path = value.is_array() ? (value.empty() ? "" : value.back().get<std::string>())
+                                                : value.get<std::string>();
+      if (!path.empty() && !is_inside_output_directory(path)) {
+        step.fail_at(key, "names '" + path + "', outside the output directory: in a plan an export is a relative path "
+                          "beside results.json, written only when every procedure has run");
+      }
+    }
   }
   // [instrument] defaults where the step gives none (and their condition holds), then what is missing.
   for (const ParameterSpec& parameter : spec.parameters) {

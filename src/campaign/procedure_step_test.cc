@@ -5,6 +5,7 @@
 
 #include "inertest/campaign/campaign.h"
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -86,6 +87,78 @@ TEST(ProcedureStep, LimitOnAListOrATextIsAPlanErrorBeforeAnythingRuns) {
                     "pointer, e.g. '/nonlinearity_curve/0/...')");
   expect_plan_error(step + "[procedure.limits]\nwarnings = { max = 1 }\n",
                     "limit on 'warnings': procedure 'sf' reports it as a text or a yes/no, not a figure or a number");
+}
+
+// A triad's bias and scale factors are [x, y, z], its misalignment 3x3: a limit on a whole one crashed
+// after processing ("type must be number, but is array", no file or line). A limit names one element,
+// as the report lists it and the archive keeps it, and is judged on it with the figure's unit.
+TEST(ProcedureStep, LimitOnAnArrayFigureNamesOneElement) {
+  const std::string step = "[[procedure]]\nkind = \"imu_calibration\"\nname = \"imu\"\nfile = \"" +
+                           testing::source_path("examples/imu_calibration/tumble.csv") + "\"\n[procedure.limits]\n";
+  expect_plan_error(step + "\"/accelerometer/misalignment\" = { max = 0.01, unit = \"rad\" }\n",
+                    "limit on '/accelerometer/misalignment': '/accelerometer/misalignment' is a 3x3 (matrix) figure; a "
+                    "limit names one element: '/accelerometer/bias/value/I', '/accelerometer/misalignment/value/I/J', "
+                    "'/accelerometer/scale_factor/value/I' with I and J in 0, 1, 2 (x, y, z)");
+  expect_plan_error(step + "\"/gyro/bias\" = { max = 1 }\n", "'/gyro/bias' is an [x, y, z] (vector) figure");
+  expect_plan_error(step + "\"/gyro/bias/value\" = { max = 1 }\n", "'/gyro/bias' is an [x, y, z] (vector) figure");
+  expect_plan_error(step + "\"/gyro/bias/value/3\" = { max = 1 }\n", "no element '3'");
+  expect_plan_error(step + "accelerometer = { max = 1 }\n", "'accelerometer' holds array figures, not one figure");
+
+  ScratchDirectory scratch;
+  const std::string plan = scratch.write(
+      "plan.toml", "[instrument]\nid = \"IMU\"\noutput_unit = \"count\"\n\n" + step +
+                       "\"/accelerometer/misalignment/value/0/1\" = { max = 1, unit = \"deg\" }\n"
+                       "\"/accelerometer/bias/value/2\" = { max = 1e-9 }\n");
+  const auto results = run_campaign(plan, scratch.path() + "/out").results;
+  const auto& triad = results.at("procedures").at(0).at("result").at("accelerometer");
+  const auto& misalignment = results.at("verdicts").at(0);
+  EXPECT_NEAR(misalignment.at("value").get<double>(),
+              triad.at("misalignment").at("value").at(0).at(1).get<double>() * 180.0 / constants::kPi, 1e-12);
+  EXPECT_EQ(misalignment.at("unit"), "deg");
+  EXPECT_TRUE(misalignment.at("pass").get<bool>());
+  const auto& bias = results.at("verdicts").at(1);
+  EXPECT_EQ(bias.at("value"), triad.at("bias").at("value").at(2));
+  EXPECT_EQ(bias.at("unit"), triad.at("bias").at("unit"));
+  EXPECT_FALSE(bias.at("pass").get<bool>());
+}
+
+// An export outside the output directory escaped the campaign's staging: a later step's failure left
+// "../leak.json" (or an absolute path) written. Such a path is a plan error before anything runs.
+TEST(ProcedureStep, AnExportOutsideTheOutputDirectoryIsAPlanError) {
+  const std::string imu = "[[procedure]]\nkind = \"imu_calibration\"\nfile = \"" +
+                          testing::source_path("examples/imu_calibration/tumble.csv") + "\"\n";
+  expect_plan_error(imu + "export = \"../leak.json\"\n",
+                    ":8:10: plan.procedure[1]: 'export' names '../leak.json', outside the output directory");
+  expect_plan_error(imu + "export = \"/tmp/leak.json\"\n", "'export' names '/tmp/leak.json', outside the output directory");
+  expect_plan_error(imu + "export = \"a/../../leak.json\"\n", "outside the output directory");
+  expect_plan_error("[[procedure]]\nkind = \"allan\"\nfile = \"plan.toml\"\nsample_rate_hz = 10\n"
+                    "export = [\"json\", \"../leak.json\"]\n",
+                    "'export' names '../leak.json', outside the output directory");
+  ScratchDirectory scratch;
+  validate_plan(scratch.write("plan.toml", std::string(kHeader) + imu + "export = \"calibration/imu.json\"\n"));
+  ProcedureCall call;
+  call.output_directory = scratch.path();
+  EXPECT_THROW(call.output_path("../leak.json"), Error);
+  EXPECT_EQ(call.output_path("a/b.json"), scratch.path() + "/a/b.json");
+}
+
+// A declared plain number (a count) is judged as it is, without a unit; the limit passed
+// validation and failed after processing ("reports no such figure").
+TEST(ProcedureStep, LimitOnAPlainNumberIsJudgedWithoutAUnit) {
+  const std::string step = "[[procedure]]\nkind = \"bias\"\nname = \"b\"\nsample_rate_hz = 1\nfile = \"rest.txt\"\n"
+                           "[procedure.limits]\n";
+  expect_plan_error(step + "samples = { min = 3, unit = \"1\" }\n",
+                    "limit on 'samples': procedure 'b' reports it as a plain number without a unit: give the limit "
+                    "without 'unit'");
+  ScratchDirectory scratch;
+  scratch.write("rest.txt", "1\n2\n1\n2\n");
+  const std::string plan = scratch.write(
+      "plan.toml", std::string(kHeader) + "nominal_scale_factor = 1\n" + step + "samples = { min = 3 }\n\"/samples\" = { min = 5 }\n");
+  const auto verdicts = run_campaign(plan, scratch.path() + "/out").results.at("verdicts");
+  EXPECT_EQ(verdicts.at(0).at("value"), 4.0);
+  EXPECT_EQ(verdicts.at(0).at("unit"), "");
+  EXPECT_TRUE(verdicts.at(0).at("pass").get<bool>());
+  EXPECT_FALSE(verdicts.at(1).at("pass").get<bool>());  // 4 < 5
 }
 
 // A required parameter with an instrument default: the step's key, else [instrument], else an error.

@@ -91,7 +91,10 @@ TEST(BiasCommandTest, ClearErrors) {
   ASSERT_EQ(too_long.exit_code, 0) << too_long.err;
   const auto too_long_json = nlohmann::json::parse(too_long.out);
   EXPECT_NEAR(too_long_json.at("bias").at("value").get<double>(), 720.0, 1e-9);  // 1 / 5 * 3600
-  EXPECT_TRUE(too_long_json.at("bias_stability").empty());
+  // Its row stays, not measured (a plan's limit on it fails rather than judging another row).
+  ASSERT_EQ(too_long_json.at("bias_stability").size(), 1u);
+  EXPECT_TRUE(too_long_json.at("bias_stability").at(0).at("value").is_null());
+  EXPECT_FALSE(too_long_json.at("bias_stability").at(0).at("measured").get<bool>());
   EXPECT_THAT(too_long_json.at("warnings").dump(), ::testing::HasSubstr("longer than the record"));
   const auto bad_rate = run_cli({"bias", file, "--rate", "0", "--scale-factor", "5", "--smoothing", "1"});
   EXPECT_EQ(bad_rate.exit_code, 2);

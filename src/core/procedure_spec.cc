@@ -52,10 +52,19 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
 }
 
 std::string ProcedureCall::output_path(const std::string& path) const {
-  if (output_directory.empty() || std::filesystem::path(path).is_absolute()) return path;
+  if (output_directory.empty()) return path;
+  if (!is_inside_output_directory(path)) {
+    throw Error("'" + path + "' is outside the output directory: an export is a relative path beside results.json");
+  }
   const std::filesystem::path inside = std::filesystem::path(output_directory) / path;
   std::filesystem::create_directories(inside.parent_path());
   return inside.string();
+}
+
+bool is_inside_output_directory(const std::string& path) {
+  const std::filesystem::path normal = std::filesystem::path(path).lexically_normal();
+  if (path.empty() || normal.is_absolute() || normal.has_root_name() || normal.empty() || normal == ".") return false;
+  return *normal.begin() != "..";
 }
 
 std::string kebab_case(const std::string& name) {
@@ -112,8 +121,14 @@ std::string numbers_text(const nlohmann::json& value, int digits) {
 }
 
 // A figure ({"value", "unit", "uncertainty"}, the value a number or an array of them) as
-// "v ± u unit"; other values as they read.
+// "v ± u unit"; one the data could not give (value null, with its "reason") as "not measured
+// (reason)"; other values as they read.
 std::string value_text(const nlohmann::json& value) {
+  if (is_figure(value) && value.at("value").is_null()) {
+    const auto reason = value.find("reason");
+    return reason != value.end() && reason->is_string() ? "not measured (" + reason->get<std::string>() + ")"
+                                                        : "not measured";
+  }
   if (is_figure(value)) {
     std::string text = numbers_text(value.at("value"), 9);
     if (value.contains("uncertainty")) text += " ± " + numbers_text(value.at("uncertainty"), 3);
@@ -138,7 +153,9 @@ std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
       // A figure with members of its own says what it is of first (bias stability: "smoothing_s 10: ...").
       if (row.is_object()) {
         for (const auto& [key, cell] : row.items()) {
-          if (key != "value" && key != "unit" && key != "uncertainty") line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
+          if (key != "value" && key != "unit" && key != "uncertainty" && key != "measured" && key != "reason") {
+            line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
+          }
         }
       }
       line += (line.empty() ? "" : ": ") + value_text(row);

@@ -55,7 +55,9 @@ const std::unordered_map<std::string_view, NamedUnit>& simple_units() {
       {"cm", {1e-2, Dimension::kLength}},
       {"km", {1e3, Dimension::kLength}},
       {"kg", {1.0, Dimension::kMass}},
-      // temperature difference (sensitivities are per degree; no offsets are converted)
+      // temperature: a degree Celsius and a kelvin are the same size, so a difference or a
+      // sensitivity (ppm/degC, deg/h/degC) converts by factor 1; an absolute temperature would need
+      // the 273.15 offset, which convert() refuses to guess (see there)
       {"degC", {1.0, Dimension::kTemperature}},
       {"K", {1.0, Dimension::kTemperature}},
       // electrical
@@ -261,6 +263,17 @@ double convert(double value, const Unit& from, const Unit& to) {
   if (from.dimension() != to.dimension()) {
     throw Error("cannot convert '" + from.symbol() + "' (" + from.dimension().to_string() + ") to '" +
                 to.symbol() + "' (" + to.dimension().to_string() + ")");
+  }
+  // A bare temperature (degC, K) may be absolute (-40 degC is 233.15 K) or a difference (a 10 degC
+  // step is 10 K), and a unit string cannot tell which: converting one temperature unit into another
+  // is refused rather than guessed. Temperature within a compound unit (ppm/degC, deg/h/degC, degC/s)
+  // is a difference and converts by its factor.
+  Dimension bare_temperature;
+  bare_temperature.half_powers[Dimension::kTemperature] = 2;
+  if (from.dimension() == bare_temperature && from.symbol() != to.symbol()) {
+    throw Error("cannot convert the temperature '" + from.symbol() + "' to '" + to.symbol() +
+                "': an absolute temperature needs an offset a difference does not, and the unit cannot say which; "
+                "give the value in '" + from.symbol() + "', the figure's unit");
   }
   return value * (from.factor() / to.factor());
 }

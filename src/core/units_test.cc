@@ -48,6 +48,25 @@ TEST(Units, IncompatibleDimensionsAreAnError) {
   }
 }
 
+// -40 degC is 233.15 K, a 10 degC step is 10 K: a bare temperature unit cannot say which, so one
+// is never converted into another (a limit in K on a figure in degC read -40 degC as -40 K); in a
+// compound unit the temperature is a difference (a sensitivity per degree) and converts.
+TEST(Units, BareTemperaturesAreNotConvertedCompoundOnesAre) {
+  try {
+    convert(-40.0, "degC", "K");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("cannot convert the temperature 'degC' to 'K'"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("give the value in 'degC'"));
+  }
+  EXPECT_THROW(convert(290.0, "K", "degC"), Error);
+  EXPECT_EQ(convert(-40.0, "degC", "degC"), -40.0);
+  EXPECT_EQ(convert(3.0, "ppm/degC", "ppm/K"), 3.0);
+  EXPECT_EQ(convert(3.0, "deg/h/K", "deg/h/degC"), 3.0);
+  EXPECT_EQ(convert(0.5, "degC/s", "K/s"), 0.5);
+  EXPECT_EQ(convert(2.0, "degC^2", "K^2"), 2.0);
+}
+
 TEST(Units, UnknownNamesAreAnErrorNotAGuess) {
   for (const char* text : {"degs/h", "furlong", "deg//h", "", "deg^x", "sqrt(h", "deg/"}) {
     EXPECT_THROW(Unit::parse(text), Error) << text;

@@ -45,7 +45,8 @@ ProcedureSpec accelerometer_misalignment_spec() {
                    [](const Result& r) { return r.combined.misalignment; })
       .figure_from({"scale_factor", FieldRole::detail, "scale factor kI", "标度因数 kI", ""},
                    [](const Result& r) { return Figure{r.scale_factor, r.output_unit + "/g", std::nullopt}; })
-      .field_from({"run_count", FieldRole::detail, "runs", "测试次数", ""},
+      .field_from(FieldSpec{.name = "run_count", .role = FieldRole::detail, .label_en = "runs", .label_zh = "测试次数",
+                            .equation = "", .axes = {}, .value_words = {}, .value = FieldValue::whole_number},
                   [](const Result& r) { return r.by_run.size(); })
       .field_from({"by_run", FieldRole::table, "solution of each run", "各次解", ""}, by_run_json)
       .field_from({"source", FieldRole::hidden, "source", "来源", ""},

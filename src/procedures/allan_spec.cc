@@ -288,7 +288,8 @@ ProcedureSpec allan_spec() {
       .parameter(ParameterSpec("export", "FORMAT FILE: the noise parameters a navigation filter takes, FORMAT kalibr "
                                          "(imu.yaml), matlab (gyroparams/accelparams), gnss-ins-sim (IMU error "
                                          "dictionary) or json; in a plan a relative FILE is beside results.json")
-                     .values_on_command_line(2),
+                     .values_on_command_line(2)
+                     .writes_file(),
                  &AllanParameters::export_to)
       .checked_by(check)
       .written_by(

@@ -99,12 +99,14 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
   // Every figure the record supports; a smoothing time it does not (longer than half the record, not
   // a whole number of samples) and a random walk coefficient it cannot give (a record under 2 s,
   // samples more than 1 s apart) are warnings, not an end to the bias.
-  for (double s : options.smoothing_s) {
+  for (std::size_t place = 0; place < options.smoothing_s.size(); ++place) {
+    const double s = options.smoothing_s[place];
     StabilityAtSmoothing stability;
     try {
       stability = output_stability(output, options.sample_rate_hz, s);  // eq. (20)
     } catch (const Error& e) {
       result.warnings.push_back(e.message() + " (left out)");
+      result.smoothing_left_out.push_back({place, s, e.message()});
       continue;
     }
     if (!std::isfinite(stability.stability * magnitude)) throw_overflow("bias stability");

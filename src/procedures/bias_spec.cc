@@ -33,6 +33,29 @@ nlohmann::json normalised_curve_json(const BiasResult& result) {
   return curve;
 }
 
+// One row per smoothing time asked for, in the order asked: a time the record cannot support keeps
+// its row, {"smoothing_s", "value": null, "unit", "measured": false, "reason"}, so that a plan's
+// limit on "/bias_stability/N" names the N-th time asked for (a left-out 3000 s had shifted the
+// 10 s value under the limit meant for 3000 s) and is judged "not measured".
+nlohmann::json bias_stability_json(const BiasResult& result) {
+  nlohmann::json stability = nlohmann::json::array();
+  auto left_out = result.smoothing_left_out.begin();
+  auto measured = result.bias_stability.begin();
+  const std::size_t rows = result.bias_stability.size() + result.smoothing_left_out.size();
+  for (std::size_t place = 0; place < rows; ++place) {
+    if (left_out != result.smoothing_left_out.end() && left_out->place == place) {
+      stability.push_back({{"smoothing_s", left_out->smoothing_s}, {"value", nullptr}, {"unit", "deg/h"},
+                           {"measured", false}, {"reason", left_out->reason}});
+      ++left_out;
+    } else {
+      stability.push_back({{"smoothing_s", measured->smoothing_s}, {"value", measured->value.value},
+                           {"unit", measured->value.unit}});
+      ++measured;
+    }
+  }
+  return stability;
+}
+
 }  // namespace
 
 ProcedureSpec bias_spec() {
@@ -76,14 +99,7 @@ ProcedureSpec bias_spec() {
   return definition
       .field({"bias", FieldRole::headline, "bias B0", "零偏", "eq. (19)"}, &BiasResult::bias)
       .field_from({"bias_stability", FieldRole::table, "bias stability", "零偏稳定性", "eq. (20)"},
-                  [](const BiasResult& result) {
-                    nlohmann::json stability = nlohmann::json::array();
-                    for (const auto& s : result.bias_stability) {
-                      stability.push_back(
-                          {{"smoothing_s", s.smoothing_s}, {"value", s.value.value}, {"unit", s.value.unit}});
-                    }
-                    return stability;
-                  })
+                  bias_stability_json)
       .field_from({"noise_equivalent_rate", FieldRole::detail, "noise equivalent rate Bs(1 s)", "噪声等效角速率",
                    "eq. (24)"},
                   [](const BiasResult& result) {
@@ -107,6 +123,11 @@ ProcedureSpec bias_spec() {
         if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;
         options.validate();
       })
+      .unit_of("bias", "deg/h")
+      .unit_of("bias_stability", "deg/h")
+      .unit_of("noise_equivalent_rate", "deg/h")
+      .unit_of("random_walk_coefficient", "deg/sqrt(h)")
+      .unit_of("duration", "s")
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
         options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored

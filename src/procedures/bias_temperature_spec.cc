@@ -62,6 +62,10 @@ ProcedureSpec bias_temperature_spec() {
       .checked_by([](const ProcedureCall& call, const Options& options) {
         check_bias_conversion(call, options.conversion, "bias temperature sensitivity");
       })
+      .unit_of("bias_temperature_sensitivity", "deg/h/degC")
+      .unit_of("room_temperature", "degC")
+      .unit_of("room_temperature_bias", "deg/h")
+      .unit_of("worst_temperature", "degC")
       .compute([](const ProcedureCall& call, const Options& options) {
         std::vector<TemperatureRunBias> runs;
         for (const RunInput& run : call.runs.at("runs")) {

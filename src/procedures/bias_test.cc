@@ -258,7 +258,17 @@ TEST(BiasTest, ShortRecordGivesEveryFigureItSupports) {
   EXPECT_THAT(result.warnings[1], ::testing::HasSubstr("100 s (1000 samples) is longer than the record"));
   EXPECT_THAT(result.warnings[2], ::testing::HasSubstr("0.15 s is not a whole number of samples"));
   ASSERT_TRUE(result.random_walk_coefficient.has_value());
-  EXPECT_EQ(json_of(result).at("bias_stability").size(), 2u);
+  // The JSON keeps a row per smoothing time asked for, in that order, those left out not measured
+  // (a plan's limit on "/bias_stability/2" names 30 s, not a figure that moved up).
+  const nlohmann::json rows = json_of(result).at("bias_stability");
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[1].at("smoothing_s"), 10.0);
+  EXPECT_EQ(rows[2].at("smoothing_s"), 30.0);
+  EXPECT_TRUE(rows[2].at("value").is_null());
+  EXPECT_FALSE(rows[2].at("measured").get<bool>());
+  EXPECT_THAT(rows[3].at("reason").get<std::string>(), ::testing::HasSubstr("100 s (1000 samples)"));
+  EXPECT_EQ(rows[4].at("smoothing_s"), 0.15);
+  EXPECT_THAT(text_of(result), ::testing::HasSubstr("smoothing_s 30.0: not measured (bias stability: the record holds 1 whole window(s) of 30 s"));
   // Two samples: the bias, and warnings for every smoothing time and the random walk coefficient.
   const BiasResult two = bias(std::vector<double>{1.0, 2.0}, unit_options(10.0, {1.0}, true));
   EXPECT_DOUBLE_EQ(two.bias.value, 1.5);

@@ -99,7 +99,7 @@ ProcedureSpec imu_apply_spec() {
                      .site_gives("gravity_m_s2"),
                  &Options::gravity_m_s2)
       .parameter(ParameterSpec("output", "write the calibrated record to FILE (.csv); in a plan a relative FILE is "
-                                         "beside results.json"),
+                                         "beside results.json").writes_file(),
                  &Options::output_file)
       .field({"gravity_residual_rms", FieldRole::headline, "rms of |specific force| - g over the statics",
               "静止区间比力模与重力之差均方根", ""},

@@ -51,6 +51,12 @@ nlohmann::json residual_curve(const Result& result, bool direction) {
   return points;
 }
 
+// A triad's field (triad_json): its bias and scale factors are [x, y, z], its misalignment 3x3.
+FieldSpec triad_field(FieldSpec field) {
+  field.array_figures = {{"bias", 1}, {"scale_factor", 1}, {"misalignment", 2}};
+  return field;
+}
+
 }  // namespace
 
 ProcedureSpec imu_calibration_spec() {
@@ -104,10 +110,10 @@ ProcedureSpec imu_calibration_spec() {
                  &Options::outlier_false_alarm)
       .parameter(ParameterSpec("minimum_statics", "fewer accepted static intervals is an error"), &Options::minimum_statics)
       .parameter(ParameterSpec("export", "write the calibration to FILE (.json) for imu-apply (in a plan a relative FILE is "
-                                           "beside results.json)"), &Options::export_file)
-      .field_from({"accelerometer", FieldRole::detail, "accelerometer triad", "加速度计组件", "Tedaldi et al. 2014"},
+                                           "beside results.json)").writes_file(), &Options::export_file)
+      .field_from(triad_field({"accelerometer", FieldRole::detail, "accelerometer triad", "加速度计组件", "Tedaldi et al. 2014"}),
                   [](const Result& result) { return triad_json(result.accelerometer); })
-      .field_from({"gyro", FieldRole::detail, "gyro triad", "陀螺组件", "Tedaldi et al. 2014"},
+      .field_from(triad_field({"gyro", FieldRole::detail, "gyro triad", "陀螺组件", "Tedaldi et al. 2014"}),
                   [](const Result& result) { return triad_json(result.gyro); })
       .field_from({"residual_rms", FieldRole::detail, "rms residual", "残差均方根", ""},
                   [](const Result& result) {

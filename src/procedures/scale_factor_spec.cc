@@ -114,6 +114,8 @@ ProcedureSpec scale_factor_spec() {
           segments.validate();
         }
       })
+      .unit_of("nonlinearity", "ppm")
+      .unit_of("asymmetry", "ppm")
       .compute([](const ProcedureCall& call, const Options& options) {
         if (call.files.contains("points"))
           return scale_factor(read_scale_factor_points(call.files.at("points")), options.scale_factor);

@@ -70,6 +70,9 @@ ProcedureSpec scale_factor_temperature_spec() {
                                            *options.reference_temperature_degC));
         }
       })
+      .unit_of("scale_factor_temperature_sensitivity", "ppm/degC")
+      .unit_of("worst_temperature", "degC")
+      .unit_of("reference_temperature", "degC")
       .compute([](const ProcedureCall& call, const Options& options) {
         std::vector<TemperatureRun> runs;
         for (const RunInput& run : call.runs.at("runs"))

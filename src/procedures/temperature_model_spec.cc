@@ -95,7 +95,7 @@ ProcedureSpec temperature_model_spec() {
                      .command_line_flag("no-rate-terms", false),
                  &Options::rate_terms)
       .parameter(ParameterSpec("export", "write the coefficients to FILE (.json or .csv; in a plan a relative FILE is beside "
-                                           "results.json)"), &Options::export_file);
+                                           "results.json)").writes_file(), &Options::export_file);
   thermal::stability_fields(definition);
   definition
       .field_from({"bias_coefficients", FieldRole::detail, "model coefficients", "模型系数", "IEEE Std 952-1997 Annex B"},

@@ -18,6 +18,14 @@ bool is_unidentified_figure(const json& node) {
          bound->is_number() && unit != nullptr && unit->is_string();
 }
 
+bool is_unmeasured_figure(const json& node) {
+  const auto* value = member(node, "value");
+  const auto* measured = member(node, "measured");
+  const auto* unit = member(node, "unit");
+  return value != nullptr && value->is_null() && measured != nullptr && measured->is_boolean() &&
+         !measured->get<bool>() && unit != nullptr && unit->is_string();
+}
+
 bool is_array_figure(const json& node) {
   const auto* value = member(node, "value");
   const auto* unit = member(node, "unit");
@@ -28,6 +36,7 @@ std::pair<std::string, std::string> format_figure(const json& figure, const Labe
   if (is_unidentified_figure(figure)) {
     return {labels("ui.not_identified") + " (< " + format_number(figure.at("upper_bound").get<double>(), 2) + ")", ""};
   }
+  if (is_unmeasured_figure(figure)) return {labels("ui.not_measured"), ""};
   // A declared text or yes/no figure (polarity's "positive", its "as specified").
   if (figure.at("value").is_string()) return {figure.at("value").get<std::string>(), ""};
   if (figure.at("value").is_boolean()) return {labels(figure.at("value").get<bool>() ? "ui.yes" : "ui.no"), ""};

@@ -14,12 +14,17 @@ namespace inertest::report {
 // "upper_bound"} (e.g. a noise term that the fit of GJB eq. (30) holds at zero).
 bool is_unidentified_figure(const nlohmann::json& node);
 
+// A figure the data could not give, kept at its place with the reason: {"value": null, "unit",
+// "measured": false, "reason"} (e.g. a smoothing time longer than half the record).
+bool is_unmeasured_figure(const nlohmann::json& node);
+
 // A figure of a triad (issue 18): {"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}.
 bool is_array_figure(const nlohmann::json& node);
 
 // Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits
 // (the uncertainty "" when the figure has none); an unidentified figure as "not identified (< upper
-// bound)"; a text or yes/no figure as its text. The figure is is_figure or is_unidentified_figure.
+// bound)"; an unmeasured one as "not measured"; a text or yes/no figure as its text. The figure is
+// is_figure, is_unidentified_figure or is_unmeasured_figure.
 std::pair<std::string, std::string> format_figure(const nlohmann::json& figure, const Labels& labels);
 
 // The figure in one piece: "1.249999 ± 0.000020 Hz" (format_figure, then the readable unit),

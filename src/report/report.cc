@@ -114,6 +114,18 @@ std::string qualifier_of(const json& element) {
   return text.empty() ? text : " (" + text + ")";
 }
 
+bool is_number_member(const json& node, std::string_view key) {
+  const auto* value = member(node, key);
+  return value != nullptr && value->is_number();
+}
+
+// A verdict's measured value: the number, or "not measured" for a figure the data could not give.
+std::string verdict_value_text(const json& verdict, const Labels& labels) {
+  const auto* value = member(verdict, "value");
+  if (value == nullptr || !value->is_number()) return labels("ui.not_measured");
+  return format_number(value->get<double>());
+}
+
 // One row per element of an array figure, named by its axes ("x", "xy"), its pointer the element's
 // value; a matrix's elements held at zero by the figure's convention (zero with zero uncertainty,
 // e.g. a misalignment's diagonal) are left out.
@@ -165,7 +177,7 @@ constexpr int kMaxNesting = 32;
 
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
-  if (is_figure(node) || is_unidentified_figure(node)) {
+  if (is_figure(node) || is_unidentified_figure(node) || is_unmeasured_figure(node)) {
     rows.push_back({pointer, name, node, depth, headline && depth <= 2});
     return;
   }
@@ -195,7 +207,8 @@ void collect_figures(const json& node, const std::string& pointer, const std::st
     }
   } else if (node.is_array()) {
     // Arrays of figures are listed, each under its qualifier (" (10 s)") or number.
-    const bool of_figures = std::all_of(node.begin(), node.end(), [](const json& e) { return is_figure(e); });
+    const bool of_figures =
+        std::all_of(node.begin(), node.end(), [](const json& e) { return is_figure(e) || is_unmeasured_figure(e); });
     for (std::size_t i = 0; i < node.size(); ++i) {
       if (of_figures) {
         const std::string qualifier = qualifier_of(node[i]);
@@ -506,7 +519,7 @@ class ReportWriter {
       text += "\nSpecification limits\n";
       for (const json& v : verdicts()) {
         text += fmt::format("  {:<5} {} / {} = {} {} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
-                            v.value("procedure", ""), v.value("figure", ""), format_number(v.value("value", 0.0)),
+                            v.value("procedure", ""), v.value("figure", ""), verdict_value_text(v, labels_),
                             pretty_unit(v.value("unit", "")), limit_text(v));
       }
     }
@@ -861,7 +874,9 @@ class ReportWriter {
           "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
           html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
           html(name), html(limit_text(v)),
-          html(format_number(v.value("value", 0.0)) + (unit.empty() ? "" : " " + unit)), verdict_cell(pass, labels_));
+          html(verdict_value_text(v, labels_) + (unit.empty() || !is_number_member(v, "value") ? "" : " " + unit) +
+               (v.contains("reason") ? " (" + v.value("reason", "") + ")" : "")),
+          verdict_cell(pass, labels_));
     }
     const std::string overall = overall_verdict();
     out_ += fmt::format("</tbody>\n<tfoot><tr><th colspan=\"4\">{}</th>{}</tr></tfoot>\n</table>\n</section>\n",

@@ -36,6 +36,10 @@ struct TimedRecord;  // io/output_record.h
 // "nonlinearity_limit" -> "nonlinearity-limit".
 std::string kebab_case(const std::string& name);
 
+// Whether a path names a file inside a directory it is taken relative to: relative, not climbing out
+// of it ("../leak.json", "a/../../b"), not the directory itself.
+bool is_inside_output_directory(const std::string& path);
+
 // number: a double or (whole) a std::size_t member; text: std::string; numbers: std::vector<double>
 // (a comma-separated list on the command line, an array in a plan); boolean: bool (a flag without a
 // value on the command line, true/false in a plan); texts: std::vector<std::string> (the option
@@ -101,6 +105,10 @@ struct ParameterSpec {
     return *this;
   }
   ParameterSpec& required_on_command_line() { required = true; return *this; }
+  // A file the procedure writes (an export; of a list of texts, the last): in a plan it must be a
+  // relative path inside the output directory, checked before anything runs (the exports are
+  // staged and moved beside results.json only when every step has run).
+  ParameterSpec& writes_file() { output_file = true; return *this; }
   // A yes/no parameter stored through a binder (a bool member is one already).
   ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
@@ -167,6 +175,7 @@ struct ParameterSpec {
   std::string cli_option;  // "": the option is --kebab-case(name)
   std::size_t cli_values = 0;  // texts: the values one option takes, 0: a comma list or the option repeated
   char cli_separator = ',';     // numbers: between the values on the command line
+  bool output_file = false;     // writes_file()
 };
 
 enum class InputKind {
@@ -315,6 +324,14 @@ struct FieldSpec {
   // Set by ProcedureDefinition::field from the member's type; by field_from, rows for a table or a
   // curve and structured otherwise unless declared.
   FieldValue value = FieldValue::structured;
+  // The members of a structured field that are array figures ({"value": [x, y, z] or a 3x3, "unit",
+  // "uncertainty"}), each with its rank (1 a vector, 2 a matrix; a triad's "bias", "misalignment"): a
+  // plan's limit names one element ("/accelerometer/bias/value/0"), a limit on a whole one is an error.
+  std::map<std::string, int> array_figures = {};
+  // The unit the figure (or every figure of its rows) is reported in when it is fixed, whatever the
+  // parameters ("ppm", "degC"); empty when it follows the instrument's or an option's unit. A plan's
+  // limit in a unit that does not convert to it is an error before anything runs.
+  std::string unit = {};
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
@@ -357,7 +374,8 @@ struct ProcedureCall {
 
   // A file the procedure writes (an export): a relative path is in output_directory (its directories
   // made there), so that a plan's exports land beside its results.json; on the command line, in the
-  // working directory.
+  // working directory. With an output_directory, a path outside it (absolute, or climbing out with
+  // "..") is an Error: it would escape the staging that keeps a failed campaign from leaving output.
   std::string output_path(const std::string& path) const;
 };
 
@@ -591,6 +609,17 @@ class ProcedureDefinition {
     written_text_ = std::move(text);
     spec_.writes_own_json = true;
     return *this;
+  }
+
+  // The fixed unit of a field declared already (FieldSpec::unit).
+  ProcedureDefinition& unit_of(const std::string& field_name, std::string unit) {
+    for (FieldSpec& field : spec_.fields) {
+      if (field.name == field_name) {
+        field.unit = std::move(unit);
+        return *this;
+      }
+    }
+    throw Error("procedure spec " + spec_.kind + ": unit_of an undeclared field '" + field_name + "'");
   }
 
   // A key of the JSON that written_by writes: for the report, the plan's limits and the stubs.

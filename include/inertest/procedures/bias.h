@@ -59,9 +59,19 @@ struct BiasStabilityFigure {
   std::vector<double> smoothed;  // F_i/K in deg/h (Earth rate removed if asked): the smoothed record
 };
 
+// A smoothing time the record cannot support (longer than half of it, not whole samples): its place
+// among the smoothing times asked for, so that the JSON keeps a row at that place (a plan's limit on
+// "/bias_stability/1" names the second smoothing time asked for, measured or not).
+struct SmoothingLeftOut {
+  std::size_t place = 0;
+  double smoothing_s = 0.0;
+  std::string reason;
+};
+
 struct BiasResult {
   Figure bias;                                    // eq. (19), deg/h (Earth rate removed if asked)
   std::vector<BiasStabilityFigure> bias_stability;  // eq. (20), one per smoothing time the record supports
+  std::vector<SmoothingLeftOut> smoothing_left_out;  // the others, also in warnings
   std::optional<Figure> noise_equivalent_rate;      // NER = Bs(1 s), deg/h, when the record supports it
   std::optional<Figure> random_walk_coefficient;    // eq. (24), deg/sqrt(h), when the record supports it
   std::vector<NormalisedStabilityPoint> normalised_stability_curve;  // Bs(τ) in deg/h, eq. (23)

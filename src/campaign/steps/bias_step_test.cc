@@ -130,6 +130,53 @@ sample_rate_hz = 1
                     "unknown key 'colour'");
 }
 
+// smoothing_s = [1, 3000, 10] on a 100 s record: 3000 s is left out, and the limit on
+// "/bias_stability/1" (the 3000 s figure) was judged on the 10 s value, which had moved up. The row
+// stays at its place, not measured, and a limit on it fails with the reason.
+TEST(BiasStepTest, ALimitOnALeftOutSmoothingTimeIsNotMeasured) {
+  ScratchDirectory scratch;
+  std::string record;
+  for (int i = 0; i < 400; ++i) record += (i % 2 == 0 ? "1\n" : "3\n");
+  scratch.write("rest.txt", record);
+  const std::string plan = scratch.write(
+      "plan.toml", std::string(kHeader) +
+                       "[[procedure]]\nkind = \"bias\"\nfile = \"rest.txt\"\nsmoothing_s = [1, 3000, 10]\n"
+                       "[procedure.limits]\n\"/bias_stability/1\" = { max = 0.05, unit = \"deg/h\" }\n"
+                       "\"/bias_stability/2\" = { max = 0.05, unit = \"deg/h\" }\n");
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& rows = summary.results.at("procedures").at(0).at("result").at("bias_stability");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].at("smoothing_s"), 3000.0);
+  EXPECT_TRUE(rows[1].at("value").is_null());
+  EXPECT_FALSE(rows[1].at("measured").get<bool>());
+  EXPECT_THAT(rows[1].at("reason").get<std::string>(), ::testing::HasSubstr("3000 s"));
+  EXPECT_EQ(rows[2].at("smoothing_s"), 10.0);
+  EXPECT_NEAR(rows[2].at("value").get<double>(), 0.0, 1e-12);  // whole periods of 1, 3: every mean 2
+
+  const auto& verdicts = summary.results.at("verdicts");
+  EXPECT_FALSE(verdicts[0].at("pass").get<bool>());
+  EXPECT_TRUE(verdicts[0].at("value").is_null());
+  EXPECT_FALSE(verdicts[0].at("measured").get<bool>());
+  EXPECT_THAT(verdicts[0].at("reason").get<std::string>(), ::testing::HasSubstr("longer than the record"));
+  EXPECT_TRUE(verdicts[1].at("pass").get<bool>());
+  EXPECT_EQ(summary.results.at("verdict"), "FAIL");
+}
+
+// A declared figure the record cannot give (a random walk coefficient of a 2 s record) is left out
+// of the result: a limit on it is not measured, FAIL, rather than an error after processing.
+TEST(BiasStepTest, ALimitOnAFigureLeftOutIsNotMeasured) {
+  ScratchDirectory scratch;
+  scratch.write("rest.txt", constant_record(1.0, 6));
+  const std::string plan = scratch.write(
+      "plan.toml", std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"rest.txt\"\nsmoothing_s = [0.5]\n"
+                                          "[procedure.limits]\nrandom_walk_coefficient = { max = 0.01 }\n");
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  ASSERT_FALSE(summary.results.at("procedures").at(0).at("result").contains("random_walk_coefficient"));
+  const auto& verdict = summary.results.at("verdicts").at(0);
+  EXPECT_FALSE(verdict.at("pass").get<bool>());
+  EXPECT_FALSE(verdict.at("measured").get<bool>());
+}
+
 TEST(BiasStepTest, WindowLongerThanTheRecordIsAWarning) {
   ScratchDirectory scratch;
   scratch.write("rest.txt", constant_record(1.0, 8));

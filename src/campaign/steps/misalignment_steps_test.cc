@@ -42,6 +42,23 @@ TEST(MisalignmentSteps, AccelerometerStepWithItsOwnScaleFactor) {
   EXPECT_EQ(result["by_run"].size(), 3u);
 }
 
+// run_count = { min = 3 } passed validation, then failed after processing ("reports no such
+// figure"): a declared count is judged as a plain number; with a unit it is refused beforehand.
+TEST(MisalignmentSteps, ALimitOnTheRunCountIsJudged) {
+  testing::ScratchDirectory scratch;
+  const auto step = [](const std::string& limit) {
+    return plan_text("accelerometer", "",
+                     fmt::format("[[procedure]]\nkind = \"accelerometer_misalignment\"\nfile = \"{}\"\n"
+                                 "scale_factor = 1.299\n[procedure.limits]\nrun_count = {}\n",
+                                 testing::source_path("data/misalignment/accelerometer_table2.csv"), limit));
+  };
+  const auto verdict = run_campaign(scratch.write("plan.toml", step("{ min = 3 }")), scratch.path() + "/out")
+                           .results.at("verdicts").at(0);
+  EXPECT_EQ(verdict.at("value"), 3.0);
+  EXPECT_TRUE(verdict.at("pass").get<bool>());
+  EXPECT_THROW(validate_plan(scratch.write("unit.toml", step("{ min = 3, unit = \"1\" }"))), Error);
+}
+
 TEST(MisalignmentSteps, ZeroOrMissingScaleFactorFailsAtValidation) {
   testing::ScratchDirectory scratch;
   const std::string data = testing::source_path("data/misalignment/accelerometer_table2.csv");

@@ -92,7 +92,9 @@ TEST(Hdf5Record, RateAttributeThatIsNotOneNumberIsAnError) {
   Hdf5File(integer).numbers("sample_rate_hz", {100.0}, H5T_NATIVE_UINT16).strings("units", {"deg/s"});
   const std::vector<std::pair<std::string, std::string>> cases = {
       {text, "the string \"200\""}, {array, "2 numbers"}};
-  for (const auto& [path, found] : cases) {
+  for (const auto& one_case : cases) {
+    const std::string& path = one_case.first;  // not a structured binding: the lambdas capture it (clang 14)
+    const std::string& found = one_case.second;
     SCOPED_TRACE(path);
     const auto record = open_channel_record(path, ChannelRecordFormat::kHdf5);
     EXPECT_THAT(read_channel(*record, 0), ::testing::ElementsAre(1, 2, 3, 4));

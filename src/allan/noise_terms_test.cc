@@ -274,6 +274,56 @@ TEST(NoiseTerms, OneSigmaIntervalsCoverTheTruthInAboutTwoThirdsOfTheSeeds) {
   }
 }
 
+// R and K trade off at the long end: a rate ramp is not read as a rate random walk, nor, mostly, a
+// rate random walk as a ramp. 20 records each of 500000 samples at 100 Hz (5000 s) in deg/h, N = 0.1
+// deg/sqrt(h) (6 deg/h*sqrt(s)) with either a ramp R = 10 deg/h/h (10/3600 deg/h/s) and no K, or
+// K = 3 deg/h/sqrt(h) (0.05 deg/h/sqrt(s)) and no ramp (counted: R kept and within 2 sigma of 10, K
+// held at zero; K kept and within 2 sigma of 3, R held at zero). Testing R alone at 2 sigma: the
+// ramp was kept in 12 of 20, K read above 2 of its sigmas in 8; the walk kept in 18, R above 2
+// sigma in 0. Now 19 and 1; 17 and 1 (a record's random walk can look like a ramp).
+TEST(NoiseTerms, RampAndRateRandomWalkAreToldApart) {
+  AllanOptions options;
+  options.sample_rate_hz = 100.0;
+  options.estimators = EstimatorSet::parse("oadev");
+  options.worker_count = 1;
+  int ramp_kept = 0;
+  int ramp_read_as_walk = 0;
+  int walk_kept = 0;
+  int walk_read_as_ramp = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    sim::NoiseParameters ramp;
+    ramp.angle_random_walk = 6.0;
+    ramp.rate_ramp = 10.0 / 3600.0;
+    const AllanResult with_ramp = allan_variance(simulated_rate(ramp, 0.01, 500000, seed), options);
+    ASSERT_TRUE(with_ramp.noise.has_value());
+    const NoiseTerms& r = *with_ramp.noise;
+    if (r.identified[4] && !r.identified[3] &&
+        std::abs(r.rate_ramp.value - 10.0) <= 2.0 * r.rate_ramp.uncertainty.value()) {
+      ++ramp_kept;
+    }
+    if (r.identified[3] && r.rate_random_walk.value > 2.0 * r.rate_random_walk.uncertainty.value()) ++ramp_read_as_walk;
+    sim::NoiseParameters walk;
+    walk.angle_random_walk = 6.0;
+    walk.rate_random_walk = 0.05;
+    const AllanResult with_walk = allan_variance(simulated_rate(walk, 0.01, 500000, seed + 100), options);
+    ASSERT_TRUE(with_walk.noise.has_value());
+    const NoiseTerms& k = *with_walk.noise;
+    if (k.identified[3] && !k.identified[4] &&
+        std::abs(k.rate_random_walk.value - 3.0) <= 2.0 * k.rate_random_walk.uncertainty.value()) {
+      ++walk_kept;
+    }
+    if (k.identified[4] && k.rate_ramp.value > 2.0 * k.rate_ramp.uncertainty.value()) ++walk_read_as_ramp;
+  }
+  RecordProperty("ramp_kept", ramp_kept);
+  RecordProperty("ramp_read_as_walk", ramp_read_as_walk);
+  RecordProperty("walk_kept", walk_kept);
+  RecordProperty("walk_read_as_ramp", walk_read_as_ramp);
+  EXPECT_GE(ramp_kept, 17);
+  EXPECT_LE(ramp_read_as_walk, 3);
+  EXPECT_GE(walk_kept, 16);
+  EXPECT_LE(walk_read_as_ramp, 3);
+}
+
 // The Done-when of issue 14 on an OADEV analysis of a record in deg/s: each method reads B within
 // 0.6..1.4 of min(OADEV) / 0.664 and N within 15 % of sigma_n = sigma(1 s) x 60 (deg/sqrt(h)), the
 // read-off past tau = 1 s. Neither may decline: the records it is used on have both regions.

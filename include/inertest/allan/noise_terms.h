@@ -39,11 +39,14 @@
 // chi-squared is kept and the verdict says the model does not fit. The range and the reason are
 // reported.
 //
-// R acts only at the long end of the curve, where it trades off against K: an R within 2 of its
-// 1-sigma uncertainties of zero is held at zero (backward elimination), since left free its
-// non-negativity bound biases K. Q, which trades off against N at the short end, is not eliminated:
-// a digitised output always carries quantisation, and holding a real Q at zero whenever it is
-// within 2 sigma of zero (a pre-test estimator) moves its 3 Q^2 / tau^2 into N. Measured on the
+// R acts only at the long end of the curve, where it trades off against K: when R lies within 2 of
+// its 1-sigma uncertainties of zero, one of R and K is held at zero (backward elimination), since
+// left free R's non-negativity bound biases K; which one, the fits holding each at zero tell: K is
+// held when the fit without it leaves a chi-squared less by 1 than the fit without R (tested
+// alone, R's z is small whenever K takes up a ramp).
+// Q, which trades off against N at the short end, is not eliminated: a digitised output always
+// carries quantisation, and holding a real Q at zero whenever it is within 2 sigma of zero (a
+// pre-test estimator) moves its 3 Q^2 / tau^2 into N. Measured on the
 // golden campaign's 2-hour record (5 Hz, 0.1 arcsec pulses, Q about 0.03 arcsec, fit from tau = 8 s;
 // 200 seeds): Q was held at zero in 95 of them, where N read 17.5 % high with a 2.2 % uncertainty
 // (6 sigma), and N's 4-sigma truth check failed in 47 %; left free, N reads 0.8 +- 0.6 % high, its

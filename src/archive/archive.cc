@@ -6,7 +6,6 @@
 #include <csignal>
 #include <cmath>
 #include <cstdlib>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -18,6 +17,7 @@
 
 #include "archive/database.h"
 #include "archive/sha256.h"
+#include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
 
@@ -163,17 +163,7 @@ std::optional<std::string> optional_string(const nlohmann::json& object, const c
 
 // Exactly YYYY-MM-DD, a day of the Gregorian calendar: what sorts and compares as text (2026-13-45
 // would sort, and mean nothing; "2026-04-04x" or a time after the day compared after the day itself).
-bool is_test_date(const std::string& text) {
-  if (text.size() != 10 || text[4] != '-' || text[7] != '-') return false;
-  for (const int i : {0, 1, 2, 3, 5, 6, 8, 9}) {
-    if (text[static_cast<std::size_t>(i)] < '0' || text[static_cast<std::size_t>(i)] > '9') return false;
-  }
-  const auto number = [&](std::size_t at, std::size_t digits) { return std::stoi(text.substr(at, digits)); };
-  const std::chrono::year_month_day day{std::chrono::year{number(0, 4)},
-                                        std::chrono::month{static_cast<unsigned>(number(5, 2))},
-                                        std::chrono::day{static_cast<unsigned>(number(8, 2))}};
-  return day.ok();
-}
+bool is_test_date(const std::string& text) { return parse_calendar_date(text).has_value(); }
 
 namespace {
 

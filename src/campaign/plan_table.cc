@@ -1,11 +1,12 @@
 #include "campaign/plan_table.h"
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
 #include <fmt/format.h>
 #include <utility>
+
+#include "inertest/core/calendar_date.h"
 
 namespace inertest::campaign {
 
@@ -73,29 +74,23 @@ bool PlanTable::boolean_or(std::string_view key, bool fallback) {
 std::optional<std::string> PlanTable::optional_date(std::string_view key) {
   const toml::node* node = find(key);
   if (node == nullptr) return std::nullopt;
-  std::chrono::year_month_day day{};
+  std::optional<std::chrono::year_month_day> day;
   if (const auto* date = node->as_date()) {
     const toml::date value = date->get();
     day = std::chrono::year_month_day{std::chrono::year{value.year}, std::chrono::month{value.month},
                                       std::chrono::day{value.day}};
+    if (!day->ok()) day.reset();
   } else if (const auto* s = node->as_string()) {
-    const std::string& text = s->get();
-    const bool shaped = text.size() == 10 && text[4] == '-' && text[7] == '-' &&
-                        std::all_of(text.begin(), text.end(), [](char c) { return c == '-' || (c >= '0' && c <= '9'); });
-    if (shaped) {
-      day = std::chrono::year_month_day{std::chrono::year{std::stoi(text.substr(0, 4))},
-                                        std::chrono::month{static_cast<unsigned>(std::stoi(text.substr(5, 2)))},
-                                        std::chrono::day{static_cast<unsigned>(std::stoi(text.substr(8, 2)))}};
-    }
+    day = parse_calendar_date(s->get());
   } else {
     fail_at(key, "must be a date, YYYY-MM-DD");
   }
-  if (!day.ok()) {
+  if (!day) {
     const std::string given = node->as_string() ? "'" + node->as_string()->get() + "'" : "the date given";
     fail_at(key, "must be a day of the calendar written YYYY-MM-DD (e.g. 2026-03-04), not " + given);
   }
-  return fmt::format("{:04}-{:02}-{:02}", static_cast<int>(day.year()), static_cast<unsigned>(day.month()),
-                     static_cast<unsigned>(day.day()));
+  return fmt::format("{:04}-{:02}-{:02}", static_cast<int>(day->year()), static_cast<unsigned>(day->month()),
+                     static_cast<unsigned>(day->day()));
 }
 
 std::optional<std::vector<double>> PlanTable::optional_numbers(std::string_view key) {

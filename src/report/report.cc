@@ -306,19 +306,8 @@ std::string member_heading(const std::string& key, const Labels& labels) {
 std::string heading_of(const std::string& column, const Labels& labels) {
   if (column.empty()) return labels("ui.value");
   std::string heading;
-  std::size_t begin = 0;
-  while (begin <= column.size()) {
-    const std::size_t end = std::min(column.find('/', begin), column.size());
-    std::string key;  // the token unescaped (RFC 6901)
-    for (std::size_t i = begin; i < end; ++i) {
-      if (column[i] == '~' && i + 1 < end) {
-        key += column[++i] == '1' ? '/' : '~';
-      } else {
-        key += column[i];
-      }
-    }
-    heading += (heading.empty() ? "" : " · ") + member_heading(key, labels);
-    begin = end + 1;
+  for (json::json_pointer pointer("/" + column); !pointer.empty(); pointer.pop_back()) {  // tokens unescaped, last first
+    heading = member_heading(pointer.back(), labels) + (heading.empty() ? "" : " · ") + heading;
   }
   return heading;
 }

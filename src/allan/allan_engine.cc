@@ -194,7 +194,17 @@ struct FactorState {
 // doubled middle value of a second difference, cost an add less each: the loops on phase in L1/L2
 // are bound by the FP adds (two pipes; multiplies and FMAs have two more), and OADEV at a small
 // factor went from 0.28 to 0.12 ns an anchor with them (a 3-stream kernel measured on its own).
-[[gnu::always_inline]] inline double fused_multiply_add(double x, double y, double z) { return __builtin_fma(x, y, z); }
+// Other compilers build the baseline only, without clones: there it is fused only where the target
+// has the instruction (fma() is a call per term: the sanitizer build, Clang's, ran its two test
+// shards in 230 and 191 s with it, 157 and 149 s before), so their sums may differ from GCC's in
+// the last bits, as their other roundings may.
+[[gnu::always_inline]] inline double fused_multiply_add(double x, double y, double z) {
+#if defined(__clang__) && !defined(__FMA__)
+  return x * y + z;
+#else
+  return __builtin_fma(x, y, z);
+#endif
+}
 
 // x0 - 2 x1 + x2, the second difference of three phase values (NIST SP 1065 eq. 11's a_k), as
 // (x0 + x2) - 2 x1 with the product and the subtraction rounded once: an error of the order of an

@@ -524,9 +524,14 @@ std::string AllanResult::report() const {
                         noise->fit_range_reason);
     const auto term = [&](const std::string& name, const Figure& f, int p) {
       const auto k = static_cast<std::size_t>(p + 2);
-      if (noise->identified[k]) return line(name, f);
-      return fmt::format("  {:<28} not identified (< {:.2g} {})\n", name, noise->upper_bounds[k]->value,
-                         noise->upper_bounds[k]->unit);
+      if (noise->significant[k]) return line(name, f);
+      const Figure& bound = *noise->upper_bounds[k];
+      if (noise->identified[k]) {
+        return fmt::format("  {:<28} {:.5g} ± {:.2g} {}, not significant (A_{} {:.1f} sigma from 0; < {:.2g} {})\n", name,
+                           f.value, f.uncertainty.value_or(0.0), f.unit, p,
+                           noise->coefficients[k] / noise->coefficient_uncertainties[k], bound.value, bound.unit);
+      }
+      return fmt::format("  {:<28} not identified (< {:.2g} {})\n", name, bound.value, bound.unit);
     };
     text += term(std::string(names[0].label), noise->quantization, -2);
     text += term(std::string(names[1].label), noise->angle_random_walk, -1);

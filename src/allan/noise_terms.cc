@@ -219,7 +219,8 @@ void whiten(const Eigen::MatrixXd& covariance, Eigen::MatrixXd& design, Eigen::V
 }
 
 constexpr int kCovarianceIterations = 3;
-// A coefficient is measured when it lies at least this many 1-sigma uncertainties above zero.
+// A coefficient is measured when it lies at least this many 1-sigma uncertainties above zero (R's
+// elimination, and NoiseTerms::significant).
 constexpr double kSignificance = 2.0;
 // Above this many points the covariance is not built (a dense grid, e.g. "all"; the cost grows as
 // the square): diagonal weights, and a warning that the uncertainties are understated.
@@ -604,18 +605,21 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
     terms.coefficients[k] = scale * fit.a[k];
     const TermSpec& spec = specs[k];
     const auto place = std::find(columns.begin(), columns.end(), j);
-    if (place != columns.end()) {
+    terms.identified[k] = place != columns.end();
+    if (terms.identified[k]) {
       const auto c = place - columns.begin();
       terms.coefficient_uncertainties[k] = scale * std::sqrt(inflation * free_covariance(c, c));
-      terms.identified[k] = true;
       terms.*spec.figure = figure_of(terms.coefficients[k], terms.coefficient_uncertainties[k], spec.c, spec.units);
-      continue;
+      terms.significant[k] = terms.coefficients[k] >= kSignificance * terms.coefficient_uncertainties[k];
+      if (terms.significant[k]) continue;
     }
-    // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty give
-    // the bound. The covariance of the points depends on the model, and one without the term
-    // understates the scatter the term would bring: the bound is recomputed under the model that
-    // holds the term at its bound until it settles (at most kCovarianceIterations times).
-    std::vector<Eigen::Index> with_it = columns;
+    // Held at zero, or within 2 sigma of it: an upper bound. Freed (last) along with the other free
+    // ones, its unconstrained estimate and uncertainty give the bound. The covariance of the points
+    // depends on the model, and one with the term at or near zero understates the scatter the term
+    // would bring: the bound is recomputed under the model that holds the term at its bound until it
+    // settles (at most kCovarianceIterations times).
+    std::vector<Eigen::Index> with_it;
+    std::copy_if(columns.begin(), columns.end(), std::back_inserter(with_it), [j](Eigen::Index c) { return c != j; });
     with_it.push_back(j);
     const auto bound_under = [&](const Eigen::MatrixXd& whitened_design, const Eigen::VectorXd& whitened_observed) {
       Eigen::MatrixXd sub(whitened_design.rows(), static_cast<Eigen::Index>(with_it.size()));
@@ -624,7 +628,7 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       const Eigen::VectorXd unconstrained = joint * (sub.transpose() * whitened_observed);
       const Eigen::Index last_column = joint.rows() - 1;
       const double sigma = std::sqrt(inflation * joint(last_column, last_column));
-      return std::pair{sigma, std::max(0.0, unconstrained(last_column)) + 2.0 * sigma};
+      return std::pair{sigma, std::max(0.0, unconstrained(last_column)) + kSignificance * sigma};
     };
     auto [sigma, bound] = bound_under(fit.whitened_design, fit.whitened_observed);
     for (int pass = 0; pass < kCovarianceIterations && !fitted.moments.empty(); ++pass) {
@@ -639,11 +643,11 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       bound = next_bound;
       if (settled) break;
     }
-    terms.identified[k] = false;
-    terms.coefficient_uncertainties[k] = scale * sigma;
-    Figure& figure = terms.*spec.figure;
-    figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
     terms.upper_bounds[k] = figure_of(scale * bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
+    if (!terms.identified[k]) {
+      terms.coefficient_uncertainties[k] = scale * sigma;
+      terms.*spec.figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
+    }
   }
   return terms;
 }
@@ -658,16 +662,21 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
                                  {"value", coefficients[k]},
                                  {"uncertainty", coefficient_uncertainties[k]},
                                  {"identified", identified[k]},
+                                 {"significant", significant[k]},
                                  {"unit", p == 0 ? "(" + input_unit + ")^2" : unit}});
   }
-  // An identified figure as a Figure; one held at zero as {"value": null, "unit", "identified":
-  // false, "upper_bound"}.
+  // An identified figure as a Figure, with "significant": false and its "upper_bound" when within
+  // 2 sigma of zero; one held at zero as {"value": null, "unit", "identified": false, "upper_bound"}.
   const auto figure = [&](const Figure& f, int p) {
     const auto k = static_cast<std::size_t>(p + 2);
     nlohmann::json json = f;
     if (!identified[k]) {
       json["value"] = nullptr;
       json["identified"] = false;
+    } else if (!significant[k]) {
+      json["significant"] = false;
+    }
+    if (!significant[k]) {
       json["upper_bound"] = upper_bounds[k] ? nlohmann::json(upper_bounds[k]->value) : nlohmann::json(nullptr);
     }
     return json;

@@ -123,6 +123,12 @@ struct NoiseTerms {
   std::array<double, 5> coefficient_uncertainties{};
   // Per coefficient A_p (index p + 2): false when the fit holds it at zero; its figure's upper bound.
   std::array<bool, 5> identified{};
+  // Per coefficient: identified and at least 2 of its 1-sigma uncertainties above zero. A figure is
+  // the square root of its coefficient, so its own value / uncertainty is twice the coefficient's: B
+  // = 0.02 +- 0.01 deg/h is a coefficient 1 sigma from zero, which chance gives a term the record
+  // does not have in about a sixth of records. Such a figure keeps its value and uncertainty and
+  // gets an upper bound too, A_p + 2 sigma, as a coefficient held at zero.
+  std::array<bool, 5> significant{};
   std::array<std::optional<Figure>, 5> upper_bounds;
   double reduced_chi_squared = 0.0;  // of the generalised least squares, over the fit range
   std::size_t degrees_of_freedom = 0;

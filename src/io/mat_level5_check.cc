@@ -27,6 +27,8 @@ constexpr std::uint32_t kMiMatrix = 14;
 constexpr std::uint32_t kMiCompressed = 15;
 constexpr std::uint32_t kMxCell = 1;
 constexpr std::uint32_t kMxStruct = 2;
+constexpr std::uint32_t kMxObject = 3;
+constexpr std::uint32_t kMxFunction = 16;  // matio allocates a pointer per element, as for a cell
 constexpr std::size_t kPrefixBytes = 1u << 20;
 constexpr std::uint32_t kMaximumRank = 64;
 constexpr std::uint32_t kMaximumName = 4096;
@@ -61,16 +63,34 @@ class Walker {
     std::uint64_t elements = 1;
     for (std::uint64_t i = 0; i < dims.size / 4; ++i) {
       if (dims.data + 4 * i + 4 > bytes_.size()) return false;
-      elements = std::min<std::uint64_t>(elements * value(dims.data + 4 * i), 1ull << 40);
+      const std::uint64_t dimension = value(dims.data + 4 * i);
+      elements = dimension != 0 && elements > (1ull << 40) / dimension ? 1ull << 40 : elements * dimension;
     }
     at = dims.next;
     Tag name;
     if (!tag(at, end, name)) return false;
     if (name.type != kMiInt8 || name.size > kMaximumName) fail(at, fmt::format("an array name of {} bytes", name.size));
     at = name.next;
-    if (array_class != kMxCell && array_class != kMxStruct) return true;
+    const auto left = [&] { return at < end ? end - at : std::size_t{0}; };
+    // Each field or cell is a miMATRIX of at least a tag: matio allocates a pointer for each before
+    // it reads them (2^31 function handles in a 400-byte file asked for 17 GB). A function handle's
+    // elements are only counted, not walked: how MATLAB lays them out is not in the format's text.
+    if (array_class == kMxFunction) {
+      if (elements > left() / 8) fail(at, fmt::format("{} function handles in the {} bytes left", elements, left()));
+      return true;
+    }
+    const bool cell = array_class == kMxCell;
+    if (!cell && array_class != kMxStruct && array_class != kMxObject) return true;
+    if (array_class == kMxObject) {  // a struct after its class name (MAT-File Format, "Object MAT-File Data Element")
+      Tag class_name;
+      if (!tag(at, end, class_name)) return false;
+      if (class_name.type != kMiInt8 || class_name.size > kMaximumName) {
+        fail(at, fmt::format("an object class name of {} bytes", class_name.size));
+      }
+      at = class_name.next;
+    }
     std::uint64_t fields = 1;
-    if (array_class == kMxStruct) {
+    if (!cell) {
       Tag length;
       if (!tag(at, end, length)) return false;
       if (length.type != kMiInt32 || length.size != 4) fail(at, "the field name length is not one miINT32");
@@ -85,6 +105,9 @@ class Walker {
         fail(at, fmt::format("field names of {} bytes for names of {} bytes", names.size, name_length));
       }
       at = names.next;
+    }
+    if (elements * fields > left() / 8) {
+      fail(at, fmt::format("{} fields and cells in the {} bytes left", elements * fields, left()));
     }
     for (std::uint64_t i = 0; i < elements * fields; ++i) {
       Tag element;

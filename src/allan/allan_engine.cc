@@ -260,26 +260,43 @@ double lane_sum(const double* __restrict values, std::size_t n) {
   return lane_total(lanes);
 }
 
-// Chains of the MDEV window recurrence run side by side (kChains add latencies overlap).
-constexpr std::size_t kChains = 8;
+// Four doubles in a register where the target has 256-bit ones (GCC/Clang vector extension;
+// element-wise operations are exactly those of four scalars).
+using Quad = double __attribute__((vector_size(4 * sizeof(double))));
 
-double chain_total(const double (&chains)[kChains]) {
-  return ((chains[0] + chains[1]) + (chains[2] + chains[3])) + ((chains[4] + chains[5]) + (chains[6] + chains[7]));
+// Four values each of four sequences, r_c holding values i .. i+3 of sequence c, to t_j = value i + j
+// of every sequence (a 4x4 transpose; applied twice, the identity).
+[[gnu::always_inline]] inline void transpose(Quad& r0, Quad& r1, Quad& r2, Quad& r3) {
+  const Quad lo01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+  const Quad hi01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+  const Quad lo23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+  const Quad hi23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  r0 = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
+  r1 = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
+  r2 = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
+  r3 = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
 }
+
+// Chains of the MDEV window recurrence run side by side, four to a Quad (kChains add latencies
+// overlap: four chains a Quad were held to an add latency per four terms).
+constexpr std::size_t kChainQuads = 4;
+constexpr std::size_t kChains = 4 * kChainQuads;
 
 // The MDEV window over a run: w_k = w_{k-1} + h_k for k in the run, returns sum w_k^2 and leaves
 // the last w in `window`. The recurrence is a chain of dependent additions (one FP-add latency per
-// term); the run is cut into kChains chunks whose starting windows come from the chunk sums, and
-// each chain advances four terms at a time: the prefix sums of four h in a register (two shifted
-// adds), plus the chain's last window. Each w is still a sum of the same h: the rounding differs
-// from the single chain by a few ulp of w, far inside the 1e-9 the estimators are held to.
+// term); the run is cut into kChains chunks whose starting windows come from the chunk sums, a
+// chain to a lane: four values of four chains are loaded and transposed, and each lane adds its
+// chain's next h, squares and sums, an add and a fused multiply-add for four terms (the prefix sums
+// of four h in a register cost three adds and three shuffles). Each w is still a sum of the same h:
+// the rounding differs from the single chain by a few ulp of w, far inside the 1e-9 the estimators
+// are held to.
 INERTEST_VECTOR_CLONES
 double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
-  // Four doubles in a register where the target has 256-bit ones (GCC/Clang vector extension;
-  // element-wise operations are exactly those of four scalars).
-  using Quad = double __attribute__((vector_size(4 * sizeof(double))));
   constexpr std::size_t kMinimumChunk = 64;
-  const std::size_t chunk = length / kChains / 4 * 4;
+  // Chains 8 KiB apart fall in the same sets of a 32 KiB 8-way L1: a chunk 4 values short of a
+  // multiple of 1024 staggers them.
+  const std::size_t whole = length / kChains / 4 * 4;
+  const std::size_t chunk = whole % 512 == 0 && whole > 0 ? whole - 8 : whole;
   if (chunk < kMinimumChunk) {
     double total = 0.0;
     double w = window;
@@ -290,35 +307,36 @@ double mdev_window_squares(const double* __restrict h, std::size_t length, doubl
     window = w;
     return total;
   }
-  Quad carry[kChains];  // every lane: the window before the chain's next four terms
+  Quad w[kChainQuads];  // lane l of Quad q: the window of chain 4q + l, over [(4q + l) chunk, (4q + l + 1) chunk)
   double start = window;
   for (std::size_t c = 0; c < kChains; ++c) {
-    carry[c] = Quad{} + start;
+    w[c / 4][c % 4] = start;
     start += lane_sum(h + c * chunk, chunk);
   }
-  const Quad zero{};
-  Quad squares[kChains] = {};
+  Quad squares[kChainQuads] = {};
   for (std::size_t i = 0; i < chunk; i += 4) {
-    for (std::size_t c = 0; c < kChains; ++c) {
-      Quad x;
-      std::memcpy(&x, h + c * chunk + i, sizeof x);
-      x += __builtin_shufflevector(zero, x, 0, 4, 5, 6);  // h0, h0+h1, h1+h2, h2+h3
-      x += __builtin_shufflevector(zero, x, 0, 1, 4, 5);  // the prefix sums of the four
-      const Quad w = carry[c] + x;
-      for (std::size_t l = 0; l < 4; ++l) squares[c][l] = fused_multiply_add(w[l], w[l], squares[c][l]);
-      carry[c] = __builtin_shufflevector(w, w, 3, 3, 3, 3);
+#pragma GCC unroll 4  // the windows and sums stay in registers
+    for (std::size_t q = 0; q < kChainQuads; ++q) {
+      const double* row = h + 4 * q * chunk + i;
+      Quad t[4];
+      for (std::size_t l = 0; l < 4; ++l) std::memcpy(&t[l], row + l * chunk, sizeof t[l]);
+      transpose(t[0], t[1], t[2], t[3]);
+      for (const Quad& next : t) {
+        w[q] += next;
+        for (std::size_t l = 0; l < 4; ++l) squares[q][l] = fused_multiply_add(w[q][l], w[q][l], squares[q][l]);
+      }
     }
   }
-  double last = carry[kChains - 1][3];
+  double last = w[kChainQuads - 1][3];
   double tail = 0.0;
   for (std::size_t i = kChains * chunk; i < length; ++i) {
     last += h[i];
     tail = fused_multiply_add(last, last, tail);
   }
   window = last;
-  double chains[kChains];
-  for (std::size_t c = 0; c < kChains; ++c) chains[c] = (squares[c][0] + squares[c][1]) + (squares[c][2] + squares[c][3]);
-  return chain_total(chains) + tail;
+  Quad total = squares[0];
+  for (std::size_t q = 1; q < kChainQuads; ++q) total += squares[q];
+  return ((total[0] + total[1]) + (total[2] + total[3])) + tail;
 }
 
 // The sums of d_k - shift, d_k = X_k - X_{k-m} (m times the overlapping averages), that the B1
@@ -538,7 +556,6 @@ constexpr std::size_t kIntegrationChains = 4;
 
 INERTEST_VECTOR_CLONES
 void integrate_block(double* __restrict values, std::size_t length, double offset, PhaseState& state) {
-  using Quad = double __attribute__((vector_size(4 * sizeof(double))));
   constexpr std::size_t kMinimumChain = 64;
   const std::size_t chain = length / kIntegrationChains / 4 * 4;
   if (chain < kMinimumChain) {
@@ -562,37 +579,14 @@ void integrate_block(double* __restrict values, std::size_t length, double offse
     t = sum + compensation;
   };
   for (std::size_t i = 0; i < chain; i += 4) {
-    // r_c: samples i .. i+3 of chain c, transposed so that t_j holds sample i + j of every chain.
-    Quad r0, r1, r2, r3;
-    __builtin_memcpy(&r0, row[0] + i, sizeof r0);
-    __builtin_memcpy(&r1, row[1] + i, sizeof r1);
-    __builtin_memcpy(&r2, row[2] + i, sizeof r2);
-    __builtin_memcpy(&r3, row[3] + i, sizeof r3);
-    const Quad lo01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
-    const Quad hi01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
-    const Quad lo23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
-    const Quad hi23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
-    Quad t0 = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
-    Quad t1 = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
-    Quad t2 = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
-    Quad t3 = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
-    step(t0);
-    step(t1);
-    step(t2);
-    step(t3);
+    // t[c]: samples i .. i+3 of chain c, transposed so that t[j] holds sample i + j of every chain.
+    Quad t[4];
+    for (std::size_t c = 0; c < 4; ++c) __builtin_memcpy(&t[c], row[c] + i, sizeof t[c]);
+    transpose(t[0], t[1], t[2], t[3]);
+    for (Quad& sample : t) step(sample);
     // And back: the local phase of chain c to its samples.
-    const Quad a01 = __builtin_shufflevector(t0, t1, 0, 4, 2, 6);
-    const Quad b01 = __builtin_shufflevector(t0, t1, 1, 5, 3, 7);
-    const Quad a23 = __builtin_shufflevector(t2, t3, 0, 4, 2, 6);
-    const Quad b23 = __builtin_shufflevector(t2, t3, 1, 5, 3, 7);
-    r0 = __builtin_shufflevector(a01, a23, 0, 1, 4, 5);
-    r1 = __builtin_shufflevector(b01, b23, 0, 1, 4, 5);
-    r2 = __builtin_shufflevector(a01, a23, 2, 3, 6, 7);
-    r3 = __builtin_shufflevector(b01, b23, 2, 3, 6, 7);
-    __builtin_memcpy(row[0] + i, &r0, sizeof r0);
-    __builtin_memcpy(row[1] + i, &r1, sizeof r1);
-    __builtin_memcpy(row[2] + i, &r2, sizeof r2);
-    __builtin_memcpy(row[3] + i, &r3, sizeof r3);
+    transpose(t[0], t[1], t[2], t[3]);
+    for (std::size_t c = 0; c < 4; ++c) __builtin_memcpy(row[c] + i, &t[c], sizeof t[c]);
   }
   PhaseState local[kIntegrationChains];
   for (std::size_t c = 0; c < kIntegrationChains; ++c) local[c] = {sum[c], compensation[c]};

@@ -165,7 +165,8 @@ void wrap_allan(py::module_& module) {
       "    ohdev: Record\n"
       "    totdev: Record\n"
       "    # quantization, angle_random_walk (= random_walk_coefficient, GJB eq. 31), bias_instability,\n"
-      "    # rate_random_walk, rate_ramp (Figures; identified False with an upper_bound when not measured),\n"
+      "    # rate_random_walk, rate_ramp (Figures; identified False with an upper_bound when not measured,\n"
+      "    # significant False with one when measured within 2 sigma of zero),\n"
       "    # fit (GJB eq. 30: coefficients, reduced_chi_squared, verdict, fit_range), slope_method.\n"
       "    noise: Optional[Record]  # None when not fitted\n"
       "    psd: Record  # only with psd=: the Welch PSD (band means), noise_terms, peaks (periodic components)\n"
@@ -248,7 +249,8 @@ void wrap_allan(py::module_& module) {
       "estimates from the fitted model, then Q, N (= RWC, eq. 31), B, K, R by IEEE Std 952-1997 C.1 Table C.1.\n"
       "fit_range: (tau_min, tau_max) in s, None: chosen automatically; sample_count and sample_interval_s of\n"
       "the record (0: unknown; the interval is then the shortest tau). Returns a Record: Figures with 1-sigma\n"
-      "uncertainties, or identified False and upper_bound; fit holds reduced_chi_squared, verdict, fit_range.");
+      "uncertainties (significant False and upper_bound within 2 sigma of zero), or identified False and\n"
+      "upper_bound; fit holds reduced_chi_squared, verdict, fit_range.");
   module.def(
       "read_noise_slopes",
       [](const DoubleArray& tau_s, const DoubleArray& deviation, const DoubleArray& edf, const std::string& input_unit) {

@@ -53,10 +53,22 @@ std::pair<std::string, std::string> format_figure(const json& figure, const Labe
   return {fmt::format("{:.{}f}", value, decimals), fmt::format("{:.{}f}", uncertainty, decimals)};
 }
 
+std::string significance_note(const json& figure, const Labels& labels) {
+  const auto* significant = member(figure, "significant");
+  const auto* bound = member(figure, "upper_bound");
+  if (significant == nullptr || !significant->is_boolean() || significant->get<bool>() || bound == nullptr ||
+      !bound->is_number()) {
+    return "";
+  }
+  return labels("ui.not_significant") + " (< " + format_number(bound->get<double>(), 2) + ")";
+}
+
 std::string figure_text(const json& figure, const Labels& labels) {
   const auto [value, uncertainty] = format_figure(figure, labels);
   const std::string unit = pretty_unit(figure.value("unit", ""));
-  return value + (uncertainty.empty() ? "" : " ± " + uncertainty) + (unit.empty() ? "" : " " + unit);
+  const std::string note = significance_note(figure, labels);
+  return value + (uncertainty.empty() ? "" : " ± " + uncertainty) + (unit.empty() ? "" : " " + unit) +
+         (note.empty() ? "" : ", " + note);
 }
 
 }  // namespace inertest::report

@@ -27,8 +27,13 @@ bool is_array_figure(const nlohmann::json& node);
 // is_figure, is_unidentified_figure or is_unmeasured_figure.
 std::pair<std::string, std::string> format_figure(const nlohmann::json& figure, const Labels& labels);
 
+// For a figure measured but within 2 sigma of zero ({"significant": false, "upper_bound"}, e.g. a
+// noise term whose coefficient the fit leaves free near zero): "not significant (< upper bound)",
+// to follow its unit; "" for any other figure.
+std::string significance_note(const nlohmann::json& figure, const Labels& labels);
+
 // The figure in one piece: "1.249999 ± 0.000020 Hz" (format_figure, then the readable unit),
-// "0.0101 °/s" without an uncertainty.
+// "0.0101 °/s" without an uncertainty, then its significance_note after a comma.
 std::string figure_text(const nlohmann::json& figure, const Labels& labels);
 
 }  // namespace inertest::report

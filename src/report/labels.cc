@@ -68,6 +68,7 @@ constexpr Translation kTable[] = {
     {"ui.noise_model", "fitted noise model", "噪声模型拟合"},
     {"ui.not_identified", "not identified", "未辨识"},
     {"ui.not_measured", "not measured", "未测得"},
+    {"ui.not_significant", "not significant", "不显著"},
     {"ui.noise_fit", "fit of eq. (30)", "式(30)拟合"},
     {"ui.periodic_component", "periodic component", "周期分量"},
     {"ui.more_rows", "{} more rows in results.json", "另有 {} 行，见 results.json"},

@@ -497,10 +497,7 @@ class ReportWriter {
       text += fmt::format("\n{} ({})\n", labels_.title_of(kind), procedure.value("name", kind));
       for (const FigureRow& row : figures_of(procedure)) {
         if (row.in_table) continue;  // in its table (row_tables_text)
-        const auto [value, uncertainty] = format_figure(row.figure, labels_);
-        const std::string unit = pretty_unit(row.figure.value("unit", ""));
-        text += fmt::format("  {:<56} {}{}{}\n", row.name, value, uncertainty.empty() ? "" : " ± " + uncertainty,
-                            unit.empty() ? "" : " " + unit);
+        text += fmt::format("  {:<56} {}\n", row.name, figure_text(row.figure, labels_));
       }
       text += row_tables_text(procedure);
     }
@@ -799,9 +796,10 @@ class ReportWriter {
       out_ += fmt::format(
           "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
           verdict ? fmt::format(" data-verdict=\"{}\"", verdict->value("pass", false) ? "pass" : "fail") : "");
+      const std::string note = significance_note(row.figure, labels_);
       out_ += fmt::format("<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", html(row.name),
                           html(value), uncertainty.empty() ? "—" : "± " + html(uncertainty),
-                          html(pretty_unit(row.figure.at("unit").get<std::string>())));
+                          html(pretty_unit(row.figure.at("unit").get<std::string>()) + (note.empty() ? "" : ", " + note)));
       if (with_limits) {
         if (verdict) {
           out_ += fmt::format("<td>{}</td>{}", html(limit_text(*verdict)),

@@ -334,6 +334,8 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
       std::regex(R"(\nScale factor \(scale_factor\)\n  Scale factor K +[0-9.]+ ± [0-9.]+ pulse/s/\(°/s\)\n)"),
       std::regex(R"(\nAllan variance and random walk coefficient \(allan_long_static\)\n  Noise terms · Random walk coefficient +[0-9.]+ ± [0-9.]+ °/√h\n)"),
       std::regex(R"(\n  ax · Noise terms · Velocity random walk +[0-9.]+ ± [0-9.]+ m/s/√h\n)"),
+      // Measured, but its coefficient within 2 sigma of zero: said so, with its upper bound.
+      std::regex(R"(\n  ax · Noise terms · Acceleration random walk +[0-9.]+ ± [0-9.]+ m/s/h/√h, not significant \(< [0-9.]+\)\n)"),
       std::regex(R"(\n  Gyro triad · Scale factor x +[0-9.]+ ± [0-9.]+ count/\(rad/s\)\n)"),
       std::regex(R"(\n  Gyro triad · Misalignment zy +-?[0-9.]+ ± [0-9.]+ rad\n)"),
   };

@@ -31,11 +31,12 @@ SiUnits si_units(SensorKind kind) {
 // The term p of the fit in SI: the estimate, or the upper bound when the fit held it at zero.
 NoiseDensity density(const NoiseTerms& noise, const Figure& figure, int p, const char* si) {
   const auto k = static_cast<std::size_t>(p + 2);
+  const std::optional<Figure>& bound = noise.upper_bounds[k];
   if (noise.identified[k]) {
-    return {convert(figure.value, figure.unit, si), convert(figure.uncertainty.value_or(0.0), figure.unit, si), true};
+    return {convert(figure.value, figure.unit, si), convert(figure.uncertainty.value_or(0.0), figure.unit, si), true,
+            noise.significant[k], bound ? convert(bound->value, bound->unit, si) : 0.0};
   }
-  const Figure& bound = *noise.upper_bounds[k];
-  return {convert(bound.value, bound.unit, si), 0.0, false};
+  return {convert(bound->value, bound->unit, si), 0.0, false, false, convert(bound->value, bound->unit, si)};
 }
 
 // The tau where the fitted sigma^2(tau) = sum A_p tau^p is least, within the taus of the curve
@@ -85,7 +86,7 @@ std::string channel_list(const std::vector<const SensorNoiseParameters*>& sensor
   return text;
 }
 
-// Which terms are upper bounds, for the files' comments.
+// Which terms are upper bounds, and which estimates are within 2 sigma of zero, for the files' comments.
 std::string bounds_note(const std::vector<const SensorNoiseParameters*>& sensors) {
   std::string text;
   for (const SensorNoiseParameters* s : sensors) {
@@ -93,7 +94,20 @@ std::string bounds_note(const std::vector<const SensorNoiseParameters*>& sensors
     if (!s->random_walk_density.identified) text += " " + s->channel + ": random walk;";
     if (!s->bias_instability.identified) text += " " + s->channel + ": bias instability;";
   }
-  return text.empty() ? "" : "upper bounds (not identified by the fit):" + text;
+  std::string insignificant;
+  for (const SensorNoiseParameters* s : sensors) {
+    for (const auto& [name, d] : {std::pair{"white noise", &s->white_noise_density},
+                                  std::pair{"random walk", &s->random_walk_density},
+                                  std::pair{"bias instability", &s->bias_instability}}) {
+      if (d->identified && !d->significant) insignificant += fmt::format(" {}: {} (< {});", s->channel, name, number(d->upper_bound));
+    }
+  }
+  if (!text.empty()) text = "upper bounds (not identified by the fit):" + text;
+  if (!insignificant.empty()) {
+    text += (text.empty() ? "" : " ") +
+            std::string("estimates within 2 sigma of zero, their 2-sigma upper bounds in brackets:") + insignificant;
+  }
+  return text;
 }
 
 constexpr const char* kHow =
@@ -296,6 +310,10 @@ nlohmann::json filter_parameters_json(const std::vector<SensorNoiseParameters>& 
     const auto figure = [](const NoiseDensity& d, const char* unit) {
       nlohmann::json f = {{"value", d.value}, {"unit", unit}, {"identified", d.identified}};
       f["uncertainty"] = d.identified ? nlohmann::json(d.uncertainty) : nlohmann::json(nullptr);
+      if (d.identified && !d.significant) {
+        f["significant"] = false;
+        f["upper_bound"] = d.upper_bound;
+      }
       return f;
     };
     json[s.channel] = {

@@ -37,6 +37,10 @@ struct NoiseDensity {
   double value = 0.0;        // SI
   double uncertainty = 0.0;  // 1-sigma; 0 for an upper bound
   bool identified = true;    // false: value is the fit's upper bound
+  // False for an estimate within 2 sigma of zero (NoiseTerms::significant): the value is still the
+  // estimate, and upper_bound its 2-sigma bound (SI), which the files' comments give beside it.
+  bool significant = true;
+  double upper_bound = 0.0;
 };
 
 struct SensorNoiseParameters {

@@ -557,8 +557,13 @@ std::string AllanResult::report() const {
     const Figure* figures[] = {&terms.quantization, &terms.angle_random_walk, &terms.bias_instability,
                                &terms.rate_random_walk, &terms.rate_ramp};
     for (std::size_t k = 0; k < 5; ++k) {
-      if (terms.identified[k]) {
+      if (terms.significant[k]) {
         text += line(std::string(names[k].label), *figures[k]);
+      } else if (terms.identified[k]) {
+        text += fmt::format("  {:<28} {:.5g} ± {:.2g} {}, not significant (its coefficient {:.1f} sigma from 0; < {:.2g} {})\n",
+                            names[k].label, figures[k]->value, figures[k]->uncertainty.value_or(0.0), figures[k]->unit,
+                            terms.coefficients[k] / terms.coefficient_uncertainties[k], terms.upper_bounds[k]->value,
+                            terms.upper_bounds[k]->unit);
       } else if (terms.upper_bounds[k]) {
         text += fmt::format("  {:<28} not identified (< {:.2g} {})\n", names[k].label, terms.upper_bounds[k]->value,
                             terms.upper_bounds[k]->unit);

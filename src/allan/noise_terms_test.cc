@@ -474,7 +474,9 @@ TEST(NoiseTerms, ATermIsSignificantWhereTheRecordHasIt) {
       for (std::size_t k = 0; k < 5; ++k) {
         significant[k] += n.significant[k];
         ASSERT_EQ(n.significant[k], !n.upper_bounds[k].has_value()) << k;
-        if (n.significant[k]) ASSERT_TRUE(n.identified[k]) << k;
+        if (n.significant[k]) {
+          ASSERT_TRUE(n.identified[k]) << k;
+        }
         if (!n.significant[k] && true_figure[k] > 0.0) {
           ++bounded;
           covered += n.upper_bounds[k]->value >= true_figure[k];

@@ -534,6 +534,11 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
       terms.coefficient_uncertainties[k] = scale * std::sqrt(inflation * covariance(c, c));
       terms.identified[k] = true;
       terms.*spec.figure = figure_of(terms.coefficients[k], terms.coefficient_uncertainties[k], 1.0, spec.units);
+      terms.significant[k] = terms.coefficients[k] >= 2.0 * terms.coefficient_uncertainties[k];
+      if (!terms.significant[k]) {
+        terms.upper_bounds[k] =
+            figure_of(terms.coefficients[k] + 2.0 * terms.coefficient_uncertainties[k], kUnknown, 1.0, spec.units);
+      }
       continue;
     }
     // Held at zero: freed along with the free ones, its unconstrained estimate and uncertainty give
@@ -559,13 +564,16 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
   }
 }
 
-nlohmann::json figure_or_bound(const Figure& figure, bool identified, const std::optional<Figure>& bound) {
+nlohmann::json figure_or_bound(const Figure& figure, bool identified, bool significant,
+                               const std::optional<Figure>& bound) {
   nlohmann::json json = figure;
   if (!identified) {
     json["value"] = nullptr;
     json["identified"] = false;
-    json["upper_bound"] = bound ? nlohmann::json(bound->value) : nlohmann::json(nullptr);
+  } else if (!significant) {
+    json["significant"] = false;
   }
+  if (!significant) json["upper_bound"] = bound ? nlohmann::json(bound->value) : nlohmann::json(nullptr);
   return json;
 }
 
@@ -728,11 +736,11 @@ std::vector<std::string> compare_noise_terms(const NoiseTerms& allan, const Spec
 
 nlohmann::json SpectralNoiseTerms::to_json(const std::string& input_unit) const {
   const auto& names = noise_term_names(sensor_kind_of(input_unit));
-  return {{names[0].key, figure_or_bound(quantization, identified[0], upper_bounds[0])},
-          {names[1].key, figure_or_bound(angle_random_walk, identified[1], upper_bounds[1])},
-          {names[2].key, figure_or_bound(bias_instability, identified[2], upper_bounds[2])},
-          {names[3].key, figure_or_bound(rate_random_walk, identified[3], upper_bounds[3])},
-          {names[4].key, figure_or_bound(rate_ramp, identified[4], upper_bounds[4])},
+  return {{names[0].key, figure_or_bound(quantization, identified[0], significant[0], upper_bounds[0])},
+          {names[1].key, figure_or_bound(angle_random_walk, identified[1], significant[1], upper_bounds[1])},
+          {names[2].key, figure_or_bound(bias_instability, identified[2], significant[2], upper_bounds[2])},
+          {names[3].key, figure_or_bound(rate_random_walk, identified[3], significant[3], upper_bounds[3])},
+          {names[4].key, figure_or_bound(rate_ramp, identified[4], significant[4], upper_bounds[4])},
           {"fit",
            {{"model",
              "S1(f) = 2 [(2 pi f)^2 tau0 Q^2 + N^2 + B^2 / (2 pi f) + K^2 / (2 pi f)^2 + R^2 / (2 pi f)^3] "

@@ -137,6 +137,9 @@ struct SpectralNoiseTerms {
   std::array<double, 5> coefficients{};
   std::array<double, 5> coefficient_uncertainties{};
   std::array<bool, 5> identified{};
+  // As NoiseTerms::significant: identified and at least 2 sigma above zero; an identified
+  // coefficient that is not keeps its figure and gets the upper bound A_p + 2 sigma too.
+  std::array<bool, 5> significant{};
   std::array<std::optional<Figure>, 5> upper_bounds;
   double reduced_chi_squared = 0.0;
   std::size_t degrees_of_freedom = 0;
@@ -145,8 +148,8 @@ struct SpectralNoiseTerms {
   double frequency_max_hz = 0.0;
   std::string verdict;  // "consistent", "inconsistent", "undetermined" (no degree of freedom) or "not fitted"
 
-  // As NoiseTerms: each figure a Figure, one not identified {"value": null, "unit", "identified":
-  // false, "upper_bound"}; and "fit": {"model", "reduced_chi_squared", "degrees_of_freedom",
+  // As NoiseTerms: each figure a Figure (with "significant": false and "upper_bound" within 2 sigma
+  // of zero), one not identified {"value": null, "unit", "identified": false, "upper_bound"}; and "fit": {"model", "reduced_chi_squared", "degrees_of_freedom",
   // "verdict", "band_count", "frequency_min_hz", "frequency_max_hz"}.
   // Keys named for the sensor the input unit measures (noise_term_names).
   nlohmann::json to_json(const std::string& input_unit) const;

@@ -68,11 +68,18 @@ py::object to_plain_python(const nlohmann::json& json) {
 
 namespace {
 
-// {"value": number-or-null, "unit": string} plus optionally "uncertainty": the JSON of a Figure.
+// A figure within 2 sigma of zero (a noise term's): "significant": false and its "upper_bound".
+bool is_not_significant(const nlohmann::json& json) {
+  return json.contains("significant") && json["significant"].is_boolean() && json.contains("upper_bound") &&
+         json["upper_bound"].is_number();
+}
+
+// {"value": number-or-null, "unit": string} plus optionally "uncertainty" and is_not_significant's
+// two keys: the JSON of a Figure.
 bool is_figure(const nlohmann::json& json) {
   if (!json.is_object() || !json.contains("value") || !json.contains("unit")) return false;
   if (!json["unit"].is_string() || !(json["value"].is_number() || json["value"].is_null())) return false;
-  const std::size_t expected = json.contains("uncertainty") ? 3 : 2;
+  const std::size_t expected = 2 + (json.contains("uncertainty") ? 1 : 0) + (is_not_significant(json) ? 2 : 0);
   return json.size() == expected;
 }
 
@@ -114,7 +121,12 @@ py::object attribute_value(const nlohmann::json& json) {
     figure.value = number_or_nan(json["value"]);
     figure.unit = json["unit"].get<std::string>();
     if (json.contains("uncertainty")) figure.uncertainty = number_or_nan(json["uncertainty"]);
-    return py::cast(std::move(figure));
+    py::object object = py::cast(std::move(figure));
+    if (is_not_significant(json)) {
+      object.attr("significant") = py::bool_(json["significant"].get<bool>());
+      object.attr("upper_bound") = py::float_(json["upper_bound"].get<double>());
+    }
+    return object;
   }
   if (json.is_object()) return py::cast(Record(json));
   if (json.is_array()) return array_value(json);
@@ -178,7 +190,9 @@ void wrap_error(py::module_& module) {
 void wrap_figure(py::module_& module) {
   using namespace pybind11::literals;
   py::class_<Figure>(module, "Figure",
-                     "A reported figure: value, unit and, where known, its 1-sigma uncertainty in the same unit.")
+                     "A reported figure: value, unit and, where known, its 1-sigma uncertainty in the same unit. A\n"
+                     "noise term within 2 sigma of zero also has significant (False) and upper_bound (in unit).",
+                     py::dynamic_attr())
       .def(py::init([](double value, std::string unit, std::optional<double> uncertainty) {
              Unit::parse(unit);
              return Figure{value, std::move(unit), uncertainty};

@@ -98,6 +98,13 @@ def test_fit_range_keyword_and_unidentified_terms():
     bias_instability = result.noise.bias_instability
     assert bias_instability.identified is False
     assert bias_instability.upper_bound > 0.0
+    # Q is left free but within 2 sigma of zero: still a Figure, with its significance and bound.
+    quantization = result.noise.quantization
+    assert isinstance(quantization, inertest.Figure)
+    assert quantization.significant is False
+    assert quantization.upper_bound > float(quantization) > 0.0
+    assert quantization.to("deg/h*s").unit == "deg/h*s"
+    assert not hasattr(result.noise.angle_random_walk, "significant")
     # The same fit from the curve alone, with the record's size and interval.
     direct = inertest.fit_noise_terms(result.tau, result.oadev.values**2, result.oadev.edf, fit_range=(0.02, 50.0),
                                       sample_count=50_000, sample_interval_s=1 / SAMPLE_RATE_HZ)

@@ -417,7 +417,8 @@ TEST(FilterParameters, AnEstimateWithinTwoSigmaOfZeroHasItsBoundInTheComments) {
     for (const FilterFormat format : {FilterFormat::kKalibr, FilterFormat::kMatlab, FilterFormat::kGnssInsSim}) {
       const std::string text = format_filter_parameters(sensors, format, "test");
       EXPECT_THAT(text, ::testing::HasSubstr("estimates within 2 sigma of zero, their 2-sigma upper bounds in brackets:"));
-      EXPECT_THAT(text, ::testing::HasSubstr(" " + s.channel + ": random walk (< " + fmt::format("{:.6g}", k.upper_bound) + ");"));
+      EXPECT_THAT(text, ::testing::HasSubstr(" " + s.channel + ": random walk (< " + fmt::format("{:.6g}", k.upper_bound) +
+                                             (s.kind == SensorKind::kGyro ? " rad/s^2/sqrt(Hz));" : " m/s^3/sqrt(Hz));")));
     }
   }
   EXPECT_GT(insignificant, 0u);

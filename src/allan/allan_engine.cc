@@ -293,8 +293,8 @@ constexpr std::size_t kChains = 4 * kChainQuads;
 INERTEST_VECTOR_CLONES
 double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
   constexpr std::size_t kMinimumChunk = 64;
-  // Chains 8 KiB apart fall in the same sets of a 32 KiB 8-way L1: a chunk 4 values short of a
-  // multiple of 1024 staggers them.
+  // Chains a multiple of 4 KiB apart fall in the same sets of a 32 KiB 8-way L1: a chunk 8 values
+  // short of a multiple of 512 staggers them by a cache line each.
   const std::size_t whole = length / kChains / 4 * 4;
   const std::size_t chunk = whole % 512 == 0 && whole > 0 ? whole - 8 : whole;
   if (chunk < kMinimumChunk) {

@@ -94,12 +94,15 @@ std::string bounds_note(const std::vector<const SensorNoiseParameters*>& sensors
     if (!s->random_walk_density.identified) text += " " + s->channel + ": random walk;";
     if (!s->bias_instability.identified) text += " " + s->channel + ": bias instability;";
   }
-  std::string insignificant;
+  std::string insignificant;  // in SI, whatever unit the file writes the values in
   for (const SensorNoiseParameters* s : sensors) {
-    for (const auto& [name, d] : {std::pair{"white noise", &s->white_noise_density},
-                                  std::pair{"random walk", &s->random_walk_density},
-                                  std::pair{"bias instability", &s->bias_instability}}) {
-      if (d->identified && !d->significant) insignificant += fmt::format(" {}: {} (< {});", s->channel, name, number(d->upper_bound));
+    const SiUnits units = si_units(s->kind);
+    for (const auto& [name, d, unit] : {std::tuple{"white noise", &s->white_noise_density, units.white},
+                                        std::tuple{"random walk", &s->random_walk_density, units.walk},
+                                        std::tuple{"bias instability", &s->bias_instability, units.bias}}) {
+      if (d->identified && !d->significant) {
+        insignificant += fmt::format(" {}: {} (< {} {});", s->channel, name, number(d->upper_bound), unit);
+      }
     }
   }
   if (!text.empty()) text = "upper bounds (not identified by the fit):" + text;

@@ -30,6 +30,7 @@ constexpr std::uint32_t kMxStruct = 2;
 constexpr std::uint32_t kMxObject = 3;
 constexpr std::uint32_t kMxFunction = 16;  // matio allocates a pointer per element, as for a cell
 constexpr std::size_t kPrefixBytes = 1u << 20;
+constexpr std::uint64_t kMaximumInflation = 1032;
 constexpr std::uint32_t kMaximumRank = 64;
 constexpr std::uint32_t kMaximumName = 4096;
 constexpr std::uint64_t kMaximumFields = 65536;
@@ -221,8 +222,12 @@ void check_mat_level5_headers(const std::string& path) {
         const Inflated inflated = inflate_prefix(content);
         Walker walker(path, inflated.bytes, big_endian, 0,
                       fmt::format("the compressed variable at byte offset {}, inflated byte", offset));
+        // Deflate expands at most 1032 times (a 258-byte match in a bit or two; zlib's technical
+        // details): a variable that says it inflates to more, which the prefix alone cannot show,
+        // is held to that, so that its counts are checked against what the stream can hold.
+        const std::uint64_t most = kMaximumInflation * bytes;
         Walker::Tag matrix;
-        const bool checked = walker.tag(0, std::numeric_limits<std::size_t>::max(), matrix) &&
+        const bool checked = walker.tag(0, static_cast<std::size_t>(most), matrix) &&
                              (matrix.type != kMiMatrix || walker.matrix(matrix.data, matrix.data + matrix.size, 0));
         // A stream that breaks off before the headers end leaves matio to read sizes from garbage.
         if (!checked && !inflated.error.empty()) {

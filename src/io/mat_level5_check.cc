@@ -114,7 +114,9 @@ class Walker {
       Tag element;
       if (!tag(at, end, element)) return false;
       if (element.type != kMiMatrix) fail(at, "a struct field or cell is not a miMATRIX");
-      if (!matrix(element.data, element.data + element.size, depth + 1)) return false;
+      // A miMATRIX of no bytes is an empty element (MATLAB writes an unset field so; matio and
+      // scipy read it as []).
+      if (element.size != 0 && !matrix(element.data, element.data + element.size, depth + 1)) return false;
       at = element.next;
     }
     return true;

@@ -518,26 +518,27 @@ std::string AllanResult::report() const {
   const auto line = [](const std::string& name, const Figure& f) {
     return fmt::format("  {:<28} {:.5g} ± {:.2g} {}\n", name, f.value, f.uncertainty.value_or(0.0), f.unit);
   };
+  // A fitted noise term (Allan or PSD): its figure; within 2 sigma of zero, the figure "not
+  // significant" with its coefficient's z and bound; held at zero, "not identified" with the bound.
+  const auto term_line = [&line](const std::string& name, const Figure& f, bool identified, bool significant, double z,
+                                 const std::optional<Figure>& bound) {
+    if (significant) return line(name, f);
+    if (identified) {
+      return fmt::format("  {:<28} {:.5g} ± {:.2g} {}, not significant (its coefficient {:.1f} sigma from 0; < {:.2g} {})\n",
+                         name, f.value, f.uncertainty.value_or(0.0), f.unit, z, bound->value, bound->unit);
+    }
+    return fmt::format("  {:<28} not identified (< {:.2g} {})\n", name, bound->value, bound->unit);
+  };
   if (noise) {
     text += fmt::format("Noise terms (fit of GJB 2426A eq. 30, tau {:g} to {:g} s, {}: {}):\n",
                         noise->fit_range.tau_min_s, noise->fit_range.tau_max_s, noise->fit_range_chosen_by,
                         noise->fit_range_reason);
-    const auto term = [&](const std::string& name, const Figure& f, int p) {
-      const auto k = static_cast<std::size_t>(p + 2);
-      if (noise->significant[k]) return line(name, f);
-      const Figure& bound = *noise->upper_bounds[k];
-      if (noise->identified[k]) {
-        return fmt::format("  {:<28} {:.5g} ± {:.2g} {}, not significant (A_{} {:.1f} sigma from 0; < {:.2g} {})\n", name,
-                           f.value, f.uncertainty.value_or(0.0), f.unit, p,
-                           noise->coefficients[k] / noise->coefficient_uncertainties[k], bound.value, bound.unit);
-      }
-      return fmt::format("  {:<28} not identified (< {:.2g} {})\n", name, bound.value, bound.unit);
-    };
-    text += term(std::string(names[0].label), noise->quantization, -2);
-    text += term(std::string(names[1].label), noise->angle_random_walk, -1);
-    text += term(std::string(names[2].label), noise->bias_instability, 0);
-    text += term(std::string(names[3].label), noise->rate_random_walk, 1);
-    text += term(std::string(names[4].label), noise->rate_ramp, 2);
+    const Figure* figures[] = {&noise->quantization, &noise->angle_random_walk, &noise->bias_instability,
+                               &noise->rate_random_walk, &noise->rate_ramp};
+    for (std::size_t k = 0; k < 5; ++k) {
+      text += term_line(std::string(names[k].label), *figures[k], noise->identified[k], noise->significant[k],
+                        noise->coefficients[k] / noise->coefficient_uncertainties[k], noise->upper_bounds[k]);
+    }
     text += fmt::format("  fit: {} (reduced chi-squared {:.3g}, {} degrees of freedom)\n", noise->verdict,
                         noise->reduced_chi_squared, noise->degrees_of_freedom);
   }
@@ -557,17 +558,9 @@ std::string AllanResult::report() const {
     const Figure* figures[] = {&terms.quantization, &terms.angle_random_walk, &terms.bias_instability,
                                &terms.rate_random_walk, &terms.rate_ramp};
     for (std::size_t k = 0; k < 5; ++k) {
-      if (terms.significant[k]) {
-        text += line(std::string(names[k].label), *figures[k]);
-      } else if (terms.identified[k]) {
-        text += fmt::format("  {:<28} {:.5g} ± {:.2g} {}, not significant (its coefficient {:.1f} sigma from 0; < {:.2g} {})\n",
-                            names[k].label, figures[k]->value, figures[k]->uncertainty.value_or(0.0), figures[k]->unit,
-                            terms.coefficients[k] / terms.coefficient_uncertainties[k], terms.upper_bounds[k]->value,
-                            terms.upper_bounds[k]->unit);
-      } else if (terms.upper_bounds[k]) {
-        text += fmt::format("  {:<28} not identified (< {:.2g} {})\n", names[k].label, terms.upper_bounds[k]->value,
-                            terms.upper_bounds[k]->unit);
-      }
+      if (!terms.significant[k] && !terms.upper_bounds[k]) continue;  // not fitted
+      text += term_line(std::string(names[k].label), *figures[k], terms.identified[k], terms.significant[k],
+                        terms.coefficients[k] / terms.coefficient_uncertainties[k], terms.upper_bounds[k]);
     }
     for (const PeriodicComponent& peak : psd->peaks) {
       text += fmt::format("  periodic component at {:.6g} Hz: amplitude {:.4g} ± {:.2g} {} ({:.3g} times the floor)\n",

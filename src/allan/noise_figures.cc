@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 #include "inertest/allan/noise_terms.h"
 
 namespace inertest::detail {
@@ -34,6 +36,19 @@ Figure figure_of(double coefficient, double uncertainty, double c, const FigureU
                                            : std::sqrt(c * uncertainty);
   }
   return figure.in(units.reported);
+}
+
+nlohmann::json noise_figure_json(const Figure& figure, bool identified, bool significant,
+                                 const std::optional<Figure>& upper_bound) {
+  nlohmann::json json = figure;
+  if (!identified) {
+    json["value"] = nullptr;
+    json["identified"] = false;
+  } else if (!significant) {
+    json["significant"] = false;
+  }
+  if (!significant) json["upper_bound"] = upper_bound ? nlohmann::json(upper_bound->value) : nlohmann::json(nullptr);
+  return json;
 }
 
 }  // namespace inertest::detail

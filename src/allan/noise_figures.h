@@ -2,7 +2,10 @@
 // fit (power_spectral_density.cc) so that both report the same names in the same units.
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "inertest/core/figure.h"
 
@@ -23,5 +26,15 @@ FigureUnits units_for(const std::string& input_unit, int p);
 // value = sqrt(c A) in units.reported; its 1-sigma uncertainty by first order from that of A, or the
 // figure of the bound sqrt(c uncertainty) for A = 0; none when the uncertainty is not finite.
 Figure figure_of(double coefficient, double uncertainty, double c, const FigureUnits& units);
+
+// A coefficient is significant when it lies at least this many of its 1-sigma uncertainties above
+// zero, and its upper bound is this many above its estimate (the figure is the root of the
+// coefficient, so its own value / uncertainty is twice the coefficient's).
+inline constexpr double kSignificance = 2.0;
+
+// A fitted term's JSON: the Figure; with "significant": false and "upper_bound" when identified but
+// not significant; {"value": null, "unit", "identified": false, "upper_bound"} when held at zero.
+nlohmann::json noise_figure_json(const Figure& figure, bool identified, bool significant,
+                                 const std::optional<Figure>& upper_bound);
 
 }  // namespace inertest::detail

@@ -20,6 +20,8 @@ namespace {
 
 using detail::coefficient_covariance;
 using detail::figure_of;
+using detail::kSignificance;
+using detail::noise_figure_json;
 using detail::FigureUnits;
 using detail::solve_scaled_non_negative;
 using detail::units_for;
@@ -219,9 +221,6 @@ void whiten(const Eigen::MatrixXd& covariance, Eigen::MatrixXd& design, Eigen::V
 }
 
 constexpr int kCovarianceIterations = 3;
-// A coefficient is measured when it lies at least this many 1-sigma uncertainties above zero (R's
-// elimination, and NoiseTerms::significant).
-constexpr double kSignificance = 2.0;
 // Above this many points the covariance is not built (a dense grid, e.g. "all"; the cost grows as
 // the square): diagonal weights, and a warning that the uncertainties are understated.
 constexpr std::size_t kMostCorrelatedPoints = 64;
@@ -665,21 +664,9 @@ nlohmann::json NoiseTerms::to_json(const std::string& input_unit) const {
                                  {"significant", significant[k]},
                                  {"unit", p == 0 ? "(" + input_unit + ")^2" : unit}});
   }
-  // An identified figure as a Figure, with "significant": false and its "upper_bound" when within
-  // 2 sigma of zero; one held at zero as {"value": null, "unit", "identified": false, "upper_bound"}.
   const auto figure = [&](const Figure& f, int p) {
     const auto k = static_cast<std::size_t>(p + 2);
-    nlohmann::json json = f;
-    if (!identified[k]) {
-      json["value"] = nullptr;
-      json["identified"] = false;
-    } else if (!significant[k]) {
-      json["significant"] = false;
-    }
-    if (!significant[k]) {
-      json["upper_bound"] = upper_bounds[k] ? nlohmann::json(upper_bounds[k]->value) : nlohmann::json(nullptr);
-    }
-    return json;
+    return noise_figure_json(f, identified[k], significant[k], upper_bounds[k]);
   };
   const SensorKind kind = sensor_kind_of(input_unit);
   const auto& names = noise_term_names(kind);

@@ -26,6 +26,8 @@ namespace {
 
 using detail::coefficient_covariance;
 using detail::figure_of;
+using detail::kSignificance;  // Q and R held at zero within it (the header), and significant
+using detail::noise_figure_json;
 using detail::solve_scaled_non_negative;
 using detail::units_for;
 
@@ -35,7 +37,6 @@ constexpr std::size_t kShortestAutomaticSegment = 16;
 constexpr std::size_t kLongestAutomaticSegment = std::size_t{1} << 20;
 constexpr int kTerms = 5;  // Q, N, B, K, R: index p + 2 of NoiseTerms' A_p
 constexpr int kWeightIterations = 3;
-constexpr double kSignificance = 2.0;  // Q and R held at zero within 2 sigma of it (the header)
 // The largest bin distance at which two bins of a cosine-sum window correlate: the square of a
 // 4-term window holds cosines up to 6 x.
 constexpr std::size_t kLargestBinCorrelation = 6;
@@ -534,10 +535,10 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
       terms.coefficient_uncertainties[k] = scale * std::sqrt(inflation * covariance(c, c));
       terms.identified[k] = true;
       terms.*spec.figure = figure_of(terms.coefficients[k], terms.coefficient_uncertainties[k], 1.0, spec.units);
-      terms.significant[k] = terms.coefficients[k] >= 2.0 * terms.coefficient_uncertainties[k];
+      terms.significant[k] = terms.coefficients[k] >= kSignificance * terms.coefficient_uncertainties[k];
       if (!terms.significant[k]) {
         terms.upper_bounds[k] =
-            figure_of(terms.coefficients[k] + 2.0 * terms.coefficient_uncertainties[k], kUnknown, 1.0, spec.units);
+            figure_of(terms.coefficients[k] + kSignificance * terms.coefficient_uncertainties[k], kUnknown, 1.0, spec.units);
       }
       continue;
     }
@@ -554,7 +555,7 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
     terms.identified[k] = false;
     terms.coefficient_uncertainties[k] = scale * sigma;
     terms.*spec.figure = figure_of(0.0, kUnknown, 1.0, spec.units);
-    terms.upper_bounds[k] = figure_of(scale * (std::max(0.0, unconstrained(last)) + 2.0 * sigma),
+    terms.upper_bounds[k] = figure_of(scale * (std::max(0.0, unconstrained(last)) + kSignificance * sigma),
                                       kUnknown, 1.0, spec.units);
   }
   if (terms.identified[kTerms - 1]) {
@@ -562,19 +563,6 @@ void fit_noise(PowerSpectralDensity& psd, const std::array<double, kLargestBinCo
         "noise terms from the PSD: the rate ramp R read off the PSD understates a deterministic ramp (each segment's "
         "mean removal takes most of it out); the Allan fit's R is the one to use");
   }
-}
-
-nlohmann::json figure_or_bound(const Figure& figure, bool identified, bool significant,
-                               const std::optional<Figure>& bound) {
-  nlohmann::json json = figure;
-  if (!identified) {
-    json["value"] = nullptr;
-    json["identified"] = false;
-  } else if (!significant) {
-    json["significant"] = false;
-  }
-  if (!significant) json["upper_bound"] = bound ? nlohmann::json(bound->value) : nlohmann::json(nullptr);
-  return json;
 }
 
 }  // namespace
@@ -736,11 +724,11 @@ std::vector<std::string> compare_noise_terms(const NoiseTerms& allan, const Spec
 
 nlohmann::json SpectralNoiseTerms::to_json(const std::string& input_unit) const {
   const auto& names = noise_term_names(sensor_kind_of(input_unit));
-  return {{names[0].key, figure_or_bound(quantization, identified[0], significant[0], upper_bounds[0])},
-          {names[1].key, figure_or_bound(angle_random_walk, identified[1], significant[1], upper_bounds[1])},
-          {names[2].key, figure_or_bound(bias_instability, identified[2], significant[2], upper_bounds[2])},
-          {names[3].key, figure_or_bound(rate_random_walk, identified[3], significant[3], upper_bounds[3])},
-          {names[4].key, figure_or_bound(rate_ramp, identified[4], significant[4], upper_bounds[4])},
+  return {{names[0].key, noise_figure_json(quantization, identified[0], significant[0], upper_bounds[0])},
+          {names[1].key, noise_figure_json(angle_random_walk, identified[1], significant[1], upper_bounds[1])},
+          {names[2].key, noise_figure_json(bias_instability, identified[2], significant[2], upper_bounds[2])},
+          {names[3].key, noise_figure_json(rate_random_walk, identified[3], significant[3], upper_bounds[3])},
+          {names[4].key, noise_figure_json(rate_ramp, identified[4], significant[4], upper_bounds[4])},
           {"fit",
            {{"model",
              "S1(f) = 2 [(2 pi f)^2 tau0 Q^2 + N^2 + B^2 / (2 pi f) + K^2 / (2 pi f)^2 + R^2 / (2 pi f)^3] "

@@ -86,8 +86,14 @@ inline constexpr std::array<double, 23> kExactPowers = {1e0,  1e1,  1e2,  1e3,  
 inline fast_float::from_chars_result parse_decimal(const char* first, const char* last, double& value) {
   using namespace decimal_detail;
   const char* p = first;
-  const bool negative = p != last && *p == '-';
-  if (negative) ++p;
+  // The sign taken and given back without a branch: the signs of a noise record are as random as a
+  // coin, and a mispredicted branch per number cost 40 % of a six-channel parse. The empty asm hides
+  // the value from GCC, which otherwise joins its two uses under one branch again.
+  std::uint64_t negative = p != last && *p == '-' ? 1 : 0;
+#if defined(__GNUC__)
+  __asm__("" : "+r"(negative));
+#endif
+  p += negative;
   std::uint64_t mantissa = 0;
   int digits = 0;
   p = read_digits(p, last, mantissa, digits);
@@ -115,7 +121,7 @@ inline fast_float::from_chars_result parse_decimal(const char* first, const char
   double result = static_cast<double>(mantissa);
   result = exponent < 0 ? result / kExactPowers[static_cast<std::size_t>(-exponent)]
                         : result * kExactPowers[static_cast<std::size_t>(exponent)];
-  value = negative ? -result : result;
+  value = std::bit_cast<double>(std::bit_cast<std::uint64_t>(result) | negative << 63);  // result >= +0
   return {p, std::errc()};
 }
 

@@ -310,6 +310,18 @@ INSTANTIATE_TEST_SUITE_P(
                       "1,2\n\n# note\n3,4\n", "1,2\n   \n3,4\n", "a,b\n1,2\n", "1;2\n", "1,2\n3\n", "1,2\n3,4,5\n",
                       "1,0,5\n", "1e400,1\n", "1,-0\n", "--1,2\n", "1 ,2 #\n", "1,2\r\r\n"));
 
+// A comment line whose first field is not selected: as wide as the data and a number where the
+// selected field is, it was read as a row (the plain path looked at the selected fields only).
+TEST(PlainAndGeneralRows, ACommentLineIsSkippedWhateverColumnIsSelected) {
+  for (const char* line : {"# pause,5,6\n", "  #,5,6\n", "#N/A,5,6\n", "#5,5,6\n"}) {
+    expect_plain_as_general(std::string("a,b,c\n1,2,3\n") + line + "4,5,6\n", "2", "3");
+  }
+  TextTableOptions options;
+  options.columns = {ColumnSelector::parse("b")};
+  EXPECT_EQ(parse("a,b\n1,2\n# pause,5\n3,4\n", options).columns[0], (std::vector<double>{2, 4}));
+  EXPECT_EQ(parse("a,b\n1,2\n#N/A,5\n3,4\n", options).columns[0], (std::vector<double>{2, 5, 4}));
+}
+
 // The fields the plain path skips (eight bytes at a time): of every length up to 20, with a quote,
 // a blank, a line end or a delimiter at each place; within a line and last on it, the text ending
 // with a line end or not.

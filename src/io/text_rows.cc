@@ -308,9 +308,11 @@ void require_rows(const std::string& source, std::size_t rows, std::size_t minim
   }
 }
 
-// Which value slot each field fills (-1: none), or empty when a field is asked for twice and the
-// plain path cannot serve the layout.
 std::vector<int> plain_slots(const RowLayout& layout) {
+  // The plain path reads a number up to the first byte that cannot continue it and takes that byte
+  // for the delimiter: a delimiter a number may hold ("1.5" split at '.') is left to split().
+  const unsigned char delimiter = static_cast<unsigned char>(layout.delimiter);
+  if (std::isalnum(delimiter) || std::string_view(".+-").find(layout.delimiter) != std::string_view::npos) return {};
   std::vector<int> slots(layout.width, -1);
   for (std::size_t k = 0; k < layout.positions.size(); ++k) {
     int& slot = slots[layout.positions[k]];
@@ -353,18 +355,15 @@ const char* skip_field(const char* p, const char* end, char delimiter) {
 
 }  // namespace
 
-// The plain path of a data row: unquoted fields, each selected one exactly one finite number, the
-// row as wide as the layout. It reads from `p` to the row's '\n' (or the chunk's end) once, with no
-// line search and no field list, and returns where it stopped. It accepts exactly the rows that
-// the general path (split, then parse_number) accepts, with the same values, and declines
-// (nullptr) every other, blank and comment lines included: the general path then reads that line
-// again to skip it or to name its error.
 const char* parse_plain_row(const char* p, const char* end, const RowLayout& layout, const std::vector<int>& slots,
                             double* values) {
   const char delimiter = layout.delimiter;
   const bool blank_separated = delimiter == ' ';
+  // The blanks around a field; a tab delimiter is none of them (a tab-separated row, LabVIEW's
+  // export, went the general way when this skipped its delimiters).
+  const auto is_padding = [&](char c) { return is_blank(c) && (blank_separated || c != delimiter); };
   for (std::size_t field = 0; field < layout.width; ++field) {
-    while (p < end && is_blank(*p)) ++p;
+    while (p < end && is_padding(*p)) ++p;
     if (p < end && *p == '"') return nullptr;
     // A comment line (or an Excel error, which is_skipped tells apart): the general path's. The
     // first field is not always a number that would decline it: "# pause,5" with column 2 selected.
@@ -388,7 +387,7 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
       const bool line_ends = p == end || *p == '\n';
       if (last != line_ends) return nullptr;  // too few or too many fields
     } else {
-      while (p < end && is_blank(*p)) ++p;
+      while (p < end && is_padding(*p)) ++p;
       if (last) return p == end || *p == '\n' ? p : nullptr;
       if (p == end || *p != delimiter) return nullptr;
       ++p;

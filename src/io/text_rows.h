@@ -110,6 +110,19 @@ struct RowChunk {
   std::exception_ptr error;                  // the first error in the chunk; parsing stops there
 };
 
+// Which value slot each field of a row fills (-1: none) on the plain path, or empty when the plain
+// path cannot serve the layout (a field asked for twice, a delimiter a number may hold).
+std::vector<int> plain_slots(const RowLayout& layout);
+
+// The plain path of a data row: unquoted fields, each selected one exactly one finite number, the
+// row as wide as the layout. It reads from `p` to the row's '\n' (or the chunk's end) once, with no
+// line search and no field list, puts the numbers in values[slots[field]] and returns where it
+// stopped. It accepts exactly the rows that the general path (split, then parse_number) accepts,
+// with the same values, and declines (nullptr) every other, blank and comment lines included: the
+// general path then reads that line again to skip it or to name its error.
+const char* parse_plain_row(const char* p, const char* end, const RowLayout& layout, const std::vector<int>& slots,
+                            double* values);
+
 // Parses whole lines (a last line without '\n' is taken as the record's truncated end) starting at
 // line number first_line, into result.columns. Never throws: an error is left in result.error.
 void parse_rows(std::string_view chunk, std::size_t first_line, const RowLayout& layout, RowChunk& result);

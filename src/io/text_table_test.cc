@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "inertest/core/error.h"
+#include "io/text_rows.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -294,12 +295,39 @@ class PlainAndGeneralRows : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PlainAndGeneralRows, GiveTheSameValuesOrTheSameError) {
   expect_plain_as_general(std::string("a,b\n") + GetParam());
-  // The same row blank-separated: each ',' a space, then a tab.
+  // The same row blank-separated: each ',' a space, then a tab; and tab-separated.
   for (char blank : {' ', '\t'}) {
     std::string row = GetParam();
     std::replace(row.begin(), row.end(), ',', blank);
     expect_plain_as_general(std::string("a b\n") + row);
   }
+  std::string row = GetParam();
+  std::replace(row.begin(), row.end(), ',', '\t');
+  expect_plain_as_general(std::string("a\tb\n") + row);
+}
+
+// A tab-separated row is read by the plain path (its delimiter was skipped as a blank there, and
+// every row of a LabVIEW export went the general way), and a delimiter that a number may hold is
+// left to the general path (the plain one read "1.5.2" split at '.' as 1.5 and 2).
+TEST(PlainRows, ReadTabSeparatedRowsAndNoDelimiterANumberMayHold) {
+  const std::string text = " 1.5 \t-2\t x \r\n";
+  const io_detail::Line header{"a\tb\tc", 1};
+  TextTableOptions options;
+  options.columns = {ColumnSelector::parse("b"), ColumnSelector::parse("a")};
+  const io_detail::RowLayout layout = io_detail::read_row_layout(header, "x.tsv", options);
+  ASSERT_EQ(layout.delimiter, '\t');
+  const std::vector<int> slots = io_detail::plain_slots(layout);
+  double values[2] = {};
+  const char* stop = io_detail::parse_plain_row(text.data(), text.data() + text.size(), layout, slots, values);
+  ASSERT_NE(stop, nullptr);
+  EXPECT_EQ(*stop, '\n');
+  EXPECT_EQ(values[0], -2.0);
+  EXPECT_EQ(values[1], 1.5);
+
+  options.delimiter = '.';
+  EXPECT_TRUE(io_detail::plain_slots(io_detail::read_row_layout({"a.b", 1}, "x.txt", options)).empty());
+  options.columns.clear();
+  EXPECT_THAT(error_of("a.b\n1.5.2\n", options), ::testing::HasSubstr("rec.csv:2:5: expected 2 columns, found 3"));
 }
 
 INSTANTIATE_TEST_SUITE_P(

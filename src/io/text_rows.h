@@ -110,8 +110,10 @@ struct RowChunk {
   std::exception_ptr error;                  // the first error in the chunk; parsing stops there
 };
 
-// Which value slot each field of a row fills (-1: none) on the plain path, or empty when the plain
-// path cannot serve the layout (a field asked for twice, a delimiter a number may hold).
+// Which value slot each field of a row fills on the plain path, or empty when the plain path
+// cannot serve the layout (a field asked for twice, a delimiter a number may hold). A field that
+// fills none holds -r: it and the r - 1 after it are not selected (the plain path skips them as one
+// run).
 std::vector<int> plain_slots(const RowLayout& layout);
 
 // The plain path of a data row: unquoted fields, each selected one exactly one finite number, the

@@ -370,5 +370,28 @@ TEST(PlainAndGeneralRows, SkippedFieldsGiveTheSameValuesOrTheSameError) {
   }
 }
 
+// Runs of skipped fields long enough for the sixty-four bytes the plain path scans at a time: five
+// fields between the two selected, the odd byte in one of them (or a line end in place of the
+// delimiter after it: two short lines that hold the fields of one row between them), the rows
+// shifted by a prefix so that the odd byte meets every place of a block.
+TEST(PlainAndGeneralRows, RunsOfSkippedFieldsGiveTheSameValuesOrTheSameError) {
+  for (std::size_t shift = 0; shift < 64; shift += 7) {
+    for (std::size_t odd_field = 0; odd_field < 5; ++odd_field) {
+      for (const char* odd : {"", "\"", " ", "\t", ";", ",", "\n5,6,", "\n"}) {
+        const bool line_end_for_delimiter = std::string_view(odd) == "\n";
+        std::string row = std::string(shift, '1') + ",";
+        for (std::size_t f = 0; f < 5; ++f) {
+          row += std::string(3 + 4 * f, 'x');
+          row += f != odd_field ? "," : line_end_for_delimiter ? "\n" : std::string(odd) + ",";
+        }
+        row += "2";
+        for (const char* end : {"\n", "\r\n", ""}) {
+          expect_plain_as_general("a,b,c,d,e,f,g\n" + row + "\n" + row + end, "1", "7");
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace inertest

@@ -404,9 +404,14 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
   for (std::size_t field = 0; field < layout.width; ++field) {
     while (p < end && is_padding(*p)) ++p;
     if (p < end && *p == '"') return nullptr;
-    // A comment line (or an Excel error, which is_skipped tells apart): the general path's. The
-    // first field is not always a number that would decline it: "# pause,5" with column 2 selected.
-    if (field == 0 && p < end && *p == layout.comment && layout.comment != '\0') return nullptr;
+    // A comment line (or an Excel error, which is_skipped tells apart), after blanks as is_skipped
+    // counts them (a tab delimiter too): the general path's. The first field is not always a number
+    // that would decline it: "# pause,5" with column 2 selected.
+    if (field == 0 && layout.comment != '\0') {
+      const char* q = p;
+      while (q < end && is_blank(*q)) ++q;
+      if (q < end && *q == layout.comment) return nullptr;
+    }
     if (slots[field] >= 0) {
       // as parse_number: a leading '+' skipped unless a sign follows
       if (p < end && *p == '+' && !(end - p > 1 && (p[1] == '-' || p[1] == '+'))) ++p;

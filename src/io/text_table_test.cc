@@ -344,6 +344,8 @@ TEST(PlainAndGeneralRows, ACommentLineIsSkippedWhateverColumnIsSelected) {
   for (const char* line : {"# pause,5,6\n", "  #,5,6\n", "#N/A,5,6\n", "#5,5,6\n"}) {
     expect_plain_as_general(std::string("a,b,c\n1,2,3\n") + line + "4,5,6\n", "2", "3");
   }
+  // Tab-separated, the comment after a tab: a blank before it, as is_skipped counts blanks.
+  expect_plain_as_general("a\tb\tc\td\n1\t2\t3\t4\n\t#\t5\t6\n7\t8\t9\t10\n", "3", "4");
   TextTableOptions options;
   options.columns = {ColumnSelector::parse("b")};
   EXPECT_EQ(parse("a,b\n1,2\n# pause,5\n3,4\n", options).columns[0], (std::vector<double>{2, 4}));

@@ -49,12 +49,18 @@ inline std::uint64_t eight_digits(std::uint64_t word) {
 inline constexpr std::array<std::uint64_t, 9> kIntegerPowers = {1,      10,      100,      1000,     10000,
                                                                 100000, 1000000, 10000000, 100000000};
 
-// One step of read_digits on `word`, the eight bytes at p: a byte b is a digit when neither b + 0x46
-// nor b - 0x30 sets its top bit, and the lowest byte flagged is the first non-digit (the digits
-// below it carry and borrow nothing). Adds the digits to mantissa and count and moves p past them;
-// true when all eight were digits (more may follow).
-inline bool read_eight(std::uint64_t word, const char*& p, std::uint64_t& mantissa, int& count) {
-  const std::uint64_t flagged = ((word + 0x46 * kOnes) | (word - 0x30 * kOnes)) & (0x80 * kOnes);
+// The bytes of `word` that are not digits, their top bit set: a byte b is a digit when neither
+// b + 0x46 nor b - 0x30 sets its top bit. The lowest byte flagged is the first non-digit (the digits
+// below it carry and borrow nothing); the bytes above it may be flagged or not.
+inline std::uint64_t non_digits(std::uint64_t word) {
+  return ((word + 0x46 * kOnes) | (word - 0x30 * kOnes)) & (0x80 * kOnes);
+}
+
+// One step of read_digits on `word`, the eight bytes at p, and flagged = non_digits(word). Adds the
+// digits to mantissa and count and moves p past them; true when all eight were digits (more may
+// follow).
+inline bool read_eight(std::uint64_t word, std::uint64_t flagged, const char*& p, std::uint64_t& mantissa,
+                       int& count) {
   if (flagged == 0) {
     mantissa = mantissa * 100000000 + eight_digits(word);
     p += 8;
@@ -76,7 +82,8 @@ inline bool read_eight(std::uint64_t word, const char*& p, std::uint64_t& mantis
 // while eight remain before last.
 inline const char* read_digits(const char* p, const char* last, std::uint64_t& mantissa, int& count) {
   while (last - p >= 8) {
-    if (!read_eight(load_eight_bytes(p), p, mantissa, count)) return p;
+    const std::uint64_t word = load_eight_bytes(p);
+    if (!read_eight(word, non_digits(word), p, mantissa, count)) return p;
   }
   for (; p != last && static_cast<unsigned char>(*p - '0') < 10; ++p, ++count) {
     mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
@@ -95,10 +102,10 @@ inline constexpr std::array<double, 23> kExactPowers = {1e0,  1e1,  1e2,  1e3,  
   using namespace decimal_detail;
   // The sign without a branch: the signs of a noise record are as random as a coin, and a
   // mispredicted branch a number cost 40 % of a six-channel parse. With nine bytes, the eight at
-  // `first` and the eight after it are loaded side by side and the sign picks one by a mask, so
-  // that no load waits for the sign (one that did lengthened the chain from a number to the next
-  // by a quarter on a record of one sign). The empty asm hides the sign from GCC, which otherwise
-  // turns the selection back into a branch.
+  // `first` and the eight after it are loaded and their digits found side by side, and the sign
+  // picks one of each by a mask, so that nothing waits for the sign but the choice (a load after
+  // it lengthened the chain from a number to the next by a quarter on a record of one sign). The
+  // empty asm hides the sign from GCC, which otherwise turns the choice back into a branch.
   const bool long_enough = last - first >= 9;
   std::uint64_t at_first = 0;
   std::uint64_t after_sign = 0;
@@ -116,7 +123,10 @@ inline constexpr std::array<double, 23> kExactPowers = {1e0,  1e1,  1e2,  1e3,  
   const char* p = first + negative;
   std::uint64_t mantissa = 0;
   int digits = 0;
-  if (!long_enough || read_eight(at_first ^ ((at_first ^ after_sign) & (0 - negative)), p, mantissa, digits)) {
+  const std::uint64_t choose_after_sign = 0 - negative;
+  const auto chosen = [choose_after_sign](std::uint64_t a, std::uint64_t b) { return a ^ ((a ^ b) & choose_after_sign); };
+  if (!long_enough || read_eight(chosen(at_first, after_sign), chosen(non_digits(at_first), non_digits(after_sign)), p,
+                                 mantissa, digits)) {
     p = read_digits(p, last, mantissa, digits);
   }
   int exponent = 0;

@@ -100,12 +100,13 @@ inline constexpr std::array<double, 23> kExactPowers = {1e0,  1e1,  1e2,  1e3,  
 [[gnu::always_inline]] inline fast_float::from_chars_result parse_decimal(const char* first, const char* last,
                                                                     double& value) {
   using namespace decimal_detail;
-  // The sign without a branch: the signs of a noise record are as random as a coin, and a
-  // mispredicted branch a number cost 40 % of a six-channel parse. With nine bytes, the eight at
-  // `first` and the eight after it are loaded and their digits found side by side, and the sign
-  // picks one of each by a mask, so that nothing waits for the sign but the choice (a load after
-  // it lengthened the chain from a number to the next by a quarter on a record of one sign). The
-  // empty asm hides the sign from GCC, which otherwise turns the choice back into a branch.
+  // The sign without a branch: the signs of a noise record are as random as a coin, and a branch
+  // mispredicted on every other number (the six-channel bench record parsed on one thread in
+  // 256-293 ms with it, 242-244 ms without). With nine bytes, the eight at `first` and the eight
+  // after it are loaded and their digits found side by side, and the sign picks one of each by a
+  // mask, so that nothing waits for the sign but the choice (loading after the sign made a record
+  // of one sign 8 % slower to parse; this, 3 %). The empty asm hides the sign from GCC, which
+  // otherwise turns the choice back into a branch.
   const bool long_enough = last - first >= 9;
   std::uint64_t at_first = 0;
   std::uint64_t after_sign = 0;

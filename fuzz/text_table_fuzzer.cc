@@ -6,6 +6,7 @@
 // path must agree too.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <string_view>
@@ -23,7 +24,11 @@ std::string parse(std::string_view text, const inertest::TextTableOptions& optio
     const inertest::TextTable table = inertest::parse_text_table(text, "fuzz.csv", options);
     std::string digest = std::to_string(table.rows()) + "@" + std::to_string(table.first_data_line);
     for (std::size_t c = 0; c < table.columns.size() && c < columns; ++c) {
-      for (double v : table.columns[c]) digest += "," + std::to_string(v);
+      for (double v : table.columns[c]) {
+        char exact[32];
+        std::snprintf(exact, sizeof exact, ",%a", v);  // every bit: the paths must agree exactly
+        digest += exact;
+      }
     }
     for (std::size_t line : table.row_lines) digest += ";" + std::to_string(line);
     return digest;

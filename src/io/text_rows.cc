@@ -313,9 +313,10 @@ void require_rows(const std::string& source, std::size_t rows, std::size_t minim
 
 std::vector<int> plain_slots(const RowLayout& layout) {
   // The plain path reads a number up to the first byte that cannot continue it and takes that byte
-  // for the delimiter: a delimiter a number may hold ("1.5" split at '.') is left to split().
+  // for the delimiter: a delimiter a number may hold ("1.5" split at '.') is left to split(), and
+  // so is '\r', which the general path drops from a CRLF line's end before it splits the line.
   const unsigned char delimiter = static_cast<unsigned char>(layout.delimiter);
-  if (std::isalnum(delimiter) || std::string_view(".+-").find(layout.delimiter) != std::string_view::npos) return {};
+  if (std::isalnum(delimiter) || std::string_view(".+-\r").find(layout.delimiter) != std::string_view::npos) return {};
   std::vector<int> slots(layout.width, -1);
   for (std::size_t k = 0; k < layout.positions.size(); ++k) {
     int& slot = slots[layout.positions[k]];

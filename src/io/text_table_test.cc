@@ -307,9 +307,9 @@ TEST_P(PlainAndGeneralRows, GiveTheSameValuesOrTheSameError) {
 }
 
 // A tab-separated row is read by the plain path (its delimiter was skipped as a blank there, and
-// every row of a LabVIEW export went the general way), and a delimiter that a number may hold is
-// left to the general path (the plain one read "1.5.2" split at '.' as 1.5 and 2).
-TEST(PlainRows, ReadTabSeparatedRowsAndNoDelimiterANumberMayHold) {
+// every row of a LabVIEW export went the general way), and a delimiter that a number may hold, or
+// '\r', is left to the general path (the plain one read "1.5.2" split at '.' as 1.5 and 2).
+TEST(PlainRows, ReadTabSeparatedRowsAndLeaveOddDelimitersToTheGeneralPath) {
   const std::string text = " 1.5 \t-2\t x \r\n";
   const io_detail::Line header{"a\tb\tc", 1};
   TextTableOptions options;
@@ -328,6 +328,11 @@ TEST(PlainRows, ReadTabSeparatedRowsAndNoDelimiterANumberMayHold) {
   EXPECT_TRUE(io_detail::plain_slots(io_detail::read_row_layout({"a.b", 1}, "x.txt", options)).empty());
   options.columns.clear();
   EXPECT_THAT(error_of("a.b\n1.5.2\n", options), ::testing::HasSubstr("rec.csv:2:5: expected 2 columns, found 3"));
+  // '\r' as the delimiter: the general path drops a CRLF line's '\r' before it splits, so that
+  // "1\r\n" is one field of two; the plain path read that '\r' as the delimiter.
+  options.delimiter = '\r';
+  options.columns = {ColumnSelector::parse("1")};
+  EXPECT_THAT(error_of("a\rb\n1\r\n", options), ::testing::HasSubstr("rec.csv:2:2: expected 2 columns, found 1"));
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -3,6 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "inertest/core/error.h"
 #include "io/text_rows.h"
@@ -397,6 +403,96 @@ TEST(PlainAndGeneralRows, RunsOfSkippedFieldsGiveTheSameValuesOrTheSameError) {
         }
       }
     }
+  }
+}
+
+// Random records against the contract: each parsed as asked, then with its first column asked for
+// again, which keeps every row off the plain path; the two must give the same value bits, rows and
+// row lines, or the same error. Fields of numbers with signs, exponents and blanks around them,
+// quotes, comments, spreadsheet errors, junk, rows a field short or long, CRLF, a last line without
+// its end; delimiters detected or given (odd ones too: '|', '"', '#', '\n', 'x', '.', '\r'), the
+// header detected, given or absent, a comment character from the alphabet, one to three columns
+// chosen in any order by name or index, the chunks of one thread or of three. (A review's
+// differential run over 1.2e6 such records found the '\r' delimiter defect; 6e5 more found none.)
+std::string digest_of(const std::string& text, const TextTableOptions& options, std::size_t columns) {
+  try {
+    const TextTable table = parse(text, options);
+    std::string digest = std::to_string(table.rows()) + "@" + std::to_string(table.first_data_line) + "|";
+    for (std::size_t c = 0; c < columns; ++c) {
+      for (double v : table.columns[c]) digest += std::to_string(std::bit_cast<std::uint64_t>(v)) + ",";
+    }
+    for (std::size_t line : table.row_lines) digest += ";" + std::to_string(line);
+    return digest;
+  } catch (const Error& e) {
+    return std::string("error: ") + e.what();
+  }
+}
+
+TEST(PlainAndGeneralRows, RandomRecordsGiveTheSameValuesOrTheSameError) {
+  std::mt19937_64 random(2426);
+  const auto pick = [&random](std::size_t n) { return static_cast<std::size_t>(random() % n); };
+  const std::string alphabet = "0123456789-+.eE,;\t \"#\r\nx";
+  const std::string delimiters("\0,;\t |\"#\nx.\r", 12);
+  const auto digits = [&](std::size_t count) {
+    std::string out;
+    for (std::size_t k = 0; k < count; ++k) out += static_cast<char>('0' + pick(10));
+    return out;
+  };
+  const auto blanks = [&] { return pick(5) == 0 ? std::string(pick(3), " \t\r"[pick(3)]) : std::string(); };
+  for (int record = 0; record < 10000; ++record) {
+    const std::size_t width = 1 + pick(9);
+    const char delimiter = delimiters[pick(delimiters.size())];
+    const char separator = delimiter == '\0' ? ",;\t "[pick(4)] : delimiter;
+    std::string text;
+    for (std::size_t i = 0; i < width; ++i) text += std::string(i > 0 ? 1 : 0, separator) + static_cast<char>('a' + i);
+    text += pick(4) == 0 ? "\r\n" : "\n";
+    const std::size_t rows = pick(7);
+    for (std::size_t r = 0; r < rows; ++r) {
+      if (pick(10) == 0) {
+        for (std::size_t k = pick(20); k > 0; --k) text += alphabet[pick(alphabet.size())];
+      } else {
+        const std::size_t fields = width + (pick(8) == 0 ? 1 : 0) - (pick(8) == 0 ? 1 : 0);
+        for (std::size_t f = 0; f < fields; ++f) {
+          text += std::string(f > 0 ? 1 : 0, separator) + blanks();
+          switch (pick(8)) {
+            case 4: for (std::size_t k = pick(80); k > 0; --k) text += "xyz01"[pick(5)]; break;
+            case 5: for (std::size_t k = pick(6); k > 0; --k) text += alphabet[pick(alphabet.size())]; break;
+            case 6: {
+              constexpr const char* kTokens[] = {"#",  "#N/A", "\"1\"", "\"x,y\"", "inf",   "nan", "-", "--1", "-.5",
+                                                 "+-1", "-0",  "1e400", ".",      "",      "-inf", "1.", ".e1"};
+              text += kTokens[pick(std::size(kTokens))];
+              break;
+            }
+            case 7: text += digits(pick(70)); break;
+            default:
+              text += std::string(pick(3) == 0 ? 1 : 0, "+-"[pick(2)]) + digits(pick(4) == 0 ? pick(22) : pick(10));
+              if (pick(3) == 0) text += "." + digits(pick(12));
+              if (pick(5) == 0) text += std::string(1, "eE"[pick(2)]) + "+-"[pick(2)] + digits(pick(5));
+          }
+          text += blanks();
+        }
+      }
+      if (r + 1 < rows || pick(2) == 0) text += pick(4) == 0 ? "\r\n" : "\n";
+    }
+    TextTableOptions options;
+    options.delimiter = delimiter;
+    options.header = static_cast<TextTableOptions::Header>(pick(3));
+    if (pick(4) == 0) options.comment = alphabet[pick(alphabet.size())];
+    std::vector<std::size_t> order(width);
+    for (std::size_t i = 0; i < width; ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), random);
+    const std::size_t chosen = 1 + pick(std::min<std::size_t>(width, 3));
+    for (std::size_t i = 0; i < chosen; ++i) {
+      options.columns.push_back(pick(2) == 0 ? ColumnSelector{"", order[i] + 1}
+                                             : ColumnSelector{std::string(1, static_cast<char>('a' + order[i])), 0});
+    }
+    if (pick(8) == 0) {
+      options.threads = 3;
+      options.minimum_chunk_bytes = 1;
+    }
+    TextTableOptions general = options;
+    general.columns.push_back(options.columns.front());
+    ASSERT_EQ(digest_of(text, options, chosen), digest_of(text, general, chosen)) << "record " << record << ": " << text;
   }
 }
 

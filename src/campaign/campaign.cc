@@ -274,6 +274,11 @@ Plan load_plan(const std::string& path) {
     prepared.kind = step.string("kind");
     prepared.name = step.string_or("name", prepared.kind);
     const SourceLocation name_at = step.location_of_key(step.contains("name") ? "name" : "kind");
+    // The archive names a figure PROCEDURE/FIGURE, and the report and the verdicts print the name.
+    if (prepared.name.empty() || prepared.name.find('/') != std::string::npos ||
+        prepared.name.find_first_of(" \t") == 0 || prepared.name.find_last_of(" \t") == prepared.name.size() - 1) {
+      step.fail_at("name", "must be a non-empty name without '/' and without blanks around it");
+    }
     if (const auto [first, inserted] = named.emplace(prepared.name, name_at); !inserted) {
       throw Error(name_at, fmt::format("plan.procedure[{}]: a procedure named '{}' is already at {}{}: give each "
                                        "[[procedure]] a 'name' of its own (results, verdicts and the archive key "
@@ -426,21 +431,69 @@ nlohmann::json validate_plan(const std::string& plan_path) {
   return {{"instrument", plan.context.instrument.to_json()}, {"site", plan.context.site.to_json()}, {"procedures", steps}};
 }
 
+namespace {
+
+// The outermost directory that creating `out` makes (empty when it exists): what a failed run
+// removes again, and nothing else. The path is taken lexically normal, as it is written to: with
+// "staging/../reports" the run writes into reports, which it did not make and must keep.
+std::filesystem::path first_missing(const std::filesystem::path& out) {
+  std::filesystem::path missing;
+  for (std::filesystem::path p = out; !p.empty() && !std::filesystem::exists(p); p = p.parent_path()) {
+    if (p == p.parent_path()) break;
+    missing = p;
+  }
+  return missing;
+}
+
+// results.json of a run: the steps' results and verdicts under the plan's header.
+nlohmann::json campaign_results(const Plan& plan, nlohmann::json procedures, nlohmann::json verdicts) {
+  bool all_pass = true;
+  for (const auto& v : verdicts) all_pass = all_pass && v.at("pass").get<bool>();
+  const char* verdict = verdicts.empty() ? "NONE" : (all_pass ? "PASS" : "FAIL");
+  // When the test was done (the plan's date, else the day it is processed) and when processed:
+  // the archive orders a campaign's figures by the first and shows the second.
+  const std::string processed_at = processing_time();
+  const std::string tested_on = plan.header.is_object() && plan.header.contains("date")
+                                    ? plan.header.at("date").get<std::string>()
+                                    : processed_at.substr(0, 10);
+  return {
+      {"results_schema_version", 1},
+      {"inertest_version", version()},
+      {"tested_on", tested_on},
+      {"processed_at", processed_at},
+      {"plan", plan.header.is_null() ? nlohmann::json::object() : plan.header},
+      {"instrument", plan.context.instrument.to_json()},
+      {"site", plan.context.site.to_json()},
+      {"procedures", std::move(procedures)},
+      {"verdicts", std::move(verdicts)},
+      {"verdict", verdict},
+  };
+}
+
+}  // namespace
+
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
   const Plan plan = load_plan(plan_path);
-  // The steps' exports are written into a staging directory and moved beside results.json once
-  // every step has run: a failed campaign leaves no partial output, whether or not the output
-  // directory was there before (one made here goes too), and overwrites nothing of an earlier run.
-  const bool made_here = !std::filesystem::exists(out_dir);
-  std::filesystem::create_directories(out_dir);
-  const std::filesystem::path staging = std::filesystem::path(out_dir) / ".inertest-exports";
+  // Everything the run writes (the steps' exports, results.json, the report) goes first into a
+  // staging directory and is moved into the output directory once all of it is there: a failed
+  // campaign leaves no partial output, overwrites nothing of an earlier run, and removes what it
+  // made of the output directory's path (and only that).
+  const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
+  if (std::filesystem::exists(out) && !std::filesystem::is_directory(out)) {
+    throw Error(SourceLocation{out_dir, 0, 0}, "the output directory is a file");
+  }
+  const std::filesystem::path made = first_missing(out);
+  std::filesystem::create_directories(out);
+  const std::filesystem::path staging = out / ".inertest-exports";
   std::filesystem::remove_all(staging);
   std::filesystem::create_directories(staging);
   campaign::StepRunContext context{options.progress, staging.string()};
 
-  nlohmann::json procedures = nlohmann::json::array();
-  nlohmann::json verdicts = nlohmann::json::array();
+  CampaignSummary summary;
+  std::vector<std::filesystem::path> staged;
   try {
+    nlohmann::json procedures = nlohmann::json::array();
+    nlohmann::json verdicts = nlohmann::json::array();
     for (std::size_t i = 0; i < plan.steps.size(); ++i) {
       const auto& step = plan.steps[i];
       if (options.progress) options.progress(step.name, static_cast<double>(i) / static_cast<double>(plan.steps.size()));
@@ -454,44 +507,31 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       for (const auto& limit : step.limits) verdicts.push_back(check_limit(limit, step.name, result));
       procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
     }
+    summary.results = campaign_results(plan, std::move(procedures), std::move(verdicts));
+    write_file_atomically((staging / "results.json").string(), summary.results.dump(2) + "\n");
+    if (options.report_page) write_file_atomically((staging / "report.html").string(), options.report_page(summary.results));
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(staging)) {
+      if (!entry.is_regular_file()) continue;
+      const std::filesystem::path relative = entry.path().lexically_relative(staging);
+      if (std::filesystem::is_directory(out / relative)) {
+        throw Error(SourceLocation{(out / relative).string(), 0, 0}, "a directory is where the run writes a file");
+      }
+      staged.push_back(relative);
+    }
   } catch (...) {
-    std::filesystem::remove_all(made_here ? std::filesystem::path(out_dir) : staging);
+    std::filesystem::remove_all(made.empty() ? staging : made);
     throw;
   }
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(staging)) {
-    if (!entry.is_regular_file()) continue;
-    const std::filesystem::path target = std::filesystem::path(out_dir) / entry.path().lexically_relative(staging);
+  // results.json first, so that written_files.front() is it; the rest in the order found.
+  std::stable_partition(staged.begin(), staged.end(), [](const auto& p) { return p == "results.json"; });
+  for (const auto& relative : staged) {
+    const std::filesystem::path target = out / relative;
     std::filesystem::create_directories(target.parent_path());
-    std::filesystem::rename(entry.path(), target);
+    std::filesystem::rename(staging / relative, target);
+    summary.written_files.push_back((std::filesystem::path(out_dir) / relative).string());
   }
   std::filesystem::remove_all(staging);
   if (options.progress) options.progress("done", 1.0);
-
-  bool all_pass = true;
-  for (const auto& v : verdicts) all_pass = all_pass && v.at("pass").get<bool>();
-  const char* verdict = verdicts.empty() ? "NONE" : (all_pass ? "PASS" : "FAIL");
-  // When the test was done (the plan's date, else the day it is processed) and when processed:
-  // the archive orders a campaign's figures by the first and shows the second.
-  const std::string processed_at = processing_time();
-  const std::string tested_on = plan.header.is_object() && plan.header.contains("date")
-                                    ? plan.header.at("date").get<std::string>()
-                                    : processed_at.substr(0, 10);
-  CampaignSummary summary;
-  summary.results = {
-      {"results_schema_version", 1},
-      {"inertest_version", version()},
-      {"tested_on", tested_on},
-      {"processed_at", processed_at},
-      {"plan", plan.header.is_null() ? nlohmann::json::object() : plan.header},
-      {"instrument", plan.context.instrument.to_json()},
-      {"site", plan.context.site.to_json()},
-      {"procedures", std::move(procedures)},
-      {"verdicts", std::move(verdicts)},
-      {"verdict", verdict},
-  };
-  const std::string results_path = (std::filesystem::path(out_dir) / "results.json").string();
-  write_file_atomically(results_path, summary.results.dump(2) + "\n");
-  summary.written_files.push_back(results_path);
   return summary;
 }
 

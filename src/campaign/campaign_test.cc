@@ -178,8 +178,54 @@ INSTANTIATE_TEST_SUITE_P(
                 "worst_temperature = { max = 200, unit = \"K\" }\n",
                 ":6:21: limit on 'worst_temperature': procedure 'scale_factor_temperature' reports it in 'degC': cannot "
                 "convert the temperature 'degC' to 'K'"},
-        BadPlan{"unknown_top_level", "[instrument]\nid = \"x\"\n[sight]\n", ":3:2: plan: unknown key 'sight'"}),
+        BadPlan{"unknown_top_level", "[instrument]\nid = \"x\"\n[sight]\n", ":3:2: plan: unknown key 'sight'"},
+        // The archive names a figure PROCEDURE/FIGURE: "A/B" made "A/B/bias" ambiguous, "" printed as
+        // "Bias ()", and "SF " and "SF" were two steps that print alike.
+        BadPlan{"empty_name", plan_text("name = \"\"\n"),
+                ":11:8: plan.procedure[1]: 'name' must be a non-empty name without '/' and without blanks around it"},
+        BadPlan{"slash_in_name", plan_text("name = \"A/B\"\n"), ":11:8: plan.procedure[1]: 'name' must be a non-empty"},
+        BadPlan{"blank_after_name", plan_text("name = \"SF \"\n"), ":11:8: plan.procedure[1]: 'name' must be a non-empty"}),
     testing::NameOfParam());
+
+// A run that fails (here on a cell of its data, found only when the step runs) removes what it made
+// of the output directory's path and nothing else: "staging/../reports" once removed the existing
+// reports/ with an earlier report in it, having taken it for a directory the run had made.
+TEST(Campaign, AFailedRunRemovesOnlyWhatItMade) {
+  testing::ScratchDirectory dir;
+  dir.write("points.csv", "rate,output\n0,1\n-2,-2.1\n-1,abc\n1,4.1\n2,6\n0,3\n");
+  const std::string plan = dir.write("plan.toml", plan_text(""));
+  const std::string kept = dir.write("reports/report_2024.html", "an earlier report");
+  EXPECT_THAT(error_of(plan, dir.path() + "/staging/../reports"), HasSubstr("points.csv:4:"));
+  EXPECT_EQ(testing::read_file(kept), "an earlier report");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/staging"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/reports/.inertest-exports"));
+  EXPECT_THAT(error_of(plan, dir.path() + "/fresh/a/b"), HasSubstr("points.csv:4:"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/fresh"));
+  // An output "directory" that is a file is an error naming it (it was an internal error, exit 3).
+  EXPECT_THAT(error_of(plan, dir.path() + "/plan.toml"), HasSubstr("plan.toml: the output directory is a file"));
+}
+
+// results.json and the report are written together: a report that cannot be written leaves no
+// results without it (a directory where report.html goes: results.json had been written already).
+TEST(Campaign, TheReportIsWrittenWithTheResultsOrNeither) {
+  testing::ScratchDirectory dir;
+  dir.write("points.csv", kPoints);
+  const std::string plan = dir.write("plan.toml", plan_text(""));
+  CampaignOptions options;
+  options.report_page = [](const nlohmann::json& results) { return "<p>" + results.at("verdict").get<std::string>(); };
+  const CampaignSummary summary = run_campaign(plan, dir.path() + "/out", options);
+  ASSERT_EQ(summary.written_files.size(), 2u);
+  EXPECT_EQ(summary.written_files.front(), dir.path() + "/out/results.json");
+  EXPECT_EQ(testing::read_file(dir.path() + "/out/report.html"), "<p>NONE");
+  std::filesystem::create_directories(dir.path() + "/blocked/report.html");
+  try {
+    run_campaign(plan, dir.path() + "/blocked", options);
+    ADD_FAILURE() << "a directory in the way of report.html was not an error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("report.html: a directory is where the run writes a file"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/blocked/results.json"));
+}
 
 TEST(Campaign, LimitOnAFigureThatDoesNotExist) {
   testing::ScratchDirectory dir;

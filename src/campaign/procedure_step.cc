@@ -105,6 +105,9 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
         step.fail_at(key, "names '" + path + "', outside the output directory: in a plan an export is a relative path "
                           "beside results.json, written only when every procedure has run");
       }
+      if (const auto clash = path.empty() ? std::nullopt : context.outputs.claim(path, step.location_of_key(key))) {
+        step.fail_at(key, "names '" + path + "', " + *clash);
+      }
     }
   }
   // [instrument] defaults where the step gives none (and their condition holds), then what is missing.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
 #include <map>
 
 #include "campaign/procedure_step.h"
@@ -49,6 +50,14 @@ std::vector<std::string> registered_step_kinds() {
   }
   std::sort(kinds.begin(), kinds.end());
   return kinds;
+}
+
+std::optional<std::string> OutputClaims::claim(const std::string& path, const SourceLocation& where) {
+  const std::string normal = std::filesystem::path(path).lexically_normal().string();
+  if (normal == "results.json" || normal == "report.html") return "which the run writes itself";
+  const auto [earlier, claimed] = claims_.emplace(normal, where);
+  if (claimed) return std::nullopt;
+  return "which the procedure at " + earlier->second.to_string() + " writes too";
 }
 
 nlohmann::json Instrument::to_json() const {

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,9 +37,25 @@ struct Site {
   nlohmann::json to_json() const;
 };
 
+// The files a plan's steps write beside results.json (their exports), claimed as each step is
+// read: a second step writing one of them, or a step writing results.json or report.html, would
+// silently replace it, so it is an error in the plan.
+class OutputClaims {
+ public:
+  // Why `path` (relative to the output directory) cannot be claimed at `where`, or nothing when it
+  // is free (it is then claimed).
+  std::optional<std::string> claim(const std::string& path, const SourceLocation& where);
+
+ private:
+  std::map<std::string, SourceLocation> claims_;  // by lexically normal path
+};
+
 struct PlanContext {
   Instrument instrument;
   Site site;
+  // Filled while the steps are read (the preparers see the context const: it is the only part
+  // they change).
+  mutable OutputClaims outputs;
 };
 
 struct StepRunContext {

@@ -1,4 +1,6 @@
 // inertest run PLAN.toml --out DIR [--archive [DB]]
+#include <filesystem>
+
 #include <fmt/format.h>
 
 #include "archive_command.h"
@@ -35,18 +37,26 @@ CommandAction setup(CLI::App& root) {
                           "$INERTEST_DB, else ~/.local/share/inertest/archive.sqlite)")
           ->expected(0, 1);
   return [arguments, archive_option] {
+    // The archive is opened first: one that cannot be opened stops the run before anything is written.
+    const auto store = archive_option->count() > 0
+                           ? open_archive_option(arguments->archive, archive::ArchiveOpening::create)
+                           : nullptr;
+    const report::ReportOptions report_options{report::parse_language(arguments->lang), report::current_date()};
     CampaignOptions options;
     options.progress = terminal_progress();
+    options.report_page = [&report_options](const nlohmann::json& results) {
+      return report::render_report(results, report_options);
+    };
     const CampaignSummary summary = run_campaign(arguments->plan, arguments->out, options);
-    const report::ReportOptions report_options{report::parse_language(arguments->lang), report::current_date()};
-    const std::string report_path = report::write_report(summary.results, arguments->out, report_options);
-    if (archive_option->count() > 0) {
-      const auto outcome =
-          open_archive_option(arguments->archive, archive::ArchiveOpening::create)->add(summary.results, summary.written_files.front());
+    if (store) {
+      const auto outcome = store->add(summary.results, summary.written_files.front());
       fmt::print(stderr, "{} the archive as campaign {}\n", outcome.added ? "added to" : "already in", outcome.id);
     }
     print_result(summary.results, report::render_text_report(summary.results, report_options), arguments->json);
-    if (!arguments->json) fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(), report_path);
+    if (!arguments->json) {
+      fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(),
+                 (std::filesystem::path(arguments->out) / "report.html").string());
+    }
     return 0;
   };
 }

@@ -4,6 +4,7 @@
 // nothing runs), then runs every procedure, checks the limits, and writes DIR/results.json.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,11 +16,14 @@ namespace inertest {
 
 struct CampaignOptions {
   ProgressCallback progress;
+  // The test report of the results, written beside results.json as report.html when given: made
+  // before anything is written, so that a report that fails leaves no results without it.
+  std::function<std::string(const nlohmann::json& results)> report_page;
 };
 
 struct CampaignSummary {
   nlohmann::json results;                 // what results.json holds
-  std::vector<std::string> written_files; // paths written under the output directory
+  std::vector<std::string> written_files; // paths written under the output directory, results.json first
 };
 
 // Loads and validates the plan; throws Error naming the plan file and line on any problem.
@@ -29,7 +33,8 @@ nlohmann::json validate_plan(const std::string& plan_path);
 // Every procedure kind a plan may name (sorted): the declared procedures and the hand-written steps.
 std::vector<std::string> plan_kinds();
 
-// Runs the plan and writes out_dir/results.json (created whole or not at all).
+// Runs the plan and writes out_dir/results.json, the steps' exports and the report (all of them or,
+// on an error, none; the output directory is left as it was).
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir,
                              const CampaignOptions& options = {});
 

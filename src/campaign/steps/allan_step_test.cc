@@ -20,6 +20,15 @@ using ::testing::Not;
 
 // A plan of one allan step on w.f64, 3000 samples of white noise at 10 Hz written beside it; `keys`
 // (TOML lines) follow the step's file and format, from line 11 on.
+std::string error_of_validation(const std::string& plan) {
+  try {
+    validate_plan(plan);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 std::string white_noise_plan(testing::ScratchDirectory& dir, const std::string& name, const std::string& keys) {
   dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
   return dir.write(name, R"(
@@ -217,6 +226,16 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
       EXPECT_THAT(e.what(), HasSubstr("bad.toml:11")) << keys;
     }
   }
+
+  // Two exports of one name (the first was silently replaced), or one named as the run's own files.
+  const std::string twice = white_noise_plan(dir, "twice.toml",
+                                             "export = [\"json\", \"noise.json\"]\n"
+                                             "[[procedure]]\nkind = \"allan\"\nname = \"second\"\nfile = \"w.f64\"\n"
+                                             "format = \"f64\"\nexport = [\"json\", \"./noise.json\"]");
+  EXPECT_THAT(error_of_validation(twice), HasSubstr("twice.toml:17:10: plan.procedure[2]: 'export' names "
+                                                    "'./noise.json', which the procedure at "));
+  EXPECT_THAT(error_of_validation(white_noise_plan(dir, "own.toml", "export = [\"json\", \"results.json\"]")),
+              HasSubstr("own.toml:11:10: plan.procedure[1]: 'export' names 'results.json', which the run writes itself"));
 
   // A later step that fails takes the output directory and the earlier export with it: no partial
   // output.

@@ -5,6 +5,9 @@
 //   unit = "MOhm"                    # optional, default "1"
 //   min = 20.0                       # optional limits; [procedure.limits] can also apply
 //   max = 1000.0
+#include <map>
+#include <span>
+
 #include "campaign/step_registry.h"
 #include "inertest/procedures/hand_checks.h"
 
@@ -12,6 +15,7 @@ namespace inertest::campaign {
 
 StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
   std::vector<HandCheck> checks;
+  std::map<std::string, SourceLocation> keys;  // each check's result key, where it is named
   for (auto& table : step.tables("check")) {
     HandCheck check;
     check.name = table.string("name");
@@ -27,14 +31,20 @@ StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
     check.min = table.optional_number("min");
     check.max = table.optional_number("max");
     table.require_all_used();
+    // Each check on its own, so that an error names its table (two of one key: the second's name).
+    try {
+      hand_checks(std::span(&check, 1));
+    } catch (const Error& e) {
+      table.fail(e.message());
+    }
+    const auto [first, inserted] = keys.emplace(snake_case_key(check.name), table.location_of_key("name"));
+    if (!inserted) {
+      table.fail_at("name", "'" + check.name + "' has the result key '" + first->first + "' of the check at " +
+                                first->second.to_string() + ": give each check a name of its own");
+    }
     checks.push_back(check);
   }
   if (checks.empty()) step.fail("needs at least one [[procedure.check]] table (name, value, unit, min, max)");
-  try {
-    hand_checks(checks);
-  } catch (const Error& e) {
-    step.fail(e.message());
-  }
   return [checks](const StepRunContext&) { return hand_checks(checks).to_json(); };
 }
 

@@ -161,8 +161,15 @@ TEST(HandChecksStepTest, PlanErrors) {
   expect_error("[[procedure]]\nkind = \"hand_checks\"\n", "at least one [[procedure.check]]");
   expect_error("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"Appearance\"\nvalue = \"ok\"\n",
                "\"pass\" or \"fail\"");
+  // An error of one check names its table (it named the [[procedure]] table of all of them).
   expect_error("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"A\"\nvalue = 1\nmin = 2\nmax = 1\n",
-               "min 2 above max 1");
+               "plan.toml:9:1: plan.procedure[1].check[1]: hand checks: 'A' has min 2 above max 1");
+  expect_error("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"A\"\nvalue = 1\nunit = \"Mohms\"\n",
+               "plan.toml:9:1: plan.procedure[1].check[1]: ");
+  expect_error("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"Power, 15 V\"\nvalue = 1\n"
+               "[[procedure.check]]\nname = \"power 15-V\"\nvalue = 2\n",
+               "plan.toml:13:8: plan.procedure[1].check[2]: 'name' 'power 15-V' has the result key 'power_15_v' of the "
+               "check at ");
   expect_error("[[procedure]]\nkind = \"polarity\"\npositive_output = 1.0\n", "negative_file");
   expect_error("[[procedure]]\nkind = \"threshold\"\nmethod = 4\nfile = \"x\"\n", "must be 1, 2 or 3");
   scratch.write("x.csv", "rate,output\n");

@@ -32,10 +32,12 @@ struct Refusal {
 // Names are checked before any query: an instrument id as the archive takes it (any text; here no
 // control character, not a dot segment, at most 256 bytes: it is only bound to queries and
 // escaped in pages), a campaign id (16 hex digits, the archive's content hash), PROCEDURE/FIGURE
-// keys (no segment can be "." or ".."); a date is a day of the calendar (archive::is_test_date).
+// keys as the archive takes them too (PROCEDURE is a plan's step name, "Scale factor at 20 degC":
+// any text without '/'; no segment empty, "." or ".."); a date is a day of the calendar
+// (archive::is_test_date).
 const std::regex instrument_pattern(R"((?!\.\.?$)[^\x00-\x1f\x7f]+)");
 const std::regex campaign_pattern(R"([0-9a-f]{16})");
-const std::regex figure_pattern(R"([A-Za-z0-9_][A-Za-z0-9_.+\-]*(/[A-Za-z0-9_][A-Za-z0-9_.+\-]*)+)");
+const std::regex figure_pattern(R"((?!(.*/)?\.\.?(/|$))[^\x00-\x1f\x7f/]+(/[^\x00-\x1f\x7f/]+)+)");
 
 const std::string& checked(const std::string& value, const std::regex& pattern, const char* what) {
   if (value.size() > 256 || !std::regex_match(value, pattern)) {

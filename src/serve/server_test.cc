@@ -176,18 +176,40 @@ TEST_F(ServeApi, EveryRouteGivesTheCommandLinesJson) {
   EXPECT_EQ(results.json(), demo_);
 }
 
+// A plan names its steps in words ("Scale factor at 20 degC", every example plan does): their
+// figures answered 400 "the figure is malformed", and the history page's own links with them.
+TEST_F(ServeApi, FiguresOfStepsNamedInWords) {
+  nlohmann::json campaign = testing::scale_factor_campaign("FOG-4", "2026-03-04", 36000.1);
+  campaign["procedures"][0]["name"] = "Scale factor at 20 degC";
+  campaign["verdicts"][0]["procedure"] = "Scale factor at 20 degC";
+  archive::open_archive(db_)->add(campaign, "FOG-4");
+  start(false);
+  const std::string figure = "Scale factor at 20 degC/scale_factor";
+  const auto history = get(port(), "/api/instruments/FOG-4/history?figure=Scale%20factor%20at%2020%20degC/scale_factor");
+  ASSERT_EQ(history.status, 200) << history.body;
+  EXPECT_EQ(history.json(), cli_json({"archive", "history", "FOG-4", "--figure", figure}));
+  const auto fleet = get(port(), "/api/fleet?figure=Scale+factor+at+20+degC/scale_factor");
+  ASSERT_EQ(fleet.status, 200) << fleet.body;
+  EXPECT_EQ(fleet.json(), cli_json({"archive", "fleet", "--figure", figure}));
+  EXPECT_EQ(get(port(), "/instruments/FOG-4?figure=Scale%20factor%20at%2020%20degC/scale_factor").status, 200);
+}
+
 // Each hostile request gets a 4xx with {"error": ...}; the server goes on serving and the
 // archive file is byte-identical afterwards.
 TEST_F(ServeApi, HostileRequestsGet4xxAndChangeNothing) {
   const std::string before = file_bytes(db_);
   start(false);
   const std::vector<std::pair<std::string, int>> targets = {
-      // Any text is an id the archive may hold (bound to the query, never spliced): these are unknown.
+      // Any text is an id or a figure the archive may hold (bound to the query, never spliced): these
+      // are unknown.
       {"/api/instruments/FOG-2'%20OR%20'1'='1/history?figure=scale_factor/scale_factor", 404},
       {"/api/instruments/FOG-2%27%3B%20DROP%20TABLE%20campaign%3B--/history?figure=scale_factor/scale_factor", 404},
       {"/api/instruments/FOG%092/history?figure=scale_factor/scale_factor", 400},
-      {"/api/instruments/FOG-2/history?figure=scale_factor/x'%20OR%201=1--", 400},
-      {"/api/fleet?figure=scale_factor/scale_factor'%3BDELETE%20FROM%20figure%3B--", 400},
+      {"/api/instruments/FOG-2/history?figure=scale_factor/x'%20OR%201%3D1--", 404},
+      {"/api/fleet?figure=scale_factor/scale_factor'%3BDELETE%20FROM%20figure%3B--", 404},
+      {"/api/fleet?figure=scale_factor%0A/scale_factor", 400},
+      {"/api/fleet?figure=scale_factor//scale_factor", 400},
+      {"/api/fleet?figure=scale_factor", 400},
       {"/api/fleet?figure=scale_factor/scale_factor&since=2026'--", 400},
       {"/api/campaigns/0'%20OR%20'1'='1", 400},
       {"/api/campaigns/" + std::string(16, 'x'), 400},

@@ -55,10 +55,10 @@ CliRun run_example(const ProcedureSpec& spec) {
 
 std::string cli_path() { return INERTEST_CLI_PATH; }
 
-CliRun run_cli(const std::vector<std::string>& arguments) {
+CliRun run_cli(const std::vector<std::string>& arguments, const std::string& stdout_path) {
   // stdout and stderr go to files, so neither pipe can block the other.
   ScratchDirectory scratch;
-  const std::string out_path = scratch.path() + "/out";
+  const std::string out_path = stdout_path.empty() ? scratch.path() + "/out" : stdout_path;
   const std::string err_path = scratch.path() + "/err";
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -76,8 +76,10 @@ CliRun run_cli(const std::vector<std::string>& arguments) {
   ::waitpid(pid, &status, 0);
   CliRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ifstream out(out_path, std::ios::binary);
-  run.out.assign(std::istreambuf_iterator<char>(out), {});
+  if (stdout_path.empty()) {
+    std::ifstream out(out_path, std::ios::binary);
+    run.out.assign(std::istreambuf_iterator<char>(out), {});
+  }
   std::ifstream err(err_path, std::ios::binary);
   run.err.assign(std::istreambuf_iterator<char>(err), {});
   return run;

@@ -43,8 +43,9 @@ struct CliRun {
 // The path of build/bin/inertest.
 std::string cli_path();
 
-// Runs build/bin/inertest with the arguments (no shell quoting; each is one argv entry).
-CliRun run_cli(const std::vector<std::string>& arguments);
+// Runs build/bin/inertest with the arguments (no shell quoting; each is one argv entry), its stdout
+// into `stdout_path` when given (run.out is then empty).
+CliRun run_cli(const std::vector<std::string>& arguments, const std::string& stdout_path = "");
 
 // `inertest <kind> <example...> --json`, the worked example of a declared procedure
 // (ProcedureSpec::example); its arguments that name a file of the source tree are made absolute.

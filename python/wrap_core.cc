@@ -9,6 +9,7 @@
 #include "inertest/core/figure.h"
 #include "inertest/core/units.h"
 #include "inertest/version.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest::python {
 
@@ -250,7 +251,7 @@ void wrap_record(py::module_& module) {
           "to_dict", [](const Record& record) { return to_plain_python(record.json()); },
           "The JSON as plain Python objects: equal to json.loads() of what the CLI prints with --json.")
       .def(
-          "json", [](const Record& record, int indent) { return record.json().dump(indent); }, "indent"_a = -1,
+          "json", [](const Record& record, int indent) { return json_text(record.json(), indent); }, "indent"_a = -1,
           "The JSON text (the CLI's --json output; indent >= 0 pretty-prints).")
       .def("__repr__", [](py::object self) {
         return short_repr(self.cast<const Record&>(), py::type::of(self).attr("__name__").cast<std::string>());

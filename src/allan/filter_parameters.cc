@@ -7,6 +7,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {
@@ -349,7 +350,7 @@ std::string format_filter_parameters(const std::vector<SensorNoiseParameters>& s
   }
   nlohmann::json json = filter_parameters_json(sensors);
   json["command"] = command;
-  return json.dump(2) + "\n";
+  return json_text(json, 2) + "\n";
 }
 
 }  // namespace inertest

@@ -20,6 +20,7 @@
 #include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest::archive {
 
@@ -368,8 +369,8 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
   // or the same records processed again by the same inertest, is one campaign.
   nlohmann::json content = results;
   content.erase("processed_at");
-  record.entry.id = sha256_hex(content.dump()).substr(0, 16);
-  record.results_text = results.dump();
+  record.entry.id = sha256_hex(json_text(content)).substr(0, 16);
+  record.results_text = json_text(results);
   return record;
 }
 

@@ -18,6 +18,7 @@
 #include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/version.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {
@@ -508,7 +509,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
     }
     summary.results = campaign_results(plan, std::move(procedures), std::move(verdicts));
-    write_file_atomically((staging / "results.json").string(), summary.results.dump(2) + "\n");
+    write_file_atomically((staging / "results.json").string(), json_text(summary.results, 2) + "\n");
     if (options.report_page) write_file_atomically((staging / "report.html").string(), options.report_page(summary.results));
     for (const auto& entry : std::filesystem::recursive_directory_iterator(staging)) {
       if (!entry.is_regular_file()) continue;

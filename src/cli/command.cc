@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "procedure_command.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest::cli {
 namespace {
@@ -55,7 +56,7 @@ std::vector<std::pair<CLI::App*, CommandAction>> add_registered_commands(CLI::Ap
 }
 
 void print_result(const nlohmann::json& json, const std::string& report, bool as_json) {
-  const std::string text = as_json ? json.dump(2) + "\n" : report;
+  const std::string text = as_json ? json_text(json, 2) + "\n" : report;
   std::fwrite(text.data(), 1, text.size(), stdout);
   std::fflush(stdout);
 }

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest {
 
@@ -138,7 +139,7 @@ std::string value_text(const nlohmann::json& value) {
   }
   if (value.is_string()) return value.get<std::string>();
   if (value.is_boolean()) return value.get<bool>() ? "yes" : "no";
-  return value.dump();
+  return json_text(value);
 }
 
 // A table field: its label, then a row a line: a figure as it reads, another object as its cells

@@ -26,6 +26,7 @@
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/io/rate_record.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {
@@ -172,7 +173,7 @@ std::string command_line(const ProcedureCall& call) {
       continue;
     }
     words.push_back(parameter.command_line_option());
-    const auto text_of = [](const nlohmann::json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); };
+    const auto text_of = [](const nlohmann::json& value) { return value.is_string() ? value.get<std::string>() : json_text(value); };
     if (parameter.type == ParameterType::boolean) continue;  // the flag alone
     if (!given->is_array()) {
       words.push_back(text_of(*given));

@@ -11,6 +11,7 @@
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/procedures/imu_calibration.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {
@@ -141,7 +142,7 @@ ProcedureSpec imu_calibration_spec() {
       .compute([](const ProcedureCall& call, const Options& options) {
         Result result = calibrate_imu(read_imu_record(call.files.at("record"), options.columns), options);
         if (!options.export_file.empty()) {
-          write_file_atomically(call.output_path(options.export_file), calibration_file_json(result).dump(2) + "\n");
+          write_file_atomically(call.output_path(options.export_file), json_text(calibration_file_json(result), 2) + "\n");
         }
         return result;
       });

@@ -17,6 +17,7 @@
 #include "inertest/numerics/statistics.h"
 #include "io/text_rows.h"
 #include "procedures/temperature_model_internal.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {
@@ -608,14 +609,14 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
   if (extension == ".json") {
     nlohmann::json coefficients = nlohmann::json::object();
     for (const auto& c : result.coefficients) coefficients[c.name] = c.value;
-    return nlohmann::json{{"model", "inertest temperature model"},
+    return json_text(nlohmann::json{{"model", "inertest temperature model"},
                           {"sensor", result.sensor},
                           {"order", result.order},
                           {"reference_temperature_degC", options.reference_temperature_degC},
                           {"rate_window_s", options.rate_window_s},
                           {"soak_rate_degC_per_min", options.soak_rate_degC_per_min},
-                          {"coefficients", coefficients}}
-               .dump(2) +
+                          {"coefficients", coefficients}},
+                     2) +
            "\n";
   }
   if (extension != ".csv") throw Error(fmt::format("{}: the export is .json or .csv, not '{}'", path, extension));

@@ -1,4 +1,5 @@
 #include "inertest/report/svg_plot.h"
+#include "inertest/core/json_text.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -599,7 +600,7 @@ std::string render_svg(const Plot& plot) {
   svg.line("</svg>");
   if (plot.embed_data) {
     // "</" could end the script element early; JSON allows "<\/" for it.
-    const std::string data = plot_data(plot).dump();
+    const std::string data = json_text(plot_data(plot));
     std::string escaped;
     escaped.reserve(data.size());
     for (std::size_t i = 0; i < data.size(); ++i) {

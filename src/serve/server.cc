@@ -19,6 +19,7 @@
 #include "inertest/report/archive_pages.h"
 #include "inertest/report/report.h"
 #include "serve/pages.h"
+#include "inertest/core/json_text.h"
 
 namespace inertest::serve {
 namespace {
@@ -65,7 +66,7 @@ const char* reason(int status) {
 
 void send_json(httplib::Response& response, int status, const nlohmann::json& json) {
   response.status = status;
-  response.set_content(json.dump(), "application/json");
+  response.set_content(json_text(json), "application/json");
 }
 
 // ?lang=en (the default) or zh.

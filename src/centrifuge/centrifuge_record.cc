@@ -69,7 +69,7 @@ std::vector<CentrifugeRun> CentrifugeRecord::runs() const {
 
 CentrifugeRecord read_centrifuge_record(const std::string& path) {
   const MappedFile file(path);
-  return parse_centrifuge_record(file.bytes(), path);
+  return parse_centrifuge_record(file.text(), path);
 }
 
 CentrifugeRecord parse_centrifuge_record(std::string_view text, const std::string& source) {

@@ -92,5 +92,19 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   EXPECT_THAT(run.err, HasSubstr(bad + ":2:1: expected a number"));
 }
 
+// NUMBER:FILE with a number out of a double's range (1e400) was a run at 0 (a room temperature of
+// 0 degC, a run at rest), and "inf" was taken as a number.
+TEST(ProcedureCommand, ARunNumberMustBeFinite) {
+  testing::ScratchDirectory scratch;
+  const std::string record = scratch.write("run.csv", "output\n1\n2\n3\n");
+  for (const std::string number : {"1e400", "-1e309", "inf", "nan"}) {
+    const auto run = run_cli({"bias-temperature", "--run", number + ":" + record, "--run", "-40:" + record, "--column",
+                              "output", "--input-deg-h", "--json"});
+    EXPECT_EQ(run.exit_code, 2) << number;
+    EXPECT_THAT(run.err, HasSubstr("--run '" + number + ":" + record + "': expected NUMBER:FILE with a finite NUMBER"));
+    EXPECT_EQ(run.out, "");
+  }
+}
+
 }  // namespace
 }  // namespace inertest

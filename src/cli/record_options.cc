@@ -1,6 +1,7 @@
 #include "record_options.h"
 
 #include <charconv>
+#include <cmath>
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
@@ -22,9 +23,11 @@ std::pair<double, std::string> parse_number_and_file(const std::string& text, co
   const auto colon = text.find(':');
   double number = 0.0;
   const char* end = text.data() + (colon == std::string::npos ? 0 : colon);
-  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size() ||
-      std::from_chars(text.data(), end, number).ptr != end) {
-    throw Error(fmt::format("{} '{}': expected NUMBER:FILE, e.g. {}", option, text, example));
+  // A number out of a double's range (1e400) left `number` at 0 with the end reached: a run at 0.
+  const auto parsed = std::from_chars(text.data(), end, number);
+  if (colon == std::string::npos || colon == 0 || colon + 1 == text.size() || parsed.ptr != end ||
+      parsed.ec != std::errc() || !std::isfinite(number)) {
+    throw Error(fmt::format("{} '{}': expected NUMBER:FILE with a finite NUMBER, e.g. {}", option, text, example));
   }
   return {number, text.substr(colon + 1)};
 }

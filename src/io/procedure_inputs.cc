@@ -34,7 +34,7 @@ TextTable read_columns(const std::string& path, std::vector<std::string> names) 
 std::vector<ListedFile> read_file_listing(const std::string& listing, const std::string& key_column,
                                           const std::string& file_column) {
   const MappedFile file(listing);
-  const std::string_view text = file.bytes();
+  const std::string_view text = file.text();
   const std::filesystem::path directory = std::filesystem::path(listing).parent_path();
   std::vector<ListedFile> rows;
   std::size_t key_index = 0;

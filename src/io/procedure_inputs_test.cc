@@ -32,6 +32,16 @@ TEST(FileListing, ResolvesPathsAgainstTheListingsDirectory) {
   EXPECT_EQ(rows[1].where.line, 5u);
 }
 
+// A listing saved by Excel as "CSV UTF-8" starts with a byte order mark: its header was not found.
+TEST(FileListing, AByteOrderMarkIsNoPartOfTheHeader) {
+  ScratchDirectory scratch;
+  scratch.write("a.csv", "1\n");
+  const auto rows = read_file_listing(scratch.write("list.csv", "\xEF\xBB\xBFrate,file\n5,a.csv\n"), "rate");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].key, 5.0);
+  EXPECT_EQ(rows[0].where.column, 1u);
+}
+
 TEST(FileListing, QuotedFieldsHoldCommasAndBlanks) {
   ScratchDirectory scratch;
   scratch.write("run 1, cold.csv", "1\n");

@@ -24,13 +24,6 @@ using io_detail::LineCursor;
 using io_detail::RowChunk;
 using io_detail::RowLayout;
 
-// The text after a UTF-8 byte order mark (Excel's "CSV UTF-8" and many loggers write one): it is no
-// part of the first cell, and editors do not show it, so columns are counted after it.
-std::string_view without_byte_order_mark(std::string_view text) {
-  constexpr std::string_view kMark = "\xEF\xBB\xBF";
-  return text.starts_with(kMark) ? text.substr(kMark.size()) : text;
-}
-
 // TextTableOptions::threads, else INERTEST_THREADS, else one per core.
 std::size_t thread_count(const TextTableOptions& options) {
   if (options.threads > 0) return options.threads;
@@ -166,6 +159,8 @@ bool TextTable::has_column(std::string_view name) const {
 }
 
 TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options) {
+  // A UTF-8 byte order mark (Excel's "CSV UTF-8" and many loggers write one) is no part of the
+  // first cell, and editors do not show it, so columns are counted after it.
   text = without_byte_order_mark(text);
   // Lines ended by CR alone (classic Mac OS) would read as one line of many fields. Looked for only
   // in a text without LF (the search for an LF ends at the first line of any other record).
@@ -213,7 +208,7 @@ SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t 
     return location;
   }
   const MappedFile file(table.source);
-  LineCursor cursor(without_byte_order_mark(file.bytes()));
+  LineCursor cursor(file.text());
   Line line{};
   while (cursor.next(line)) {
     if (line.number != location.line) continue;

@@ -58,7 +58,7 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_positions(const std::str
 std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::string& listing_path) {
   const MappedFile listing(listing_path);
   const std::filesystem::path directory = std::filesystem::path(listing_path).parent_path();
-  const std::string_view text = listing.bytes();
+  const std::string_view text = listing.text();
   const std::vector<std::string> names = {"alpha_deg", "beta_deg", "rate_dps", "file"};
   std::vector<std::size_t> index_of;  // field index of each name
   std::vector<GyroMisalignmentRow> rows;

@@ -70,7 +70,7 @@ double cell_number(const TextField& cell, const std::string& path, std::size_t l
 // The supplies in the order they first appear; throws Error at file:line:column.
 std::vector<SupplyReadings> read_supply_readings(const std::string& path) {
   const MappedFile file(path);
-  const std::string_view text = file.bytes();
+  const std::string_view text = file.text();
   constexpr std::size_t kColumns = 3;
   constexpr const char* kNames[kColumns] = {"supply", "voltage", "current"};
   std::array<std::size_t, kColumns> index{};

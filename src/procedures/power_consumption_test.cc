@@ -61,6 +61,14 @@ TEST(PowerConsumption, HandCase) {
   EXPECT_THAT(fields.at("warnings")[0].get<std::string>(), HasSubstr("'-15V' are all equal"));
 }
 
+// Excel's "CSV UTF-8" starts with a byte order mark: the header's first name read as
+// "\xEF\xBB\xBFsupply" and the file was refused with "'supply' is missing".
+TEST(PowerConsumption, AByteOrderMarkIsNoPartOfTheHeader) {
+  const testing::ScratchDirectory scratch;
+  EXPECT_EQ(run_on(scratch.write("bom.csv", "\xEF\xBB\xBF" + std::string(kReadings))),
+            run_on(scratch.write("plain.csv", kReadings)));
+}
+
 TEST(PowerConsumption, OneReadingHasNoUncertainty) {
   const testing::ScratchDirectory scratch;
   const nlohmann::json fields =

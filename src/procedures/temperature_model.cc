@@ -632,7 +632,7 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
 
 ThermalCompensation read_thermal_compensation(const std::string& path) {
   const MappedFile file(path);
-  const std::string_view text = file.bytes();
+  const std::string_view text = file.text();
   ThermalCompensation compensation;
   const SourceLocation file_location{path, 0, 0};
   std::optional<std::size_t> order;  // stated by exports since the order was written; else inferred

@@ -8,6 +8,12 @@
 
 namespace inertest {
 
+// text without a leading UTF-8 byte order mark (EF BB BF).
+inline std::string_view without_byte_order_mark(std::string_view text) {
+  constexpr std::string_view kMark = "\xEF\xBB\xBF";
+  return text.starts_with(kMark) ? text.substr(kMark.size()) : text;
+}
+
 class MappedFile {
  public:
   // Throws Error naming the file when it cannot be opened or mapped.
@@ -20,6 +26,9 @@ class MappedFile {
 
   const std::string& path() const { return path_; }
   std::string_view bytes() const { return {data_, size_}; }
+  // The file as text: its bytes after the UTF-8 byte order mark that Excel's "CSV UTF-8" (and
+  // Notepad) write first, if there is one (read as text, it made the first header name "\xEF\xBB\xBFsupply").
+  std::string_view text() const { return without_byte_order_mark(bytes()); }
   std::size_t size() const { return size_; }
 
  private:

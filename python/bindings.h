@@ -5,6 +5,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+// File paths as str or os.PathLike (pathlib.Path), as Python's own open() takes them.
+#include <pybind11/stl/filesystem.h>
 
 #include <cstddef>
 #include <optional>

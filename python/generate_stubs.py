@@ -19,6 +19,8 @@ import sys
 
 HEADER = '''from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union, overload
 
+import os
+
 import numpy
 import numpy.typing
 
@@ -34,8 +36,9 @@ SPECIAL_METHODS = {"__init__", "__getattr__", "__getitem__", "__contains__", "__
 
 def readable_type(text, parameter):
     """A pybind11 type as the stubs write it: numpy arrays as ArrayLike (what a float64 parameter
-    accepts, converted) or their NDArray alias, no module prefix, unprintable defaults as '...'."""
-    text = text.replace("inertest.", "")
+    accepts, converted) or their NDArray alias, a path as str or os.PathLike (pybind11 names the
+    second alone), no module prefix, unprintable defaults as '...'."""
+    text = text.replace("inertest.", "").replace("os.PathLike", "Union[str, os.PathLike]")
 
     def array(match):
         dtype = match.group(1)

@@ -8,7 +8,11 @@ PYBIND11_MODULE(inertest, module) {
       "Procedures take numpy arrays and return results whose attributes are the JSON names of the CLI's\n"
       "--json output (every figure a Figure with value, unit and uncertainty; to_dict() is that JSON).\n"
       "Bad input raises inertest.Error, a ValueError with the CLI's message.";
+  // numpy first, whole, while this thread holds the import lock: pybind11 imports it on the first
+  // array it meets, and a first call on several threads at once (the GIL released in each) deadlocked
+  // in importlib.
   using namespace inertest::python;
+  py::module_::import("numpy");
   wrap_core(module);
   wrap_io(module);
   wrap_procedures(module);

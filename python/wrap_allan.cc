@@ -19,11 +19,11 @@ struct AllanTag {};
 struct AllanChannelsTag {};
 
 // The CLI's --export FORMAT FILE: (format, path).
-using ExportArgument = std::optional<std::pair<std::string, std::string>>;
+using ExportArgument = std::optional<std::pair<std::string, std::filesystem::path>>;
 
 void export_filter_parameters(const AllanChannels& channels, const ExportArgument& target, const std::string& command) {
   if (!target) return;
-  write_file_atomically(target->second, format_filter_parameters(filter_noise_parameters(channels),
+  write_file_atomically(target->second.string(), format_filter_parameters(filter_noise_parameters(channels),
                                                                  parse_filter_format(target->first), command));
 }
 
@@ -206,8 +206,8 @@ void wrap_allan(py::module_& module) {
   // README gives it; the keywords are the spec's (the plan keys).
   module.def(
       "allan_variance_of_file",
-      [](const std::string& path, py::kwargs keywords) {
-        keywords["file"] = path;
+      [](const std::filesystem::path& path, py::kwargs keywords) {
+        keywords["file"] = path.string();
         return py::module_::import("inertest").attr("allan")(**keywords);
       },
       "path"_a,
@@ -217,8 +217,8 @@ void wrap_allan(py::module_& module) {
       "psd, psd_window, psd_segment_length, threads, export); see help(inertest.allan).");
   module.def(
       "read_rate_record",
-      [](const std::string& path, const std::string& format, const std::optional<std::string>& column) {
-        const RateRecordSource source = rate_source(path, format, column);
+      [](const std::filesystem::path& path, const std::string& format, const std::optional<std::string>& column) {
+        const RateRecordSource source = rate_source(path.string(), format, column);
         std::vector<double> samples;
         {
           py::gil_scoped_release release;

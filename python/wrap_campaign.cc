@@ -15,7 +15,7 @@ void wrap_campaign(py::module_& module) {
   using namespace pybind11::literals;
   module.def("plan_kinds", &plan_kinds, "Every procedure kind a test plan may name, sorted.");
   module.def(
-      "validate_plan", [](const std::string& plan_path) { return to_plain_python(validate_plan(plan_path)); },
+      "validate_plan", [](const std::filesystem::path& plan_path) { return to_plain_python(validate_plan(plan_path.string())); },
       "plan_path"_a,
       "Loads and validates a test plan without running it; returns the validated plan as a dict. Raises\n"
       "inertest.Error naming the plan file and line.");
@@ -25,11 +25,11 @@ void wrap_campaign(py::module_& module) {
       "verdict); report() is the readable summary.");
   module.def(
       "run_campaign",
-      [](const std::string& plan_path, const std::string& out_dir) {
+      [](const std::filesystem::path& plan_path, const std::filesystem::path& out_dir) {
         CampaignSummary summary;
         {
           py::gil_scoped_release release;
-          summary = run_campaign(plan_path, out_dir);
+          summary = run_campaign(plan_path.string(), out_dir.string());
         }
         return ResultOf<CampaignTag>(summary.results, report::render_text_report(summary.results, {}));
       },

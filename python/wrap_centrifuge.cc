@@ -122,7 +122,7 @@ void wrap_centrifuge(py::module_& module) {
                              })
       .def("runs", &CentrifugeRecord::runs,
            "The runs as harmonic amplitudes: as read, or by the harmonic analysis (eq. 11) of the samples.");
-  module.def("read_centrifuge_record", &read_centrifuge_record, "path"_a,
+  module.def("read_centrifuge_record", [](const std::filesystem::path& path) { return read_centrifuge_record(path.string()); }, "path"_a,
              "Reads a centrifuge record as the CLI does: header accel_g,beta_deg,k0,k1c,k1s,k2c,k2s (harmonic\n"
              "amplitudes, deg/h) or accel_g,beta_deg,gamma_deg,output (raw samples, deg/h), either with an\n"
              "optional omega_rad_s column. Raises inertest.Error naming file and line.");

@@ -31,7 +31,7 @@ TextTableOptions::Header parse_header(const py::object& header) {
   return header.cast<bool>() ? TextTableOptions::Header::kPresent : TextTableOptions::Header::kAbsent;
 }
 
-PythonTextTable read_table(const std::string& path, const std::optional<std::vector<py::object>>& columns,
+PythonTextTable read_table(const std::filesystem::path& path, const std::optional<std::vector<py::object>>& columns,
                            const std::optional<std::string>& delimiter, const py::object& header,
                            const std::string& comment, std::size_t minimum_rows, bool record_row_lines) {
   TextTableOptions options;
@@ -58,7 +58,7 @@ PythonTextTable read_table(const std::string& path, const std::optional<std::vec
   TextTable table;
   {
     py::gil_scoped_release release;
-    table = read_text_table(path, options);
+    table = read_text_table(path.string(), options);
   }
   PythonTextTable result{table.source, table.names, {}, to_numpy(std::move(table.row_lines)), table.first_data_line};
   for (auto& column : table.columns) result.columns.push_back(to_numpy(std::move(column)));
@@ -89,10 +89,15 @@ void wrap_io(py::module_& module) {
       .def("to_dict",
            [](const PythonTextTable& table) {
              py::dict dict;
-             for (std::size_t i = 0; i < table.names.size(); ++i) dict[py::str(table.names[i])] = table.columns[i];
+             // A column without a header name is keyed by its 1-based place (every key was '' and
+             // only the last column was left).
+             for (std::size_t i = 0; i < table.names.size(); ++i) {
+               dict[py::str(table.names[i].empty() ? std::to_string(i + 1) : table.names[i])] = table.columns[i];
+             }
              return dict;
            },
-           "{name: column}; pandas.DataFrame(table.to_dict()) makes a data frame without copying.")
+           "{name: column} (a column without a header name under its 1-based position in the table, '1', '2'...);\n"
+           "pandas.DataFrame(table.to_dict()) makes a data frame without copying.")
       .def("__repr__", [](const PythonTextTable& table) {
         return fmt::format("<TextTable {}: {} rows, columns {}>", table.source,
                            table.columns.empty() ? 0 : table.columns[0].size(), fmt::join(table.names, ", "));
@@ -109,14 +114,14 @@ void wrap_io(py::module_& module) {
 
   module.def(
       "read_binary_record",
-      [](const std::string& path, const std::string& format, std::size_t channels, std::size_t channel) {
+      [](const std::filesystem::path& path, const std::string& format, std::size_t channels, std::size_t channel) {
         BinaryFormat binary = BinaryFormat::parse(format);
         binary.channels = channels;
         binary.channel = channel;
         std::vector<double> samples;
         {
           py::gil_scoped_release release;
-          samples = read_binary_record(path, binary);
+          samples = read_binary_record(path.string(), binary);
         }
         return to_numpy(std::move(samples));
       },

@@ -145,15 +145,17 @@ void wrap_misalignment(py::module_& module) {
 
   module.def(
       "read_gyro_misalignment_positions",
-      [](const std::string& path) { return gyro_rows_as_arguments(read_gyro_misalignment_positions(path), path); },
+      [](const std::filesystem::path& path) {
+        return gyro_rows_as_arguments(read_gyro_misalignment_positions(path.string()), path.string());
+      },
       "path"_a,
       "Reads a gyro misalignment means CSV (header alpha_deg,beta_deg,rate_dps,output) as the keyword\n"
       "arguments of gyro_misalignment: {'alpha_deg', 'beta_deg', 'rate_dps', 'output': arrays, 'line':\n"
       "1-based lines, 'source': path}; gyro_misalignment(**rows, scale_factor=k) does what the CLI does.");
   module.def(
       "read_gyro_misalignment_records",
-      [](const std::string& listing_path) {
-        return gyro_rows_as_arguments(read_gyro_misalignment_records(listing_path), listing_path);
+      [](const std::filesystem::path& listing_path) {
+        return gyro_rows_as_arguments(read_gyro_misalignment_records(listing_path.string()), listing_path.string());
       },
       "listing_path"_a,
       "Reads a listing CSV (header alpha_deg,beta_deg,rate_dps,file) of raw records, each averaged over\n"
@@ -161,8 +163,8 @@ void wrap_misalignment(py::module_& module) {
       "(the CLI's --records).");
   module.def(
       "read_accelerometer_misalignment_positions",
-      [](const std::string& path) {
-        return accelerometer_rows_as_arguments(read_accelerometer_misalignment_positions(path), path);
+      [](const std::filesystem::path& path) {
+        return accelerometer_rows_as_arguments(read_accelerometer_misalignment_positions(path.string()), path.string());
       },
       "path"_a,
       "Reads an accelerometer positions CSV (header beta_deg,output and optionally run) as the keyword\n"

@@ -56,6 +56,10 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
   options.smoothing_s = smoothing_s;
   options.random_walk = random_walk;
   if (latitude_deg) options.remove_earth_rate = AxisOrientation{*latitude_deg, heading_deg, elevation_deg};
+  // K and a record in deg/h exclude each other, as on the command line (K was silently ignored).
+  ProcedureCall given;
+  if (scale_factor) given.parameters["scale_factor"] = *scale_factor;
+  check_bias_conversion(given, options, "bias");
   BiasResult result;
   {
     py::gil_scoped_release release;

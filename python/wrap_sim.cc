@@ -52,11 +52,11 @@ void wrap_sim(py::module_& module) {
              "K (rad/s/sqrt(s)) K sqrt(tau / 3), R (rad/s^2) R tau / sqrt(2). Same seed, same samples.");
   module.def(
       "simulate",
-      [](const std::string& plan_path, const std::string& out_dir) {
+      [](const std::filesystem::path& plan_path, const std::filesystem::path& out_dir) {
         sim::SimulationSummary summary;
         {
           py::gil_scoped_release release;
-          summary = sim::simulate(plan_path, out_dir);
+          summary = sim::simulate(plan_path.string(), out_dir.string());
         }
         return summary_record(summary);
       },

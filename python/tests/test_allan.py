@@ -165,3 +165,13 @@ def test_a_two_dimensional_array_is_one_channel_per_column_as_the_cli_columns(tm
     assert spectral.channels.ax.psd.noise_terms.velocity_random_walk.unit == "m/s/sqrt(h)"
     with pytest.raises(inertest.Error, match="channels names 1 channels but rate has 2 columns"):
         inertest.allan_variance(imu, sample_rate_hz=SAMPLE_RATE_HZ, channels=["gx"])
+
+
+def test_the_noise_fit_needs_increasing_taus():
+    """The same curve in reverse order was fitted to other figures (the range drops the shortest taus first)."""
+    tau = np.array([0.1, 0.2, 0.4, 0.8, 1.6])
+    variance = 1e-4 / tau
+    edf = np.full(5, 50.0)
+    inertest.fit_noise_terms(tau, variance, edf)
+    with pytest.raises(inertest.Error, match=r"needs increasing taus \(point 2: 0.8 s after 1.6 s\)"):
+        inertest.fit_noise_terms(tau[::-1], variance[::-1], edf[::-1])

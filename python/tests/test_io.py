@@ -44,3 +44,47 @@ def test_binary_record_of_partial_frames_is_an_error(tmp_path):
     path.write_bytes(b"\0" * 12)
     with pytest.raises(ValueError, match="4"):
         inertest.read_binary_record(str(path))
+
+
+def test_paths_may_be_pathlib_paths(tmp_path, source_dir):
+    """pathlib.Path, as open() takes it, was a pybind11 TypeError in every reader but the generated ones."""
+    path = tmp_path / "record.csv"
+    path.write_text("time,rate\n0,1.5\n1,2.5\n")
+    np.testing.assert_array_equal(inertest.read_text_table(path)["rate"], [1.5, 2.5])
+    np.testing.assert_array_equal(inertest.read_rate_record(path, "csv", "rate"), [1.5, 2.5])
+    binary = tmp_path / "record.f64"
+    np.arange(3.0).tofile(binary)
+    np.testing.assert_array_equal(inertest.read_binary_record(binary), [0.0, 1.0, 2.0])
+    plan = source_dir / "examples" / "scale_factor" / "plan.toml"
+    assert inertest.validate_plan(plan)["instrument"]["id"] == inertest.validate_plan(str(plan))["instrument"]["id"]
+
+
+def test_to_dict_keeps_every_column_of_a_file_without_header(tmp_path):
+    """Every name of a headerless file is '': to_dict() kept the last column alone."""
+    path = tmp_path / "bare.csv"
+    path.write_text("1,2\n3,4\n")
+    table = inertest.read_text_table(path)
+    assert table.names == ["", ""]
+    columns = table.to_dict()
+    assert list(columns) == ["1", "2"]
+    np.testing.assert_array_equal(columns["1"], [1.0, 3.0])
+    np.testing.assert_array_equal(columns["2"], [2.0, 4.0])
+
+
+def test_first_calls_on_threads_before_numpy_is_imported():
+    """import inertest without numpy, then first calls on three threads at once: a deadlock in importlib."""
+    import subprocess
+    import sys
+
+    script = (
+        "import threading, inertest\n"
+        "done = []\n"
+        "def work(): done.append(inertest.scale_factor([0, 1, -1, 2, -2, 0], [0, 1, -1, 2, -2, 0]))\n"
+        "threads = [threading.Thread(target=work) for _ in range(3)]\n"
+        "[t.start() for t in threads]\n"
+        "[t.join() for t in threads]\n"
+        "print(len(done))\n"
+    )
+    completed = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60, check=False)
+    assert completed.returncode == 0, completed.stderr
+    assert completed.stdout.strip() == "3"

@@ -57,6 +57,16 @@ def test_bias_of_a_constant_record():
     assert [entry.value for entry in result.bias_stability] == pytest.approx([0.0, 0.0], abs=1e-9)
 
 
+def test_bias_takes_a_scale_factor_or_a_record_in_deg_h_as_the_cli_does():
+    """Both at once ran and ignored K (the CLI refuses them); neither was not refused either."""
+    output = np.full(100, 0.01)
+    with pytest.raises(inertest.Error, match="the scale factor K and records in deg/h .* exclude each other"):
+        inertest.bias(output, sample_rate_hz=10.0, scale_factor=10.0, input_in_deg_h=True)
+    with pytest.raises(inertest.Error, match="missing the scale factor K"):
+        inertest.bias(output, sample_rate_hz=10.0)
+    assert inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True).bias.value == pytest.approx(0.01)
+
+
 def test_bandwidth_of_a_first_order_lag_with_delay_equals_the_cli(source_dir):
     # G = 1/sqrt(1 + (w T)^2), P = -atan(w T) - w Td: the fit returns T and Td exactly (eqs. 37-46).
     bandwidth_hz, delay_s = 300.0, 2e-4

@@ -38,6 +38,12 @@ void check_points(std::span<const double> tau_s, std::span<const double> values,
     if (!(tau_s[i] > 0.0) || !(values[i] > 0.0) || !(edf[i] > 0.0)) {
       throw Error("noise identification needs positive tau, deviations and edf (point " + std::to_string(i + 1) + ")");
     }
+    // The fit range drops the shortest taus first and the slopes pair neighbours: in another order
+    // the same curve gave other figures.
+    if (i > 0 && !(tau_s[i] > tau_s[i - 1])) {
+      throw Error(fmt::format("noise identification needs increasing taus (point {}: {:g} s after {:g} s)", i + 1,
+                              tau_s[i], tau_s[i - 1]));
+    }
   }
 }
 

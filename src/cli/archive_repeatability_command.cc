@@ -41,7 +41,7 @@ CommandAction setup(CLI::App& archive) {
       "Day-to-day repeatability of one instrument across its archived campaigns (one value per campaign):\n"
       "a scale factor by GJB 2426A-2004 5.8.4 eq. (12), Kr = (1/K̄)·[Σ(Ki − K̄)²/(Q − 1)]^½ in ppm; a bias\n"
       "(any figure in a rate unit) by 5.12.3 eq. (21), Br = [Σ(B0i − B̄0)²/(Q − 1)]^½ in deg/h. The standard\n"
-      "asks for Q >= 6; fewer campaigns give a warning.");
+      "asks for Q >= 6: fewer campaigns give a warning, fewer than 2 an error (no deviation from one).");
   command->add_option("ID", arguments->instrument, "instrument id")->required();
   command->add_option("--figure", arguments->figure,
                       "PROCEDURE/FIGURE: a scale factor (e.g. scale_factor/scale_factor) or a bias "

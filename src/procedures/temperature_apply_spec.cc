@@ -14,8 +14,8 @@ ProcedureSpec temperature_apply_spec() {
   using Result = TemperatureApplyResult;
   ProcedureDefinition<Options, Result> definition(
       "temperature_apply", "Temperature compensation", "IEEE Std 952-1997 Annex B (model equation)",
-      "subtracts the bias model that `inertest temperature-model --export` wrote (COEFFICIENTS, .json or\n"
-      ".csv) from a record's bias output/K, with dT/dt and the heating/cooling legs found as the model\n"
+      "subtracts the bias model that `inertest temperature-model --export` wrote (--coefficients FILE,\n"
+      ".json or .csv) from a record's bias output/K, with dT/dt and the heating/cooling legs found as the model\n"
       "was fitted, and shows the residual: its bias stability beside the raw one over the same windows.\n"
       "RECORD is a text record with a time column, an output column and the exported sensor's column\n"
       "(or --temperature-column).");

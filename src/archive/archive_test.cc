@@ -526,6 +526,19 @@ TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(scratch_.path() + "/slash"),
                           std::filesystem::directory_iterator()),
             5);  // the pages and nothing else (no staging left)
+
+  // A directory where a page goes: an error naming it, the pages as they were and no staging left
+  // (fleet.html was replaced, then an internal error, exit 3, left the staging directory behind).
+  std::filesystem::create_directories(scratch_.path() + "/blocked/history-FOG-A.html");
+  const auto blocked = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/blocked", "--db", location_});
+  EXPECT_EQ(blocked.exit_code, 2);
+  EXPECT_THAT(blocked.err, HasSubstr("/blocked/history-FOG-A.html: a directory is where a file is to be written"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(scratch_.path() + "/blocked"),
+                          std::filesystem::directory_iterator()),
+            1);
+  const auto file = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/slash/fleet.html", "--db", location_});
+  EXPECT_EQ(file.exit_code, 2);
+  EXPECT_THAT(file.err, HasSubstr("fleet.html: the output directory is a file"));
 }
 
 // The demo's results.json (inertest demo).

@@ -480,9 +480,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   // campaign leaves no partial output, overwrites nothing of an earlier run, and removes what it
   // made of the output directory's path (and only that).
   const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
-  if (std::filesystem::exists(out) && !std::filesystem::is_directory(out)) {
-    throw Error(SourceLocation{out_dir, 0, 0}, "the output directory is a file");
-  }
+  require_output_directory(out);
   const std::filesystem::path made = first_missing(out);
   std::filesystem::create_directories(out);
   const std::filesystem::path staging = out / ".inertest-exports";
@@ -512,25 +510,16 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
     write_file_atomically((staging / "results.json").string(), json_text(summary.results, 2) + "\n");
     if (options.report_page) write_file_atomically((staging / "report.html").string(), options.report_page(summary.results));
     for (const auto& entry : std::filesystem::recursive_directory_iterator(staging)) {
-      if (!entry.is_regular_file()) continue;
-      const std::filesystem::path relative = entry.path().lexically_relative(staging);
-      if (std::filesystem::is_directory(out / relative)) {
-        throw Error(SourceLocation{(out / relative).string(), 0, 0}, "a directory is where the run writes a file");
-      }
-      staged.push_back(relative);
+      if (entry.is_regular_file()) staged.push_back(entry.path().lexically_relative(staging));
     }
+    // results.json first, so that written_files.front() is it; the rest in the order found.
+    std::stable_partition(staged.begin(), staged.end(), [](const auto& p) { return p == "results.json"; });
+    move_staged_files(staging, out, staged);
   } catch (...) {
     std::filesystem::remove_all(made.empty() ? staging : made);
     throw;
   }
-  // results.json first, so that written_files.front() is it; the rest in the order found.
-  std::stable_partition(staged.begin(), staged.end(), [](const auto& p) { return p == "results.json"; });
-  for (const auto& relative : staged) {
-    const std::filesystem::path target = out / relative;
-    std::filesystem::create_directories(target.parent_path());
-    std::filesystem::rename(staging / relative, target);
-    summary.written_files.push_back((std::filesystem::path(out_dir) / relative).string());
-  }
+  for (const auto& relative : staged) summary.written_files.push_back((std::filesystem::path(out_dir) / relative).string());
   std::filesystem::remove_all(staging);
   if (options.progress) options.progress("done", 1.0);
   return summary;

@@ -222,7 +222,7 @@ TEST(Campaign, TheReportIsWrittenWithTheResultsOrNeither) {
     run_campaign(plan, dir.path() + "/blocked", options);
     ADD_FAILURE() << "a directory in the way of report.html was not an error";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("report.html: a directory is where the run writes a file"));
+    EXPECT_THAT(e.what(), HasSubstr("report.html: a directory is where a file is to be written"));
   }
   EXPECT_FALSE(std::filesystem::exists(dir.path() + "/blocked/results.json"));
 }

@@ -48,4 +48,23 @@ void write_file_atomically(const std::string& path, std::string_view content) {
   }
 }
 
+void move_staged_files(const std::filesystem::path& staging, const std::filesystem::path& out,
+                       const std::vector<std::filesystem::path>& names) {
+  for (const auto& name : names) {
+    if (std::filesystem::is_directory(out / name)) {
+      throw Error(SourceLocation{(out / name).string(), 0, 0}, "a directory is where a file is to be written");
+    }
+  }
+  for (const auto& name : names) {
+    std::filesystem::create_directories((out / name).parent_path());
+    std::filesystem::rename(staging / name, out / name);
+  }
+}
+
+void require_output_directory(const std::filesystem::path& out) {
+  if (std::filesystem::exists(out) && !std::filesystem::is_directory(out)) {
+    throw Error(SourceLocation{out.string(), 0, 0}, "the output directory is a file");
+  }
+}
+
 }  // namespace inertest

@@ -277,24 +277,26 @@ std::vector<std::string> write_archive_pages(const json& data, const std::string
     pages.emplace_back(history_page_file_name(history.at("instrument").get<std::string>()),
                        render_history_page(history, options));
   }
+  require_output_directory(out_dir);
   fs::create_directories(out_dir);
   // Then written into a staging directory beside them, and moved into place only when all are
-  // there: a full disk leaves the pages as they were.
+  // there: a full disk, or a directory where a page goes, leaves the pages as they were.
   const fs::path staging = fs::path(out_dir) / fmt::format(".archive-pages-{}", ::getpid());
   fs::remove_all(staging);
   fs::create_directory(staging);
+  std::vector<fs::path> names;
+  std::vector<std::string> written;
+  for (const auto& [name, content] : pages) {
+    names.emplace_back(name);
+    written.push_back((fs::path(out_dir) / name).string());
+  }
   try {
     for (const auto& [name, content] : pages) write_file_atomically((staging / name).string(), content);
+    move_staged_files(staging, out_dir, names);
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(staging, ignored);
     throw;
-  }
-  std::vector<std::string> written;
-  for (const auto& [name, content] : pages) {
-    const fs::path path = fs::path(out_dir) / name;
-    fs::rename(staging / name, path);
-    written.push_back(path.string());
   }
   fs::remove(staging);
   return written;

@@ -48,6 +48,13 @@ TEST(BiasTemperatureSensitivityTest, BadInputIsAnError) {
   EXPECT_THROW(bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{20.0, 1.0}}), Error);
   EXPECT_THROW(bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{20.0, 1.0}, {20.0, 2.0}}), Error);
   EXPECT_THROW(bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{20.0, 1.0}, {30.0, 2.0}}, {25.0}), Error);
+  // -400 for -40 degC: Bt was computed over 420 degC.
+  try {
+    bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{20.0, 1.0}, {-400.0, 2.0}});
+    ADD_FAILURE() << "a run below absolute zero was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "bias temperature sensitivity: run 2: -400 degC is below absolute zero");
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 
@@ -14,9 +15,13 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
                             "at least one other temperature",
                             runs.size()));
   }
-  for (const auto& run : runs) {
-    if (!std::isfinite(run.temperature_degC) || !std::isfinite(run.bias_deg_h)) {
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!std::isfinite(runs[i].temperature_degC) || !std::isfinite(runs[i].bias_deg_h)) {
       throw Error("bias temperature sensitivity: a run's temperature or bias is not a finite number");
+    }
+    if (runs[i].temperature_degC < constants::kAbsoluteZeroDegC) {  // a typo (-400 for -40) moved Bt silently
+      throw Error(fmt::format("bias temperature sensitivity: run {}: {} degC is below absolute zero", i + 1,
+                              runs[i].temperature_degC));
     }
   }
   std::size_t room = 0;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 
@@ -26,6 +27,10 @@ ScaleFactorTemperatureResult scale_factor_temperature_sensitivity(std::span<cons
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!std::isfinite(runs[i].temperature_degC)) {
       throw Error(fmt::format("scale factor temperature sensitivity: run {}: temperature is not finite", i + 1));
+    }
+    if (runs[i].temperature_degC < constants::kAbsoluteZeroDegC) {  // a typo (-400 for -40) moved Kt silently
+      throw Error(fmt::format("scale factor temperature sensitivity: run {}: {} degC is below absolute zero", i + 1,
+                              runs[i].temperature_degC));
     }
     for (std::size_t j = 0; j < i; ++j) {
       if (runs[j].temperature_degC == runs[i].temperature_degC) {

@@ -52,6 +52,14 @@ TEST(ScaleFactorTemperatureSensitivity, BadInputIsAnError) {
   auto duplicate = runs();
   duplicate[2].temperature_degC = 40.0;
   EXPECT_THROW(scale_factor_temperature_sensitivity(duplicate), Error);
+  auto typo = runs();
+  typo[2].temperature_degC = -400.0;  // for -40: Kt over 420 degC
+  try {
+    scale_factor_temperature_sensitivity(typo);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "scale factor temperature sensitivity: run 3: -400 degC is below absolute zero");
+  }
   auto missing = runs();
   missing[1].points.pop_back();  // no static run at the end
   try {

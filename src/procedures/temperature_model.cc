@@ -715,6 +715,13 @@ ThermalRecord read_thermal_record(const std::string& path, const std::string& ti
   record.time_s = std::move(table.columns[0]);
   record.output = std::move(table.columns[1]);
   for (std::size_t s = 0; s < temperature_columns.size(); ++s) {
+    // A sensor's fault code (-999) or a typo is no temperature: it bent the model silently.
+    const std::vector<double>& temperatures = table.columns[s + 2];
+    for (std::size_t i = 0; i < temperatures.size(); ++i) {
+      if (temperatures[i] < constants::kAbsoluteZeroDegC) {
+        throw Error(locate_cell(table, i, s + 2), fmt::format("{} degC is below absolute zero", temperatures[i]));
+      }
+    }
     record.sensor_names.push_back(table.names[s + 2].empty() ? temperature_columns[s] : table.names[s + 2]);
     record.temperature_degC.push_back(std::move(table.columns[s + 2]));
   }

@@ -162,6 +162,17 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
   }
 }
 
+// A sensor's fault code in one row (-999) bent the model silently; it is an error at its cell.
+TEST(TemperatureModel, ATemperatureBelowAbsoluteZeroIsAnErrorAtItsCell) {
+  const testing::ScratchDirectory scratch;
+  const std::string record =
+      scratch.write("ramp.csv", "time,output,coil\n0,1,20\n1,1,20.1\n2,1,-999\n3,1,20.3\n");
+  const testing::CliRun model =
+      testing::run_cli({"temperature-model", record, "--temperature-column", "coil", "--scale-factor", "36000"});
+  EXPECT_EQ(model.exit_code, 2);
+  EXPECT_THAT(model.err, ::testing::HasSubstr(record + ":4:5: -999 degC is below absolute zero"));
+}
+
 // An exported model of order 2 with the rate terms and the hysteresis, in either form; `edit` changes
 // the coefficient rows (name, value, unit) before they are written.
 struct CoefficientRow {

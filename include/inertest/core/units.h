@@ -55,6 +55,7 @@ inline constexpr double kStandardGravity = 9.80665;        // m/s^2, CGPM 1901
 // Earth rotation rate relative to the fixed stars, 7.2921150e-5 rad/s (IERS; WGS 84 uses
 // 7.292115e-5). In deg/h: 15.041067 deg/h.
 inline constexpr double kEarthRate = 7.2921150e-5;         // rad/s
+inline constexpr double kAbsoluteZeroDegC = -273.15;       // 0 K, degC (SI: T/K = t/degC + 273.15)
 }  // namespace constants
 
 }  // namespace inertest

@@ -69,6 +69,16 @@ py::array_t<double> model_output(const std::array<double, kDriftTermCount>& coef
                                  double gravity_m_s2, double k1_rad, double k2_rad, double delta_omega_rad_s) {
   const CentrifugeSite site = site_of(radius_m, latitude_deg, gravity_m_s2);
   site.validate();
+  // A NaN among them made every output NaN, silently.
+  for (std::size_t term = 0; term < kDriftTermCount; ++term) {
+    if (!std::isfinite(coefficients[term])) {
+      throw Error(fmt::format("coefficients: {} is not a finite number", drift_term_name(term)));
+    }
+  }
+  for (const auto& [name, value] : {std::pair{"omega_rad_s", omega_rad_s}, {"beta_rad", beta_rad}, {"k1_rad", k1_rad},
+                                    {"k2_rad", k2_rad}, {"delta_omega_rad_s", delta_omega_rad_s}}) {
+    if (!std::isfinite(value)) throw Error(fmt::format("{} must be a finite number, got {}", name, value));
+  }
   const CentrifugeErrors errors{k1_rad, k2_rad, delta_omega_rad_s};
   const auto gamma = as_span(gamma_rad, "gamma_rad");
   std::vector<double> output(gamma.size());

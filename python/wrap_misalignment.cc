@@ -2,6 +2,9 @@
 // fixture's errors (the misalignment paper, cited in core/citations.h).
 
 #include <array>
+#include <cmath>
+
+#include <fmt/format.h>
 
 #include "bindings.h"
 #include "inertest/misalignment/accelerometer_misalignment.h"
@@ -12,24 +15,34 @@
 namespace inertest::python {
 namespace {
 
-using LineArray = py::array_t<std::size_t, py::array::c_style | py::array::forcecast>;
-using RunArray = py::array_t<long, py::array::c_style | py::array::forcecast>;
+// Whole numbers given as any numeric array: each must be one, at least `least` (numpy's own cast
+// to an integer type took 1.5 for 1, NaN for -2^63 and -1 for a line 2^64 - 1).
+template <typename Integer>
+std::vector<Integer> whole_numbers(const DoubleArray& given, const char* name, double least, std::size_t rows) {
+  const auto values = as_span(given, name);
+  require_equal_lengths({{"output", rows}, {name, values.size()}});
+  std::vector<Integer> whole(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!(values[i] >= least) || values[i] != std::floor(values[i]) || values[i] > 9.0e15) {
+      throw Error(fmt::format("{}: value {} ({}) is not a whole number of at least {}", name, i + 1, values[i], least));
+    }
+    whole[i] = static_cast<Integer>(values[i]);
+  }
+  return whole;
+}
 
 struct GyroMisalignmentTag {};
 struct AccelerometerMisalignmentTag {};
 
 // The 1-based input line of every row, or none.
-std::vector<std::size_t> lines_of(const std::optional<LineArray>& line, std::size_t rows) {
-  if (!line) return std::vector<std::size_t>(rows, 0);
-  if (line->ndim() != 1) throw Error("line must be a one-dimensional array");
-  require_equal_lengths({{"output", rows}, {"line", static_cast<std::size_t>(line->shape(0))}});
-  return {line->data(), line->data() + line->shape(0)};
+std::vector<std::size_t> lines_of(const std::optional<DoubleArray>& line, std::size_t rows) {
+  return line ? whole_numbers<std::size_t>(*line, "line", 0.0, rows) : std::vector<std::size_t>(rows, 0);
 }
 
 ResultOf<GyroMisalignmentTag> gyro_misalignment_of(const DoubleArray& alpha_deg, const DoubleArray& beta_deg,
                                                    const DoubleArray& rate_dps, const DoubleArray& output,
                                                    double scale_factor, const std::string& output_unit,
-                                                   const std::optional<LineArray>& line,
+                                                   const std::optional<DoubleArray>& line,
                                                    const std::optional<std::string>& source) {
   const auto alpha = as_span(alpha_deg, "alpha_deg");
   const auto beta = as_span(beta_deg, "beta_deg");
@@ -51,15 +64,13 @@ ResultOf<GyroMisalignmentTag> gyro_misalignment_of(const DoubleArray& alpha_deg,
 }
 
 ResultOf<AccelerometerMisalignmentTag> accelerometer_misalignment_of(
-    const DoubleArray& beta_deg, const DoubleArray& output, double scale_factor, const std::optional<RunArray>& run,
-    const std::string& output_unit, const std::optional<LineArray>& line, const std::optional<std::string>& source) {
+    const DoubleArray& beta_deg, const DoubleArray& output, double scale_factor, const std::optional<DoubleArray>& run,
+    const std::string& output_unit, const std::optional<DoubleArray>& line, const std::optional<std::string>& source) {
   const auto beta = as_span(beta_deg, "beta_deg");
   const auto outputs = as_span(output, "output");
   require_equal_lengths({{"output", outputs.size()}, {"beta_deg", beta.size()}});
-  if (run) {
-    if (run->ndim() != 1) throw Error("run must be a one-dimensional array");
-    require_equal_lengths({{"output", outputs.size()}, {"run", static_cast<std::size_t>(run->shape(0))}});
-  }
+  const std::vector<long> runs = run ? whole_numbers<long>(*run, "run", -9.0e15, outputs.size())
+                                     : std::vector<long>(outputs.size(), 1);
   const std::vector<std::size_t> lines = lines_of(line, outputs.size());
   AccelerometerMisalignmentOptions options;
   options.scale_factor = scale_factor;
@@ -67,7 +78,7 @@ ResultOf<AccelerometerMisalignmentTag> accelerometer_misalignment_of(
   options.source = source.value_or("");
   options.validate();
   std::vector<AccelerometerMisalignmentRow> rows(outputs.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = {beta[i], outputs[i], run ? run->data()[i] : 1, lines[i]};
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = {beta[i], outputs[i], runs[i], lines[i]};
   return make_spec_result<AccelerometerMisalignmentTag>(accelerometer_misalignment_spec(),
                                                         accelerometer_misalignment(rows, options));
 }

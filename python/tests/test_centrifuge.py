@@ -60,3 +60,14 @@ def test_latitude_is_required_while_compensating():
     run = inertest.CentrifugeRun(10.0, 0.0, [1.0, 0.0, 0.0, 0.0, 0.0])
     with pytest.raises(inertest.Error, match="latitude_deg is required"):
         inertest.calibrate_drift_coefficients([run])
+
+
+def test_model_output_refuses_inputs_that_are_not_finite():
+    """A NaN coefficient or rate made every output NaN, silently."""
+    gamma = np.linspace(0.0, 6.0, 10)
+    coefficients = [0.0] * len(inertest.DRIFT_TERMS)
+    with pytest.raises(inertest.Error, match="omega_rad_s must be a finite number"):
+        inertest.centrifuge_model_output(coefficients, float("nan"), 0.0, gamma)
+    coefficients[0] = float("nan")
+    with pytest.raises(inertest.Error, match=f"coefficients: {inertest.DRIFT_TERMS[0]} is not a finite number"):
+        inertest.centrifuge_model_output(coefficients, 1.0, 0.0, gamma)

@@ -64,3 +64,25 @@ def test_whole_revolution_mean_reads_the_arrays_in_place():
     assert mean.revolutions == 2
     assert mean.samples_used == 144
     assert mean.mean == pytest.approx(1.0, abs=1e-12)
+
+
+def test_runs_and_lines_must_be_whole_numbers():
+    """numpy's cast took run 1.5 for 1, a NaN run for -2**63 and a line -1 for 2**64 - 1, silently."""
+    beta = np.arange(0.0, 360.0, 45.0)
+    output = np.cos(np.radians(beta))
+    for run, message in [(np.full(8, 1.5), r"run: value 1 \(1.5\) is not a whole number"),
+                         (np.array([1.0] * 7 + [np.nan]), r"run: value 8 \(nan\) is not a finite number")]:
+        with pytest.raises(inertest.Error, match=message):
+            inertest.accelerometer_misalignment(beta, output, scale_factor=1.0, run=run)
+    with pytest.raises(inertest.Error, match=r"line: value 1 \(-1\) is not a whole number of at least 0"):
+        inertest.accelerometer_misalignment(beta, output, scale_factor=1.0, line=np.full(8, -1))
+    whole = inertest.accelerometer_misalignment(beta, output, scale_factor=1.0, run=np.ones(8, dtype=np.int64))
+    assert whole.to_dict() == inertest.accelerometer_misalignment(beta, output, scale_factor=1.0).to_dict()
+
+
+def test_closed_forms_refuse_an_output_that_is_not_finite():
+    """A NaN output gave a NaN angle."""
+    with pytest.raises(inertest.Error, match="the output at 0 deg is not a finite number"):
+        inertest.four_position_misalignment(float("nan"), 2.0, 3.0, 4.0, 1.0)
+    with pytest.raises(inertest.Error, match="an output at position 3 is not a finite number"):
+        inertest.five_position_misalignment([1, 2, float("inf"), 4, 5], [1, 2, 3, 4, 5], 1.0, 10.0)

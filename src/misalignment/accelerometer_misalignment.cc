@@ -146,6 +146,12 @@ std::array<double, 2> four_position_misalignment(double v_0, double v_90, double
     throw Error(fmt::format("accelerometer misalignment: the scale factor kI must be finite and nonzero, got {}",
                             scale_factor));
   }
+  const std::array<double, 4> outputs = {v_0, v_90, v_180, v_270};
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (!std::isfinite(outputs[i])) {  // a NaN gave a NaN angle, silently
+      throw Error(fmt::format("accelerometer misalignment: the output at {} deg is not a finite number", 90 * i));
+    }
+  }
   // The misalignment paper (reference README §2): Δθy2 = (V(π) − V(0))/(2kI), Δθz2 = (V(π/2) − V(3π/2))/(2kI).
   return {(v_180 - v_0) / (2.0 * scale_factor), (v_90 - v_270) / (2.0 * scale_factor)};
 }

@@ -176,6 +176,11 @@ std::array<double, 5> five_position_misalignment(const FivePositionOutputs& outp
   if (!(rate_dps > 0.0) || !std::isfinite(rate_dps)) {
     throw Error(fmt::format("gyro misalignment: the table rate ω must be positive, got {} deg/s", rate_dps));
   }
+  for (std::size_t i = 0; i < 5; ++i) {
+    if (!std::isfinite(outputs.plus[i]) || !std::isfinite(outputs.minus[i])) {
+      throw Error(fmt::format("gyro misalignment: an output at position {} is not a finite number", i + 1));
+    }
+  }
   // D_i = V_i(+) − V_i(−); the paper's closed forms (reference README §2).
   std::array<double, 5> d{};
   for (std::size_t i = 0; i < 5; ++i) d[i] = outputs.plus[i] - outputs.minus[i];

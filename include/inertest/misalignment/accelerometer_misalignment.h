@@ -83,6 +83,7 @@ AccelerometerMisalignmentResult accelerometer_misalignment(std::span<const Accel
                                                            const AccelerometerMisalignmentOptions& options);
 
 // The paper's closed forms, angles in rad: returns {Δθy2, Δθz2} from V(0), V(π/2), V(π), V(3π/2).
+// Throws Error for an output that is not finite or a scale factor that is zero or not finite.
 std::array<double, 2> four_position_misalignment(double v_0, double v_90, double v_180, double v_270,
                                                  double scale_factor);
 

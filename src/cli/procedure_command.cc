@@ -242,12 +242,20 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
         call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);
       }
     }
-    // A procedure's complaint about the data of its one file names that file.
+    // A procedure's complaint about the data of its one file names that file, and so does a figure
+    // its data overflowed (procedure_json).
     call.progress = terminal_progress();
-    const auto run = [&] { return naming_options([&] { return spec.run(call); }); };
+    nlohmann::json json;
+    const auto run = [&] {
+      return naming_options([&] {
+        ProcedureOutput output = spec.run(call);
+        json = procedure_json(spec, output.fields);
+        return output;
+      });
+    };
     const ProcedureOutput output =
         call.files.size() == 1 ? with_file_context(call.files.begin()->second, run) : run();
-    print_result(procedure_json(spec, output.fields), procedure_text(spec, output), arguments->json);
+    print_result(json, procedure_text(spec, output), arguments->json);
     return 0;
   };
 }

@@ -117,6 +117,13 @@ ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const S
 
   const std::string k_unit = options.output_unit + "/(" + options.rate_unit + ")";
   // A standard error of zero means "not estimable" (two points only): reported as unknown.
+  // Outputs near 1e300 overflow the fit's sums of squares: its standard errors came out NaN and K
+  // was given without an uncertainty (by the temperature series, which write no JSON to refuse).
+  for (double value : {fit.residual_rms, fit.slope_standard_error, fit.intercept_standard_error, k, asymmetry}) {
+    if (!std::isfinite(value)) {
+      throw Error("scale factor: the fit overflows a double: the outputs are too large (give them in a larger unit)");
+    }
+  }
   auto with_error = [](double error) { return error > 0.0 ? std::optional<double>(error) : std::nullopt; };
   result.rate_unit = options.rate_unit;
   result.scale_factor = {k, k_unit, with_error(fit.slope_standard_error)};

@@ -136,13 +136,7 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
   options.columns = {selector_or(time_column, 1), selector_or(source.column, 2)};
   options.minimum_rows = minimum_samples;
   TextTable table = read_text_table(source.path, options);
-  for (std::size_t i = 1; i < table.rows(); ++i) {
-    if (!(table.columns[0][i] > table.columns[0][i - 1])) {
-      throw Error(SourceLocation{source.path, table.row_lines[i], 0},
-                  fmt::format("time {} s does not follow the previous time {} s: times must increase",
-                              table.columns[0][i], table.columns[0][i - 1]));
-    }
-  }
+  require_increasing_time(table, 0);
   record.time_s = std::move(table.columns[0]);
   record.output = std::move(table.columns[1]);
   return record;

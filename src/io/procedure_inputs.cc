@@ -190,6 +190,7 @@ std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<con
   std::vector<AngularVibrationRecord> records;
   for (const ListedFile& run : runs) {
     TextTable table = read_columns(run.path, {time_column, output_column, angle_column});
+    require_increasing_time(table, 0);  // a time going back, or the record pasted twice: accepted silently
     AngularVibrationRecord record;
     record.frequency_hz = run.key;
     record.time_s = std::move(table.columns[0]);

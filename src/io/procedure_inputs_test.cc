@@ -92,5 +92,14 @@ TEST(AngularVibrationRecords, FrequenciesMustIncrease) {
               HasSubstr("list.csv:3:1: frequency 10 Hz is not above"));
 }
 
+// A time going back (or the record pasted twice) was accepted silently, as other readers refuse it.
+TEST(AngularVibrationRecords, TimeMustIncrease) {
+  ScratchDirectory scratch;
+  const auto record = scratch.write("v.csv", "time_s,output,angle_deg\n0,0,0\n0.001,1,1\n0.0005,2,2\n");
+  const std::vector<ListedFile> runs = {{20.0, record, {"list.csv", 2, 1}}};
+  EXPECT_THAT(error_of([&] { read_angular_vibration_records(runs, "time_s", "output", "angle_deg"); }),
+              HasSubstr(record + ":4:1: time 0.0005 s does not follow the previous time 0.001 s: times must increase"));
+}
+
 }  // namespace
 }  // namespace inertest

@@ -234,4 +234,14 @@ TextTable read_text_table(const std::string& path, const TextTableOptions& optio
   }
 }
 
+void require_increasing_time(const TextTable& table, std::size_t column) {
+  const std::vector<double>& time = table.columns.at(column);
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    if (!(time[i] > time[i - 1])) {
+      throw Error(locate_cell(table, i, column),
+                  fmt::format("time {} s does not follow the previous time {} s: times must increase", time[i], time[i - 1]));
+    }
+  }
+}
+
 }  // namespace inertest

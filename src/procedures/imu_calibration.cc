@@ -593,11 +593,7 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
   }
   options.minimum_rows = 2;
   TextTable table = read_text_table(path, options);
-  for (std::size_t i = 1; i < table.rows(); ++i) {
-    if (!(table.columns[0][i] > table.columns[0][i - 1])) {
-      throw Error(locate_cell(table, i, 0), "the time does not increase");
-    }
-  }
+  require_increasing_time(table, 0);
   ImuRecord record;
   record.source = path;
   record.lines = std::move(table.row_lines);

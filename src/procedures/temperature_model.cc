@@ -707,11 +707,7 @@ ThermalRecord read_thermal_record(const std::string& path, const std::string& ti
   for (const std::string& column : temperature_columns) table_options.columns.push_back(ColumnSelector::parse(column));
   TextTable table = read_text_table(path, table_options);
   ThermalRecord record;
-  for (std::size_t i = 1; i < table.rows(); ++i) {
-    if (!(table.columns[0][i] > table.columns[0][i - 1])) {
-      throw Error(locate_cell(table, i, 0), "the time does not increase");
-    }
-  }
+  require_increasing_time(table, 0);
   record.time_s = std::move(table.columns[0]);
   record.output = std::move(table.columns[1]);
   for (std::size_t s = 0; s < temperature_columns.size(); ++s) {

@@ -85,4 +85,8 @@ std::vector<TextField> split_text_line(std::string_view line, char delimiter, co
 // is not, and the line is 0 without TextTable::row_lines.
 SourceLocation locate_cell(const TextTable& table, std::size_t row, std::size_t column);
 
+// Throws Error at the first cell of returned column `column`, the time of each row in s, that is
+// not above the one before it (a logger's clock set back, a record pasted twice).
+void require_increasing_time(const TextTable& table, std::size_t column);
+
 }  // namespace inertest

@@ -171,9 +171,17 @@ struct HandChecksTag {};
 // "pass" / "fail" for a check by eye), and optionally unit, min and max.
 HandCheck hand_check_of(const py::dict& given) {
   HandCheck check;
+  // A number that is no number (None, a bool, an array) was a pybind11 RuntimeError naming nothing.
+  const auto number = [](const std::string& key, const py::handle& value) {
+    if (py::isinstance<py::bool_>(value) || PyNumber_Check(value.ptr()) == 0 || py::isinstance<py::array>(value)) {
+      throw Error("hand check: '" + key + "' must be a number, not " + py::repr(value).cast<std::string>());
+    }
+    return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  };
   for (const auto& [key, value] : given) {
     const auto name = py::str(key).cast<std::string>();
     if (name == "name") {
+      if (!py::isinstance<py::str>(value)) throw Error("hand check: 'name' must be a string");
       check.name = value.cast<std::string>();
     } else if (name == "value" && py::isinstance<py::str>(value)) {
       const auto verdict = value.cast<std::string>();
@@ -182,11 +190,12 @@ HandCheck hand_check_of(const py::dict& given) {
       }
       check.verdict = verdict == "pass";
     } else if (name == "value") {
-      check.value = value.cast<double>();
+      check.value = number(name, value);
     } else if (name == "unit") {
+      if (!py::isinstance<py::str>(value)) throw Error("hand check: 'unit' must be a string");
       check.unit = value.cast<std::string>();
     } else if (name == "min" || name == "max") {
-      (name == "min" ? check.min : check.max) = value.cast<double>();
+      (name == "min" ? check.min : check.max) = number(name, value);
     } else {
       throw Error("hand check: unknown key '" + name + "' (name, value, unit, min, max)");
     }

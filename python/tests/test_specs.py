@@ -4,6 +4,7 @@ from the procedure specs give what the CLI gives."""
 import json
 
 import numpy
+import numpy as np
 import pytest
 
 import inertest
@@ -40,6 +41,11 @@ def test_hand_checks_is_the_cli_json():
         inertest.hand_checks([{"name": "Insulation resistance", "value": 120, "limit": 20}])
     with pytest.raises(inertest.Error, match="a number, \"pass\" or \"fail\""):
         inertest.hand_checks([{"name": "Appearance", "value": "good"}])
+    # None, a bool or an array where a number goes was a pybind11 RuntimeError naming nothing (or 1.0).
+    for key, value in [("min", None), ("value", None), ("value", True), ("max", np.array([1.0, 2.0]))]:
+        check = {"name": "Insulation resistance", "value": 120, "unit": "Mohm", key: value}
+        with pytest.raises(inertest.Error, match=f"hand check: '{key}' must be a number"):
+            inertest.hand_checks([check])
 
 
 def test_every_declared_procedure_has_a_function_and_stubs():

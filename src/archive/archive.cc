@@ -353,13 +353,15 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
     row.verdict = verdict.at("pass").get<bool>() ? "PASS" : "FAIL";
     // The limits in the figure's unit (the plan may state them in another).
     const std::string limit_unit = verdict.value("unit", row.unit);
+    for (const char* end : {"min", "max"}) {
+      // A limit that is no number ("max": "inf") was dropped: the history showed no limit at all.
+      if (verdict.contains(end) && !verdict.at(end).is_number()) {
+        malformed(source, fmt::format("limit on '{}/{}': \"{}\" must be a number", row.procedure, row.figure, end));
+      }
+    }
     try {
-      if (verdict.contains("min") && verdict.at("min").is_number()) {
-        row.lower_limit = convert(verdict.at("min").get<double>(), limit_unit, row.unit);
-      }
-      if (verdict.contains("max") && verdict.at("max").is_number()) {
-        row.upper_limit = convert(verdict.at("max").get<double>(), limit_unit, row.unit);
-      }
+      if (verdict.contains("min")) row.lower_limit = convert(verdict.at("min").get<double>(), limit_unit, row.unit);
+      if (verdict.contains("max")) row.upper_limit = convert(verdict.at("max").get<double>(), limit_unit, row.unit);
     } catch (const Error& e) {
       malformed(source, "limit on '" + row.procedure + "/" + row.figure + "': " + e.message());
     }

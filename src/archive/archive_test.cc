@@ -609,6 +609,18 @@ TEST_P(ArchiveBackend, AMaxAloneIsALimitOnTheMagnitude) {
   EXPECT_THAT(text.out, HasSubstr("\n  limits: |value| <= 0.05\n"));
 }
 
+// A verdict's limit that is no number ("max": "inf", written by hand) was dropped: the history showed
+// the figure with no limit at all.
+TEST_P(ArchiveBackend, AVerdictsLimitMustBeANumber) {
+  nlohmann::json text_limit = campaign("FOG-2", "2026-02-01", 36000.0);
+  text_limit["verdicts"][0]["max"] = "inf";
+  auto archive = open();
+  EXPECT_EQ(error_of_add(*archive, text_limit),
+            "bad/results.json: not an inertest results file: limit on 'scale_factor/scale_factor': \"max\" must be a "
+            "number");
+  EXPECT_TRUE(archive->list(std::nullopt).empty());
+}
+
 // Two steps of one name (a plan's two scale factor steps) give the same figure twice: the file is
 // refused by name, and a multi-file add that holds it adds nothing, the good files before it neither.
 TEST_P(ArchiveBackend, AFigureTwiceIsRefusedAndAMultiFileAddIsAllOrNothing) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fmt/format.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -287,6 +288,14 @@ RowLayout read_row_layout(const Line& first, const std::string& source, const Te
       for (const auto& n : layout.header_names) known += (known.empty() ? "" : ", ") + n;
       throw Error(SourceLocation{source, first.number, 1},
                   "no column '" + selector.name + "' in the header (columns: " + known + ")");
+    }
+    // Two columns of one name (an export with two "output" columns): the first was taken silently.
+    if (const auto again = std::find(it + 1, layout.header_names.end(), selector.name);
+        again != layout.header_names.end()) {
+      throw Error(SourceLocation{source, first.number, 1},
+                  fmt::format("the header names columns {} and {} '{}': ask for one by its number",
+                              it - layout.header_names.begin() + 1, again - layout.header_names.begin() + 1,
+                              selector.name));
     }
     layout.positions.push_back(static_cast<std::size_t>(it - layout.header_names.begin()));
   }

@@ -481,5 +481,19 @@ TEST(PlainAndGeneralRows, RandomRecordsGiveTheSameValuesOrTheSameError) {
   }
 }
 
+// Two columns of one name (an export with two "output" columns): the first was taken silently.
+TEST(TextTable, AColumnNamedTwiceIsAskedForByNumber) {
+  TextTableOptions options;
+  options.columns = {ColumnSelector::parse("output")};
+  try {
+    parse_text_table("time,output,output\n0,1,2\n", "rec.csv", options);
+    ADD_FAILURE() << "an ambiguous column was taken";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "rec.csv:1:1: the header names columns 2 and 3 'output': ask for one by its number");
+  }
+  options.columns = {ColumnSelector::parse("3")};
+  EXPECT_EQ(parse_text_table("time,output,output\n0,1,2\n", "rec.csv", options).columns.at(0).at(0), 2.0);
+}
+
 }  // namespace
 }  // namespace inertest

@@ -267,16 +267,21 @@ void wrap_units(py::module_& module) {
       [](py::object value, const std::string& from_unit, const std::string& to_unit) -> py::object {
         const Unit from = Unit::parse(from_unit);
         const Unit to = Unit::parse(to_unit);
-        if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
-          return py::float_(convert(value.cast<double>(), from, to));
+        // A number of any kind (numpy's scalars, a 0-d array, Decimal) is one; an array of any shape
+        // (an IMU's (N, 3)) keeps its shape: both were refused as "not a one-dimensional array".
+        const bool array = py::isinstance<py::array>(value) && value.cast<py::array>().ndim() > 0;
+        if (!array && !py::isinstance<py::str>(value) && PyNumber_Check(value.ptr()) != 0) {
+          return py::float_(convert(py::float_(value).cast<double>(), from, to));
         }
-        const auto values = as_span(value.cast<DoubleArray>(), "value", Values::any);  // NaN converts to NaN
-        std::vector<double> converted(values.size());
-        for (std::size_t i = 0; i < values.size(); ++i) converted[i] = convert(values[i], from, to);
-        return to_numpy(std::move(converted));
+        const DoubleArray given = value.cast<DoubleArray>();  // NaN converts to NaN
+        py::array_t<double> converted(std::vector<py::ssize_t>(given.shape(), given.shape() + given.ndim()));
+        const double* in = given.data();
+        double* out = converted.mutable_data();
+        for (py::ssize_t i = 0; i < given.size(); ++i) out[i] = convert(in[i], from, to);
+        return std::move(converted);
       },
       "value"_a, "from_unit"_a, "to_unit"_a,
-      "Converts a number or an array from one unit to another of the same dimension, e.g.\n"
+      "Converts a number or an array (of any shape) from one unit to another of the same dimension, e.g.\n"
       "convert(1.0, 'deg/h', 'rad/s'). Units: products of named units with integer or half-integer\n"
       "powers ('deg/h', 'deg/sqrt(h)', 'deg/h/g^2', 'pulse/s', 'ppm'); 'g' is 9.80665 m/s^2.\n"
       "Raises inertest.Error (a ValueError) for an unknown unit or different dimensions.");

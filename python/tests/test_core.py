@@ -67,3 +67,15 @@ def test_record_attributes_are_the_json_members():
 def test_module_documents_itself():
     assert "GJB 2426A-2004 5.8.1-5.8.3" in inertest.scale_factor.__doc__
     assert inertest.__version__.count(".") == 2
+
+
+def test_convert_takes_numpy_scalars_and_arrays_of_any_shape():
+    """np.int64(1), np.float32(1) and an IMU's (N, 3) array were refused as 'not a one-dimensional array'."""
+    expected = inertest.convert(1.0, "deg/h", "rad/s")
+    for value in (np.int64(1), np.float32(1), np.array(1.0)):
+        assert inertest.convert(value, "deg/h", "rad/s") == expected
+    triad = np.arange(6.0).reshape(2, 3)
+    converted = inertest.convert(triad, "deg", "arcsec")
+    assert converted.shape == (2, 3)
+    np.testing.assert_array_equal(converted, triad * 3600.0)
+    np.testing.assert_array_equal(inertest.convert(np.asfortranarray(triad), "deg", "arcsec"), triad * 3600.0)

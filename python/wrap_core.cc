@@ -7,9 +7,9 @@
 #include "bindings.h"
 #include "inertest/core/citations.h"
 #include "inertest/core/figure.h"
+#include "inertest/core/json_text.h"
 #include "inertest/core/units.h"
 #include "inertest/version.h"
-#include "inertest/core/json_text.h"
 
 namespace inertest::python {
 

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
-#include "inertest/core/units.h"
 #include "inertest/core/json_text.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 namespace {

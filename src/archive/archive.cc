@@ -19,8 +19,8 @@
 #include "archive/sha256.h"
 #include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
-#include "inertest/core/units.h"
 #include "inertest/core/json_text.h"
+#include "inertest/core/units.h"
 
 namespace inertest::archive {
 

@@ -14,11 +14,11 @@
 #include "campaign/step_registry.h"
 #include "inertest/core/error.h"
 #include "inertest/core/figure.h"
+#include "inertest/core/json_text.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/version.h"
-#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {
@@ -519,7 +519,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
     std::filesystem::remove_all(made.empty() ? staging : made);
     throw;
   }
-  for (const auto& relative : staged) summary.written_files.push_back((std::filesystem::path(out_dir) / relative).string());
+  for (const auto& relative : staged) summary.written_files.push_back((out / relative).string());
   std::filesystem::remove_all(staging);
   if (options.progress) options.progress("done", 1.0);
   return summary;

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include "procedure_command.h"
 #include "inertest/core/json_text.h"
+#include "procedure_command.h"
 
 namespace inertest::cli {
 namespace {

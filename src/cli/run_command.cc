@@ -55,7 +55,7 @@ CommandAction setup(CLI::App& root) {
     print_result(summary.results, report::render_text_report(summary.results, report_options), arguments->json);
     if (!arguments->json) {
       fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(),
-                 (std::filesystem::path(arguments->out) / "report.html").string());
+                 (std::filesystem::path(summary.written_files.front()).parent_path() / "report.html").string());
     }
     return 0;
   };

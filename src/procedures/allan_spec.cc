@@ -22,11 +22,11 @@
 #include "inertest/allan/filter_parameters.h"
 #include "inertest/allan/noise_terms.h"
 #include "inertest/allan/tau_grid.h"
-#include "inertest/core/units.h"
+#include "inertest/core/json_text.h"
 #include "inertest/core/procedure_spec.h"
+#include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/io/rate_record.h"
-#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {

@@ -8,10 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/citations.h"
+#include "inertest/core/json_text.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/procedures/imu_calibration.h"
-#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {

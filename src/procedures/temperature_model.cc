@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/json_text.h"
 #include "inertest/core/units.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
@@ -17,7 +18,6 @@
 #include "inertest/numerics/statistics.h"
 #include "io/text_rows.h"
 #include "procedures/temperature_model_internal.h"
-#include "inertest/core/json_text.h"
 
 namespace inertest {
 namespace {

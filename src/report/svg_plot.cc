@@ -1,11 +1,12 @@
 #include "inertest/report/svg_plot.h"
-#include "inertest/core/json_text.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "inertest/core/json_text.h"
 
 namespace inertest::report {
 namespace {

@@ -16,10 +16,10 @@
 
 #include "inertest/archive/archive.h"
 #include "inertest/core/error.h"
+#include "inertest/core/json_text.h"
 #include "inertest/report/archive_pages.h"
 #include "inertest/report/report.h"
 #include "serve/pages.h"
-#include "inertest/core/json_text.h"
 
 namespace inertest::serve {
 namespace {

@@ -9,6 +9,8 @@
 #include <optional>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "inertest/core/error.h"
 #include "inertest/core/huge_pages.h"
 #include "inertest/io/mapped_file.h"

@@ -25,7 +25,7 @@ MappedFile::MappedFile(const std::string& path) : path_(path) {
     // No MAP_POPULATE: it fills the page tables of the whole file in the calling thread before
     // anything else runs, where the text readers' first pass (the line count, one chunk a thread)
     // faults them in side by side, 64 KiB of cached file a fault (the kernel's fault-around). One
-    // channel of the 139 MB bench IMU record: 110 -> 101 ms (median of 12 alternated runs), six
+    // channel of the 139 MB bench IMU record: 112 -> 102 ms (median of 12 alternated runs), six
     // channels 272 -> 255 ms.
     void* address = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
     if (address == MAP_FAILED) {

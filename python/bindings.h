@@ -65,6 +65,12 @@ namespace inertest::python {
 enum class Values { finite, any };
 std::span<const double> as_span(const DoubleArray& array, const char* name, Values values = Values::finite);
 
+// A Python number: int, float, or numpy's scalars (np.int64, np.float32...), but not a bool, a text
+// or an array.
+inline bool is_number(const py::handle& value) {
+  return PyNumber_Check(value.ptr()) != 0 && !py::isinstance<py::bool_>(value) && !py::isinstance<py::array>(value);
+}
+
 // Throws Error unless every array has the length of the first; `names` name them in the message.
 void require_equal_lengths(std::initializer_list<std::pair<const char*, std::size_t>> lengths);
 

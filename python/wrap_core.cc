@@ -269,8 +269,8 @@ void wrap_units(py::module_& module) {
         const Unit to = Unit::parse(to_unit);
         // A number of any kind (numpy's scalars, a 0-d array, Decimal) is one; an array of any shape
         // (an IMU's (N, 3)) keeps its shape: both were refused as "not a one-dimensional array".
-        const bool array = py::isinstance<py::array>(value) && value.cast<py::array>().ndim() > 0;
-        if (!array && !py::isinstance<py::str>(value) && PyNumber_Check(value.ptr()) != 0) {
+        const bool scalar_array = py::isinstance<py::array>(value) && value.cast<py::array>().ndim() == 0;
+        if (is_number(value) || py::isinstance<py::bool_>(value) || scalar_array) {
           return py::float_(convert(py::float_(value).cast<double>(), from, to));
         }
         const DoubleArray given = value.cast<DoubleArray>();  // NaN converts to NaN

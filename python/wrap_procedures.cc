@@ -173,7 +173,7 @@ HandCheck hand_check_of(const py::dict& given) {
   HandCheck check;
   // A number that is no number (None, a bool, an array) was a pybind11 RuntimeError naming nothing.
   const auto number = [](const std::string& key, const py::handle& value) {
-    if (py::isinstance<py::bool_>(value) || PyNumber_Check(value.ptr()) == 0 || py::isinstance<py::array>(value)) {
+    if (!is_number(value)) {
       throw Error("hand check: '" + key + "' must be a number, not " + py::repr(value).cast<std::string>());
     }
     return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();

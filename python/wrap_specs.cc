@@ -45,11 +45,6 @@ std::vector<std::string> keywords_of(const ProcedureSpec& spec) {
   return keywords;
 }
 
-// A Python number: int, float, or numpy's scalars (np.int64, np.float32...), but not a bool or text.
-bool is_number(const py::handle& value) {
-  return PyNumber_Check(value.ptr()) != 0 && !py::isinstance<py::bool_>(value) && !py::isinstance<py::array>(value);
-}
-
 nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle& value) {
   if (parameter.type == ParameterType::boolean) {
     if (!py::isinstance<py::bool_>(value)) throw Error(fmt::format("{} must be True or False", parameter.plan_name()));
@@ -264,11 +259,16 @@ void wrap_specs(py::module_& module) {
             throw Error(e.message_naming(spec.find_parameter(e.parameter)->plan_name()));
           }
           ProcedureOutput output;
+          nlohmann::json json;
           {
             py::gil_scoped_release release;
-            output = spec.run(call);
+            // As the command and the plan step: a complaint about the data of its one file names it.
+            json = with_call_file_context(call, [&] {
+              output = spec.run(call);
+              return procedure_json(spec, output.fields);
+            });
           }
-          return ResultOf<SpecTag>(procedure_json(spec, output.fields), procedure_text(spec, output));
+          return ResultOf<SpecTag>(json, procedure_text(spec, output));
         },
         docstring_of(spec).c_str());
   }

@@ -190,8 +190,7 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     run_call.output_directory = run.output_directory;
     for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
     // As the command: a complaint about the data of the step's one file names that file.
-    const auto run_step = [&] { return procedure_json(spec, spec.run(run_call).fields); };
-    return run_call.files.size() == 1 ? with_file_context(run_call.files.begin()->second, run_step) : run_step();
+    return with_call_file_context(run_call, [&] { return procedure_json(spec, spec.run(run_call).fields); });
   };
 }
 

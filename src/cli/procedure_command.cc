@@ -253,8 +253,7 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
         return output;
       });
     };
-    const ProcedureOutput output =
-        call.files.size() == 1 ? with_file_context(call.files.begin()->second, run) : run();
+    const ProcedureOutput output = with_call_file_context(call, run);
     print_result(json, procedure_text(spec, output), arguments->json);
     return 0;
   };

@@ -379,6 +379,13 @@ struct ProcedureCall {
   std::string output_path(const std::string& path) const;
 };
 
+// Runs work on the call with its one input file, if it has one, as the place of an Error that has
+// none (with_file_context): how the command and the plan step both run a declared procedure.
+template <typename Work>
+auto with_call_file_context(const ProcedureCall& call, Work&& work) {
+  return call.files.size() == 1 ? with_file_context(call.files.begin()->second, work) : work();
+}
+
 // What a procedure's run gives: the result's fields by name (procedure_json writes them) and, for
 // a result that writes a text of its own (ProcedureDefinition::written_by), that text; empty: the
 // generic text of the fields (procedure_text).

@@ -178,6 +178,27 @@ TEST(AllanCommand, ColumnsAnalyseEveryChannelInOnePassWithItsOwnUnit) {
   EXPECT_THAT(text.out, HasSubstr("velocity random walk N"));
 }
 
+// The README's IMU command on a record logged at 10 Hz: --rate 100 put every tau ten times short,
+// without a word. The record's time column says 10 Hz, so the rate is refused, naming both; the
+// rate the column shows is accepted, and without --rate the error says what the column shows.
+TEST(AllanCommand, ARateTheTimeColumnContradictsIsAnError) {
+  testing::ScratchDirectory dir;
+  const std::string record = dir.write("imu.csv", imu_record());  // 100 Hz stamps
+  const auto wrong = run_cli({"allan", record, "--rate", "10", "--columns", "gx,gy", "--json"});
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_THAT(wrong.err, HasSubstr("imu.csv:1: sample_rate_hz (--rate) 10 Hz contradicts the record's time column "
+                                   "'time_s': its first 3000 stamps step 0.01 s (100 Hz)"));
+  EXPECT_EQ(wrong.out, "");
+  const auto one = run_cli({"allan", record, "--rate", "1000", "--column", "gx"});
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_THAT(one.err, HasSubstr("contradicts the record's time column 'time_s'"));
+  const auto none = run_cli({"allan", record, "--column", "gx"});
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_THAT(none.err, HasSubstr("imu.csv: the record stores no sample rate: give sample_rate_hz (--rate); its time "
+                                  "column 'time_s' steps 0.01 s (100 Hz)"));
+  EXPECT_EQ(run_cli({"allan", record, "--rate", "100", "--column", "gx"}).exit_code, 0);
+}
+
 TEST(AllanCommand, ExportWritesTheFilterParametersOrNothing) {
   testing::ScratchDirectory dir;
   const std::string record = dir.write("imu.csv", imu_record());

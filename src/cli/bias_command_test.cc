@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstring>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -51,8 +52,8 @@ TEST(BiasCommandTest, NamedColumnAndBinaryFormat) {
   ScratchDirectory scratch;
   const std::vector<double> output = square_wave_record();
   std::string text = "time,gyro\n";
-  for (std::size_t i = 0; i < output.size(); ++i) text += std::to_string(i) + "," + nlohmann::json(output[i]).dump() + "\n";
-  const std::string csv = scratch.write("rest.csv", text);
+  for (std::size_t i = 0; i < output.size(); ++i) text += fmt::format("{:.1f},", static_cast<double>(i) / 10.0) + nlohmann::json(output[i]).dump() + "\n";
+  const std::string csv = scratch.write("rest.csv", text);  // at 10 Hz, as --rate says
   std::string bytes(output.size() * sizeof(float), '\0');
   for (std::size_t i = 0; i < output.size(); ++i) {
     const float f = static_cast<float>(output[i]);
@@ -74,7 +75,7 @@ TEST(BiasCommandTest, NamedColumnAndBinaryFormat) {
   EXPECT_THAT(unchosen.err, ::testing::HasSubstr("rest.csv:1:1: the record has 2 columns (time, gyro): choose the "
                                                  "output with --column"));
   std::string headed = "time,output\n";
-  for (std::size_t i = 0; i < output.size(); ++i) headed += std::to_string(i) + "," + nlohmann::json(output[i]).dump() + "\n";
+  for (std::size_t i = 0; i < output.size(); ++i) headed += fmt::format("{:.1f},", static_cast<double>(i) / 10.0) + nlohmann::json(output[i]).dump() + "\n";
   const auto by_header = run_cli({"bias", scratch.write("headed.csv", headed), "--rate", "10", "--scale-factor", "5", "--json"});
   ASSERT_EQ(by_header.exit_code, 0) << by_header.err;
   EXPECT_EQ(nlohmann::json::parse(by_header.out).at("bias"), nlohmann::json::parse(by_name.out).at("bias"));

@@ -9,6 +9,7 @@
 #include "inertest/io/binary_record.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
+#include "inertest/io/time_stamps.h"
 
 namespace inertest {
 namespace {
@@ -121,6 +122,7 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
   }
   if (sample_rate_hz) {
     if (!(*sample_rate_hz > 0.0)) throw Error(fmt::format("sample rate must be positive, got {} Hz", *sample_rate_hz));
+    if (is_text(source.format)) check_sample_rate_against_time_column(source.path, *sample_rate_hz);
     record.output = read_output_record(source, minimum_samples);
     record.time_s.resize(record.output.size());
     for (std::size_t i = 0; i < record.output.size(); ++i) {
@@ -147,6 +149,7 @@ double record_sample_rate(const OutputRecordSource& source, double given) {
   const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source);
   if (!channel_format) {
     if (!rate) throw ParameterError("sample_rate_hz", "sample_rate_hz is needed: the record stores no sample rate");
+    if (is_text(source.format)) check_sample_rate_against_time_column(source.path, *rate);
     return *rate;
   }
   const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);

@@ -128,7 +128,26 @@ TextTableOptions single_column_header(const Line& first, const LineCursor& curso
   return whole_line;
 }
 
+// The first line that is neither blank nor a comment decides delimiter and header: its layout,
+// with `cursor` past it and `first` set to it. Throws Error for a text of no such line.
+RowLayout first_line_layout(const std::string& source, const TextTableOptions& options, LineCursor& cursor,
+                            std::optional<Line>& first) {
+  first = io_detail::next_content_line(cursor, options.comment);
+  if (!first) io_detail::fail_no_content(source);
+  return io_detail::read_row_layout(*first, source, single_column_header(*first, cursor, options, source));
+}
+
 }  // namespace
+
+TextTableHeader parse_text_table_header(std::string_view text, const std::string& source,
+                                        const TextTableOptions& options) {
+  text = without_byte_order_mark(text);
+  LineCursor cursor(text);
+  std::optional<Line> first;
+  const RowLayout layout = first_line_layout(source, options, cursor, first);
+  if (!layout.has_header) return {};
+  return {layout.header_names, first->number};
+}
 
 ColumnSelector ColumnSelector::parse(std::string_view text) {
   ColumnSelector selector;
@@ -174,11 +193,9 @@ TextTable parse_text_table(std::string_view text, const std::string& source, con
   }
   TextTable table;
   table.source = source;
-  // The first line that is neither blank nor a comment decides delimiter and header.
   LineCursor cursor(text);
-  const std::optional<Line> first = io_detail::next_content_line(cursor, options.comment);
-  if (!first) io_detail::fail_no_content(source);
-  const RowLayout layout = io_detail::read_row_layout(*first, source, single_column_header(*first, cursor, options, source));
+  std::optional<Line> first;
+  const RowLayout layout = first_line_layout(source, options, cursor, first);
   for (std::size_t p : layout.positions) table.names.push_back(layout.header_names[p]);
   table.delimiter = layout.delimiter;
   table.header_line = layout.has_header ? first->number : 0;

@@ -1,11 +1,16 @@
 #include "inertest/io/time_stamps.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <limits>
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 namespace {
@@ -103,7 +108,82 @@ TimeSegment segment(const TextTable& table, std::size_t begin, std::size_t end) 
   return {begin, end, line_of(table, begin), line_of(table, end - 1)};
 }
 
+// Seconds per unit of a time column named `name` (see RecordTimeColumn): 1 for "time" and
+// "timestamp", the unit's for "time_ms", "t [us]", "Time (s)"...; nullopt for any other name.
+std::optional<double> seconds_per_unit_of_time_name(const std::string& name, bool& unit_stated) {
+  std::size_t letters = 0;
+  while (letters < name.size() && std::isalpha(static_cast<unsigned char>(name[letters])) != 0) ++letters;
+  std::string base = name.substr(0, letters);
+  std::transform(base.begin(), base.end(), base.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (base != "time" && base != "t" && base != "timestamp") return std::nullopt;
+  std::string_view unit = std::string_view(name).substr(letters);
+  const auto is_wrapping = [](char c) { return c == ' ' || c == '_' || c == '/' || c == '(' || c == '[' || c == ')' || c == ']'; };
+  while (!unit.empty() && is_wrapping(unit.front())) unit.remove_prefix(1);
+  while (!unit.empty() && is_wrapping(unit.back())) unit.remove_suffix(1);
+  unit_stated = !unit.empty();
+  if (!unit_stated) return base == "t" ? std::nullopt : std::optional<double>(1.0);
+  try {
+    const Unit parsed = Unit::parse(unit);
+    Dimension time;
+    time.half_powers[Dimension::kTime] = 2;
+    if (parsed.dimension() == time) return parsed.factor();
+  } catch (const Error&) {
+  }
+  return std::nullopt;  // "T_degC", "t_x": a temperature, some other quantity
+}
+
 }  // namespace
+
+std::optional<RecordTimeColumn> find_record_time_column(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;  // a pipe is not read ahead
+  constexpr std::size_t kHead = std::size_t{256} << 10;
+  std::string head(kHead, '\0');
+  std::ifstream file(path, std::ios::binary);
+  file.read(head.data(), static_cast<std::streamsize>(kHead));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  if (head.size() == kHead) head.resize(head.rfind('\n') == std::string::npos ? 0 : head.rfind('\n') + 1);
+  try {
+    const TextTableHeader header = parse_text_table_header(head, path);
+    for (const std::string& name : header.names) {
+      bool unit_stated = false;
+      const std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated);
+      if (!seconds) continue;
+      TextTableOptions options;
+      options.columns = {ColumnSelector{name, 0}};
+      options.threads = 1;
+      const TextTable table = parse_text_table(head, path, options);
+      const std::vector<double>& time = table.columns.front();
+      if (time.size() < 3 || !std::is_sorted(time.begin(), time.end(), std::less_equal<>())) return std::nullopt;
+      return RecordTimeColumn{name,
+                              SourceLocation{path, header.line, 0},
+                              unit_stated,
+                              *seconds * find_time_gaps(time, {}, TimeStampOptions{}).sample_interval,
+                              *seconds * (time.back() - time.front()) / static_cast<double>(time.size() - 1),
+                              time.size()};
+    }
+  } catch (const Error&) {
+    // Text the record's reader will refuse with its own message, or a binary record: no time column.
+  }
+  return std::nullopt;
+}
+
+void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz) {
+  const std::optional<RecordTimeColumn> time = find_record_time_column(path);
+  if (!time) return;
+  // Steps of 1/rate within 2 %: a logger's clock is good to far better, and the mistakes this finds
+  // are factors (10 Hz taken as 100 Hz, ms taken as s).
+  const auto agrees = [&](double seconds_per_unit) {
+    return std::abs(time->sample_interval_s * seconds_per_unit * sample_rate_hz - 1.0) <= 0.02 ||
+           std::abs(time->mean_interval_s * seconds_per_unit * sample_rate_hz - 1.0) <= 0.02;
+  };
+  if (agrees(1.0) || (!time->unit_stated && (agrees(1e-3) || agrees(1e-6)))) return;
+  throw Error(time->header,
+              fmt::format("sample_rate_hz (--rate) {:g} Hz contradicts the record's time column '{}': its first {} "
+                          "stamps step {:.6g} s ({:.6g} Hz{})",
+                          sample_rate_hz, time->name, time->rows, time->sample_interval_s, 1.0 / time->sample_interval_s,
+                          time->unit_stated ? "" : ", the column taken in s, ms or us"));
+}
 
 GapPolicy parse_gap_policy(std::string_view text) {
   if (text == "stop") return GapPolicy::kStop;

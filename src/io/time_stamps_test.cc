@@ -139,6 +139,98 @@ TEST(TimeStamps, RefusesToInventMostOfARecord) {
   EXPECT_EQ(error_of("t,v\n0,1\n1,1\n2,1\n1e300,1\n", options), "no error");
 }
 
+// A record's time column by its header name: the unit the name states, or s; none for "t" alone
+// or a temperature ("T_degC").
+struct TimeColumnCase {
+  const char* name;
+  double stamp_step;       // in the column's own unit
+  double interval_s;       // what find_record_time_column gives; 0: no time column
+  bool unit_stated;
+};
+
+class RecordTimeColumnTest : public ::testing::TestWithParam<TimeColumnCase> {};
+
+TEST_P(RecordTimeColumnTest, IsFoundByItsName) {
+  const TimeColumnCase& c = GetParam();
+  testing::ScratchDirectory dir;
+  std::string text = fmt::format("{},gyro\n", c.name);
+  for (int i = 0; i < 50; ++i) text += fmt::format("{},{}\n", 1000.0 + i * c.stamp_step, i % 3);
+  const std::optional<RecordTimeColumn> found = find_record_time_column(dir.write("r.csv", text));
+  if (c.interval_s == 0.0) {
+    EXPECT_FALSE(found.has_value());
+    return;
+  }
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->name, c.name);
+  EXPECT_EQ(found->header.line, 1u);
+  EXPECT_EQ(found->rows, 50u);
+  EXPECT_EQ(found->unit_stated, c.unit_stated);
+  EXPECT_NEAR(found->sample_interval_s, c.interval_s, 1e-12 * c.interval_s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Names, RecordTimeColumnTest,
+                         ::testing::Values(TimeColumnCase{"time", 0.01, 0.01, false},
+                                           TimeColumnCase{"Timestamp", 0.5, 0.5, false},
+                                           TimeColumnCase{"time_s", 0.01, 0.01, true},
+                                           TimeColumnCase{"t_ms", 10.0, 0.01, true},
+                                           TimeColumnCase{"Time (s)", 0.25, 0.25, true},
+                                           TimeColumnCase{"time [us]", 1000.0, 0.001, true},
+                                           TimeColumnCase{"time/min", 1.0, 60.0, true},
+                                           TimeColumnCase{"t", 0.01, 0.0, false},
+                                           TimeColumnCase{"T_degC", 0.01, 0.0, false},
+                                           TimeColumnCase{"time_V", 0.01, 0.0, false},
+                                           TimeColumnCase{"timer", 0.01, 0.0, false}));
+
+TEST(RecordTimeColumn, CoarseStampsGapsAndWhatIsNoTimeColumn) {
+  testing::ScratchDirectory dir;
+  // 400 Hz stamped to 1 ms: steps of 2 and 3 ms, the median one of them, the mean 2.5 ms.
+  std::string coarse = "time_s,gyro\n";
+  for (int i = 0; i < 401; ++i) coarse += fmt::format("{:.3f},1\n", i / 400.0);
+  const std::optional<RecordTimeColumn> stamped = find_record_time_column(dir.write("coarse.csv", coarse));
+  EXPECT_NEAR(stamped->mean_interval_s, 0.0025, 1e-12);
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(stamped->header.file, 400.0));
+  EXPECT_THROW(check_sample_rate_against_time_column(stamped->header.file, 333.0), Error);
+  // A gap of 10 missing samples leaves the interval to the median.
+  std::string gap = "time_s,gyro\n";
+  for (int i = 0; i < 100; ++i) gap += fmt::format("{:.2f},1\n", (i < 50 ? i : i + 10) / 100.0);
+  EXPECT_NEAR(find_record_time_column(dir.write("gap.csv", gap))->sample_interval_s, 0.01, 1e-12);
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(dir.path() + "/gap.csv", 100.0));
+  // Stamps that do not increase, too few, no header, a column of text beside: no time column, and
+  // the record's reader gives its own errors.
+  EXPECT_FALSE(find_record_time_column(dir.write("back.csv", "time,g\n0,1\n2,1\n1,1\n3,1\n")));
+  EXPECT_FALSE(find_record_time_column(dir.write("two.csv", "time,g\n0,1\n1,1\n")));
+  EXPECT_FALSE(find_record_time_column(dir.write("bare.csv", "0,1\n1,1\n2,1\n3,1\n")));
+  EXPECT_FALSE(find_record_time_column(dir.write("bad.csv", "time,g\n0,1\nx,1\n2,1\n3,1\n")));
+  EXPECT_TRUE(find_record_time_column(dir.write("text.csv", "time,g,note\n0,1,a\n1,1,b\n2,1,c\n")));
+  EXPECT_FALSE(find_record_time_column(dir.path() + "/missing.csv"));
+}
+
+TEST(RecordTimeColumn, ARateItContradictsIsAnError) {
+  testing::ScratchDirectory dir;
+  std::string text = "time,gyro\n";
+  for (int i = 0; i < 100; ++i) text += fmt::format("{:.1f},1\n", i / 10.0);
+  const std::string path = dir.write("r.csv", text);
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(path, 10.0));
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(path, 10.19));  // within 2 %
+  // The same name over stamps of 100 ms, and of 100000 us: 10 Hz too.
+  const std::string ms = dir.write("ms.csv", "time,gyro\n0,1\n100,1\n200,1\n300,1\n");
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(ms, 10.0));
+  EXPECT_THROW(check_sample_rate_against_time_column(ms, 100.0), Error);
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(dir.write("us.csv", "time,gyro\n0,1\n1e5,1\n2e5,1\n"), 10.0));
+  try {
+    check_sample_rate_against_time_column(path, 100.0);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("r.csv:1: sample_rate_hz (--rate) 100 Hz contradicts the record's time column "
+                                    "'time': its first 100 stamps step 0.1 s (10 Hz, the column taken in s, ms or us)"));
+  }
+  EXPECT_THROW(check_sample_rate_against_time_column(path, 10.3), Error);
+  // A unit in the name is the unit: ms is not also tried.
+  const std::string seconds = dir.write("s.csv", "time_s,gyro\n0,1\n0.1,1\n0.2,1\n0.3,1\n");
+  EXPECT_THROW(check_sample_rate_against_time_column(seconds, 0.01), Error);
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(dir.write("none.csv", "gyro\n1\n2\n3\n"), 100.0));
+}
+
 TEST(TimeStamps, ParsesThePolicy) {
   EXPECT_EQ(parse_gap_policy("split"), GapPolicy::kSplit);
   EXPECT_EQ(to_string(parse_gap_policy("interpolate")), "interpolate");

@@ -27,6 +27,7 @@
 #include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/io/rate_record.h"
+#include "inertest/io/time_stamps.h"
 
 namespace inertest {
 namespace {
@@ -59,14 +60,22 @@ struct AllanParameters {
   // record stores (HDF5 sample_rate_hz, TDMS wf_increment...), else an Error naming the file.
   AllanOptions options(const RateRecordSource& source) const {
     AllanOptions options;
+    const bool text = resolve_rate_record_format(source) == RateRecordFormat::kCsv;
     if (sample_rate_hz) {
       options.sample_rate_hz = *sample_rate_hz;
+      if (text) check_sample_rate_against_time_column(source.path, *sample_rate_hz);
     } else if (columns && channel_record_format_of(resolve_rate_record_format(source))) {
       // several channels of a record that stores each one's rate: each its own (allan_channels.cc)
     } else if (const std::optional<double> stored = stored_sample_rate(source)) {
       options.sample_rate_hz = *stored;
     } else {
-      throw Error(SourceLocation{source.path, 0, 0}, "the record stores no sample rate: give sample_rate_hz (--rate)");
+      const std::optional<RecordTimeColumn> time = text ? find_record_time_column(source.path) : std::nullopt;
+      throw Error(SourceLocation{source.path, 0, 0},
+                  "the record stores no sample rate: give sample_rate_hz (--rate)" +
+                      (time ? fmt::format("; its time column '{}' steps {:.6g} s ({:.6g} Hz){}", time->name,
+                                          time->sample_interval_s, 1.0 / time->sample_interval_s,
+                                          time->unit_stated ? "" : " if in s")
+                            : ""));
     }
     options.taus = taus;
     options.estimators = EstimatorSet::parse(estimators);

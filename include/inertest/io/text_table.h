@@ -65,6 +65,15 @@ TextTable read_text_table(const std::string& path, const TextTableOptions& optio
 // The same, on text already in memory; `source` names it in messages.
 TextTable parse_text_table(std::string_view text, const std::string& source, const TextTableOptions& options = {});
 
+// The names of a text table's header, read as parse_text_table reads them, and its line; no names
+// (line 0) when the first line is data. The data rows are not read.
+struct TextTableHeader {
+  std::vector<std::string> names;
+  std::size_t line = 0;
+};
+TextTableHeader parse_text_table_header(std::string_view text, const std::string& source,
+                                        const TextTableOptions& options = {});
+
 // One field of a line of delimited text: its value (RFC 4180 quotes removed, a doubled "" made one
 // ") and the 1-based column where it starts in the line.
 struct TextField {

@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "inertest/core/error.h"
+
 #include "inertest/io/text_table.h"
 
 namespace inertest {
@@ -70,6 +72,29 @@ struct TimeGaps {
 };
 TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,
                         const TimeStampOptions& options);
+
+// The time column a text record's header names, and the sample interval its first rows show.
+// The column is "time" or "timestamp" (taken in s), or "time", "t" or "timestamp" with a time unit in
+// the name ("time_s", "t_ms", "Time (s)", "time [us]", "time/s"); "t" alone or "T_degC" names no time.
+struct RecordTimeColumn {
+  std::string name;             // as the header writes it
+  SourceLocation header;        // the file and its header line
+  bool unit_stated = false;     // false: the name states no unit, s taken
+  double sample_interval_s = 0.0;  // as find_time_gaps finds it (the median step), in s
+  double mean_interval_s = 0.0;    // the mean step, in s: the interval of stamps rounded coarser than it
+  std::size_t rows = 0;         // the rows it was found from
+};
+// Reads the first 256 KiB of the file (a rate record of 10^9 lines is not read twice); nullopt for
+// what is not a regular text file with such a column and at least 3 increasing stamps there.
+std::optional<RecordTimeColumn> find_record_time_column(const std::string& path);
+
+// A sample rate given for a text record (--rate, sample_rate_hz) checked against the record's own
+// time column: Error at its header line naming both when 1/rate is off the column's interval by
+// more than 2 % (a 10 Hz record analysed as 100 Hz put every tau 10x short), and so is the mean
+// step (stamps rounded to 1 ms at 400 Hz step 2 and 3 ms; a gap lengthens the mean, not the median).
+// A name without a unit
+// is also taken in ms and in us before it is called a contradiction. No time column: no check.
+void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz);
 
 // Checks table column `time_column` (an index into table.columns) and applies the policy.
 // Throws Error at the time stamp's file:line:column when time stands still or goes backwards, when

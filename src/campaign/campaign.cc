@@ -38,9 +38,9 @@ struct Limit {
   std::optional<double> max;
   std::string unit;  // empty: the figure's own unit
   SourceLocation where;
-  // Set by check_declared_figures: the key is a declared field of the procedure, so a result without
-  // it (or with it null) is a figure the data could not give: judged "not measured", FAIL.
-  bool declared = false;
+  // Set by check_declared_figures: the declared field of the procedure the key is, so a result
+  // without it (or with it null) is a figure the data could not give: judged "not measured", FAIL.
+  const FieldSpec* declared = nullptr;
   // A declared plain number (a count such as run_count): judged as it is, without a unit.
   bool plain_number = false;
 };
@@ -50,6 +50,7 @@ struct PreparedStep {
   std::string kind;
   std::vector<Limit> limits;
   campaign::StepAction action;
+  nlohmann::json parameters;  // of a declared procedure, by name (PreparedAction)
   SourceLocation where;  // the [[procedure]] table, for errors from data that carry no location
 };
 
@@ -189,16 +190,7 @@ void check_declared_figures(const ProcedureSpec& spec, PreparedStep& step) {
                                                                        "e.g. '/" + key + "/0/...')"
                                                                      : "a text or a yes/no, not a figure or a number"));
     }
-    limit.declared = true;
-    // A limit in a unit the figure's does not convert to failed only after the step had run.
-    if (!field->unit.empty() && !limit.unit.empty()) {
-      try {
-        convert(1.0, field->unit, limit.unit);
-      } catch (const Error& e) {
-        throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name + "' reports it in '" +
-                                     field->unit + "': " + e.message());
-      }
-    }
+    limit.declared = &*field;
     if (!field->array_figures.empty()) check_array_figure_limit(*field, tokens, limit);
     const bool number = field->value == FieldValue::number || field->value == FieldValue::whole_number;
     if (number && tokens.size() == 1) {
@@ -207,6 +199,24 @@ void check_declared_figures(const ProcedureSpec& spec, PreparedStep& step) {
                                      "' reports it as a plain number without a unit: give the limit without 'unit'");
       }
       limit.plain_number = true;
+    }
+  }
+}
+
+// A limit in a unit the figure's does not convert to (a delay in ppm, a scale factor in deg/s) is a
+// plan error at the limit, as soon as the figure's declared unit is known (declared_unit: a fixed
+// one at once, one made of the parameters once the step has read them); it failed only after the
+// step had run.
+void check_limit_units(const PreparedStep& step) {
+  for (const Limit& limit : step.limits) {
+    if (limit.unit.empty() || limit.plain_number || limit.declared == nullptr) continue;
+    const std::optional<std::string> unit = declared_unit(*limit.declared, step.parameters);
+    if (!unit) continue;
+    try {
+      convert(1.0, *unit, limit.unit);
+    } catch (const Error& e) {
+      throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name + "' reports it in '" + *unit +
+                                   "': " + e.message());
     }
   }
 }
@@ -296,8 +306,13 @@ Plan load_plan(const std::string& path) {
     const auto& begin = step.raw().source().begin;
     prepared.where = {path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     prepared.limits = read_limits(step);
-    if (const ProcedureSpec* spec = find_procedure_spec(prepared.kind)) check_declared_figures(*spec, prepared);
-    prepared.action = (*preparer)(step, plan.context);
+    const ProcedureSpec* spec = find_procedure_spec(prepared.kind);
+    if (spec) check_declared_figures(*spec, prepared);
+    check_limit_units(prepared);  // the fixed units, before the step's own keys are read
+    campaign::PreparedAction action = (*preparer)(step, plan.context);
+    prepared.action = std::move(action.run);
+    prepared.parameters = std::move(action.parameters);
+    check_limit_units(prepared);  // and those its parameters make
     step.require_all_used();
     plan.steps.push_back(std::move(prepared));
   }
@@ -369,7 +384,7 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   const nlohmann::json* node = find_figure(result, limit.figure);
   const std::string key = pointer_tokens(limit.figure).front();
   // A declared field the result leaves out or null: the data could not give it.
-  if (limit.declared && (!result.contains(key) || result.at(key).is_null())) {
+  if (limit.declared != nullptr && (!result.contains(key) || result.at(key).is_null())) {
     return not_measured_verdict(limit, step_name, "", "the procedure could not give it (see its warnings)");
   }
   std::optional<Figure> element = array_figure_element(result, limit.figure);
@@ -380,7 +395,7 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   // A declared key holding a plain number (a count a field_from gives) is judged as one, as a
   // declared number field is; it has no unit to convert to.
   const bool plain = node != nullptr && node->is_number() &&
-                     (limit.plain_number || (limit.declared && limit.figure.find('/', 1) == std::string::npos));
+                     (limit.plain_number || (limit.declared != nullptr && limit.figure.find('/', 1) == std::string::npos));
   if (plain && !limit.unit.empty()) {
     throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name +
                                  "' reports it as a plain number without a unit: give the limit without 'unit'");
@@ -428,7 +443,11 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
 nlohmann::json validate_plan(const std::string& plan_path) {
   const Plan plan = load_plan(plan_path);
   nlohmann::json steps = nlohmann::json::array();
-  for (const auto& step : plan.steps) steps.push_back({{"name", step.name}, {"kind", step.kind}});
+  for (const auto& step : plan.steps) {
+    steps.push_back({{"name", step.name}, {"kind", step.kind}});
+    // What each declared procedure will run with: its defaults and the [instrument]'s values applied.
+    if (!step.parameters.empty()) steps.back()["parameters"] = step.parameters;
+  }
   return {{"instrument", plan.context.instrument.to_json()}, {"site", plan.context.site.to_json()}, {"procedures", steps}};
 }
 

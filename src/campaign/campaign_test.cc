@@ -5,9 +5,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
+#include "test_util/demo_campaign.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -235,24 +237,85 @@ TEST(Campaign, LimitOnAFigureThatDoesNotExist) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out/results.json"));
 }
 
-// The units declared with unit_of are the units the figures come in: every declared figure (or row)
-// of the golden campaign, which runs every plan kind, has its field's declared unit.
-TEST(Campaign, DeclaredUnitsAreTheFiguresUnits) {
-  const auto results = nlohmann::json::parse(testing::read_file(testing::source_path("tests/golden/demo_results.json")));
+// Every figure (or figure of a list) of a result whose field declares a unit (FieldSpec::unit) comes
+// in that unit, made of the parameters it ran with; returns how many were compared.
+std::size_t expect_declared_units(const ProcedureSpec& spec, const nlohmann::json& parameters,
+                                  const nlohmann::json& result, const std::string& who) {
   std::size_t checked = 0;
-  for (const auto& procedure : results.at("procedures")) {
-    const ProcedureSpec* spec = find_procedure_spec(procedure.at("kind").get<std::string>());
-    if (spec == nullptr) continue;
-    for (const FieldSpec& field : spec->fields) {
-      if (field.unit.empty() || !procedure.at("result").contains(field.name)) continue;
-      const auto& value = procedure.at("result").at(field.name);
-      for (const auto& figure : value.is_array() ? value : nlohmann::json::array({value})) {
-        EXPECT_EQ(figure.at("unit"), field.unit) << spec->kind << " " << field.name;
-        ++checked;
-      }
+  for (const FieldSpec& field : spec.fields) {
+    const std::optional<std::string> unit = declared_unit(field, parameters);
+    if (!unit || !result.contains(field.name)) continue;
+    const auto& value = result.at(field.name);
+    for (const auto& figure : value.is_array() ? value : nlohmann::json::array({value})) {
+      EXPECT_EQ(figure.at("unit"), *unit) << who << " " << field.name;
+      ++checked;
     }
   }
-  EXPECT_GE(checked, 14u);
+  return checked;
+}
+
+// The declared units are the units the figures come in. The demo campaign runs every plan kind;
+// each step's units are made of the parameters validate_plan says it runs with ([instrument]
+// output_unit "pulse/s", the accelerometer's "mA"...). The worked examples cover the kinds the demo
+// lacks, with their defaults and the example's options, and a command's golden output the rest.
+TEST(Campaign, DeclaredUnitsAreTheFiguresUnits) {
+  const std::string demo = testing::demo_campaign_directory();
+  const nlohmann::json plan = validate_plan(demo + "/lab/plan.toml");
+  const auto results = nlohmann::json::parse(testing::read_file(demo + "/results.json"));
+  std::size_t checked = 0;
+  std::set<std::string> kinds;
+  for (std::size_t i = 0; i < results.at("procedures").size(); ++i) {
+    const auto& procedure = results.at("procedures").at(i);
+    ASSERT_EQ(plan.at("procedures").at(i).at("name"), procedure.at("name"));
+    const ProcedureSpec* spec = find_procedure_spec(procedure.at("kind").get<std::string>());
+    if (spec == nullptr) continue;
+    kinds.insert(spec->kind);
+    checked += expect_declared_units(*spec, plan.at("procedures").at(i).at("parameters"), procedure.at("result"),
+                                     procedure.at("name").get<std::string>());
+  }
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    if (spec.example.empty() || kinds.contains(spec.kind)) continue;
+    nlohmann::json parameters = nlohmann::json::object();
+    for (const auto& [name, value] : spec.defaults) parameters[name] = value;
+    for (std::size_t a = 0; a + 1 < spec.example.size(); ++a) {
+      for (const ParameterSpec& parameter : spec.parameters) {
+        if (parameter.command_line_option() == spec.example[a]) parameters[parameter.name] = spec.example[a + 1];
+      }
+    }
+    const testing::CliRun run = testing::run_example(spec);
+    ASSERT_EQ(run.exit_code, 0) << spec.kind << ": " << run.err;
+    checked += expect_declared_units(spec, parameters, nlohmann::json::parse(run.out), spec.kind + " example");
+    kinds.insert(spec.kind);
+  }
+  // A kind in neither (warm_up_time): its command's golden output, the fixed units only.
+  for (const ProcedureSpec& spec : procedure_specs()) {
+    const std::string golden = testing::source_path("tests/golden/" + spec.kind + ".json");
+    if (kinds.contains(spec.kind) || !std::filesystem::exists(golden)) continue;
+    checked += expect_declared_units(spec, nlohmann::json::object(), nlohmann::json::parse(testing::read_file(golden)),
+                                     spec.kind + " golden");
+    kinds.insert(spec.kind);
+  }
+  EXPECT_EQ(kinds.size(), procedure_specs().size());
+  EXPECT_GE(checked, 100u);
+}
+
+// A limit in a unit the figure's does not convert to is a plan error at the limit before anything
+// runs, also where the figure's unit follows the parameters: a scale factor, in [instrument]
+// output_unit per the step's rate_unit, limited in deg/s.
+TEST(Campaign, LimitInAUnitTheFigureIsNotInIsAPlanError) {
+  testing::ScratchDirectory dir;
+  dir.write("points.csv", "not even csv");  // never read
+  const auto error_at = [&](const std::string& limits) {
+    return error_of(dir.write("plan.toml", plan_text("", "[procedure.limits]\n" + limits)), dir.path() + "/out");
+  };
+  const std::string wrong = error_at("scale_factor = { min = 1, max = 2, unit = \"deg/s\" }\n");
+  EXPECT_THAT(wrong, HasSubstr("plan.toml:12:"));
+  EXPECT_THAT(wrong, HasSubstr("limit on 'scale_factor': procedure 'scale_factor' reports it in 'pulse/s/(deg/s)'"));
+  EXPECT_THAT(error_at("zero_offset = { max = 2, unit = \"V\" }\n"),
+              HasSubstr("limit on 'zero_offset': procedure 'scale_factor' reports it in 'pulse/s'"));
+  // Units that convert are judged after the run, as before.
+  EXPECT_THAT(error_at("scale_factor = { min = 1, max = 2, unit = \"pulse/s/(rad/s)\" }\n"),
+              HasSubstr("points.csv"));
 }
 
 TEST(Campaign, ValidatePlanDoesNotRun) {

@@ -65,7 +65,7 @@ std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
 
 }  // namespace
 
-StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context) {
+PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context) {
   ProcedureCall call;
   for (const auto& [name, value] : spec.defaults) call.parameters[name] = value;
   std::set<std::string> given;  // by the step itself
@@ -184,14 +184,15 @@ StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, co
     if (e.location()) throw;  // already at its place, e.g. a run's (RunInput::where)
     step.fail(e.message());
   }
-  return [&spec, call, files](const StepRunContext& run) {
+  const auto run = [&spec, call, files](const StepRunContext& context) {
     ProcedureCall run_call = call;
-    run_call.progress = run.progress;
-    run_call.output_directory = run.output_directory;
+    run_call.progress = context.progress;
+    run_call.output_directory = context.output_directory;
     for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
     // As the command: a complaint about the data of the step's one file names that file.
     return with_call_file_context(run_call, [&] { return procedure_json(spec, spec.run(run_call).fields); });
   };
+  return {run, call.parameters};
 }
 
 }  // namespace inertest::campaign

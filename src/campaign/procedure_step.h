@@ -10,7 +10,7 @@ namespace inertest::campaign {
 // parameter with an instrument default takes [instrument]'s value and is no key), NAME_file or
 // NAME_output per input (exactly one), an array of files or [[procedure.run]] tables per runs
 // input (their count checked), and format/column for the records. Returns the action
-// that reads the records and runs the procedure. `spec` must outlive the action.
-StepAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context);
+// that reads the records and runs the procedure, and its parameters. `spec` must outlive the action.
+PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step, const PlanContext& context);
 
 }  // namespace inertest::campaign

@@ -65,9 +65,16 @@ struct StepRunContext {
 
 // Runs the procedure on data validated by the preparer; returns its result (to_json form).
 using StepAction = std::function<nlohmann::json(const StepRunContext&)>;
+// A step ready to run: its action, and the parameters it runs with by the spec's names (defaults and
+// [instrument] values applied), of which its declared units are made (core/procedure_spec.h
+// declared_unit); none for a step that is no declared procedure.
+struct PreparedAction {
+  StepAction run;
+  nlohmann::json parameters = nlohmann::json::object();
+};
 // Reads the step's keys (the campaign has already taken kind, name and limits), validates them and
 // the data files, and returns the action. Must read every key it accepts: leftovers are errors.
-using StepPreparer = std::function<StepAction(PlanTable& step, const PlanContext& context)>;
+using StepPreparer = std::function<PreparedAction(PlanTable& step, const PlanContext& context)>;
 
 // The steps of the plan kinds that are not declared procedures, one file each in steps/; listed by
 // step_registry.cc (no static initialiser of the shared library registers them).

@@ -7,6 +7,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/json_text.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 
@@ -92,6 +93,42 @@ std::string first_non_finite(const nlohmann::json& value, const std::string& at)
 }
 
 }  // namespace
+
+std::optional<std::string> declared_unit(const FieldSpec& field, const nlohmann::json& parameters) {
+  if (field.unit.empty()) return std::nullopt;
+  std::string unit;
+  std::size_t at = 0;
+  for (std::size_t open = field.unit.find('{'); open != std::string::npos; open = field.unit.find('{', at)) {
+    const std::size_t close = field.unit.find('}', open);
+    const auto value = parameters.find(field.unit.substr(open + 1, close - open - 1));
+    if (value == parameters.end() || !value->is_string()) return std::nullopt;
+    unit += field.unit.substr(at, open - at) + value->get<std::string>();
+    at = close + 1;
+  }
+  return unit + field.unit.substr(at);
+}
+
+void check_unit_template(const ProcedureSpec& spec, const FieldSpec& field) {
+  nlohmann::json defaults = nlohmann::json::object();
+  for (std::size_t open = field.unit.find('{'); open != std::string::npos; open = field.unit.find('{', open + 1)) {
+    const std::size_t close = field.unit.find('}', open);
+    const std::string name = close == std::string::npos ? "" : field.unit.substr(open + 1, close - open - 1);
+    const auto parameter = std::find_if(spec.parameters.begin(), spec.parameters.end(),
+                                        [&](const ParameterSpec& declared) { return declared.name == name; });
+    if (parameter == spec.parameters.end()) {
+      throw Error("procedure spec " + spec.kind + ": the unit of '" + field.name + "' (" + field.unit +
+                  ") names no parameter of the procedure");
+    }
+    // A parameter without a default ("1" where the instrument gives it) stands for a plain unit.
+    const auto fallback = spec.defaults.find(name);
+    defaults[name] = fallback != spec.defaults.end() && fallback->second.is_string() ? fallback->second : nlohmann::json("1");
+  }
+  try {
+    Unit::parse(*declared_unit(field, defaults));
+  } catch (const Error& e) {
+    throw Error("procedure spec " + spec.kind + ": the unit of '" + field.name + "': " + e.message());
+  }
+}
 
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields) {
   // A figure that overflowed or cancelled to NaN would be written as null, exit 0 (a scale factor of

@@ -56,6 +56,10 @@ ProcedureSpec accelerometer_misalignment_spec() {
                            "dz2 sin b - dy2 cos b)";
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
+      .unit_of("delta_theta_y2", "arcsec")
+      .unit_of("delta_theta_z2", "arcsec")
+      .unit_of("misalignment", "arcsec")
+      .unit_of("scale_factor", "{output_unit}/g")
       .compute([](const ProcedureCall& call, const Options& options) {
         Options located = options;
         located.source = call.files.at("positions");

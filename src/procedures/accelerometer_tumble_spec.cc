@@ -397,6 +397,16 @@ ProcedureSpec accelerometer_tumble_spec() {
                    {"angle", "residual"}},
                   positions_json)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
+      .unit_of("bias", "g")
+      .unit_of("scale_factor", "{output_unit}/g")
+      .unit_of("second_order", "1/g")
+      .unit_of("third_order", "1/g^2")
+      .unit_of("misalignment_about_output_axis", "rad")
+      .unit_of("misalignment_about_pendulous_axis", "rad")
+      .unit_of("cross_coupling_ip", "1/g")
+      .unit_of("cross_coupling_io", "1/g")
+      .unit_of("mounting_error", "rad")
+      .unit_of("residual_rms", "{output_unit}")
       .compute([](const ProcedureCall& call, const Options& options) {
         const std::string& path = call.files.at("positions");
         return accelerometer_tumble(read_tumble_positions(path), path, options);

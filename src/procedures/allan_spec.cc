@@ -334,6 +334,7 @@ ProcedureSpec allan_spec() {
       .declare({"ohdev", hidden, "OHDEV", "OHDEV", "NIST SP 1065"})
       .declare({"totdev", hidden, "TOTDEV", "TOTDEV", "NIST SP 1065 eq. (25)"})
       .declare({"warnings", hidden, "warnings", "警告", ""})
+      .unit_of("record_length", "s")
       .compute(run);
 }
 

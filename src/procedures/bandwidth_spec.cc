@@ -141,6 +141,13 @@ ProcedureSpec bandwidth_spec() {
                                   options.bandwidth.minimum_frequencies));
         }
       })
+      .unit_of("bandwidth", "Hz")
+      .unit_of("delay", "s")
+      .unit_of("dc_gain", "1")
+      .unit_of("time_constant", "s")
+      .unit_of("gain_fit_residual_rms", "1")
+      .unit_of("phase_fit_residual_rms", "deg")
+      .unit_of("gain_at_lowest_frequency", "{output_unit}/({angle_unit}/s)")
       .compute([](const ProcedureCall& call, const Options& options) {
         if (call.files.contains("gains")) {
           return bandwidth_and_delay(read_frequency_response(call.files.at("gains")), options.bandwidth);

@@ -35,6 +35,9 @@ ProcedureSpec bias_repeatability_spec() {
       .checked_by([](const ProcedureCall& call, const BiasOptions& options) {
         check_bias_conversion(call, options, "bias repeatability");
       })
+      .unit_of("bias_repeatability", "deg/h")
+      .unit_of("mean_bias", "deg/h")
+      .unit_of("run_biases", "deg/h")
       .compute([](const ProcedureCall& call, const BiasOptions& options) {
         std::vector<double> biases;
         for (const RunInput& run : call.runs.at("runs")) biases.push_back(bias_deg_h(read_bias_record(call, run.file, options), options));

@@ -138,6 +138,7 @@ ProcedureSpec centrifuge_spec() {
         check_surface_gravity("gravity_m_s2", options.gravity_m_s2);
         options.calibration().validate();
       })
+      .unit_of("residual_rms", "deg/h")
       .compute([](const ProcedureCall& call, const Options& options) {
         const centrifuge::CentrifugeRecord record = centrifuge::read_centrifuge_record(call.files.at("file"));
         DriftCalibrationResult result = centrifuge::calibrate_drift_coefficients(record.runs(), options.calibration());

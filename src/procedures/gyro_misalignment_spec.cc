@@ -84,6 +84,14 @@ ProcedureSpec gyro_misalignment_spec() {
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
       .checked_by([](const ProcedureCall&, const Options& options) { options.misalignment.validate(); })
+      .unit_of("delta_theta_y0", "arcsec")
+      .unit_of("delta_theta_x0", "arcsec")
+      .unit_of("delta_theta_y1", "arcsec")
+      .unit_of("delta_theta_y2", "arcsec")
+      .unit_of("delta_theta_z2", "arcsec")
+      .unit_of("misalignment", "arcsec")
+      .unit_of("residual_rms", "arcsec")
+      .unit_of("scale_factor", "{output_unit}/(deg/s)")
       .compute([](const ProcedureCall& call, const Options& options) {
         const std::string& file = call.files.at("positions");
         GyroMisalignmentOptions misalignment = options.misalignment;

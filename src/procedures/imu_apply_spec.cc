@@ -109,6 +109,8 @@ ProcedureSpec imu_apply_spec() {
       .field({"samples", FieldRole::detail, "samples", "样本数", ""}, &Result::samples)
       .field({"static_intervals", FieldRole::detail, "static intervals", "静止区间数", ""}, &Result::static_intervals)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
+      .unit_of("gravity_residual_rms", "m/s^2")
+      .unit_of("rest_rate_rms", "rad/s")
       .compute([](const ProcedureCall& call, Options options) {
         // In a plan, into the campaign's staging directory: beside results.json once every step has run.
         if (!options.output_file.empty()) options.output_file = call.output_path(options.output_file);

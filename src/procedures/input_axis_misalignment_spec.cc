@@ -51,6 +51,13 @@ ProcedureSpec input_axis_misalignment_spec() {
       .field_from({"misalignment_eq50_as_printed", FieldRole::detail, "eq. (50) as printed", "式(50)原式", "eq. (50)"},
                   [](const Result& r) { return optional_figure(r.misalignment_eq50_as_printed); })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
+      .unit_of("misalignment", "arcsec")
+      .unit_of("misalignment_deg", "deg")
+      .unit_of("deltas", "arcsec")
+      .unit_of("misalignment_about_ox", "arcsec")
+      .unit_of("misalignment_about_oy", "arcsec")
+      .unit_of("mounting_error", "arcsec")
+      .unit_of("misalignment_eq50_as_printed", "arcsec")
       .compute([](const ProcedureCall& call, const InputAxisMisalignmentOptions& options) {
         return input_axis_misalignment(read_misalignment_positions(call.files.at("positions")), options);
       });

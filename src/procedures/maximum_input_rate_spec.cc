@@ -50,6 +50,10 @@ ProcedureSpec maximum_input_rate_spec() {
              &MaximumInputRateResult::scale_factor)
       .field_from({"ranges", FieldRole::table, "nonlinearity per range", "各范围非线性度", "eqs. (1)-(9)"}, ranges_json)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &MaximumInputRateResult::warnings)
+      .unit_of("maximum_input_rate", "{rate_unit}")
+      .unit_of("nonlinearity", "ppm")
+      .unit_of("nonlinearity_limit", "ppm")
+      .unit_of("scale_factor", "{output_unit}/({rate_unit})")
       .compute([](const ProcedureCall& call, const MaximumInputRateOptions& options) {
         return maximum_input_rate(read_scale_factor_points(call.files.at("points")), options);
       });

@@ -191,6 +191,7 @@ ProcedureSpec power_consumption_spec() {
       .field_from({"supplies", FieldRole::table, "input power per supply", "各电源输入功率", "GJB 2426A-2004 5.4.3"},
                   supplies_json)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &PowerConsumptionResult::warnings)
+      .unit_of("power_consumption", "W")
       .compute([](const ProcedureCall& call, const PowerConsumptionOptions&) {
         return power_consumption(read_supply_readings(call.files.at("supplies")));
       });

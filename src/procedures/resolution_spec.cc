@@ -41,6 +41,7 @@ ProcedureSpec resolution_spec() {
       .field_from({"branches", FieldRole::table, "candidate per direction", "各方向候选值", "eq. (18)"},
                   branches_json)
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &ResolutionResult::warnings)
+      .unit_of("resolution", "deg/h")
       .compute([](const ProcedureCall& call, const ResolutionOptions& options) {
         return resolution(read_resolution_steps(call.files.at("steps")), options);
       });

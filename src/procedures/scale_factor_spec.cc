@@ -116,6 +116,13 @@ ProcedureSpec scale_factor_spec() {
       })
       .unit_of("nonlinearity", "ppm")
       .unit_of("asymmetry", "ppm")
+      .unit_of("scale_factor", "{output_unit}/({rate_unit})")
+      .unit_of("scale_factor_positive", "{output_unit}/({rate_unit})")
+      .unit_of("scale_factor_negative", "{output_unit}/({rate_unit})")
+      .unit_of("zero_offset", "{output_unit}")
+      .unit_of("static_output_start", "{output_unit}")
+      .unit_of("static_output_end", "{output_unit}")
+      .unit_of("fit_residual_rms", "{output_unit}")
       .compute([](const ProcedureCall& call, const Options& options) {
         if (call.files.contains("points"))
           return scale_factor(read_scale_factor_points(call.files.at("points")), options.scale_factor);

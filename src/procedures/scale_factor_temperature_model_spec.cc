@@ -191,6 +191,9 @@ ProcedureSpec scale_factor_temperature_model_spec() {
                                                     options.order + 1, call.runs.at("runs").size()));
         }
       })
+      .unit_of("scale_factor_temperature_sensitivity", "ppm/degC")
+      .unit_of("reference_scale_factor", "{output_unit}/({rate_unit})")
+      .unit_of("reference_temperature", "degC")
       .compute([](const ProcedureCall& call, const Options& options) {
         std::vector<TemperatureRun> runs;
         for (const RunInput& run : call.runs.at("runs")) runs.push_back({run.number, read_scale_factor_points(run.file)});

@@ -73,6 +73,7 @@ ProcedureSpec scale_factor_temperature_spec() {
       .unit_of("scale_factor_temperature_sensitivity", "ppm/degC")
       .unit_of("worst_temperature", "degC")
       .unit_of("reference_temperature", "degC")
+      .unit_of("reference_scale_factor", "{output_unit}/({rate_unit})")
       .compute([](const ProcedureCall& call, const Options& options) {
         std::vector<TemperatureRun> runs;
         for (const RunInput& run : call.runs.at("runs"))

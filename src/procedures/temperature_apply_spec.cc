@@ -50,6 +50,8 @@ ProcedureSpec temperature_apply_spec() {
                     return points;
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
+      .unit_of("residual_rms", "deg/h")
+      .unit_of("residual_mean", "deg/h")
       .compute([](const ProcedureCall& call, const Options& options) {
         const ThermalCompensation compensation = read_thermal_compensation(call.files.at("coefficients"));
         const std::string sensor = options.temperature_columns.empty() ? compensation.sensor : options.temperature_columns.front();

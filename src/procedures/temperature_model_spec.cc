@@ -142,6 +142,10 @@ ProcedureSpec temperature_model_spec() {
                    {"time", "bias", "model", "temperature"}},
                   [](const Result& result) { return curve(result, {"time", "bias", "model", "temperature"}); })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings);
+  definition
+      .unit_of("reference_temperature", "degC")
+      .unit_of("residual_rms", "deg/h")
+      .unit_of("bias_temperature_sensitivity", "deg/h/degC");
   return definition.compute([](const ProcedureCall& call, const Options& options) {
     const ThermalRecord record = read_thermal_record(call.files.at("record"), options.time_column,
                                                      options.output_column, options.temperature_columns);

@@ -141,6 +141,7 @@ ProcedureSpec threshold_spec() {
           throw ParameterError("rate", "must be positive");
         if (!options.format.empty()) check_parameter("format", [&] { BinaryFormat::parse(options.format); });
       })
+      .unit_of("threshold", "deg/h")
       .compute([](const ProcedureCall& call, const Options& options) {
         const std::string& file = call.files.at("file");
         if (options.method == 1)

@@ -78,6 +78,7 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
           if (run.number != 0.0 && options.rate_band <= 0.0) throw Error("a run at rate needs rate_band (--rate-band)");
         }
       })
+      .unit_of(kind, "s")
       .compute([warm_up](const ProcedureCall& call, TurnOnTimeOptions options) {
         options.warm_up = warm_up;
         std::vector<PowerOnRun> runs;

@@ -27,7 +27,8 @@ struct CampaignSummary {
 };
 
 // Loads and validates the plan; throws Error naming the plan file and line on any problem.
-// Returns the validated plan as JSON (instrument, site, procedures) without running anything.
+// Returns the validated plan as JSON without running anything: instrument, site, and procedures
+// (name, kind, and the parameters a declared procedure will run with, defaults applied).
 nlohmann::json validate_plan(const std::string& plan_path);
 
 // Every procedure kind a plan may name (sorted): the declared procedures and the hand-written steps.

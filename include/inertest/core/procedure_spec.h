@@ -328,9 +328,10 @@ struct FieldSpec {
   // "uncertainty"}), each with its rank (1 a vector, 2 a matrix; a triad's "bias", "misalignment"): a
   // plan's limit names one element ("/accelerometer/bias/value/0"), a limit on a whole one is an error.
   std::map<std::string, int> array_figures = {};
-  // The unit the figure (or every figure of its rows) is reported in when it is fixed, whatever the
-  // parameters ("ppm", "degC"); empty when it follows the instrument's or an option's unit. A plan's
-  // limit in a unit that does not convert to it is an error before anything runs.
+  // The unit the figure (or every figure of its rows) is reported in: fixed ("ppm", "degC"), or made
+  // of the parameters' values ("{output_unit}/({rate_unit})", a parameter's name in braces); empty
+  // when the parameters do not say it (a unit the record stores). A plan's limit in a unit that does
+  // not convert to it is an error before anything runs (declared_unit).
   std::string unit = {};
 };
 
@@ -435,6 +436,10 @@ struct ProcedureSpec {
 const std::vector<ProcedureSpec>& procedure_specs();
 const ProcedureSpec* find_procedure_spec(const std::string& kind);
 
+// Throws Error naming the spec when `field`'s unit (FieldSpec::unit) names a parameter the spec does
+// not declare, or, fixed or with each parameter's default, is no unit (core/units.h).
+void check_unit_template(const ProcedureSpec& spec, const FieldSpec& field);
+
 // Throws Error("<who>give exactly one of A, B or C") unless exactly one input of each group of
 // alternatives (InputSpec::alternative_in) is given; `name_of` names an input as its caller takes it.
 void check_alternatives(const ProcedureSpec& spec, const std::string& who,
@@ -446,6 +451,11 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
 // A field named "clause" (e.g. the subclause of the method used) replaces the spec's clause, here
 // and in the text.
 nlohmann::json procedure_json(const ProcedureSpec& spec, const nlohmann::json& fields);
+
+// The unit `field` is reported in when a procedure runs with `parameters` (ProcedureCall::parameters,
+// by name): FieldSpec::unit with each "{name}" replaced by that parameter's text; nullopt when the
+// field declares none or a parameter it names has no text value (not given, no default).
+std::optional<std::string> declared_unit(const FieldSpec& field, const nlohmann::json& parameters);
 
 // The text report of a result, the same shape for every procedure: a title line with the clause,
 // then one line per headline and detail field, "label  value ± uncertainty unit" for a figure
@@ -618,11 +628,13 @@ class ProcedureDefinition {
     return *this;
   }
 
-  // The fixed unit of a field declared already (FieldSpec::unit).
+  // The unit of a field declared already, fixed or a template of the parameters declared already
+  // (FieldSpec::unit): .unit_of("scale_factor", "{output_unit}/({rate_unit})").
   ProcedureDefinition& unit_of(const std::string& field_name, std::string unit) {
     for (FieldSpec& field : spec_.fields) {
       if (field.name == field_name) {
         field.unit = std::move(unit);
+        check_unit_template(spec_, field);
         return *this;
       }
     }

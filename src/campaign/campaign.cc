@@ -38,9 +38,9 @@ struct Limit {
   std::optional<double> max;
   std::string unit;  // empty: the figure's own unit
   SourceLocation where;
-  // Set by check_declared_figures: the declared field of the procedure the key is, so a result
-  // without it (or with it null) is a figure the data could not give: judged "not measured", FAIL.
-  const FieldSpec* declared = nullptr;
+  // Set by check_declared_figures: the declared field the key is, so a result without it (or with
+  // it null) is a figure the data could not give: judged "not measured", FAIL.
+  std::optional<FieldSpec> declared;
   // A declared plain number (a count such as run_count): judged as it is, without a unit.
   bool plain_number = false;
 };
@@ -165,20 +165,21 @@ void check_array_figure_limit(const FieldSpec& field, const std::vector<std::str
   }
 }
 
-// A declared procedure's limits are checked against its declared fields before anything runs: a
-// limit on a key (or a JSON pointer's first key) it never reports, or on a key whose value is not a
-// figure or a number (a text, a list of rows), is a plan error at the limit; so is a unit on a plain
-// number (it has none) and a limit on a whole array figure.
-void check_declared_figures(const ProcedureSpec& spec, PreparedStep& step) {
+// A step's limits are checked against its declared fields (a procedure's, or the figures a special
+// step declares: PreparedAction::figures) before anything runs: a limit on a key (or a JSON
+// pointer's first key) it never reports, or on a key whose value is not a figure or a number (a
+// text, a list of rows), is a plan error at the limit; so is a unit on a plain number (it has none)
+// and a limit on a whole array figure.
+void check_declared_figures(const std::vector<FieldSpec>& fields, PreparedStep& step) {
   for (Limit& limit : step.limits) {
     const bool pointer = limit.figure.front() == '/';
     const std::vector<std::string> tokens = pointer_tokens(limit.figure);
     const std::string key = tokens.empty() ? "" : tokens.front();
-    const auto field = std::find_if(spec.fields.begin(), spec.fields.end(),
+    const auto field = std::find_if(fields.begin(), fields.end(),
                                     [&](const FieldSpec& declared) { return declared.name == key; });
-    if (field == spec.fields.end()) {
+    if (field == fields.end()) {
       std::string known;
-      for (const FieldSpec& declared : spec.fields) known += (known.empty() ? "" : ", ") + declared.name;
+      for (const FieldSpec& declared : fields) known += (known.empty() ? "" : ", ") + declared.name;
       throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step.name +
                                    "' reports no such figure (it reports: " + known + ")");
     }
@@ -190,7 +191,7 @@ void check_declared_figures(const ProcedureSpec& spec, PreparedStep& step) {
                                                                        "e.g. '/" + key + "/0/...')"
                                                                      : "a text or a yes/no, not a figure or a number"));
     }
-    limit.declared = &*field;
+    limit.declared = *field;
     if (!field->array_figures.empty()) check_array_figure_limit(*field, tokens, limit);
     const bool number = field->value == FieldValue::number || field->value == FieldValue::whole_number;
     if (number && tokens.size() == 1) {
@@ -209,7 +210,7 @@ void check_declared_figures(const ProcedureSpec& spec, PreparedStep& step) {
 // step had run.
 void check_limit_units(const PreparedStep& step) {
   for (const Limit& limit : step.limits) {
-    if (limit.unit.empty() || limit.plain_number || limit.declared == nullptr) continue;
+    if (limit.unit.empty() || limit.plain_number || !limit.declared) continue;
     const std::optional<std::string> unit = declared_unit(*limit.declared, step.parameters);
     if (!unit) continue;
     try {
@@ -307,11 +308,12 @@ Plan load_plan(const std::string& path) {
     prepared.where = {path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)};
     prepared.limits = read_limits(step);
     const ProcedureSpec* spec = find_procedure_spec(prepared.kind);
-    if (spec) check_declared_figures(*spec, prepared);
+    if (spec) check_declared_figures(spec->fields, prepared);
     check_limit_units(prepared);  // the fixed units, before the step's own keys are read
     campaign::PreparedAction action = (*preparer)(step, plan.context);
     prepared.action = std::move(action.run);
     prepared.parameters = std::move(action.parameters);
+    if (!spec) check_declared_figures(action.figures, prepared);
     check_limit_units(prepared);  // and those its parameters make
     step.require_all_used();
     plan.steps.push_back(std::move(prepared));
@@ -384,7 +386,7 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   const nlohmann::json* node = find_figure(result, limit.figure);
   const std::string key = pointer_tokens(limit.figure).front();
   // A declared field the result leaves out or null: the data could not give it.
-  if (limit.declared != nullptr && (!result.contains(key) || result.at(key).is_null())) {
+  if (limit.declared && (!result.contains(key) || result.at(key).is_null())) {
     return not_measured_verdict(limit, step_name, "", "the procedure could not give it (see its warnings)");
   }
   std::optional<Figure> element = array_figure_element(result, limit.figure);
@@ -395,7 +397,7 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   // A declared key holding a plain number (a count a field_from gives) is judged as one, as a
   // declared number field is; it has no unit to convert to.
   const bool plain = node != nullptr && node->is_number() &&
-                     (limit.plain_number || (limit.declared != nullptr && limit.figure.find('/', 1) == std::string::npos));
+                     (limit.plain_number || (limit.declared && limit.figure.find('/', 1) == std::string::npos));
   if (plain && !limit.unit.empty()) {
     throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name +
                                  "' reports it as a plain number without a unit: give the limit without 'unit'");

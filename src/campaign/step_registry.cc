@@ -12,10 +12,7 @@ namespace {
 
 // The plan kinds that are not declared procedures.
 const std::map<std::string, StepPreparer>& special_steps() {
-  static const std::map<std::string, StepPreparer> special = {
-      {"hand_checks", [](PlanTable& step, const PlanContext& context) {
-         return PreparedAction{prepare_hand_checks_step(step, context)};
-       }}};
+  static const std::map<std::string, StepPreparer> special = {{"hand_checks", prepare_hand_checks_step}};
   return special;
 }
 

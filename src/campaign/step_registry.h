@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campaign/plan_table.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/core/progress.h"
 
 namespace inertest::campaign {
@@ -67,10 +68,12 @@ struct StepRunContext {
 using StepAction = std::function<nlohmann::json(const StepRunContext&)>;
 // A step ready to run: its action, and the parameters it runs with by the spec's names (defaults and
 // [instrument] values applied), of which its declared units are made (core/procedure_spec.h
-// declared_unit); none for a step that is no declared procedure.
+// declared_unit); none for a step that is no declared procedure. Such a step declares the figures
+// it reports instead, as a procedure's fields, so that its limits are checked before anything runs.
 struct PreparedAction {
   StepAction run;
   nlohmann::json parameters = nlohmann::json::object();
+  std::vector<FieldSpec> figures = {};
 };
 // Reads the step's keys (the campaign has already taken kind, name and limits), validates them and
 // the data files, and returns the action. Must read every key it accepts: leftovers are errors.
@@ -78,7 +81,7 @@ using StepPreparer = std::function<PreparedAction(PlanTable& step, const PlanCon
 
 // The steps of the plan kinds that are not declared procedures, one file each in steps/; listed by
 // step_registry.cc (no static initialiser of the shared library registers them).
-StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext& context);
+PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext& context);
 
 // The step of a plan kind: a declared procedure's (procedure_step.h) or one of the above.
 const StepPreparer* find_step(const std::string& kind);

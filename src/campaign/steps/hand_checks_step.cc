@@ -13,8 +13,9 @@
 
 namespace inertest::campaign {
 
-StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
+PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
   std::vector<HandCheck> checks;
+  std::vector<FieldSpec> figures;  // one per check: what [procedure.limits] may name
   std::map<std::string, SourceLocation> keys;  // each check's result key, where it is named
   for (auto& table : step.tables("check")) {
     HandCheck check;
@@ -43,9 +44,12 @@ StepAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
                                 first->second.to_string() + ": give each check a name of its own");
     }
     checks.push_back(check);
+    figures.push_back({first->first, FieldRole::headline, check.name});
+    figures.back().value = FieldValue::figure;
+    figures.back().unit = check.verdict ? "1" : check.unit;
   }
   if (checks.empty()) step.fail("needs at least one [[procedure.check]] table (name, value, unit, min, max)");
-  return [checks](const StepRunContext&) { return hand_checks(checks).to_json(); };
+  return {[checks](const StepRunContext&) { return hand_checks(checks).to_json(); }, nlohmann::json::object(), figures};
 }
 
 }  // namespace inertest::campaign

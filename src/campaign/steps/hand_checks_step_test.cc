@@ -170,6 +170,18 @@ TEST(HandChecksStepTest, PlanErrors) {
                "[[procedure.check]]\nname = \"power 15-V\"\nvalue = 2\n",
                "plan.toml:13:8: plan.procedure[1].check[2]: 'name' 'power 15-V' has the result key 'power_15_v' of the "
                "check at ");
+  // A limit on a check the step does not have, or in a unit its value is not in, is found before
+  // anything runs (it was found after every step had run).
+  const std::string insulation =
+      "[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"Insulation resistance\"\nvalue = 150.0\n"
+      "unit = \"MOhm\"\n[procedure.limits]\n";
+  expect_error(insulation + "insulation = { min = 20 }\n",
+               "plan.toml:14:14: limit on 'insulation': procedure 'hand_checks' reports no such figure (it reports: "
+               "insulation_resistance)");
+  expect_error(insulation + "insulation_resistance = { min = 20, unit = \"V\" }\n",
+               "limit on 'insulation_resistance': procedure 'hand_checks' reports it in 'MOhm'");
+  EXPECT_NO_THROW(validate_plan(scratch.write("plan.toml", std::string(kHeader) + insulation +
+                                                              "insulation_resistance = { min = 2e7, unit = \"ohm\" }\n")));
   expect_error("[[procedure]]\nkind = \"polarity\"\npositive_output = 1.0\n", "negative_file");
   expect_error("[[procedure]]\nkind = \"threshold\"\nmethod = 4\nfile = \"x\"\n", "must be 1, 2 or 3");
   scratch.write("x.csv", "rate,output\n");

@@ -69,19 +69,26 @@ py::object to_plain_python(const nlohmann::json& json) {
 
 namespace {
 
-// A figure within 2 sigma of zero (a noise term's): "significant": false and its "upper_bound".
-bool is_not_significant(const nlohmann::json& json) {
-  return json.contains("significant") && json["significant"].is_boolean() && json.contains("upper_bound") &&
-         json["upper_bound"].is_number();
+// The keys a figure's JSON may carry beside value, unit and uncertainty, each an attribute of the
+// Python Figure: "identified": false with "upper_bound" (a noise term the fit holds at zero, its
+// value NaN), "significant": false with "upper_bound" (a term within 2 sigma of zero), "reason"
+// (why a figure was not measured).
+bool is_figure_annotation(const std::string& key, const nlohmann::json& value) {
+  if (key == "identified" || key == "significant") return value.is_boolean();
+  if (key == "upper_bound") return value.is_number() || value.is_null();
+  return key == "reason" && value.is_string();
 }
 
-// {"value": number-or-null, "unit": string} plus optionally "uncertainty" and is_not_significant's
-// two keys: the JSON of a Figure.
+// {"value": number-or-null, "unit": string}, optionally "uncertainty" and the annotations above:
+// the JSON of a Figure.
 bool is_figure(const nlohmann::json& json) {
   if (!json.is_object() || !json.contains("value") || !json.contains("unit")) return false;
   if (!json["unit"].is_string() || !(json["value"].is_number() || json["value"].is_null())) return false;
-  const std::size_t expected = 2 + (json.contains("uncertainty") ? 1 : 0) + (is_not_significant(json) ? 2 : 0);
-  return json.size() == expected;
+  return std::all_of(json.items().begin(), json.items().end(), [](const auto& item) {
+    return item.key() == "value" || item.key() == "unit" ||
+           (item.key() == "uncertainty" && (item.value().is_number() || item.value().is_null())) ||
+           is_figure_annotation(item.key(), item.value());
+  });
 }
 
 double number_or_nan(const nlohmann::json& json) {
@@ -123,9 +130,8 @@ py::object attribute_value(const nlohmann::json& json) {
     figure.unit = json["unit"].get<std::string>();
     if (json.contains("uncertainty")) figure.uncertainty = number_or_nan(json["uncertainty"]);
     py::object object = py::cast(std::move(figure));
-    if (is_not_significant(json)) {
-      object.attr("significant") = py::bool_(json["significant"].get<bool>());
-      object.attr("upper_bound") = py::float_(json["upper_bound"].get<double>());
+    for (const auto& [key, value] : json.items()) {
+      if (is_figure_annotation(key, value)) object.attr(key.c_str()) = to_plain_python(value);
     }
     return object;
   }
@@ -192,7 +198,9 @@ void wrap_figure(py::module_& module) {
   using namespace pybind11::literals;
   py::class_<Figure>(module, "Figure",
                      "A reported figure: value, unit and, where known, its 1-sigma uncertainty in the same unit. A\n"
-                     "noise term within 2 sigma of zero also has significant (False) and upper_bound (in unit).",
+                     "noise term within 2 sigma of zero also has significant (False) and upper_bound (in unit); one\n"
+                     "the fit holds at zero has value NaN, identified (False) and upper_bound (None when unknown); a\n"
+                     "figure the data could not give has value NaN and, where said, a reason.",
                      py::dynamic_attr())
       .def(py::init([](double value, std::string unit, std::optional<double> uncertainty) {
              Unit::parse(unit);

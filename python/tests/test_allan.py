@@ -95,9 +95,13 @@ def test_fit_range_keyword_and_unidentified_terms():
     assert fit.fit_range.tau_min_s == pytest.approx(0.02)
     assert fit.verdict in ("consistent", "inconsistent")
     # White noise only: the fit holds B at zero, reported as not identified with an upper bound.
+    # A Figure, as the stubs say (it was a Record): value NaN, so that float() never reads it as 0.
     bias_instability = result.noise.bias_instability
+    assert isinstance(bias_instability, inertest.Figure)
     assert bias_instability.identified is False
     assert bias_instability.upper_bound > 0.0
+    assert np.isnan(bias_instability.value)
+    assert bias_instability.unit == "deg/h"
     # Q is left free but within 2 sigma of zero: still a Figure, with its significance and bound.
     quantization = result.noise.quantization
     assert isinstance(quantization, inertest.Figure)

@@ -13,13 +13,6 @@
 namespace inertest {
 namespace {
 
-std::string_view trim(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = text.find_last_not_of(" \t\r");
-  return text.substr(first, last - first + 1);
-}
-
 TextTable read_columns(const std::string& path, std::vector<std::string> names) {
   TextTableOptions options;
   for (const auto& name : names) options.columns.push_back(ColumnSelector::parse(name));
@@ -41,17 +34,7 @@ std::vector<ListedFile> read_file_listing(const std::string& listing, const std:
   std::size_t file_index = 0;
   std::size_t columns = 0;
   bool have_header = false;
-  std::size_t line_number = 0;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    ++line_number;
-    const std::string_view content = trim(line);
-    if (content.empty() || content.front() == '#') continue;
-    const std::vector<TextField> cells = split_text_line(line, ',', listing, line_number);
+  for (const auto& [line_number, cells] : split_text_cells(text, listing)) {
     if (!have_header) {
       bool found_key = false;
       bool found_file = false;

@@ -42,6 +42,19 @@ TEST(FileListing, AByteOrderMarkIsNoPartOfTheHeader) {
   EXPECT_EQ(rows[0].where.column, 1u);
 }
 
+// Cells separated as the first line separates them: ';' (a European Excel's CSV), tabs or blanks;
+// a ';' listing was refused with "expected a header row naming the columns".
+TEST(FileListing, SemicolonsTabsAndBlanksSeparateCellsToo) {
+  ScratchDirectory scratch;
+  scratch.write("a.csv", "1\n");
+  for (const char* text : {"freq_hz;file\n10;a.csv\n", "freq_hz\tfile\n10\ta.csv\n", "freq_hz   file\n10  a.csv\n"}) {
+    const auto rows = read_file_listing(scratch.write("list.csv", text), "freq_hz");
+    ASSERT_EQ(rows.size(), 1u) << text;
+    EXPECT_EQ(rows[0].key, 10.0);
+    EXPECT_EQ(rows[0].path, scratch.path() + "/a.csv");
+  }
+}
+
 TEST(FileListing, QuotedFieldsHoldCommasAndBlanks) {
   ScratchDirectory scratch;
   scratch.write("run 1, cold.csv", "1\n");

@@ -12,6 +12,7 @@
 #endif
 
 #include "inertest/core/error.h"
+#include "inertest/io/mapped_file.h"
 #include "io/decimal.h"
 
 namespace inertest::io_detail {
@@ -541,6 +542,17 @@ std::vector<TextField> split_text_line(std::string_view line, char delimiter, co
     result.push_back({field.value(), field.column});
   }
   return result;
+}
+
+std::vector<TextCellRow> split_text_cells(std::string_view text, const std::string& source) {
+  std::vector<TextCellRow> rows;
+  io_detail::LineCursor cursor(without_byte_order_mark(text));
+  char delimiter = '\0';
+  while (const std::optional<io_detail::Line> line = io_detail::next_content_line(cursor, '#')) {
+    if (delimiter == '\0') delimiter = io_detail::detect_delimiter(line->text);
+    rows.push_back({line->number, split_text_line(line->text, delimiter, source, line->number)});
+  }
+  return rows;
 }
 
 }  // namespace inertest

@@ -21,12 +21,6 @@ TextTable read_with_header(const std::string& path) {
   return read_text_table(path, read);
 }
 
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
-  return text;
-}
-
 double parse_number(const TextField& field, const SourceLocation& line_location, const char* name) {
   double value = 0.0;
   const char* first = field.text.data();
@@ -62,16 +56,8 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::strin
   const std::vector<std::string> names = {"alpha_deg", "beta_deg", "rate_dps", "file"};
   std::vector<std::size_t> index_of;  // field index of each name
   std::vector<GyroMisalignmentRow> rows;
-  std::size_t line_number = 0;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = std::min(text.find('\n', start), text.size());
-    const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    ++line_number;
-    if (trim(line).empty() || trim(line).front() == '#') continue;
+  for (const auto& [line_number, fields] : split_text_cells(text, listing_path)) {
     const SourceLocation where{listing_path, line_number, 0};
-    const std::vector<TextField> fields = split_text_line(line, ',', listing_path, line_number);
     if (index_of.empty()) {
       for (const std::string& name : names) {
         const auto found = std::find_if(fields.begin(), fields.end(), [&](const TextField& f) { return f.text == name; });

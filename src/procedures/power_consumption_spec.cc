@@ -27,7 +27,6 @@
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
 #include "inertest/numerics/statistics.h"
-#include "io/text_rows.h"
 
 namespace inertest {
 namespace {
@@ -76,14 +75,10 @@ std::vector<SupplyReadings> read_supply_readings(const std::string& path) {
   std::array<std::size_t, kColumns> index{};
   std::size_t header_fields = 0;
   std::vector<SupplyReadings> supplies;
-  io_detail::LineCursor cursor(text);
-  std::size_t line_number = 0;  // of the last line read, for the message of a file without readings
-  for (io_detail::Line row{}; cursor.next(row);) {
-    const std::string_view line = row.text;
-    line_number = row.number;
-    const std::size_t first = line.find_first_not_of(" \t");
-    if (first == std::string_view::npos || line[first] == '#') continue;
-    const std::vector<TextField> cells = split_text_line(line, ',', path, line_number);
+  std::size_t line_number = 0;  // of the last row read, for the message of a file without readings
+  for (const TextCellRow& row : split_text_cells(text, path)) {
+    line_number = row.line;
+    const std::vector<TextField>& cells = row.cells;
     if (header_fields == 0) {
       for (std::size_t k = 0; k < kColumns; ++k) {
         const auto found = std::find_if(cells.begin(), cells.end(), [&](const TextField& c) { return c.text == kNames[k]; });

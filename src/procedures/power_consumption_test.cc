@@ -1,5 +1,6 @@
 // Power consumption (GJB 2426A-2004 5.4), through its declaration: hand-computed figures, the
 // command, a plan with a limit, and the readings it refuses with their file, line and column.
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -67,6 +68,18 @@ TEST(PowerConsumption, AByteOrderMarkIsNoPartOfTheHeader) {
   const testing::ScratchDirectory scratch;
   EXPECT_EQ(run_on(scratch.write("bom.csv", "\xEF\xBB\xBF" + std::string(kReadings))),
             run_on(scratch.write("plain.csv", kReadings)));
+}
+
+// A European Excel separates the cells with ';': the file was refused with "'supply' is missing".
+TEST(PowerConsumption, SemicolonsOrTabsSeparateTheCells) {
+  const testing::ScratchDirectory scratch;
+  std::string semicolons = kReadings;
+  std::replace(semicolons.begin(), semicolons.end(), ',', ';');
+  std::string tabs = kReadings;
+  std::replace(tabs.begin(), tabs.end(), ',', '\t');
+  const nlohmann::json plain = run_on(scratch.write("plain.csv", kReadings));
+  EXPECT_EQ(run_on(scratch.write("semicolons.csv", semicolons)), plain);
+  EXPECT_EQ(run_on(scratch.write("tabs.csv", tabs)), plain);
 }
 
 TEST(PowerConsumption, OneReadingHasNoUncertainty) {

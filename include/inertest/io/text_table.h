@@ -88,6 +88,16 @@ struct TextField {
 std::vector<TextField> split_text_line(std::string_view line, char delimiter, const std::string& source,
                                        std::size_t line_number);
 
+// The lines of a file of text cells (a record listing, power supply readings) that are neither blank
+// nor a '#' comment, each split as split_text_line splits it, at the delimiter the first of them
+// shows (',', tab or ';', else runs of blanks), so that a listing saved by a European Excel (';')
+// reads as one with commas. `line`: the 1-based line of the row.
+struct TextCellRow {
+  std::size_t line = 0;
+  std::vector<TextField> cells;
+};
+std::vector<TextCellRow> split_text_cells(std::string_view text, const std::string& source);
+
 // Where the cell of data row `row` (0-based) in returned column `column` is: file, line and
 // character column, for errors found after reading (a time stamp going backwards, a stuck
 // channel). Reads the line again from table.source when that is a file; the column is 0 when it

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "test_util/test_util.h"
@@ -49,6 +50,11 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   run = run_cli({"bias-repeatability", first, second});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("missing the scale factor K"));
+  // One record given twice (also by another path to it) would weigh one run as two.
+  run = run_cli({"bias-repeatability", first, second, scratch.path() + "/./run1.txt", "--input-deg-h"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("runs: run 3 names '" + scratch.path() + "/./run1.txt', the file of run 1: each run "
+                                 "is a record of its own"));
   // K with records in deg/h would go unused: said, not ignored.
   run = run_cli({"bias-repeatability", first, second, "--input-deg-h", "--scale-factor", "36000"});
   EXPECT_EQ(run.exit_code, 2);
@@ -74,10 +80,12 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   // 3600 times too small), for each procedure of eq. (19); with K (output units per deg/s) the
   // output is in its own units: 0.2495 deg/s (the mean, make_records.py) is 898.2 deg/h at K = 1.
   const std::string deg_s = testing::source_path("data/lab_formats/rate_deg_s.h5");
+  const std::string copy = scratch.path() + "/copy.h5";  // a second run (one file twice is an error)
+  std::filesystem::copy_file(deg_s, copy);
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"bias", deg_s, "--input-deg-h"},
-        std::vector<std::string>{"bias-repeatability", deg_s, deg_s, "--input-deg-h"},
-        std::vector<std::string>{"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + deg_s, "--input-deg-h"}}) {
+        std::vector<std::string>{"bias-repeatability", deg_s, copy, "--input-deg-h"},
+        std::vector<std::string>{"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + copy, "--input-deg-h"}}) {
     run = run_cli(args);
     EXPECT_EQ(run.exit_code, 2) << args[0];
     EXPECT_THAT(run.err, HasSubstr(deg_s + ": the unit given, deg/h, contradicts the unit deg/s stored for channel 'gyro_z'"))

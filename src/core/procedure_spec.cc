@@ -34,6 +34,24 @@ const ProcedureSpec* find_procedure_spec(const std::string& kind) {
   return found == specs.end() ? nullptr : &*found;
 }
 
+void check_runs_distinct(const ProcedureCall& call) {
+  for (const auto& [name, runs] : call.runs) {
+    std::map<std::filesystem::path, const RunInput*> seen;
+    for (const RunInput& run : runs) {
+      std::error_code error;
+      std::filesystem::path same = std::filesystem::weakly_canonical(run.file, error);
+      if (error) same = std::filesystem::path(run.file).lexically_normal();
+      const auto [first, inserted] = seen.emplace(same, &run);
+      if (inserted) continue;
+      const auto number = [](const RunInput& r) { return fmt::format("{:g}", r.number); };
+      throw Error(run.where.file.empty() ? SourceLocation{run.file, 0, 0} : run.where,
+                  fmt::format("{}: run {} names '{}', the file of run {}{}: each run is a record of its own", name,
+                              number(run), run.file, number(*first->second),
+                              first->second->where.file.empty() ? "" : " at " + first->second->where.to_string()));
+    }
+  }
+}
+
 void check_alternatives(const ProcedureSpec& spec, const std::string& who,
                         const std::function<bool(const InputSpec&)>& given,
                         const std::function<std::string(const InputSpec&)>& name_of) {

@@ -440,6 +440,11 @@ const ProcedureSpec* find_procedure_spec(const std::string& kind);
 // not declare, or, fixed or with each parameter's default, is no unit (core/units.h).
 void check_unit_template(const ProcedureSpec& spec, const FieldSpec& field);
 
+// Throws Error at the later run (RunInput::where, else its file) when a runs input names one file
+// twice: each run is a record of its own (one record at two rates, or a run listed twice, weighed
+// one test as two).
+void check_runs_distinct(const ProcedureCall& call);
+
 // Throws Error("<who>give exactly one of A, B or C") unless exactly one input of each group of
 // alternatives (InputSpec::alternative_in) is given; `name_of` names an input as its caller takes it.
 void check_alternatives(const ProcedureSpec& spec, const std::string& who,
@@ -668,6 +673,7 @@ class ProcedureDefinition {
       return options;
     };
     spec.check = [options_of, check = check_](const ProcedureCall& call) {
+      check_runs_distinct(call);
       if (check) {
         check(call, options_of(call));
       } else if constexpr (requires(const Options& options) { options.validate(); }) {

@@ -81,6 +81,7 @@ TEST(BandwidthStep, RawRecordsWithTheirOwnColumnNames) {
 TEST(BandwidthStep, FrequenciesNotIncreasingAreRejectedAtTheirLine) {
   ScratchDirectory scratch;
   scratch.write("a.csv", "t,output,angle_deg\n0,0,0\n");
+  scratch.write("b.csv", "t,output,angle_deg\n0,0,0\n");
   const auto plan = plan_with(scratch, "plan.toml", R"(
 [[procedure]]
 kind = "bandwidth"
@@ -90,7 +91,7 @@ frequency_hz = 20
 file = "a.csv"
 [[procedure.run]]
 frequency_hz = 10
-file = "a.csv"
+file = "b.csv"
 )");
   try {
     run_campaign(plan, scratch.path() + "/out");

@@ -446,9 +446,9 @@ nlohmann::json validate_plan(const std::string& plan_path) {
   const Plan plan = load_plan(plan_path);
   nlohmann::json steps = nlohmann::json::array();
   for (const auto& step : plan.steps) {
-    steps.push_back({{"name", step.name}, {"kind", step.kind}});
-    // What each declared procedure will run with: its defaults and the [instrument]'s values applied.
-    if (!step.parameters.empty()) steps.back()["parameters"] = step.parameters;
+    // What each step will run with: its defaults and the [instrument]'s values applied (none for a
+    // step that is no declared procedure).
+    steps.push_back({{"name", step.name}, {"kind", step.kind}, {"parameters", step.parameters}});
   }
   return {{"instrument", plan.context.instrument.to_json()}, {"site", plan.context.site.to_json()}, {"procedures", steps}};
 }

@@ -43,7 +43,10 @@ nlohmann::json instrument_value(const PlanContext& context, const ParameterSpec&
 std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
   std::vector<RunInput> runs;
   if (input.number_key.empty()) {
-    for (std::string& file : step.files(input.plan_key)) runs.push_back({static_cast<double>(runs.size() + 1), file});
+    // At the key: a run of the array has no table of its own (its data errors name its file).
+    for (std::string& file : step.files(input.plan_key)) {
+      runs.push_back({static_cast<double>(runs.size() + 1), file, step.location_of_key(input.plan_key)});
+    }
     if (runs.size() < input.minimum_runs) {
       step.fail_at(input.plan_key, fmt::format("needs at least {} runs ({})", input.minimum_runs, input.minimum_why));
     }

@@ -53,8 +53,8 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   // One record given twice (also by another path to it) would weigh one run as two.
   run = run_cli({"bias-repeatability", first, second, scratch.path() + "/./run1.txt", "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_THAT(run.err, HasSubstr("runs: run 3 names '" + scratch.path() + "/./run1.txt', the file of run 1: each run "
-                                 "is a record of its own"));
+  EXPECT_THAT(run.err, HasSubstr("inertest: error: " + scratch.path() + "/./run1.txt: the 1st and 3rd runs name one "
+                                 "file: each run is a record of its own"));
   // K with records in deg/h would go unused: said, not ignored.
   run = run_cli({"bias-repeatability", first, second, "--input-deg-h", "--scale-factor", "36000"});
   EXPECT_EQ(run.exit_code, 2);

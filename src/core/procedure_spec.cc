@@ -34,20 +34,36 @@ const ProcedureSpec* find_procedure_spec(const std::string& kind) {
   return found == specs.end() ? nullptr : &*found;
 }
 
+namespace {
+
+// "1st", "2nd", "3rd", "4th", ... "11th", "21st".
+std::string ordinal(std::size_t n) {
+  const std::size_t last = n % 10;
+  const char* suffix = (n % 100 >= 11 && n % 100 <= 13) || last == 0 || last > 3 ? "th" : last == 1 ? "st" : last == 2 ? "nd" : "rd";
+  return std::to_string(n) + suffix;
+}
+
+}  // namespace
+
 void check_runs_distinct(const ProcedureCall& call) {
   for (const auto& [name, runs] : call.runs) {
-    std::map<std::filesystem::path, const RunInput*> seen;
-    for (const RunInput& run : runs) {
+    std::map<std::filesystem::path, std::size_t> seen;  // the first run of each file, by place
+    for (std::size_t i = 0; i < runs.size(); ++i) {
       std::error_code error;
-      std::filesystem::path same = std::filesystem::weakly_canonical(run.file, error);
-      if (error) same = std::filesystem::path(run.file).lexically_normal();
-      const auto [first, inserted] = seen.emplace(same, &run);
+      std::filesystem::path same = std::filesystem::weakly_canonical(runs[i].file, error);
+      if (error) same = std::filesystem::path(runs[i].file).lexically_normal();
+      const auto [first, inserted] = seen.emplace(same, i);
       if (inserted) continue;
-      const auto number = [](const RunInput& r) { return fmt::format("{:g}", r.number); };
-      throw Error(run.where.file.empty() ? SourceLocation{run.file, 0, 0} : run.where,
-                  fmt::format("{}: run {} names '{}', the file of run {}{}: each run is a record of its own", name,
-                              number(run), run.file, number(*first->second),
-                              first->second->where.file.empty() ? "" : " at " + first->second->where.to_string()));
+      const RunInput& run = runs[i];
+      const RunInput& earlier = runs[first->second];
+      // At the later run's place (a plan's key, a listing's row), else at the file itself.
+      const bool placed = !run.where.file.empty();
+      throw Error(placed ? run.where : SourceLocation{run.file, 0, 0},
+                  fmt::format("the {} and {} runs name one file{}{}: each run is a record of its own",
+                              ordinal(first->second + 1), ordinal(i + 1), placed ? ", '" + run.file + "'" : "",
+                              earlier.where.file.empty() || earlier.where.to_string() == run.where.to_string()
+                                  ? ""
+                                  : " (the first at " + earlier.where.to_string() + ")"));
     }
   }
 }
@@ -118,6 +134,7 @@ std::optional<std::string> declared_unit(const FieldSpec& field, const nlohmann:
   std::size_t at = 0;
   for (std::size_t open = field.unit.find('{'); open != std::string::npos; open = field.unit.find('{', at)) {
     const std::size_t close = field.unit.find('}', open);
+    if (close == std::string::npos) return std::nullopt;  // refused by check_unit_template
     const auto value = parameters.find(field.unit.substr(open + 1, close - open - 1));
     if (value == parameters.end() || !value->is_string()) return std::nullopt;
     unit += field.unit.substr(at, open - at) + value->get<std::string>();
@@ -130,7 +147,10 @@ void check_unit_template(const ProcedureSpec& spec, const FieldSpec& field) {
   nlohmann::json defaults = nlohmann::json::object();
   for (std::size_t open = field.unit.find('{'); open != std::string::npos; open = field.unit.find('{', open + 1)) {
     const std::size_t close = field.unit.find('}', open);
-    const std::string name = close == std::string::npos ? "" : field.unit.substr(open + 1, close - open - 1);
+    if (close == std::string::npos) {
+      throw Error("procedure spec " + spec.kind + ": the unit of '" + field.name + "' (" + field.unit + ") has a '{' without '}'");
+    }
+    const std::string name = field.unit.substr(open + 1, close - open - 1);
     const auto parameter = std::find_if(spec.parameters.begin(), spec.parameters.end(),
                                         [&](const ParameterSpec& declared) { return declared.name == name; });
     if (parameter == spec.parameters.end()) {

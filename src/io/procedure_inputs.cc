@@ -9,6 +9,7 @@
 #include "inertest/core/units.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
+#include "inertest/io/time_stamps.h"
 
 namespace inertest {
 namespace {
@@ -98,6 +99,7 @@ std::vector<ScaleFactorPoint> read_scale_factor_record(const std::string& path, 
   TextTableOptions read;
   read.columns = {ColumnSelector::parse(rate_column), ColumnSelector::parse(output_column)};
   read.record_row_lines = false;
+  check_sample_rate_against_time_column(path, options.timing.sample_rate_hz);
   const TextTable table = read_text_table(path, read);
   try {
     const std::vector<RateSegment> segments = segment_by_rate(table.columns[0], table.columns[1], options);
@@ -116,6 +118,7 @@ std::vector<ScaleFactorPoint> read_scale_factor_point_records(std::span<const Li
   read.columns = {ColumnSelector::parse(output_column)};
   read.record_row_lines = false;
   for (const auto& point : points) {
+    check_sample_rate_against_time_column(point.path, timing.sample_rate_hz);
     const TextTable table = read_text_table(point.path, read);
     try {
       result.push_back({point.key, record_mean(table.columns[0], timing)});  // eq. (1)

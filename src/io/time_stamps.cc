@@ -108,6 +108,19 @@ TimeSegment segment(const TextTable& table, std::size_t begin, std::size_t end) 
   return {begin, end, line_of(table, begin), line_of(table, end - 1)};
 }
 
+// The sample interval of increasing time stamps: the mean step between gaps (a step longer than 2.5
+// median steps: samples lost), so that stamps rounded coarser than the interval (400 Hz to 1 ms: steps
+// of 2 and 3 ms) give it as well as fine ones, and one lost sample changes it by a step in the rows.
+double interval_between_gaps(std::span<const double> time) {
+  const double median = median_step(time);
+  double sum = 0.0;
+  std::size_t steps = 0;
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    if (const double step = time[i] - time[i - 1]; step <= 2.5 * median) sum += step, ++steps;
+  }
+  return sum / static_cast<double>(steps);
+}
+
 // Seconds per unit of a time column named `name` (see RecordTimeColumn): 1 for "time" and
 // "timestamp", the unit's for "time_ms", "t [us]", "Time (s)"...; nullopt for any other name.
 std::optional<double> seconds_per_unit_of_time_name(const std::string& name, bool& unit_stated) {
@@ -143,46 +156,45 @@ std::optional<RecordTimeColumn> find_record_time_column(const std::string& path)
   file.read(head.data(), static_cast<std::streamsize>(kHead));
   head.resize(static_cast<std::size_t>(file.gcount()));
   if (head.size() == kHead) head.resize(head.rfind('\n') == std::string::npos ? 0 : head.rfind('\n') + 1);
+  TextTableHeader header;
   try {
-    const TextTableHeader header = parse_text_table_header(head, path);
-    for (const std::string& name : header.names) {
-      bool unit_stated = false;
-      const std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated);
-      if (!seconds) continue;
-      TextTableOptions options;
-      options.columns = {ColumnSelector{name, 0}};
-      options.threads = 1;
-      const TextTable table = parse_text_table(head, path, options);
-      const std::vector<double>& time = table.columns.front();
-      if (time.size() < 3 || !std::is_sorted(time.begin(), time.end(), std::less_equal<>())) return std::nullopt;
-      return RecordTimeColumn{name,
-                              SourceLocation{path, header.line, 0},
-                              unit_stated,
-                              *seconds * find_time_gaps(time, {}, TimeStampOptions{}).sample_interval,
-                              *seconds * (time.back() - time.front()) / static_cast<double>(time.size() - 1),
-                              time.size()};
-    }
+    header = parse_text_table_header(head, path);
   } catch (const Error&) {
-    // Text the record's reader will refuse with its own message, or a binary record: no time column.
+    return std::nullopt;  // text the record's reader refuses with its own message, or a binary record
+  }
+  for (const std::string& name : header.names) {
+    bool unit_stated = false;
+    const std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated);
+    if (!seconds) continue;
+    TextTableOptions options;
+    options.columns = {ColumnSelector{name, 0}};
+    options.threads = 1;
+    std::vector<double> time;
+    try {
+      time = std::move(parse_text_table(head, path, options).columns.front());
+    } catch (const Error&) {
+      continue;  // text stamps (an ISO date), a bad cell: another column may be the time
+    }
+    if (time.size() < 3 || std::adjacent_find(time.begin(), time.end(), std::greater_equal<>()) != time.end()) continue;
+    return RecordTimeColumn{name, SourceLocation{path, header.line, 0}, unit_stated,
+                            *seconds * interval_between_gaps(time), time.size()};
   }
   return std::nullopt;
 }
 
 void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz) {
   const std::optional<RecordTimeColumn> time = find_record_time_column(path);
-  if (!time) return;
-  // Steps of 1/rate within 2 %: a logger's clock is good to far better, and the mistakes this finds
-  // are factors (10 Hz taken as 100 Hz, ms taken as s).
-  const auto agrees = [&](double seconds_per_unit) {
-    return std::abs(time->sample_interval_s * seconds_per_unit * sample_rate_hz - 1.0) <= 0.02 ||
-           std::abs(time->mean_interval_s * seconds_per_unit * sample_rate_hz - 1.0) <= 0.02;
-  };
-  if (agrees(1.0) || (!time->unit_stated && (agrees(1e-3) || agrees(1e-6)))) return;
+  // A name without its unit may hold ticks, ns or anything: only a stated unit is held against.
+  if (!(sample_rate_hz > 0.0) || !time || !time->unit_stated) return;
+  // Within 5 %: the mistakes this finds are factors (10 Hz taken as 100 Hz, ms taken as s), not a
+  // cheap oscillator's few percent.
+  if (std::abs(time->sample_interval_s * sample_rate_hz - 1.0) <= 0.05) return;
   throw Error(time->header,
               fmt::format("sample_rate_hz (--rate) {:g} Hz contradicts the record's time column '{}': its first {} "
-                          "stamps step {:.6g} s ({:.6g} Hz{})",
+                          "stamps step {:.6g} s ({:.6g} Hz); give the rate the record was logged at (or, if '{}' is "
+                          "no time in the unit its name says, rename it)",
                           sample_rate_hz, time->name, time->rows, time->sample_interval_s, 1.0 / time->sample_interval_s,
-                          time->unit_stated ? "" : ", the column taken in s, ms or us"));
+                          time->name));
 }
 
 GapPolicy parse_gap_policy(std::string_view text) {

@@ -56,15 +56,17 @@ struct AllanParameters {
     return source;
   }
 
-  // The options of the analysis; the sample rate is the one given or, failing that, the one the
-  // record stores (HDF5 sample_rate_hz, TDMS wf_increment...), else an Error naming the file.
+  // The options of the analysis; the sample rate is the one given (checked against a text record's
+  // time column) or, failing that, the one the record stores (HDF5 sample_rate_hz, TDMS
+  // wf_increment...), else an Error naming the file and what a time column shows.
   AllanOptions options(const RateRecordSource& source) const {
     AllanOptions options;
-    const bool text = resolve_rate_record_format(source) == RateRecordFormat::kCsv;
+    const RateRecordFormat format = resolve_rate_record_format(source);
+    const bool text = format == RateRecordFormat::kCsv;
     if (sample_rate_hz) {
       options.sample_rate_hz = *sample_rate_hz;
       if (text) check_sample_rate_against_time_column(source.path, *sample_rate_hz);
-    } else if (columns && channel_record_format_of(resolve_rate_record_format(source))) {
+    } else if (columns && channel_record_format_of(format)) {
       // several channels of a record that stores each one's rate: each its own (allan_channels.cc)
     } else if (const std::optional<double> stored = stored_sample_rate(source)) {
       options.sample_rate_hz = *stored;

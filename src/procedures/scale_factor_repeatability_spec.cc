@@ -36,6 +36,7 @@ ProcedureSpec scale_factor_repeatability_spec() {
         options.validate();
         options.check_run_count(call.runs.at("runs").size());
       })
+      .unit_of("scale_factor_repeatability", "ppm")
       .unit_of("mean_scale_factor", "{output_unit}/({rate_unit})")
       .unit_of("run_scale_factors", "{output_unit}/({rate_unit})")
       .compute([](const ProcedureCall& call, const ScaleFactorRepeatabilityOptions& options) {

@@ -60,7 +60,9 @@ void stability_fields(ProcedureDefinition<TemperatureModelOptions, Result>& defi
              &Result::residual_bias_stability)
       .field({"raw_bias_stability", FieldRole::headline, "bias stability before compensation", "补偿前零偏稳定性",
               "GJB 2426A-2004 eq. (20)"},
-             &Result::raw_bias_stability);
+             &Result::raw_bias_stability)
+      .unit_of("residual_bias_stability", "deg/h")
+      .unit_of("raw_bias_stability", "deg/h");
 }
 
 }  // namespace inertest::thermal

@@ -360,8 +360,9 @@ struct ProcedureCall {
   // says it is stored; set when an input has timed_records(). Errors name the file.
   std::function<TimedRecord(const std::string& file)> read_timed_record;
   // The rate of a record sampled at `given` Hz, checked against the rate the file stores (a record of
-  // named channels): a contradiction is an Error naming both; `given` 0 (none given): the stored
-  // rate, or a ParameterError on sample_rate_hz when the file stores none. Set with read_record.
+  // named channels, a text record's time column): a contradiction is an Error naming both; `given`
+  // 0 (none given): the stored rate, or a ParameterError on sample_rate_hz when the file stores
+  // none. Set with read_record.
   std::function<double(const std::string& file, double given)> record_sample_rate;
   // The unit of a record's samples, `given` checked against the unit the file stores (a record of
   // named channels): a contradiction is an Error naming both. Set with read_record.

@@ -50,8 +50,9 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
 
 // The sample rate of a record sampled at `given` Hz: `given`, checked against the rate a record of
 // named channels stores for the channel (io/channel_record.h resolve_sample_rate: a contradiction
-// is an Error naming both). Text and raw binary records store none: `given`. `given` 0 is none
-// given: the stored rate, else a ParameterError on sample_rate_hz.
+// is an Error naming both), or against a text record's time column that states its unit
+// (io/time_stamps.h check_sample_rate_against_time_column); raw binary records store none. `given`
+// 0 is none given: the stored rate, else a ParameterError on sample_rate_hz.
 double record_sample_rate(const OutputRecordSource& source, double given);
 
 // The unit of a record's samples: `given`, checked against the unit a record of named channels

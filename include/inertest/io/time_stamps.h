@@ -80,20 +80,18 @@ struct RecordTimeColumn {
   std::string name;             // as the header writes it
   SourceLocation header;        // the file and its header line
   bool unit_stated = false;     // false: the name states no unit, s taken
-  double sample_interval_s = 0.0;  // as find_time_gaps finds it (the median step), in s
-  double mean_interval_s = 0.0;    // the mean step, in s: the interval of stamps rounded coarser than it
+  double sample_interval_s = 0.0;  // the mean step between gaps (steps over 2.5 median steps), in s
   std::size_t rows = 0;         // the rows it was found from
 };
-// Reads the first 256 KiB of the file (a rate record of 10^9 lines is not read twice); nullopt for
-// what is not a regular text file with such a column and at least 3 increasing stamps there.
+// Reads the first 256 KiB of the file (a rate record of 10^9 lines is not read twice): the first
+// such column with at least 3 increasing numbers there; nullopt for no such column, or for what is
+// not a regular text file.
 std::optional<RecordTimeColumn> find_record_time_column(const std::string& path);
 
 // A sample rate given for a text record (--rate, sample_rate_hz) checked against the record's own
-// time column: Error at its header line naming both when 1/rate is off the column's interval by
-// more than 2 % (a 10 Hz record analysed as 100 Hz put every tau 10x short), and so is the mean
-// step (stamps rounded to 1 ms at 400 Hz step 2 and 3 ms; a gap lengthens the mean, not the median).
-// A name without a unit
-// is also taken in ms and in us before it is called a contradiction. No time column: no check.
+// time column when its name states its unit ("time_s"; a "time" may hold ticks): Error at its
+// header line naming both when 1/rate is off the column's interval by more than 5 % (a 10 Hz record
+// analysed as 100 Hz put every tau 10x short). No such column: no check.
 void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz);
 
 // Checks table column `time_column` (an index into table.columns) and applies the policy.

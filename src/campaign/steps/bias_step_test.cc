@@ -124,6 +124,17 @@ sample_rate_hz = 1
                     "input");
   expect_plan_error(std::string(kHeader) + "[[procedure]]\nkind = \"bias_repeatability\"\nfiles = [\"rest.txt\"]\n",
                     "at least 2 runs");
+  // One record as two runs: at the key of the array, or at the later run's table, naming the first.
+  const std::string twice = std::string(kHeader) + "[[procedure]]\nkind = \"bias_repeatability\"\nfiles = [\"rest.txt\", "
+                                                   "\"./rest.txt\"]\n";
+  expect_plan_error(twice, "plan.toml:12:9: the 1st and 2nd runs name one file, '");
+  expect_plan_error(twice, "rest.txt': each run is a record of its own");
+  const std::string tables = std::string(kHeader) +
+                             "[[procedure]]\nkind = \"bias_temperature\"\n[[procedure.run]]\ntemperature_degC = 20\n"
+                             "file = \"rest.txt\"\n[[procedure.run]]\ntemperature_degC = 60\nfile = \"rest.txt\"\n";
+  expect_plan_error(tables, "plan.toml:16:20: the 1st and 2nd runs name one file, '");
+  expect_plan_error(tables, "rest.txt' (the first at ");
+  expect_plan_error(tables, "plan.toml:13:20): each run is a record of its own");
   expect_plan_error(std::string(kHeader) +
                         "[[procedure]]\nkind = \"bias_temperature\"\n[[procedure.run]]\ntemperature_degC = 20\n"
                         "file = \"rest.txt\"\ncolour = 1\n",

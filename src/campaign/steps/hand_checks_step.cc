@@ -49,6 +49,9 @@ PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
     figures.back().unit = check.verdict ? "1" : check.unit;
   }
   if (checks.empty()) step.fail("needs at least one [[procedure.check]] table (name, value, unit, min, max)");
+  // The table of every check, which a limit may name by a JSON pointer ("/checks/0/value").
+  figures.push_back({"checks", FieldRole::table, "checks"});
+  figures.back().value = FieldValue::rows;
   return {[checks](const StepRunContext&) { return hand_checks(checks).to_json(); }, nlohmann::json::object(), figures};
 }
 

@@ -177,7 +177,7 @@ TEST(HandChecksStepTest, PlanErrors) {
       "unit = \"MOhm\"\n[procedure.limits]\n";
   expect_error(insulation + "insulation = { min = 20 }\n",
                "plan.toml:14:14: limit on 'insulation': procedure 'hand_checks' reports no such figure (it reports: "
-               "insulation_resistance)");
+               "insulation_resistance, checks)");
   expect_error(insulation + "insulation_resistance = { min = 20, unit = \"V\" }\n",
                "limit on 'insulation_resistance': procedure 'hand_checks' reports it in 'MOhm'");
   EXPECT_NO_THROW(validate_plan(scratch.write("plan.toml", std::string(kHeader) + insulation +

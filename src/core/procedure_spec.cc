@@ -128,43 +128,51 @@ std::string first_non_finite(const nlohmann::json& value, const std::string& at)
 
 }  // namespace
 
-std::optional<std::string> declared_unit(const FieldSpec& field, const nlohmann::json& parameters) {
-  if (field.unit.empty()) return std::nullopt;
-  std::string unit;
+namespace {
+
+// A unit template (FieldSpec::unit) with each "{name}" replaced by value_of(name); nullopt when
+// value_of gives none, or at a '{' without its '}'.
+std::optional<std::string> filled_unit(const std::string& unit,
+                                       const std::function<std::optional<std::string>(const std::string&)>& value_of) {
+  std::string filled;
   std::size_t at = 0;
-  for (std::size_t open = field.unit.find('{'); open != std::string::npos; open = field.unit.find('{', at)) {
-    const std::size_t close = field.unit.find('}', open);
-    if (close == std::string::npos) return std::nullopt;  // refused by check_unit_template
-    const auto value = parameters.find(field.unit.substr(open + 1, close - open - 1));
-    if (value == parameters.end() || !value->is_string()) return std::nullopt;
-    unit += field.unit.substr(at, open - at) + value->get<std::string>();
+  for (std::size_t open = unit.find('{'); open != std::string::npos; open = unit.find('{', at)) {
+    const std::size_t close = unit.find('}', open);
+    if (close == std::string::npos) return std::nullopt;
+    const std::optional<std::string> value = value_of(unit.substr(open + 1, close - open - 1));
+    if (!value) return std::nullopt;
+    filled += unit.substr(at, open - at) + *value;
     at = close + 1;
   }
-  return unit + field.unit.substr(at);
+  return filled + unit.substr(at);
+}
+
+}  // namespace
+
+std::optional<std::string> declared_unit(const FieldSpec& field, const nlohmann::json& parameters) {
+  if (field.unit.empty()) return std::nullopt;
+  return filled_unit(field.unit, [&](const std::string& name) -> std::optional<std::string> {
+    const auto value = parameters.find(name);
+    if (value == parameters.end() || !value->is_string()) return std::nullopt;
+    return value->get<std::string>();
+  });
 }
 
 void check_unit_template(const ProcedureSpec& spec, const FieldSpec& field) {
-  nlohmann::json defaults = nlohmann::json::object();
-  for (std::size_t open = field.unit.find('{'); open != std::string::npos; open = field.unit.find('{', open + 1)) {
-    const std::size_t close = field.unit.find('}', open);
-    if (close == std::string::npos) {
-      throw Error("procedure spec " + spec.kind + ": the unit of '" + field.name + "' (" + field.unit + ") has a '{' without '}'");
-    }
-    const std::string name = field.unit.substr(open + 1, close - open - 1);
-    const auto parameter = std::find_if(spec.parameters.begin(), spec.parameters.end(),
-                                        [&](const ParameterSpec& declared) { return declared.name == name; });
-    if (parameter == spec.parameters.end()) {
-      throw Error("procedure spec " + spec.kind + ": the unit of '" + field.name + "' (" + field.unit +
-                  ") names no parameter of the procedure");
-    }
-    // A parameter without a default ("1" where the instrument gives it) stands for a plain unit.
+  const std::string who = "procedure spec " + spec.kind + ": the unit of '" + field.name + "' (" + field.unit + ")";
+  // Filled with each parameter's default, "1" where it has none (the instrument gives it).
+  const std::optional<std::string> unit = filled_unit(field.unit, [&](const std::string& name) {
+    if (spec.find_parameter(name) == nullptr) throw Error(who + " names no parameter of the procedure");
     const auto fallback = spec.defaults.find(name);
-    defaults[name] = fallback != spec.defaults.end() && fallback->second.is_string() ? fallback->second : nlohmann::json("1");
-  }
+    return std::optional<std::string>(fallback != spec.defaults.end() && fallback->second.is_string()
+                                          ? fallback->second.get<std::string>()
+                                          : "1");
+  });
+  if (!unit) throw Error(who + " has a '{' without '}'");
   try {
-    Unit::parse(*declared_unit(field, defaults));
+    Unit::parse(*unit);
   } catch (const Error& e) {
-    throw Error("procedure spec " + spec.kind + ": the unit of '" + field.name + "': " + e.message());
+    throw Error(who + ": " + e.message());
   }
 }
 

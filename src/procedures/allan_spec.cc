@@ -56,8 +56,8 @@ struct AllanParameters {
     return source;
   }
 
-  // The options of the analysis; the sample rate is the one given (checked against a text record's
-  // time column) or, failing that, the one the record stores (HDF5 sample_rate_hz, TDMS
+  // The options of the analysis; the sample rate is the one given (check() holds it against a text
+  // record's time column) or, failing that, the one the record stores (HDF5 sample_rate_hz, TDMS
   // wf_increment...), else an Error naming the file and what a time column shows.
   AllanOptions options(const RateRecordSource& source) const {
     AllanOptions options;
@@ -65,7 +65,6 @@ struct AllanParameters {
     const bool text = format == RateRecordFormat::kCsv;
     if (sample_rate_hz) {
       options.sample_rate_hz = *sample_rate_hz;
-      if (text) check_sample_rate_against_time_column(source.path, *sample_rate_hz);
     } else if (columns && channel_record_format_of(format)) {
       // several channels of a record that stores each one's rate: each its own (allan_channels.cc)
     } else if (const std::optional<double> stored = stored_sample_rate(source)) {
@@ -157,6 +156,9 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
   AllanOptions options = parameters.options(source);
   if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;  // each channel's own, read with the channels
   options.validate();
+  if (parameters.sample_rate_hz && resolve_rate_record_format(source) == RateRecordFormat::kCsv) {
+    check_sample_rate_against_time_column(source.path, *parameters.sample_rate_hz);
+  }
 }
 
 // A word of a command line, quoted for a POSIX shell when it needs to be.

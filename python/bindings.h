@@ -27,18 +27,21 @@ namespace py = pybind11;
 // A numpy array of float64 as the Python side hands it in: converted (forcecast) and made
 // C-contiguous by pybind11 only when it is not already, so a float64 array is never copied.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+// The same in the layout it has (strides kept): for 2-D arrays whose columns are read where they
+// are, as a Fortran-ordered one (pandas' to_numpy() of float columns) is.
+using StridedDoubleArray = py::array_t<double, py::array::forcecast>;
 
 }  // namespace inertest::python
 
 namespace pybind11::detail {
 
-// DoubleArray's conversion, as array_t's (python/bindings.h above), for arrays of real numbers only:
-// numpy's cast would drop a complex array's imaginary part (with a warning) and turn datetime64
-// stamps into counts of seconds, to be taken as rates. Integers, booleans and floats convert;
-// complex, datetime, timedelta, text and raw bytes are a TypeError naming the dtype.
-template <>
-struct pyobject_caster<inertest::python::DoubleArray> {
-  using type = inertest::python::DoubleArray;
+// The conversion of DoubleArray and StridedDoubleArray, as array_t's (above), for arrays of real
+// numbers only: numpy's cast would drop a complex array's imaginary part (with a warning) and turn
+// datetime64 stamps into counts of seconds, to be taken as rates. Integers, booleans and floats
+// convert; complex, datetime, timedelta, text and raw bytes are a TypeError naming the dtype.
+template <typename Array>
+struct real_array_caster {
+  using type = Array;
   bool load(handle src, bool convert) {
     if (!convert && !type::check_(src)) return false;
     const array given = array::ensure(src);  // an ndarray as it is; a sequence as numpy infers it
@@ -55,6 +58,11 @@ struct pyobject_caster<inertest::python::DoubleArray> {
   static handle cast(const handle& src, return_value_policy /* policy */, handle /* parent */) { return src.inc_ref(); }
   PYBIND11_TYPE_CASTER(type, handle_type_name<type>::name);
 };
+
+template <>
+struct pyobject_caster<inertest::python::DoubleArray> : real_array_caster<inertest::python::DoubleArray> {};
+template <>
+struct pyobject_caster<inertest::python::StridedDoubleArray> : real_array_caster<inertest::python::StridedDoubleArray> {};
 
 }  // namespace pybind11::detail
 

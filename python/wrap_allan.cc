@@ -82,7 +82,7 @@ RateRecordSource rate_source(const std::string& path, const std::string& format,
 // A 1-D array is one channel (AllanResult); a 2-D array holds one channel per column
 // (AllanChannelsResult, named by `channels` or "1", "2", ...; input_unit as the CLI's --input-unit).
 std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
-    const DoubleArray& rate, double sample_rate_hz, const std::string& input_unit, const Taus& taus,
+    const StridedDoubleArray& rate, double sample_rate_hz, const std::string& input_unit, const Taus& taus,
     const std::string& estimators, double scale, double confidence, std::size_t worker_count,
     const FitRangeArgument& fit_range, const std::optional<std::vector<std::string>>& channels,
     const ExportArgument& export_to, const PsdArgument& psd) {
@@ -92,7 +92,8 @@ std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
   if (rate.ndim() == 1) {
     AllanOptions options = common;
     options.input_unit = input_unit;
-    const auto samples = as_span(rate, "rate");
+    const DoubleArray contiguous = DoubleArray::ensure(rate);  // a strided view (a[:, 0]) copied once
+    const auto samples = as_span(contiguous, "rate");
     {
       py::gil_scoped_release release;
       result.channels.push_back({channels && !channels->empty() ? channels->front() : "rate",
@@ -117,15 +118,24 @@ std::variant<ResultOf<AllanTag>, ResultOf<AllanChannelsTag>> allan_of_samples(
     }
     names = *channels;
   }
-  // Columns of a C-ordered array are strided: each is copied once.
-  std::vector<std::vector<double>> columns(count, std::vector<double>(rows));
-  for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t c = 0; c < count; ++c) columns[c][r] = rate.at(r, c);
+  // The columns of a Fortran-ordered array (pandas' to_numpy()) are read where they are; those of
+  // any other layout are strided, and each is copied once.
+  std::vector<std::vector<double>> copies;
+  std::vector<std::span<const double>> columns;
+  if (rate.flags() & py::array::f_style) {
+    for (std::size_t c = 0; c < count; ++c) columns.emplace_back(rate.data() + c * rows, rows);
+  } else {
+    copies.assign(count, std::vector<double>(rows));
+    const auto view = rate.unchecked<2>();
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < count; ++c) copies[c][r] = view(r, c);
+    }
+    columns.assign(copies.begin(), copies.end());
   }
   const std::vector<AllanOptions> options = channel_options(common, names, selectors, input_unit);
   {
     py::gil_scoped_release release;
-    result = allan_variance_of_channels({columns.begin(), columns.end()}, names, options);
+    result = allan_variance_of_channels(columns, names, options);
   }
   export_filter_parameters(result, export_to, "inertest.allan_variance");
   return ResultOf<AllanChannelsTag>(result.to_json(), result.report());
@@ -194,7 +204,8 @@ void wrap_allan(py::module_& module) {
              "channels"_a = py::none(), "export"_a = py::none(), "psd"_a = py::none(),
              (std::string("Allan deviations ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV of rate samples in memory (read in\n"
                           "place, no copy) with chi-squared bounds, and the noise terms Q, N, B, K, R.\n"
-                          "A 2-D array holds one channel per column (an IMU's axes): the result is an\n"
+                          "A 2-D array holds one channel per column (an IMU's axes; Fortran-ordered, as pandas' to_numpy()\n"
+                          "gives, its columns are read in place, other layouts are copied once): the result is an\n"
                           "AllanChannelsResult, its channels named by `channels` (default '1', '2', ...) and input_unit\n"
                           "as the CLI's --input-unit ('deg/s,ax=m/s^2'). export: (format, path), format 'kalibr',\n"
                           "'matlab', 'gnss-ins-sim' or 'json': the filter parameters, as the CLI's --export. psd: (window,\n"

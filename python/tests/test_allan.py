@@ -171,6 +171,24 @@ def test_a_two_dimensional_array_is_one_channel_per_column_as_the_cli_columns(tm
         inertest.allan_variance(imu, sample_rate_hz=SAMPLE_RATE_HZ, channels=["gx"])
 
 
+def test_an_array_in_any_layout_gives_the_same_channels_and_stays_as_it_was():
+    """A Fortran-ordered array (pandas' to_numpy() of float columns) is read in place, a C-ordered or
+    strided one copied once: the figures are the same, the caller's array is not written."""
+    rng = np.random.default_rng(12)
+    imu = np.column_stack([rng.normal(0.0, 1.0, 5_000), rng.normal(0.0, 0.5, 5_000), rng.normal(0.0, 2.0, 5_000)])
+    fortran = np.asfortranarray(imu)
+    kept = fortran.copy(order="F")
+    every_other = np.repeat(imu, 2, axis=1)[:, ::2]  # neither C- nor Fortran-contiguous
+    assert fortran.flags.f_contiguous and not every_other.flags.c_contiguous and not every_other.flags.f_contiguous
+    results = [inertest.allan_variance(a, sample_rate_hz=SAMPLE_RATE_HZ, taus="octave").to_dict()["channels"]
+               for a in (imu, fortran, every_other)]
+    assert results[0] == results[1] == results[2]
+    np.testing.assert_array_equal(fortran, kept)
+    # One column of it, a strided 1-D view, is the same channel.
+    column = inertest.allan_variance(imu[:, 1], sample_rate_hz=SAMPLE_RATE_HZ, taus="octave")
+    assert column.to_dict() == results[0]["2"]
+
+
 def test_the_noise_fit_needs_increasing_taus():
     """The same curve in reverse order was fitted to other figures (the range drops the shortest taus first)."""
     tau = np.array([0.1, 0.2, 0.4, 0.8, 1.6])

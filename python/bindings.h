@@ -37,8 +37,9 @@ namespace pybind11::detail {
 
 // The conversion of DoubleArray and StridedDoubleArray, as array_t's (above), for arrays of real
 // numbers only: numpy's cast would drop a complex array's imaginary part (with a warning) and turn
-// datetime64 stamps into counts of seconds, to be taken as rates. Integers, booleans and floats
-// convert; complex, datetime, timedelta, text and raw bytes are a TypeError naming the dtype.
+// datetime64 stamps into counts of seconds, to be taken as rates, and a boolean mask passed by
+// mistake into ones and zeros. Integers and floats convert; booleans (as is_number refuses a bool),
+// complex, datetime, timedelta, text and raw bytes are a TypeError naming the dtype.
 template <typename Array>
 struct real_array_caster {
   using type = Array;
@@ -47,7 +48,7 @@ struct real_array_caster {
     const array given = array::ensure(src);  // an ndarray as it is; a sequence as numpy infers it
     if (given) {
       const char kind = given.dtype().kind();
-      if (kind == 'c' || kind == 'M' || kind == 'm' || kind == 'S' || kind == 'U' || kind == 'V') {
+      if (kind == 'b' || kind == 'c' || kind == 'M' || kind == 'm' || kind == 'S' || kind == 'U' || kind == 'V') {
         throw type_error("an array of real numbers is expected, not of dtype " +
                          std::string(str(given.dtype()).cast<std::string>()));
       }
@@ -67,6 +68,10 @@ struct pyobject_caster<inertest::python::StridedDoubleArray> : real_array_caster
 }  // namespace pybind11::detail
 
 namespace inertest::python {
+
+// `value` as a DoubleArray through the caster above, for an argument taken as a py::object: a
+// py::cast to an array type constructs it directly, and would take complex or boolean values.
+DoubleArray real_array(const py::handle& value);
 
 // A view of a one-dimensional array's buffer; `name` is the argument's name for the error. A NaN or
 // an infinity is an Error naming its place (as a record's is), unless `values` is Values::any.

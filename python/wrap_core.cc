@@ -13,6 +13,12 @@
 
 namespace inertest::python {
 
+DoubleArray real_array(const py::handle& value) {
+  py::detail::make_caster<DoubleArray> caster;
+  if (!caster.load(value, true)) throw py::type_error("an array of real numbers is expected");
+  return py::detail::cast_op<DoubleArray>(std::move(caster));
+}
+
 std::span<const double> as_span(const DoubleArray& array, const char* name, Values values) {
   if (array.ndim() != 1) {
     throw Error(fmt::format("{} must be a one-dimensional array, not {}-dimensional", name, array.ndim()));
@@ -277,16 +283,13 @@ void wrap_units(py::module_& module) {
         const Unit to = Unit::parse(to_unit);
         // A number of any kind (numpy's scalars, a 0-d array, Decimal) is one; an array of any shape
         // (an IMU's (N, 3)) keeps its shape: both were refused as "not a one-dimensional array".
-        const bool scalar_array = py::isinstance<py::array>(value) && value.cast<py::array>().ndim() == 0;
-        if (is_number(value) || py::isinstance<py::bool_>(value) || scalar_array) {
-          return py::float_(convert(py::float_(value).cast<double>(), from, to));
-        }
-        const DoubleArray given = value.cast<DoubleArray>();  // NaN converts to NaN
+        const DoubleArray given = real_array(value);  // NaN converts to NaN
+        if (given.ndim() == 0) return py::float_(convert(*given.data(), from, to));
         py::array_t<double> converted(std::vector<py::ssize_t>(given.shape(), given.shape() + given.ndim()));
         const double* in = given.data();
         double* out = converted.mutable_data();
         for (py::ssize_t i = 0; i < given.size(); ++i) out[i] = convert(in[i], from, to);
-        return std::move(converted);
+        return converted;
       },
       "value"_a, "from_unit"_a, "to_unit"_a,
       "Converts a number or an array (of any shape) from one unit to another of the same dimension, e.g.\n"

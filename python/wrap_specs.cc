@@ -84,7 +84,7 @@ double input_value(const InputSpec& input, const py::handle& value) {
   if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) {
     throw Error(fmt::format("{} must be a number or an array of samples", input.name));
   }
-  const auto samples = py::cast<DoubleArray>(value);
+  const DoubleArray samples = real_array(value);
   const std::span<const double> span = as_span(samples, input.name.c_str());
   if (span.empty()) throw Error(fmt::format("{} has no samples", input.name));
   return mean(span);

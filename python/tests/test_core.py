@@ -1,5 +1,6 @@
 """Figures, units, records and errors."""
 
+import decimal
 import json
 
 import numpy as np
@@ -79,3 +80,8 @@ def test_convert_takes_numpy_scalars_and_arrays_of_any_shape():
     assert converted.shape == (2, 3)
     np.testing.assert_array_equal(converted, triad * 3600.0)
     np.testing.assert_array_equal(inertest.convert(np.asfortranarray(triad), "deg", "arcsec"), triad * 3600.0)
+    # A bool is no quantity, as an array of them is none, and a complex value none (the arrays' caster).
+    for value, dtype in ((True, "bool"), (np.array([True, False]), "bool"), (np.array([1.0j]), "complex128")):
+        with pytest.raises(TypeError, match="not of dtype " + dtype):
+            inertest.convert(value, "deg", "arcsec")
+    assert inertest.convert(decimal.Decimal("0.5"), "deg", "arcsec") == 1800.0

@@ -173,6 +173,7 @@ def test_a_nan_in_an_array_is_an_error_naming_its_place():
     (np.arange(10).astype("datetime64[s]"), "datetime64"),  # read as rates: a bias of 358200 deg/h
     (np.arange(10).astype("timedelta64[ms]"), "timedelta64"),
     (np.array([str(v) for v in range(10)]), "<U1"),
+    (np.arange(10) > 4, "bool"),                         # a mask read as rates of 0 and 1
 ])
 def test_an_array_of_no_real_numbers_is_refused_naming_its_dtype(values, dtype):
     with pytest.raises(TypeError, match="an array of real numbers is expected, not of dtype " + dtype):

@@ -111,6 +111,14 @@ def test_bad_keywords_raise_inertest_error(keywords, message):
     assert message in str(raised.value)
 
 
+@pytest.mark.parametrize("positive, dtype", [(numpy.array([1.0 + 1.0j]), "complex128"), (True, "bool")])
+def test_samples_of_no_real_numbers_are_refused_naming_their_dtype(positive, dtype):
+    """The generated functions' samples pass the arrays' own check: numpy's cast dropped the
+    imaginary part, and a bool was a sample of 1."""
+    with pytest.raises(TypeError, match="not of dtype " + dtype):
+        inertest.polarity(positive=positive, negative=-1.0)
+
+
 def test_specs_describe_parameters_as_the_plan_names_them():
     specs = {spec["kind"]: spec for spec in inertest.procedure_specs()}
     maximum = specs["maximum_input_rate"]

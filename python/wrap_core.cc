@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "inertest/core/citations.h"
+#include "inertest/core/filesystem_error.h"
 #include "inertest/core/figure.h"
 #include "inertest/core/json_text.h"
 #include "inertest/core/units.h"
@@ -187,7 +188,11 @@ void wrap_error(py::module_& module) {
   module.add_object("Error", py::handle(error_type));
   py::register_exception_translator([](std::exception_ptr pointer) {
     try {
-      if (pointer) std::rethrow_exception(pointer);
+      try {
+        if (pointer) std::rethrow_exception(pointer);
+      } catch (const std::filesystem::filesystem_error& failure) {
+        throw error_of(failure);  // a path the system refuses: bad input, as on the command line
+      }
     } catch (const Error& e) {
       py::object exception = py::reinterpret_borrow<py::object>(error_type)(e.what());
       exception.attr("message") = e.message();

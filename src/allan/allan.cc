@@ -1,5 +1,6 @@
 #include "inertest/allan/allan.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -194,6 +195,24 @@ AllanResult assemble(std::size_t sample_count, double mean, const std::vector<Al
     }
   }
   compute_bounds(result);
+  // Taus asked for by value that the record cannot support are left out, and said: the curve had
+  // them missing without a word. (Those that name one factor twice are one tau.)
+  const TauGrid grid = TauGrid::parse(options.taus);
+  if (grid.kind == TauGrid::Kind::kExplicit) {
+    std::vector<std::string> beyond;
+    for (double tau : grid.taus_s) {
+      const auto m = static_cast<std::size_t>(std::llround(tau * options.sample_rate_hz));
+      if (!std::binary_search(result.averaging_factors.begin(), result.averaging_factors.end(), m)) {
+        beyond.push_back(fmt::format("{:g} s", tau));
+      }
+    }
+    if (!beyond.empty()) {
+      result.warnings.push_back(fmt::format(
+          "tau {} left out: {} samples support tau up to {:g} s with these estimators", fmt::join(beyond, ", "),
+          result.sample_count, static_cast<double>(largest_averaging_factor(result.sample_count, options.estimators)) /
+                                   options.sample_rate_hz));
+    }
+  }
   identify_noise(result, options.fit_range);
   return result;
 }

@@ -1,6 +1,7 @@
 #include "inertest/allan/allan.h"
 
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -278,6 +279,23 @@ TEST(AllanVariance, BadInputIsAClearError) {
   std::vector<double> with_nan(many);
   with_nan[5] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(allan_variance(with_nan, options_at(1.0)), Error);
+}
+
+// Taus asked for by value beyond what the record supports are left out with a warning naming them
+// (1000 and 1500 s of a 2000-sample record at 1 Hz with MDEV: at most 666 s).
+TEST(AllanVariance, TausTheRecordCannotSupportAreSaid) {
+  std::vector<double> rate(2000);
+  for (std::size_t i = 0; i < rate.size(); ++i) rate[i] = std::sin(0.37 * static_cast<double>(i * i));
+  AllanOptions options = options_at(1.0);
+  options.taus = "1,10,1000,1500";
+  const AllanResult result = allan_variance(rate, options);
+  EXPECT_EQ(result.tau_s, (std::vector<double>{1.0, 10.0}));
+  EXPECT_THAT(fmt::format("{}", fmt::join(result.warnings, "\n")),
+              ::testing::HasSubstr("tau 1000 s, 1500 s left out: 2000 samples support tau up to 666 s with these estimators"));
+  options.taus = "1,10";
+  for (const std::string& warning : allan_variance(rate, options).warnings) {
+    EXPECT_EQ(warning.find("left out"), std::string::npos) << warning;
+  }
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "archive/sha256.h"
 #include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
+#include "inertest/core/instrument_id.h"
 #include "inertest/core/json_text.h"
 #include "inertest/core/units.h"
 
@@ -186,12 +187,7 @@ bool nested_deeper_than(const nlohmann::json& node, int levels) {
 // An instrument id names pages and routes of `inertest serve`: no control character, not made of
 // dots only ("." and ".." are path segments a browser or a file system resolves), at most 256 bytes.
 void check_instrument_id(const std::string& id, const std::string& source) {
-  if (id.empty()) malformed(source, "instrument: \"id\" is empty");
-  if (id.size() > 256) malformed(source, "instrument: \"id\" is longer than 256 bytes");
-  if (std::any_of(id.begin(), id.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
-    malformed(source, "instrument: \"id\" contains a control character");
-  }
-  if (id.find_first_not_of('.') == std::string::npos) malformed(source, "instrument: \"id\" '" + id + "' is only dots");
+  if (const std::optional<std::string> problem = instrument_id_problem(id)) malformed(source, "instrument: \"id\" " + *problem);
 }
 
 // One figure's value (a number, or the numbers of an array figure, e.g. a triad's [x, y, z] or a 3x3,

@@ -539,6 +539,11 @@ TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {
   const auto file = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/slash/fleet.html", "--db", location_});
   EXPECT_EQ(file.exit_code, 2);
   EXPECT_THAT(file.err, HasSubstr("fleet.html: the output directory is a file"));
+  // A directory under a file cannot be made: an error at the path the system names (it was an
+  // internal error, exit 3).
+  const auto under = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/slash/fleet.html/pages", "--db", location_});
+  EXPECT_EQ(under.exit_code, 2);
+  EXPECT_THAT(under.err, HasSubstr("inertest: error: " + scratch_.path() + "/slash/fleet.html/pages: Not a directory"));
 }
 
 // The demo's results.json (inertest demo).

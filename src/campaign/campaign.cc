@@ -13,6 +13,7 @@
 #include "campaign/plan_table.h"
 #include "campaign/step_registry.h"
 #include "inertest/core/error.h"
+#include "inertest/core/instrument_id.h"
 #include "inertest/core/figure.h"
 #include "inertest/core/json_text.h"
 #include "inertest/core/procedure_spec.h"
@@ -43,6 +44,9 @@ struct Limit {
   std::optional<FieldSpec> declared;
   // A declared plain number (a count such as run_count): judged as it is, without a unit.
   bool plain_number = false;
+  // The step's own specification (PreparedAction::limits, FieldSpec::states_verdict), not the plan's
+  // [procedure.limits]: judged where the result gives the figure, no verdict where it leaves it out.
+  bool stated = false;
 };
 
 struct PreparedStep {
@@ -59,6 +63,7 @@ struct Plan {
   nlohmann::json header;  // [plan] title, date, operator ... as given
   PlanContext context;
   std::vector<PreparedStep> steps;
+  campaign::PlanTable::DataFiles data_files;  // every data file the steps read, where each is named
 };
 
 toml::table parse_toml(const std::string& path) {
@@ -222,6 +227,27 @@ void check_limit_units(const PreparedStep& step) {
   }
 }
 
+// The specification a step states itself, judged with the plan's limits (its verdicts count in the
+// campaign's): a hand check's min and max, a pass/fail check's "pass" (its figure 1, min 1), and a
+// yes/no a procedure judges itself with (polarity's pass against `expected`). A failed insulation
+// check or a reversed polarity left the campaign's verdict PASS.
+void add_stated_limits(const std::vector<FieldSpec>& fields, const std::vector<campaign::StatedLimit>& stated,
+                       PreparedStep& step) {
+  for (const campaign::StatedLimit& own : stated) {
+    Limit limit{own.figure, own.min, own.max, "", own.where};
+    limit.stated = true;
+    step.limits.push_back(std::move(limit));
+  }
+  for (const FieldSpec& field : fields) {
+    if (!field.states_verdict) continue;
+    Limit limit{field.name, 1.0, std::nullopt, "", step.where};
+    limit.declared = field;
+    limit.plain_number = true;
+    limit.stated = true;
+    step.limits.push_back(std::move(limit));
+  }
+}
+
 Plan load_plan(const std::string& path) {
   const toml::table root = parse_toml(path);
   const std::string directory = std::filesystem::path(path).parent_path().string();
@@ -248,6 +274,11 @@ Plan load_plan(const std::string& path) {
   if (!instrument) top.fail("missing [instrument] table");
   auto& in = plan.context.instrument;
   in.id = instrument->string("id");
+  // The archive keys the instrument's campaigns by it: an id it refuses (run --archive wrote the
+  // results, then refused them) or one with blanks around it ("FOG-001 ", an instrument of its own
+  // that prints as FOG-001) is a plan error.
+  if (const std::optional<std::string> problem = instrument_id_problem(in.id)) instrument->fail_at("id", *problem);
+  if (in.id.front() == ' ' || in.id.back() == ' ') instrument->fail_at("id", "'" + in.id + "' has blanks around it");
   in.type = instrument->string_or("type", "gyro");
   if (in.type != "gyro" && in.type != "accelerometer") instrument->fail_at("type", "must be \"gyro\" or \"accelerometer\"");
   in.output_unit = instrument->string_or("output_unit", "1");
@@ -315,9 +346,11 @@ Plan load_plan(const std::string& path) {
     prepared.parameters = std::move(action.parameters);
     if (!spec) check_declared_figures(action.figures, prepared);
     check_limit_units(prepared);  // and those its parameters make
+    add_stated_limits(spec ? spec->fields : action.figures, action.limits, prepared);
     step.require_all_used();
     plan.steps.push_back(std::move(prepared));
   }
+  plan.data_files = top.data_files();
   return plan;
 }
 
@@ -382,9 +415,10 @@ std::optional<Figure> array_figure_element(const nlohmann::json& result, const s
   return value;
 }
 
-nlohmann::json check_limit(const Limit& limit, const std::string& step_name, const nlohmann::json& result) {
+std::optional<nlohmann::json> check_limit(const Limit& limit, const std::string& step_name, const nlohmann::json& result) {
   const nlohmann::json* node = find_figure(result, limit.figure);
   const std::string key = pointer_tokens(limit.figure).front();
+  if (limit.stated && (node == nullptr || node->is_null())) return std::nullopt;
   // A declared field the result leaves out or null: the data could not give it.
   if (limit.declared && (!result.contains(key) || result.at(key).is_null())) {
     return not_measured_verdict(limit, step_name, "", "the procedure could not give it (see its warnings)");
@@ -396,8 +430,10 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   }
   // A declared key holding a plain number (a count a field_from gives) is judged as one, as a
   // declared number field is; it has no unit to convert to.
-  const bool plain = node != nullptr && node->is_number() &&
-                     (limit.plain_number || (limit.declared && limit.figure.find('/', 1) == std::string::npos));
+  // A yes/no the procedure judges itself with (FieldSpec::states_verdict) is 1 or 0, as a hand check's.
+  const bool yes_no = node != nullptr && node->is_boolean() && limit.stated;
+  const bool plain = yes_no || (node != nullptr && node->is_number() &&
+                                (limit.plain_number || (limit.declared && limit.figure.find('/', 1) == std::string::npos)));
   if (plain && !limit.unit.empty()) {
     throw Error(limit.where, "limit on '" + limit.figure + "': procedure '" + step_name +
                                  "' reports it as a plain number without a unit: give the limit without 'unit'");
@@ -416,7 +452,7 @@ nlohmann::json check_limit(const Limit& limit, const std::string& step_name, con
   // is judged by its upper bound: it passes a maximum the bound meets, and never a minimum.
   const bool identified = element || plain || node->value("identified", true);
   const Figure figure = element  ? *element
-                        : plain  ? Figure{node->get<double>(), "", std::nullopt}
+                        : plain  ? Figure{yes_no ? (node->get<bool>() ? 1.0 : 0.0) : node->get<double>(), "", std::nullopt}
                         : identified ? node->get<Figure>()
                                      : Figure{node->at("upper_bound").get<double>(), node->at("unit").get<std::string>(),
                                               std::nullopt};
@@ -494,6 +530,23 @@ nlohmann::json campaign_results(const Plan& plan, nlohmann::json procedures, nlo
 
 }  // namespace
 
+// An export that would land on a data file of the plan (by any path to it) is an error at the
+// export before anything runs: `--out .` with an export named as a record replaced the record, and
+// a step that reads what an earlier step exports read the file of the run before (a plan's data
+// are the files as they are when it starts).
+void require_exports_replace_no_data(const Plan& plan, const std::filesystem::path& out) {
+  for (const auto& [path, where] : plan.context.outputs.claims()) {
+    for (const auto& [file, read_at] : plan.data_files) {
+      std::error_code error;  // equivalent() is false, with an error, when either does not exist
+      if (std::filesystem::equivalent(out / path, file, error)) {
+        throw Error(where, "the export '" + path + "' would replace '" + file + "', which the plan reads (at " +
+                               read_at.to_string() + "): give the export another name, or the run another --out; "
+                               "a step cannot read what another exports in the same run");
+      }
+    }
+  }
+}
+
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
   const Plan plan = load_plan(plan_path);
   // Everything the run writes (the steps' exports, results.json, the report) goes first into a
@@ -502,6 +555,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   // made of the output directory's path (and only that).
   const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
   require_output_directory(out);
+  require_exports_replace_no_data(plan, out);
   const std::filesystem::path made = first_missing(out);
   std::filesystem::create_directories(out);
   const std::filesystem::path staging = out / ".inertest-exports";
@@ -524,7 +578,9 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
         if (e.location()) throw Error("procedure '" + step.name + "': " + std::string(e.what()));
         throw Error(step.where, "procedure '" + step.name + "': " + e.message());
       }
-      for (const auto& limit : step.limits) verdicts.push_back(check_limit(limit, step.name, result));
+      for (const auto& limit : step.limits) {
+        if (std::optional<nlohmann::json> verdict = check_limit(limit, step.name, result)) verdicts.push_back(*verdict);
+      }
       procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
     }
     summary.results = campaign_results(plan, std::move(procedures), std::move(verdicts));

@@ -139,6 +139,11 @@ INSTANTIATE_TEST_SUITE_P(
                 ":4:8: plan.procedure[1]: 'kind' 'teleport' is not a known procedure"},
         BadPlan{"wrong_type", plan_text("rate_unit = 5\n"), ":11:13: plan.procedure[1]: 'rate_unit' must be a string"},
         BadPlan{"toml_syntax", "[instrument\nid = 1\n", ":1:"},
+        // Ids the archive refuses, or that print as another instrument's.
+        BadPlan{"dots_id", "[instrument]\nid = \"..\"\n[[procedure]]\nkind = \"scale_factor\"\nfile = \"points.csv\"\n",
+                ":2:6: plan.instrument: 'id' '..' is only dots"},
+        BadPlan{"blank_id", "[instrument]\nid = \"FOG-7 \"\n[[procedure]]\nkind = \"scale_factor\"\nfile = \"points.csv\"\n",
+                ":2:6: plan.instrument: 'id' 'FOG-7 ' has blanks around it"},
         BadPlan{"no_instrument", "[[procedure]]\nkind = \"scale_factor\"\n", ":1:1: plan: missing [instrument] table"},
         BadPlan{"no_procedures", "[instrument]\nid = \"x\"\n", ":1:1: plan: no [[procedure]] tables"},
         BadPlan{"bad_latitude", "[instrument]\nid = \"x\"\n[site]\nlatitude_deg = 95\n", ":4:16: plan.site: 'latitude_deg' must lie in [-90, 90]"},

@@ -1,6 +1,7 @@
 #include "campaign/plan_table.h"
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -40,7 +41,12 @@ double PlanTable::number(std::string_view key) {
 std::optional<double> PlanTable::optional_number(std::string_view key) {
   const toml::node* node = find(key);
   if (node == nullptr) return std::nullopt;
-  if (const auto* f = node->as_floating_point()) return f->get();
+  if (const auto* f = node->as_floating_point()) {
+    // TOML's nan and inf are no test's quantity: an infinite duration or rate was allocated (the
+    // simulator's internal error), a nan limit failed every figure.
+    if (!std::isfinite(f->get())) fail_at(key, "must be a finite number (not nan or inf)");
+    return f->get();
+  }
   if (const auto* i = node->as_integer()) return static_cast<double>(i->get());
   fail_at(key, "must be a number");
 }
@@ -101,6 +107,9 @@ std::optional<std::vector<double>> PlanTable::optional_numbers(std::string_view 
   std::vector<double> values;
   for (const auto& element : *array) {
     if (const auto* f = element.as_floating_point()) {
+      if (!std::isfinite(f->get())) {
+        throw Error(location_of(&element), where_ + ": '" + std::string(key) + "' must hold finite numbers (not nan or inf)");
+      }
       values.push_back(f->get());
     } else if (const auto* i = element.as_integer()) {
       values.push_back(static_cast<double>(i->get()));
@@ -141,6 +150,7 @@ std::string PlanTable::resolve(const toml::node* node, std::string_view key) con
     throw Error(location_of(node), where_ + ": data file '" + s->get() + "' not found (looked for " +
                                        path.string() + ")");
   }
+  data_files_->emplace_back(path.lexically_normal().string(), location_of(node));
   return path.lexically_normal().string();
 }
 
@@ -171,7 +181,9 @@ std::optional<PlanTable> PlanTable::optional_table(std::string_view key) {
   if (node == nullptr) return std::nullopt;
   const auto* table = node->as_table();
   if (table == nullptr) fail_at(key, "must be a table");
-  return PlanTable(*table, plan_path_, plan_dir_, where_ + "." + std::string(key));
+  PlanTable inner(*table, plan_path_, plan_dir_, where_ + "." + std::string(key));
+  inner.data_files_ = data_files_;
+  return inner;
 }
 
 std::vector<PlanTable> PlanTable::tables(std::string_view key) {
@@ -184,6 +196,7 @@ std::vector<PlanTable> PlanTable::tables(std::string_view key) {
   for (const auto& element : *array) {
     result.emplace_back(*element.as_table(), plan_path_, plan_dir_,
                         where_ + "." + std::string(key) + "[" + std::to_string(++index) + "]");
+    result.back().data_files_ = data_files_;
   }
   return result;
 }

@@ -3,6 +3,7 @@
 // expected type, and data files are resolved against the plan's directory and must exist.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -52,6 +53,11 @@ class PlanTable {
   // Where the key is in the plan, or the table when it has no such key.
   SourceLocation location_of_key(std::string_view key) const { return location_of(table_->get(key)); }
 
+  // Every data file the plan's tables have resolved so far (file, files, optional_file), with where
+  // it is named; shared by a table and the tables inside it.
+  using DataFiles = std::vector<std::pair<std::string, SourceLocation>>;
+  const DataFiles& data_files() const { return *data_files_; }
+
   const std::string& plan_path() const { return plan_path_; }
   const std::string& plan_dir() const { return plan_dir_; }
   const toml::table& raw() const { return *table_; }
@@ -66,6 +72,7 @@ class PlanTable {
   std::string plan_dir_;
   std::string where_;  // e.g. "procedure 3 (bias)"
   std::set<std::string, std::less<>> used_;
+  std::shared_ptr<DataFiles> data_files_ = std::make_shared<DataFiles>();
 };
 
 }  // namespace inertest::campaign

@@ -119,7 +119,9 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
       const auto& condition = parameter.instrument_condition;
       if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
         const nlohmann::json value = instrument_value(context, parameter);
-        if (!value.is_null()) call.parameters[parameter.name] = value;
+        if (!value.is_null() && (!parameter.instrument_applies || parameter.instrument_applies(call.parameters, context.instrument.to_json()))) {
+          call.parameters[parameter.name] = value;
+        }
       }
     }
     if (parameter.required && !call.parameters.contains(parameter.name)) {

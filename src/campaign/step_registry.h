@@ -46,6 +46,8 @@ class OutputClaims {
   // Why `path` (relative to the output directory) cannot be claimed at `where`, or nothing when it
   // is free (it is then claimed).
   std::optional<std::string> claim(const std::string& path, const SourceLocation& where);
+  // The paths claimed (lexically normal), with where each is named.
+  const std::map<std::string, SourceLocation>& claims() const { return claims_; }
 
  private:
   std::map<std::string, SourceLocation> claims_;  // by lexically normal path
@@ -70,10 +72,19 @@ using StepAction = std::function<nlohmann::json(const StepRunContext&)>;
 // [instrument] values applied), of which its declared units are made (core/procedure_spec.h
 // declared_unit); none for a step that is no declared procedure. Such a step declares the figures
 // it reports instead, as a procedure's fields, so that its limits are checked before anything runs.
+// A bound the step's own data states on one of its figures (a hand check's min and max): judged as
+// a plan's limit, in the figure's unit, where the result gives the figure.
+struct StatedLimit {
+  std::string figure;
+  std::optional<double> min;
+  std::optional<double> max;
+  SourceLocation where;
+};
 struct PreparedAction {
   StepAction run;
   nlohmann::json parameters = nlohmann::json::object();
   std::vector<FieldSpec> figures = {};
+  std::vector<StatedLimit> limits = {};
 };
 // Reads the step's keys (the campaign has already taken kind, name and limits), validates them and
 // the data files, and returns the action. Must read every key it accepts: leftovers are errors.

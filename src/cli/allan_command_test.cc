@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -237,6 +238,21 @@ TEST(AllanCommand, ExportWritesTheFilterParametersOrNothing) {
   const auto format = run_cli({"allan", record, "--rate", "100", "--column", "gx", "--export", "yaml", refused});
   EXPECT_EQ(format.exit_code, 2);
   EXPECT_THAT(format.err, HasSubstr("unknown export format 'yaml'"));
+}
+
+// An export onto the record it is made from (a slip of the shell's completion, or another path to
+// the same file) is an error before anything is written: the record was replaced by the JSON.
+TEST(AllanCommand, AnExportOntoItsOwnRecordIsRefused) {
+  testing::ScratchDirectory dir;
+  const std::string record = dir.write("imu.csv", imu_record());
+  std::filesystem::create_directories(dir.path() + "/sub");
+  for (const std::string& target : {record, dir.path() + "/sub/../imu.csv"}) {
+    const auto over = run_cli({"allan", record, "--rate", "100", "--column", "gx", "--export", "json", target});
+    EXPECT_EQ(over.exit_code, 2);
+    EXPECT_THAT(over.err, HasSubstr("the export '" + target + "' would replace the input file"));
+    EXPECT_EQ(over.out, "");
+    EXPECT_EQ(testing::read_file(record), imu_record());
+  }
 }
 
 TEST(AllanCommand, ColumnsReportAMissingChannelOrUnitByName) {

@@ -9,6 +9,7 @@
 
 #include "command.h"
 #include "inertest/core/error.h"
+#include "inertest/core/filesystem_error.h"
 #include "inertest/version.h"
 
 namespace {
@@ -56,6 +57,11 @@ int main(int argc, char** argv) {
     }
   } catch (const inertest::Error& e) {
     fmt::print(stderr, "inertest: error: {}\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path of the user's the system refuses (a read-only share, a file where a directory goes):
+    // bad input, said with the path, not an internal error.
+    fmt::print(stderr, "inertest: error: {}\n", inertest::error_of(e).what());
     return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "inertest: internal error: {}\n", e.what());

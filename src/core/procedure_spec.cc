@@ -88,7 +88,19 @@ void check_alternatives(const ProcedureSpec& spec, const std::string& who,
 }
 
 std::string ProcedureCall::output_path(const std::string& path) const {
-  if (output_directory.empty()) return path;
+  if (output_directory.empty()) {
+    const auto refuse_input = [&](const std::string& input) {
+      std::error_code error;  // equivalent() is false, with an error, when either does not exist
+      if (std::filesystem::equivalent(path, input, error)) {
+        throw Error("the export '" + path + "' would replace the input file '" + input + "': give the export another name");
+      }
+    };
+    for (const auto& [name, file] : files) refuse_input(file);
+    for (const auto& [name, list] : runs) {
+      for (const RunInput& run : list) refuse_input(run.file);
+    }
+    return path;
+  }
   if (!is_inside_output_directory(path)) {
     throw Error("'" + path + "' is outside the output directory: an export is a relative path beside results.json");
   }

@@ -54,6 +54,14 @@ void move_staged_files(const std::filesystem::path& staging, const std::filesyst
     if (std::filesystem::is_directory(out / name)) {
       throw Error(SourceLocation{(out / name).string(), 0, 0}, "a directory is where a file is to be written");
     }
+    // A file where a directory of the path is to be ("coefficients" for "coefficients/model.json"):
+    // found before the first file moves, not after results.json had replaced the earlier run's.
+    for (std::filesystem::path above = name.parent_path(); !above.empty(); above = above.parent_path()) {
+      if (std::filesystem::exists(out / above) && !std::filesystem::is_directory(out / above)) {
+        throw Error(SourceLocation{(out / above).string(), 0, 0},
+                    "a file is where the directory of '" + name.string() + "' is to be made");
+      }
+    }
   }
   for (const auto& name : names) {
     std::filesystem::create_directories((out / name).parent_path());

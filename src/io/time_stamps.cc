@@ -145,6 +145,36 @@ std::optional<double> seconds_per_unit_of_time_name(const std::string& name, boo
   return std::nullopt;  // "T_degC", "t_x": a temperature, some other quantity
 }
 
+// The last stamp of column `name` of a record longer than its head: the last 64 KiB parsed under
+// the head's header lines (their first, partial line dropped); nullopt where that does not parse.
+std::optional<double> last_stamp(const std::string& path, const std::string& head, const TextTableHeader& header,
+                                 const std::string& name) {
+  std::size_t header_end = std::string::npos;  // the end of the header's line, the head's line header.line
+  for (std::size_t line = 0, from = 0; line < header.line; ++line, from = header_end + 1) {
+    header_end = head.find('\n', from);
+    if (header_end == std::string::npos) return std::nullopt;
+  }
+  if (header_end == std::string::npos) return std::nullopt;  // no header line: no name to find the column by
+  constexpr std::streamoff kTail = 64 << 10;
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = file.tellg();
+  file.seekg(std::max<std::streamoff>(0, size - kTail));
+  std::string tail(static_cast<std::size_t>(std::min(size, kTail)), '\0');
+  file.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+  const std::size_t first_whole = tail.find('\n');
+  if (first_whole == std::string::npos) return std::nullopt;
+  TextTableOptions options;
+  options.columns = {ColumnSelector{name, 0}};
+  options.threads = 1;
+  try {
+    const std::vector<double> stamps =
+        parse_text_table(head.substr(0, header_end + 1) + tail.substr(first_whole + 1), path, options).columns.front();
+    if (!stamps.empty()) return stamps.back();
+  } catch (const Error&) {
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<RecordTimeColumn> find_record_time_column(const std::string& path) {
@@ -155,7 +185,8 @@ std::optional<RecordTimeColumn> find_record_time_column(const std::string& path)
   std::ifstream file(path, std::ios::binary);
   file.read(head.data(), static_cast<std::streamsize>(kHead));
   head.resize(static_cast<std::size_t>(file.gcount()));
-  if (head.size() == kHead) head.resize(head.rfind('\n') == std::string::npos ? 0 : head.rfind('\n') + 1);
+  const bool whole = head.size() < kHead;
+  if (!whole) head.resize(head.rfind('\n') == std::string::npos ? 0 : head.rfind('\n') + 1);
   TextTableHeader header;
   try {
     header = parse_text_table_header(head, path);
@@ -176,8 +207,10 @@ std::optional<RecordTimeColumn> find_record_time_column(const std::string& path)
       continue;  // text stamps (an ISO date), a bad cell: another column may be the time
     }
     if (time.size() < 3 || std::adjacent_find(time.begin(), time.end(), std::greater_equal<>()) != time.end()) continue;
+    const std::optional<double> last = whole ? std::optional(time.back()) : last_stamp(path, head, header, name);
     return RecordTimeColumn{name, SourceLocation{path, header.line, 0}, unit_stated,
-                            *seconds * interval_between_gaps(time), time.size()};
+                            *seconds * interval_between_gaps(time), time.size(), *seconds * time.front(),
+                            *seconds * last.value_or(std::numeric_limits<double>::quiet_NaN())};
   }
   return std::nullopt;
 }
@@ -195,6 +228,19 @@ void check_sample_rate_against_time_column(const std::string& path, double sampl
                           "no time in the unit its name says, rename it)",
                           sample_rate_hz, time->name, time->rows, time->sample_interval_s, 1.0 / time->sample_interval_s,
                           time->name));
+}
+
+void check_time_column_span(const std::string& path, double sample_rate_hz, std::size_t samples) {
+  const std::optional<RecordTimeColumn> time = find_record_time_column(path);
+  if (!(sample_rate_hz > 0.0) || samples < 2 || !time || !time->unit_stated || !std::isfinite(time->last_s)) return;
+  const double span = time->last_s - time->first_s;
+  const double expected = static_cast<double>(samples - 1) / sample_rate_hz;
+  if (std::abs(span - expected) <= std::max(0.01 * expected, 2.0 / sample_rate_hz)) return;
+  throw Error(time->header,
+              fmt::format("the time column '{}' spans {:.6g} s from the first sample to the last, but {} samples at "
+                          "{:g} Hz span {:.6g} s: samples are missing (a gap) or the rate changes within the record "
+                          "(`inertest inspect {} --time-column '{}'` lists the gaps)",
+                          time->name, span, samples, sample_rate_hz, expected, path, time->name));
 }
 
 GapPolicy parse_gap_policy(std::string_view text) {

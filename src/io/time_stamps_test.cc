@@ -239,6 +239,42 @@ TEST(RecordTimeColumn, ARateItContradictsIsAnError) {
   EXPECT_NO_THROW(check_sample_rate_against_time_column(dir.write("none.csv", "gyro\n1\n2\n3\n"), 100.0));
 }
 
+// The whole record's span against its samples at the rate: a gap or a change of rate past the
+// head (read from the file's end, under the header and a comment), and the count the reader gives.
+TEST(RecordTimeColumn, ItsSpanMustBeTheSamplesAtTheRate) {
+  testing::ScratchDirectory dir;
+  const auto record = [&](const std::string& name, const std::vector<double>& stamps) {
+    std::string text = "# logger export\ntime_s,gyro\n";
+    for (double t : stamps) text += fmt::format("{:.3f},1\n", t);
+    return dir.write(name, text);
+  };
+  std::vector<double> regular;  // 60000 rows at 10 Hz: longer than the 256 KiB head
+  for (int i = 0; i < 60000; ++i) regular.push_back(i / 10.0);
+  const std::string whole = record("whole.csv", regular);
+  EXPECT_NO_THROW(check_time_column_span(whole, 10.0, regular.size()));
+  EXPECT_NO_THROW(check_time_column_span(whole, 10.0, regular.size() - 2));  // within 2 intervals
+  std::vector<double> gapped = regular;
+  gapped.erase(gapped.begin() + 40000, gapped.begin() + 41000);  // 100 s missing past the head
+  const std::string gap = record("gap.csv", gapped);
+  EXPECT_NO_THROW(check_sample_rate_against_time_column(gap, 10.0));  // the head is regular
+  try {
+    check_time_column_span(gap, 10.0, gapped.size());
+    ADD_FAILURE() << "the gap went unsaid";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("gap.csv:2: the time column 'time_s' spans 5999.9 s from the first sample to the "
+                                    "last, but 59000 samples at 10 Hz span 5899.9 s: samples are missing (a gap) or "
+                                    "the rate changes within the record"));
+  }
+  std::vector<double> slower = regular;  // from 4000 s on at 1 Hz
+  for (std::size_t i = 40000; i < slower.size(); ++i) slower[i] = 4000.0 + static_cast<double>(i - 40000);
+  EXPECT_THROW(check_time_column_span(record("slower.csv", slower), 10.0, slower.size()), Error);
+  // A short record is its own head; ticks (no unit stated) and no time column are not checked.
+  const std::string short_gap = record("short.csv", {0.0, 0.1, 0.2, 0.3, 1.4, 1.5});
+  EXPECT_THROW(check_time_column_span(short_gap, 10.0, 6), Error);
+  EXPECT_NO_THROW(check_time_column_span(dir.write("ticks.csv", "time,gyro\n0,1\n1,1\n9,1\n10,1\n"), 10.0, 4));
+  EXPECT_NO_THROW(check_time_column_span(dir.write("none.csv", "gyro\n1\n2\n3\n"), 10.0, 3));
+}
+
 TEST(TimeStamps, ParsesThePolicy) {
   EXPECT_EQ(parse_gap_policy("split"), GapPolicy::kSplit);
   EXPECT_EQ(to_string(parse_gap_policy("interpolate")), "interpolate");

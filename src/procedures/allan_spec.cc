@@ -219,12 +219,33 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
                                                          call.progress);
     result.several = true;
   }
+  // A gap in a text record's time stamps, or a rate that changes within it (the check only sees its head).
+  if (resolve_rate_record_format(source) == RateRecordFormat::kCsv) {
+    const AllanResult& first = result.channels.channels.front().result;
+    check_time_column_span(file, first.sample_rate_hz, first.sample_count);
+  }
   if (!parameters.export_to.empty()) {
     write_file_atomically(call.output_path(parameters.export_to[1]),
                           format_filter_parameters(filter_noise_parameters(result.channels),
                                                    parse_filter_format(parameters.export_to[0]), command_line(call)));
   }
   return result;
+}
+
+// In a plan, the [instrument] says what a record of one channel holds: an output in a unit of
+// angular rate or acceleration is the samples' unit; a gyro's output in another (pulse/s, V) is
+// divided by its nominal scale factor. The step's input_unit or scale_factor (they exclude each
+// other) takes precedence; the columns of an IMU record hold rates and accelerations, each named
+// by input_unit. Without either from the instrument the samples are in deg/h, the command line's
+// default. (A step that took neither read a MEMS gyro's deg/s, or a FOG's pulse/s, as deg/h.)
+bool takes_instrument_output_unit(const nlohmann::json& parameters, const nlohmann::json& instrument) {
+  if (parameters.contains("scale_factor") || parameters.contains("columns")) return false;
+  return sensor_kind_of(instrument.at("output_unit").get<std::string>()) != SensorKind::kOther;
+}
+
+bool takes_instrument_scale_factor(const nlohmann::json& parameters, const nlohmann::json& instrument) {
+  return !parameters.contains("input_unit") && !parameters.contains("columns") &&
+         instrument.value("type", std::string("gyro")) == "gyro";
 }
 
 }  // namespace
@@ -265,14 +286,20 @@ ProcedureSpec allan_spec() {
                      .instrument_gives("sample_rate_hz"),
                  &AllanParameters::sample_rate_hz)
       .parameter(ParameterSpec("input_unit", "unit of the samples (default: the one the record stores, HDF5 units or "
-                                             "TDMS unit_string, else deg/h); with columns per channel too: "
-                                             "deg/s,ax=m/s^2 (an acceleration unit gives the accelerometer's noise terms)"),
+                                             "TDMS unit_string, else deg/h; in a plan, [instrument] output_unit when it is "
+                                             "a rate or an acceleration); with columns per channel too: "
+                                             "deg/s,ax=m/s^2 (an acceleration unit gives the accelerometer's noise terms)")
+                     .instrument_gives("output_unit")
+                     .instrument_gives_if(takes_instrument_output_unit),
                  &AllanParameters::input_unit)
       .parameter(ParameterSpec("taus", "octave, decade, all, N/decade or a comma list of tau in s; the noise terms are "
                                        "fitted on those an octave or more apart"),
                  &AllanParameters::taus)
       .parameter(ParameterSpec("scale_factor", "K, output units per deg/s: the raw output is divided by K and "
-                                               "reported in deg/h (excludes input_unit)"),
+                                               "reported in deg/h (excludes input_unit; in a plan, a gyro's [instrument] "
+                                               "nominal_scale_factor when the step gives no input_unit)")
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(takes_instrument_scale_factor),
                  &AllanParameters::scale_factor)
       .parameter(ParameterSpec("estimators", "all, or a comma list of adev, oadev, mdev, hdev, ohdev, totdev"),
                  &AllanParameters::estimators)

@@ -157,6 +157,24 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   if (n < 10) {
     result.warnings.push_back(fmt::format("{} frequencies; GJB 2426A 5.13.3 a) asks for at least 10", n));
   }
+  // A delay below zero by more than twice its uncertainty, and by more than a tenth of a degree of
+  // phase at the highest frequency, has the output lead the input: no gyro does. The phases are then
+  // not eq. (43)'s (the output's phase against the input rate, a lag negative): a lag entered as a
+  // positive number, or a phase against the angle (90 deg off).
+  if (delay < -2.0 * *result.delay.uncertainty && -delay * omega.back() > 0.1 * constants::kDegree) {
+    result.warnings.push_back(fmt::format(
+        "the output delay Td = {:.6g} s is negative (the output would lead the input): are the phases the "
+        "output's against the input rate, a lag negative, in degrees (GJB 2426A eq. (43))?",
+        delay));
+  }
+  // Eq. (42)'s lag and delay leave a few degrees at most on a gyro's phases; tens of degrees are a
+  // response the model does not describe (a resonance, a mixed-up column), and Td is no figure of it.
+  constexpr double kPhaseResidualWarningDeg = 10.0;
+  if (result.phase_fit_residual_rms.value > kPhaseResidualWarningDeg) {
+    result.warnings.push_back(fmt::format("the phases depart from eq. (42)'s lag and delay by {:.3g} deg rms (over {} "
+                                          "deg): the output delay is no figure of this response",
+                                          result.phase_fit_residual_rms.value, kPhaseResidualWarningDeg));
+  }
   if (points.back().frequency_hz < 2.0 * bandwidth) {
     result.warnings.push_back(fmt::format("the highest frequency ({} Hz) is below twice the bandwidth ({:.6g} Hz); "
                                           "GJB 2426A 5.13.3 a) tests up to twice the bandwidth",

@@ -58,6 +58,26 @@ TEST(BandwidthAndDelay, FirstOrderLagWithDelayGivesItsParametersBack) {
   EXPECT_TRUE(result.warnings.empty());
 }
 
+// Phases that are not eq. (43)'s give a negative delay or a poor phase fit: each is said (the
+// delay came out -0.3 ms with a 69 deg rms residual and no word).
+TEST(BandwidthAndDelay, PhasesThatAreNotTheOutputsLagAreSaid) {
+  const Lag lag{1.0, 300.0, 2e-4};
+  const auto frequencies = log_spaced(10.0, 1000.0, 12);
+  std::vector<FrequencyResponsePoint> lead = response(lag, frequencies);  // a lag entered as a positive number
+  for (auto& p : lead) p.phase_rad = -p.phase_rad;
+  std::vector<FrequencyResponsePoint> angle = response(lag, frequencies);  // against the angle: +90 deg
+  for (auto& p : angle) p.phase_rad += kPi / 2.0;
+  const auto reversed = bandwidth_and_delay(lead);
+  EXPECT_LT(reversed.delay.value, 0.0);
+  EXPECT_THAT(fields_of(reversed)["warnings"].dump(), HasSubstr("is negative (the output would lead the input)"));
+  const auto against_angle = bandwidth_and_delay(angle);
+  EXPECT_GT(against_angle.phase_fit_residual_rms.value, 10.0);
+  EXPECT_THAT(fields_of(against_angle)["warnings"].dump(), HasSubstr("the phases depart from eq. (42)'s lag and delay"));
+  // A delay of zero within its scatter is no warning.
+  const Lag none{1.0, 300.0, 0.0};
+  EXPECT_TRUE(bandwidth_and_delay(response(none, frequencies)).warnings.empty());
+}
+
 TEST(BandwidthAndDelay, HandComputedThreePoints) {
   // Gains with G² = 1/(1 + ω²T²) for T² = 1e-6 s² exactly at ω = 100, 200, 400 rad/s:
   // G² = 1/1.01, 1/1.04, 1/1.16. Phase 0 everywhere: Td = Σω(−atan(ωT))/Σω².

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "inertest/io/time_stamps.h"
 #include "inertest/procedures/bias.h"
 #include "inertest/procedures/earth_rate_parameters.h"
 
@@ -131,7 +132,9 @@ ProcedureSpec bias_spec() {
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
         options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored
-        return bias(read_bias_record(call, file, options), options);
+        const std::vector<double> record = read_bias_record(call, file, options);
+        check_time_column_span(file, options.sample_rate_hz, record.size());  // a gap in a text record's stamps
+        return bias(record, options);
       });
 }
 

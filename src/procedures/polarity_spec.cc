@@ -36,6 +36,7 @@ ProcedureSpec polarity_spec() {
       .field_from({"pass", FieldRole::detail, "as specified", "符合规定", ""},
                   [](const PolarityResult& r) { return r.pass ? nlohmann::json(*r.pass) : nlohmann::json(); })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &PolarityResult::warnings)
+      .verdict_is("pass")  // against `expected`: a reversed polarity fails the campaign
       .unit_of("sign", "1")
       .unit_of("output_positive_rate", "{output_unit}")
       .unit_of("output_negative_rate", "{output_unit}")

@@ -328,7 +328,7 @@ reference_temperature = nan
     ADD_FAILURE() << "the plan was accepted";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr(plan + ":10:"));
-    EXPECT_THAT(e.what(), HasSubstr("reference_temperature must be finite"));
+    EXPECT_THAT(e.what(), HasSubstr("'reference_temperature' must be a finite number (not nan or inf)"));
   }
 }
 

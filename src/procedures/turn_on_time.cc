@@ -93,6 +93,14 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
         throw Error(fmt::format("{}: run '{}': the time of sample {} does not increase", what, run.name, i + 1));
       }
     }
+    // The times count from power-on (5.5.4): a first stamp later than the record lasts is a clock's
+    // (an epoch, a time of day), and the figure would be that clock's reading (1.7e9 s).
+    const double span = run.time_s.back() - run.time_s.front();
+    if (run.time_s.front() > span) {
+      throw Error(fmt::format("{}: run '{}': its times start at {:.9g} s, later than the record lasts ({:.6g} s): "
+                              "they must count seconds from power-on (GJB 2426A 5.5.4; subtract the power-on time)",
+                              what, run.name, run.time_s.front(), span));
+    }
     const bool at_rest = run.input_rate_deg_s == 0.0;
     if (at_rest && options.rest_band_deg_h == 0.0) {
       throw Error(fmt::format("{}: run '{}' is at rest but no rest band (required bias, deg/h) was given", what, run.name));

@@ -126,6 +126,13 @@ TEST(TurnOnTimeTest, BadInputIsAnError) {
   EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {2.0, 1.0}, {0.0, 0.0}}}, options), Error);
   EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 5.0, {1.0, 2.0}, {5.0, 5.0}}}, options), Error);  // no rate band
   EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {1.0, 2.0}, {0.0, 1.0}}}, options), Error);  // never settles
+  // Stamps of a clock, not from power-on: the figure was that clock's reading, 1.7e9 s.
+  try {
+    turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {1.7e9, 1.7e9 + 1.0, 1.7e9 + 2.0}, {0.0, 0.0, 0.0}}}, options);
+    ADD_FAILURE() << "epoch stamps accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("its times start at 1.7e+09 s, later than the record lasts (2 s)"));
+  }
   TurnOnTimeOptions zero_k = options;
   zero_k.scale_factor = 0.0;
   EXPECT_THROW(turn_on_time(std::vector<PowerOnRun>{{"r", 0.0, {1.0, 2.0}, {0.0, 0.0}}}, zero_k), Error);

@@ -119,10 +119,15 @@ bool is_number_member(const json& node, std::string_view key) {
   return value != nullptr && value->is_number();
 }
 
-// A verdict's measured value: the number, or "not measured" for a figure the data could not give.
+// A verdict's measured value: the number, "not measured" for a figure the data could not give, or
+// for a term the analysis could not identify, its upper bound as such (it was shown as a value).
 std::string verdict_value_text(const json& verdict, const Labels& labels) {
   const auto* value = member(verdict, "value");
   if (value == nullptr || !value->is_number()) return labels("ui.not_measured");
+  const auto* identified = member(verdict, "identified");
+  if (identified != nullptr && identified->is_boolean() && !identified->get<bool>()) {
+    return labels("ui.not_identified") + " (< " + format_number(value->get<double>()) + ")";
+  }
   return format_number(value->get<double>());
 }
 

@@ -348,6 +348,19 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
   EXPECT_THAT(text, HasSubstr("\nVerdict: " + results.at("verdict").get<std::string>() + "\n"));
 }
 
+// A limit on a term the analysis could not identify is judged by its upper bound (check_limit): the
+// verdict shows it as a bound in both reports, as the figure's own row does (it read "= 0.0035").
+TEST(Report, AVerdictOnAnUnidentifiedTermShowsItsBound) {
+  std::ifstream in(source_path("tests/golden/demo_results.json"));
+  nlohmann::json results = nlohmann::json::parse(in);
+  results["verdicts"] = {{{"procedure", "allan"}, {"figure", "/noise/rate_random_walk"}, {"value", 0.00347},
+                          {"unit", "deg/h/sqrt(h)"}, {"pass", true}, {"identified", false}, {"max", 0.01}}};
+  results["verdict"] = "PASS";
+  EXPECT_THAT(render_text_report(results, {Language::english, ""}),
+              HasSubstr("PASS  allan / /noise/rate_random_walk = not identified (< 0.00347) °/h/√h"));
+  EXPECT_THAT(render_report(results, {Language::english, ""}), HasSubstr("not identified (&lt; 0.00347) °/h/√h"));
+}
+
 // The row of the figure with this pointer in the section of the procedure with this name.
 std::string figure_row(const std::string& page, const std::string& procedure, const std::string& pointer) {
   const std::string start = "<tr data-procedure=\"" + procedure + "\" data-figure=\"" + pointer + "\"";

@@ -11,7 +11,16 @@
 
 namespace inertest::sim {
 
+void Lab::require_not_the_plan(const std::string& relative) const {
+  std::error_code error;  // equivalent() is false, with an error, when either does not exist
+  if (std::filesystem::equivalent(std::filesystem::path(out_dir) / relative, plan_path, error)) {
+    throw Error(SourceLocation{plan_path, 0, 0},
+                "the simulation would write its " + relative + " over this plan: give another --out directory");
+  }
+}
+
 void Lab::write(const std::string& relative, const std::string& content) {
+  require_not_the_plan(relative);
   const std::filesystem::path path = std::filesystem::path(out_dir) / relative;
   std::filesystem::create_directories(path.parent_path());
   write_file_atomically(path.string(), content);

@@ -40,6 +40,7 @@ struct TruthEntry {
 
 struct Lab {
   std::string out_dir;
+  std::string plan_path;  // the simulation plan: no file of the lab may replace it
   std::uint64_t seed = 0;
   Site site;
   std::string site_name;
@@ -61,8 +62,11 @@ struct Lab {
   nlohmann::json tests = nlohmann::json::array();
   std::string plan_steps;  // [[procedure]] tables in TOML
 
-  // Writes out_dir/relative (directories created) and remembers it.
+  // Writes out_dir/relative (directories created) and remembers it; require_not_the_plan first.
   void write(const std::string& relative, const std::string& content);
+  // Throws Error when out_dir/relative is the simulation plan (by any path to it): `simulate
+  // lab/plan.toml --out lab` replaced the plan with the processing plan it made.
+  void require_not_the_plan(const std::string& relative) const;
   Random random(const std::string& stream) const { return Random(seed).stream(stream); }
 };
 

@@ -145,6 +145,31 @@ TEST(SimSimulate, BadPlansNameTheLineAndWriteNothing) {
   expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\n[[test]]\nkind = \"bias\"\n", "names two tests", 5);
   expect_plan_error("seed = 1\n[[test]]\nkind = \"bias\"\n", "missing [gyro]", 1);
   expect_plan_error("seed = 1\n[gyro\n", "", 2);
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\nseconds = inf\n", "must be a finite number", 5);
+}
+
+// Records no memory holds are the plan's mistake (they were internal errors: std::bad_alloc,
+// vector::reserve); the simulation plan is never overwritten by the lab it makes.
+TEST(SimSimulate, ThePlansMistakesAboutSizeAndPlaceAreErrors) {
+  ScratchDirectory dir;
+  for (const char* size : {"[gyro]\n[[test]]\nkind = \"bias\"\nseconds = 1e12\n",
+                           "[gyro]\n[[test]]\nkind = \"bias\"\nseconds = 1e20\n",
+                           "[gyro]\nsample_rate_hz = 1e12\n[[test]]\nkind = \"bias\"\n"}) {
+    try {
+      simulate_text(std::string("seed = 1\n") + size, "big.toml", dir.path() + "/out");
+      ADD_FAILURE() << "no error for " << size;
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("big.toml: its records need more memory than there is")) << size;
+    }
+  }
+  const std::string plan = dir.write("lab/plan.toml", kSmallPlan);
+  try {
+    simulate(plan, dir.path() + "/lab");
+    ADD_FAILURE() << "the lab replaced its plan";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("the simulation would write its plan.toml over this plan"));
+  }
+  EXPECT_EQ(testing::read_file(plan), kSmallPlan);
 }
 
 // [test.limits] of a simulation plan becomes [procedure.limits] of the processing plan it writes,

@@ -128,6 +128,14 @@ struct ParameterSpec {
     instrument_condition = {std::move(parameter), std::move(value)};
     return *this;
   }
+  // The [instrument] default applies only where `applies` holds, given the step's parameters so far
+  // (those it gives, and the defaults of the parameters declared before) and the plan's [instrument]
+  // (Instrument::to_json: id, type, output_unit, nominal_scale_factor, sample_rate_hz).
+  ParameterSpec& instrument_gives_if(
+      std::function<bool(const nlohmann::json& parameters, const nlohmann::json& instrument)> applies) {
+    instrument_applies = std::move(applies);
+    return *this;
+  }
   // The plan key (and Python keyword) when it is a contract that differs from the name (e.g.
   // "nonlinearity_limit_ppm").
   ParameterSpec& plan_key_is(std::string key) { plan_key = std::move(key); return *this; }
@@ -168,6 +176,7 @@ struct ParameterSpec {
   bool instrument_only = false;
   bool site_default = false;  // instrument_default is a key of [site]
   std::optional<std::pair<std::string, std::string>> instrument_condition;  // parameter, value
+  std::function<bool(const nlohmann::json&, const nlohmann::json&)> instrument_applies;  // empty: always
   std::string plan_key;  // "" : the plan key is `name`
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE
@@ -333,6 +342,9 @@ struct FieldSpec {
   // when the parameters do not say it (a unit the record stores). A plan's limit in a unit that does
   // not convert to it is an error before anything runs (declared_unit).
   std::string unit = {};
+  // A yes/no the procedure judges its own specification with (polarity's pass, given the expected
+  // polarity): in a plan, a verdict of the step (FAIL when false), none when the result leaves it null.
+  bool states_verdict = false;
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
@@ -378,6 +390,9 @@ struct ProcedureCall {
   // made there), so that a plan's exports land beside its results.json; on the command line, in the
   // working directory. With an output_directory, a path outside it (absolute, or climbing out with
   // "..") is an Error: it would escape the staging that keeps a failed campaign from leaving output.
+  // On the command line, an export onto one of the call's input files (by any path to it) is an
+  // Error: a mistyped --export replaced the record it was made from. (A campaign checks its exports
+  // against every data file of the plan before it runs.)
   std::string output_path(const std::string& path) const;
 };
 
@@ -645,6 +660,18 @@ class ProcedureDefinition {
       }
     }
     throw Error("procedure spec " + spec_.kind + ": unit_of an undeclared field '" + field_name + "'");
+  }
+
+  // The declared yes/no field with which the procedure judges its own specification
+  // (FieldSpec::states_verdict).
+  ProcedureDefinition& verdict_is(const std::string& field_name) {
+    for (FieldSpec& field : spec_.fields) {
+      if (field.name == field_name) {
+        field.states_verdict = true;
+        return *this;
+      }
+    }
+    throw Error("procedure spec " + spec_.kind + ": verdict_is an undeclared field '" + field_name + "'");
   }
 
   // A key of the JSON that written_by writes: for the report, the plan's limits and the stubs.

@@ -82,6 +82,8 @@ struct RecordTimeColumn {
   bool unit_stated = false;     // false: the name states no unit, s taken
   double sample_interval_s = 0.0;  // the mean step between gaps (steps over 2.5 median steps), in s
   std::size_t rows = 0;         // the rows it was found from
+  double first_s = 0.0;         // the first stamp, in s
+  double last_s = 0.0;          // the last stamp of the whole record, in s (read from the file's end)
 };
 // Reads the first 256 KiB of the file (a rate record of 10^9 lines is not read twice): the first
 // such column with at least 3 increasing numbers there; nullopt for no such column, or for what is
@@ -93,6 +95,13 @@ std::optional<RecordTimeColumn> find_record_time_column(const std::string& path)
 // header line naming both when 1/rate is off the column's interval by more than 5 % (a 10 Hz record
 // analysed as 100 Hz put every tau 10x short). No such column: no check.
 void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz);
+
+// After `samples` samples of a text record were read at `sample_rate_hz`: its time column (as above)
+// from the first stamp to the last must span (samples - 1) / rate, within 1 % (clocks drift apart)
+// or 2 sample intervals. Else an Error naming both spans: samples are missing (a gap) or the rate
+// changes within the record, which the check of the head above cannot see (1000 of 3000 samples
+// gone from the middle of a 10 Hz record went into the Allan variance without a word).
+void check_time_column_span(const std::string& path, double sample_rate_hz, std::size_t samples);
 
 // Checks table column `time_column` (an index into table.columns) and applies the policy.
 // Throws Error at the time stamp's file:line:column when time stands still or goes backwards, when

@@ -88,6 +88,48 @@ format = "f64"
   EXPECT_THROW(validate_plan(bad), Error);  // no sample rate anywhere
 }
 
+// A step that gives neither input_unit nor scale_factor reads the record as its [instrument] says:
+// a MEMS gyro's deg/s output is in deg/s, a FOG's pulse/s divided by its nominal scale factor
+// (both were read as deg/h: the angle random walk 60 and 10 times off, and a limit passed). The
+// step's own key wins; the columns of an IMU record keep their own units.
+TEST(AllanStep, TakesTheInstrumentsOutputUnitOrNominalScaleFactor) {
+  testing::ScratchDirectory dir;
+  dir.write("w.f64", testing::f64_bytes(testing::uniform_noise(10.0, 3000)));
+  const auto oadev_of_plan = [&](const std::string& instrument, const std::string& keys) {
+    const std::string plan = dir.write("plan.toml", "[plan]\ntitle = \"noise\"\n[instrument]\nid = \"G-1\"\n"
+                                                    "sample_rate_hz = 10.0\n" + instrument +
+                                                    "[[procedure]]\nkind = \"allan\"\nname = \"noise\"\n"
+                                                    "file = \"w.f64\"\nformat = \"f64\"\ntaus = \"decade\"\n" + keys);
+    const nlohmann::json result = run_campaign(plan, dir.path() + "/out").results.at("procedures").at(0).at("result");
+    return std::pair(result.at("oadev").at("values").at(0).get<double>(), result.at("oadev").at("unit").get<std::string>());
+  };
+  const auto oadev_direct = [&](double scale) {
+    AllanOptions options;
+    options.sample_rate_hz = 10.0;
+    options.taus = "decade";
+    options.scale = scale;
+    return allan_variance_of_file({dir.path() + "/w.f64", RateRecordFormat::kFloat64, std::nullopt}, options)
+        .curves.at(Estimator::kOadev).values[0];
+  };
+  const auto [in_deg_s, unit_deg_s] = oadev_of_plan("output_unit = \"deg/s\"\n", "");
+  EXPECT_DOUBLE_EQ(in_deg_s, oadev_direct(1.0));  // deg/s samples, the curve in deg/s (the noise terms converted)
+  EXPECT_EQ(unit_deg_s, "deg/s");
+  EXPECT_EQ(oadev_of_plan("", "").second, "deg/h");
+  EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"pulse/s\"\nnominal_scale_factor = 36000.0\n", "").first,
+                   oadev_direct(0.1));  // pulse/s / 36000 (pulse/s)/(deg/s) * 3600 = deg/h
+  // The step's keys win over the instrument's; an accelerometer's nominal scale factor is per g,
+  // no gyro's K: not taken; neither is the dimensionless default output unit.
+  EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"deg/s\"\n", "input_unit = \"deg/h\"\n").first, oadev_direct(1.0));
+  EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"pulse/s\"\nnominal_scale_factor = 36000.0\n", "scale_factor = 2.0\n").first,
+                   oadev_direct(1800.0));
+  EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"pulse/s\"\nnominal_scale_factor = 36000.0\n", "input_unit = \"deg/h\"\n").first,
+                   oadev_direct(1.0));
+  EXPECT_DOUBLE_EQ(oadev_of_plan("type = \"accelerometer\"\noutput_unit = \"V\"\nnominal_scale_factor = 2.0\n", "").first,
+                   oadev_direct(1.0));
+  EXPECT_DOUBLE_EQ(oadev_of_plan("nominal_scale_factor = 36000.0\n", "").first, oadev_direct(0.1));
+  EXPECT_DOUBLE_EQ(oadev_of_plan("", "").first, oadev_direct(1.0));
+}
+
 // fit_range = [tau_min, tau_max] sets the taus of the eq. (30) fit (a list of numbers, as Python's
 // fit_range=(0.2, 25.6); the command line writes it --fit-range 0.2:25.6).
 TEST(AllanStep, FitRangeKey) {
@@ -258,6 +300,42 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
   EXPECT_EQ(left, (std::vector<std::string>{"filter.json", "results.json"}));
   std::ifstream earlier(dir.path() + "/out/filter.json");
   EXPECT_EQ(nlohmann::json::parse(earlier), filter);
+}
+
+// A plan run into its own directory whose export names the step's record: an error at the export
+// before anything runs, the record and the directory as they were (the export replaced the data it
+// was made from).
+TEST(AllanStep, AnExportOntoTheStepsRecordIsRefused) {
+  testing::ScratchDirectory dir;
+  const std::string plan = white_noise_plan(dir, "plan.toml", "export = [\"json\", \"w.f64\"]");
+  const std::string before = testing::read_file(dir.path() + "/w.f64");
+  try {
+    run_campaign(plan, dir.path());
+    ADD_FAILURE() << "the run replaced its record";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("plan.toml:11:10: the export 'w.f64' would replace '" + dir.path() +
+                                    "/w.f64', which the plan reads (at " + dir.path() + "/plan.toml:9:8)"));
+  }
+  EXPECT_EQ(testing::read_file(dir.path() + "/w.f64"), before);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/results.json"));
+  EXPECT_EQ(run_campaign(plan, dir.path() + "/elsewhere").written_files.size(), 2u);  // results.json, w.f64
+}
+
+// A file where an export's directory is to be made: an error before anything moves, the earlier
+// run's results.json as it was (it had been replaced, then an internal error, exit 3).
+TEST(AllanStep, AFileWhereAnExportsDirectoryGoesLeavesTheEarlierRun) {
+  testing::ScratchDirectory dir;
+  const std::string plan = white_noise_plan(dir, "plan.toml", "export = [\"json\", \"coefficients/filter.json\"]");
+  const std::string earlier = dir.write("out/results.json", "{\"an earlier\": \"run\"}\n");
+  dir.write("out/coefficients", "a file");
+  try {
+    run_campaign(plan, dir.path() + "/out");
+    ADD_FAILURE() << "the run moved its files over a file";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("out/coefficients: a file is where the directory of 'coefficients/filter.json' is to be made"));
+  }
+  EXPECT_EQ(testing::read_file(earlier), "{\"an earlier\": \"run\"}\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out/.inertest-exports"));
 }
 
 }  // namespace

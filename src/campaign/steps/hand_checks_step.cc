@@ -3,7 +3,7 @@
 //   name = "Insulation resistance"   # the result key is its snake_case: insulation_resistance
 //   value = 120.0                    # a number, or for appearance (5.2) "pass" / "fail"
 //   unit = "MOhm"                    # optional, default "1"
-//   min = 20.0                       # optional limits; [procedure.limits] can also apply
+//   min = 20.0                       # optional limits, verdicts of the campaign as [procedure.limits]
 //   max = 1000.0
 #include <map>
 #include <span>
@@ -17,6 +17,7 @@ PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
   std::vector<HandCheck> checks;
   std::vector<FieldSpec> figures;  // one per check: what [procedure.limits] may name
   std::map<std::string, SourceLocation> keys;  // each check's result key, where it is named
+  std::vector<StatedLimit> limits;             // each check's min, max or pass/fail
   for (auto& table : step.tables("check")) {
     HandCheck check;
     check.name = table.string("name");
@@ -43,6 +44,11 @@ PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
       table.fail_at("name", "'" + check.name + "' has the result key '" + first->first + "' of the check at " +
                                 first->second.to_string() + ": give each check a name of its own");
     }
+    // The check's own bounds, and a pass/fail check's "pass" (its figure 1), judged as plan limits.
+    if (check.min || check.max || check.verdict) {
+      limits.push_back({first->first, check.verdict ? std::optional(1.0) : check.min, check.max,
+                        table.location_of_key(check.verdict ? "value" : check.min ? "min" : "max")});
+    }
     checks.push_back(check);
     figures.push_back({first->first, FieldRole::headline, check.name});
     figures.back().value = FieldValue::figure;
@@ -52,7 +58,8 @@ PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
   // The table of every check, which a limit may name by a JSON pointer ("/checks/0/value").
   figures.push_back({"checks", FieldRole::table, "checks"});
   figures.back().value = FieldValue::rows;
-  return {[checks](const StepRunContext&) { return hand_checks(checks).to_json(); }, nlohmann::json::object(), figures};
+  return {[checks](const StepRunContext&) { return hand_checks(checks).to_json(); }, nlohmann::json::object(), figures,
+          limits};
 }
 
 }  // namespace inertest::campaign

@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "inertest/campaign/campaign.h"
@@ -116,6 +117,36 @@ file = "on.csv"
   EXPECT_DOUBLE_EQ(p.at(4).at("result").at("runs").at(1).at("time").at("value").get<double>(), 3.0);
   EXPECT_DOUBLE_EQ(p.at(5).at("result").at("warm_up_time").at("value").get<double>(), 4.0);
   EXPECT_TRUE(summary.results.at("verdicts").at(0).at("pass").get<bool>());
+  // The checks' own bounds and pass/fail, and the polarity against `expected`, are verdicts of the
+  // campaign with the plan's limits: the power consumption over its 4 W fails it (it read PASS).
+  std::vector<std::string> judged;
+  for (const auto& v : summary.results.at("verdicts")) {
+    judged.push_back(fmt::format("{}/{} {} {}", v.at("procedure").get<std::string>(), v.at("figure").get<std::string>(),
+                                 v.at("value").get<double>(), v.at("pass").get<bool>() ? "PASS" : "FAIL"));
+  }
+  EXPECT_EQ(judged, (std::vector<std::string>{"hand_checks/appearance 1 PASS", "hand_checks/insulation_resistance 150 PASS",
+                                              "hand_checks/power_consumption 4.2 FAIL", "polarity/pass 1 PASS",
+                                              "threshold/threshold 4 PASS"}));
+  EXPECT_EQ(summary.results.at("verdict"), "FAIL");
+}
+
+// A failed appearance check or a reversed polarity fails the campaign; a polarity without an
+// expected one is no verdict.
+TEST(HandChecksStepTest, AFailedCheckOrAReversedPolarityFailsTheCampaign) {
+  ScratchDirectory scratch;
+  scratch.write("plus.txt", "5\n5\n");
+  scratch.write("minus.txt", "-5\n-5\n");
+  const auto verdict_of = [&](const std::string& steps) {
+    const std::string plan = scratch.write("plan.toml", std::string(kHeader) + steps);
+    return run_campaign(plan, scratch.path() + "/out").results.at("verdict").get<std::string>();
+  };
+  const std::string polarity = "[[procedure]]\nkind = \"polarity\"\npositive_file = \"plus.txt\"\n"
+                               "negative_file = \"minus.txt\"\n";
+  EXPECT_EQ(verdict_of(polarity + "expected = \"negative\"\n"), "FAIL");
+  EXPECT_EQ(verdict_of(polarity + "expected = \"positive\"\n"), "PASS");
+  EXPECT_EQ(verdict_of(polarity), "NONE");
+  EXPECT_EQ(verdict_of("[[procedure]]\nkind = \"hand_checks\"\n[[procedure.check]]\nname = \"Appearance\"\nvalue = \"fail\"\n"),
+            "FAIL");
 }
 
 TEST(HandChecksStepTest, ThresholdCriterionDenominatorKey) {

@@ -13,8 +13,8 @@
 #include "campaign/plan_table.h"
 #include "campaign/step_registry.h"
 #include "inertest/core/error.h"
-#include "inertest/core/instrument_id.h"
 #include "inertest/core/figure.h"
+#include "inertest/core/instrument_id.h"
 #include "inertest/core/json_text.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
@@ -233,18 +233,22 @@ void check_limit_units(const PreparedStep& step) {
 // check or a reversed polarity left the campaign's verdict PASS.
 void add_stated_limits(const std::vector<FieldSpec>& fields, const std::vector<campaign::StatedLimit>& stated,
                        PreparedStep& step) {
-  for (const campaign::StatedLimit& own : stated) {
-    Limit limit{own.figure, own.min, own.max, "", own.where};
+  const auto add = [&step](const std::string& figure, std::optional<double> min, std::optional<double> max,
+                           const SourceLocation& where) -> Limit& {
+    Limit& limit = step.limits.emplace_back();
+    limit.figure = figure;
+    limit.min = min;
+    limit.max = max;
+    limit.where = where;
     limit.stated = true;
-    step.limits.push_back(std::move(limit));
-  }
+    return limit;
+  };
+  for (const campaign::StatedLimit& own : stated) add(own.figure, own.min, own.max, own.where);
   for (const FieldSpec& field : fields) {
     if (!field.states_verdict) continue;
-    Limit limit{field.name, 1.0, std::nullopt, "", step.where};
+    Limit& limit = add(field.name, 1.0, std::nullopt, step.where);
     limit.declared = field;
     limit.plain_number = true;
-    limit.stated = true;
-    step.limits.push_back(std::move(limit));
   }
 }
 

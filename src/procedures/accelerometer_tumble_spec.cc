@@ -220,10 +220,34 @@ HarmonicFit fit_harmonics(const std::vector<TumblePosition>& positions, std::arr
   return result;
 }
 
+// The positions must spread over the whole turn (IEEE Std 1293-1998's multi-position tumble: equally
+// spaced, 90 deg apart or closer): a largest gap between head angles (mod 360) over 120 deg is an
+// Error naming it. Angles in radians (0 to 6.3 "deg") or a part of a turn (0 to 135 deg) gave a fit
+// with figures a million times off and no word.
+void require_whole_turn(const std::vector<TumblePosition>& positions, const std::string& path) {
+  constexpr double kLargestGapDeg = 120.0;
+  std::vector<double> angles;
+  for (const TumblePosition& p : positions) angles.push_back(std::fmod(std::fmod(p.angle_deg, 360.0) + 360.0, 360.0));
+  std::sort(angles.begin(), angles.end());
+  if (angles.empty()) return;
+  double gap = angles.front() + 360.0 - angles.back();  // across 0 deg
+  double from = angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i) {
+    if (angles[i] - angles[i - 1] > gap) gap = angles[i] - angles[i - 1], from = angles[i - 1];
+  }
+  if (gap <= kLargestGapDeg) return;
+  throw Error(SourceLocation{path, 0, 0},
+              fmt::format("the head angles leave {:.4g} deg of the turn without a position (from {:.4g} deg on): a "
+                          "tumble spreads its positions over the whole turn, {:g} deg apart at most (4, 8, 12, 16 or 24 "
+                          "a turn); are the angles in radians? the column angle_deg is in degrees",
+                          gap, from, kLargestGapDeg));
+}
+
 // The harmonics of the fullest model the positions identify: all six, else without A3 (K3), else
 // without B2 (K_x) too; E besides when both mountings are there. Throws Error when even A0, A1, B1
 // and A2 are not identified.
 HarmonicFit identified_harmonics(const std::vector<TumblePosition>& positions, const std::string& path) {
+  require_whole_turn(positions, path);
   const auto turned = [](const TumblePosition& p) { return p.turned; };
   const bool both_mountings = std::any_of(positions.begin(), positions.end(), turned) &&
                               !std::all_of(positions.begin(), positions.end(), turned);

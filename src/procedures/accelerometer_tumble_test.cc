@@ -275,11 +275,16 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         Refusal{"missing_output", "angle_deg,volts\n0,1\n90,0\n180,-1\n270,0\n", ":1:1: expected a header row"},
         Refusal{"not_a_number", "angle_deg,output\n0,1\n90,x\n180,-1\n270,0\n", ":3:4"},
-        Refusal{"three_positions", "angle_deg,output\n0,1\n90,0\n180,-1\n", ": the 3 positions do not identify"},
+        Refusal{"three_positions", "angle_deg,output\n0,1\n120,-0.5\n240,-0.5\n", ": the 3 positions do not identify"},
         Refusal{"mounting_not_0_or_180", "angle_deg,output,mounting_deg\n0,1,0\n90,0,90\n180,-1,0\n270,0,0\n",
                 ":3:6: mounting_deg is 90"},
         Refusal{"four_rows_two_angles", "angle_deg,output\n0,1\n180,-1\n0,1.1\n180,-0.9\n",
-                ": the 4 positions do not identify"}),
+                ": the head angles leave 180 deg of the turn without a position (from 180 deg on)"},
+        // Radians in the degrees' column, and a part of a turn: figures a million times off, no word.
+        Refusal{"radians", "angle_deg,output\n0,1\n1.5708,0\n3.1416,-1\n4.7124,0\n",
+                ": the head angles leave 355.3 deg of the turn without a position (from 4.712 deg on)"},
+        Refusal{"part_of_a_turn", "angle_deg,output\n0,1\n45,0.7\n90,0\n135,-0.7\n",
+                ": the head angles leave 225 deg of the turn without a position (from 135 deg on)"}),
     testing::NameOfParam());
 
 TEST(Tumble, GravityOffTheEarthIsRefusedBeforeReading) {

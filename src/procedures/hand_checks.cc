@@ -52,6 +52,12 @@ HandChecksResult hand_checks(std::span<const HandCheck> checks) {
     if (check.value && !std::isfinite(*check.value)) {
       throw Error(fmt::format("hand checks: the value of '{}' is not a finite number", check.name));
     }
+    // A nan bound failed every value (a FAIL, exit 1, for a mistyped limit), an infinite one passed it.
+    for (const auto& [bound, word] : {std::pair{check.min, "min"}, std::pair{check.max, "max"}}) {
+      if (bound && !std::isfinite(*bound)) {
+        throw Error(fmt::format("hand checks: the {} of '{}' is not a finite number", word, check.name));
+      }
+    }
     if (check.min && check.max && *check.min > *check.max) {
       throw Error(fmt::format("hand checks: '{}' has min {} above max {}", check.name, *check.min, *check.max));
     }
@@ -68,7 +74,10 @@ HandChecksResult hand_checks(std::span<const HandCheck> checks) {
       entry.pass = *check.verdict;
     } else {
       entry.figure = {*check.value, check.unit, std::nullopt};
-      entry.pass = (!check.min || *check.value >= *check.min) && (!check.max || *check.value <= *check.max);
+      // A max alone bounds the magnitude, as a plan's limit does (the campaign judges these bounds
+      // as its limits: the two verdicts are one).
+      const double judged = check.max && !check.min ? std::abs(*check.value) : *check.value;
+      entry.pass = (!check.min || judged >= *check.min) && (!check.max || judged <= *check.max);
     }
     result.all_pass = result.all_pass && entry.pass;
     result.checks.push_back(std::move(entry));

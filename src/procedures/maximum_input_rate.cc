@@ -72,25 +72,36 @@ MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> poin
 
   MaximumInputRateResult result;
   result.rate_unit = options.scale_factor.rate_unit;
-  std::optional<std::size_t> last_pass;  // the last range before the first failure
+  std::optional<std::size_t> last_pass;  // the largest range that meets the requirement
   ScaleFactorResult last_pass_fit;
-  bool failed = false;
   for (double range : candidates) {
     const std::vector<ScaleFactorPoint> kept = points_within(points, range);
     const ScaleFactorResult fit = scale_factor(kept, options.scale_factor);  // eqs. (1)-(9)
     const bool meets = fit.nonlinearity.value <= options.nonlinearity_limit_ppm;
     result.ranges.push_back({range, fit.nonlinearity.value, meets});
-    failed = failed || !meets;
-    if (!failed) {
+    if (meets) {
       last_pass = result.ranges.size() - 1;
       last_pass_fit = fit;
     }
   }
   if (!last_pass) {
-    throw Error(fmt::format("maximum input rate: the nonlinearity over the smallest range (|rate| <= {} {}) is {:.6g} "
-                            "ppm, above the requirement of {} ppm; the requirement holds at no tested rate",
-                            candidates.front(), result.rate_unit, result.ranges.front().nonlinearity,
-                            options.nonlinearity_limit_ppm));
+    throw Error(fmt::format("maximum input rate: the nonlinearity is above the requirement of {} ppm over every range "
+                            "(|rate| <= {} {}: {:.6g} ppm); the requirement holds at no tested rate",
+                            options.nonlinearity_limit_ppm, candidates.back(), result.rate_unit,
+                            result.ranges.back().nonlinearity));
+  }
+  std::vector<std::string> failing_below;  // smaller ranges that miss the requirement: said, not the figure
+  for (std::size_t i = 0; i < *last_pass; ++i) {
+    if (!result.ranges[i].meets_requirement) {
+      failing_below.push_back(fmt::format("{} ({:.3g} ppm)", result.ranges[i].rate, result.ranges[i].nonlinearity));
+    }
+  }
+  if (!failing_below.empty()) {
+    result.warnings.push_back(fmt::format(
+        "the nonlinearity over the smaller ranges |rate| <= {} {} is above the requirement; the maximum input rate is "
+        "the largest at which it is met (GJB 2426A 5.9). Over a small range the output's noise is most of a "
+        "nonlinearity in ppm of its full scale",
+        fmt::join(failing_below, ", "), result.rate_unit));
   }
   const auto& chosen = result.ranges[*last_pass];
   result.maximum_input_rate = {chosen.rate, result.rate_unit, std::nullopt};

@@ -26,7 +26,7 @@ ProcedureSpec maximum_input_rate_spec() {
   return ProcedureDefinition<MaximumInputRateOptions, MaximumInputRateResult>(
              "maximum_input_rate", "Maximum input rate", "GJB 2426A-2004 5.9 (with 5.8.1-5.8.2, eqs. 1-9)",
              "the largest tested rate R such that the scale-factor nonlinearity (eqs. 1-9)\n"
-             "over the points with |rate| <= R meets --nonlinearity-limit, for that R and every smaller one.\n"
+             "over the points with |rate| <= R meets --nonlinearity-limit (smaller ranges that miss it are a warning).\n"
              "POINTS has the header 'rate,output', as for 'inertest scale-factor', tested beyond the expected\n"
              "maximum.")
       .chinese_title("最大输入角速度")

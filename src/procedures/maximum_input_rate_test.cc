@@ -48,6 +48,29 @@ TEST(MaximumInputRate, AllRangesPassGivesTheLargestTestedRateAndAWarning) {
   EXPECT_THAT(result.warnings[0], HasSubstr("may be higher"));
 }
 
+// GJB 2426A 5.9 judges the characteristic at the maximum input rate: small ranges whose noise is
+// most of their nonlinearity (in ppm of a small full scale) do not stop the scan, they are said. The
+// README's own record (scale factor 5000 pulse/s/(deg/s), Kn 17 ppm over +-300 deg/s) was refused:
+// 34 ppm over |rate| <= 0.2 deg/s.
+TEST(MaximumInputRate, SmallRangesThatMissTheRequirementAreAWarning) {
+  std::vector<ScaleFactorPoint> points = {{0.0, 0.0}};
+  for (double r : {0.1, 0.2, 0.5, 1.0, 10.0, 100.0, 300.0}) {
+    const double noise = r == 0.1 ? 0.05 : (r == 0.2 ? -0.05 : 0.0);  // pulse/s, both ways: no slope absorbs it
+    points.push_back({r, 5000.0 * r + noise});
+    points.push_back({-r, -5000.0 * r + noise});
+  }
+  points.push_back({0.0, 0.0});
+  MaximumInputRateOptions options;
+  options.nonlinearity_limit_ppm = 20.0;
+  const auto result = maximum_input_rate(points, options);
+  EXPECT_EQ(result.maximum_input_rate.value, 300.0);
+  EXPECT_FALSE(result.ranges.front().meets_requirement);  // |rate| <= 0.2
+  EXPECT_TRUE(result.ranges.back().meets_requirement);
+  ASSERT_GE(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], HasSubstr("the nonlinearity over the smaller ranges |rate| <= 0.2 ("));
+  EXPECT_THAT(result.warnings[0], HasSubstr("deg/s is above the requirement"));
+}
+
 // Ranges must be tested both ways: with the negative rates stopping at 5 deg/s, a point at 400
 // deg/s (positive only) gave a maximum input rate of 400 deg/s, never tested in the negative.
 TEST(MaximumInputRate, OnlyRangesTestedInBothDirectionsCount) {

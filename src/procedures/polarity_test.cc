@@ -1,5 +1,6 @@
 #include "inertest/procedures/polarity.h"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
@@ -46,6 +47,13 @@ TEST(HandChecksTest, FiguresAndPassFlags) {
   EXPECT_TRUE(json.at("check_pass").at("insulation_resistance_case_to_power").get<bool>());
   EXPECT_FALSE(json.at("check_pass").at("power_15_v_supply").get<bool>());
   EXPECT_EQ(json.at("checks").at(0).at("value"), "pass");
+  // A max alone bounds the magnitude, as the plan's limit the campaign judges it with does; with a
+  // min beside it, the signed value.
+  const std::vector<HandCheck> offsets = {{"Offset", -0.8, std::nullopt, "V", std::nullopt, 0.5},
+                                          {"Offset in range", -0.8, std::nullopt, "V", -1.0, 0.5}};
+  const HandChecksResult judged = hand_checks(offsets);
+  EXPECT_FALSE(judged.checks[0].pass);
+  EXPECT_TRUE(judged.checks[1].pass);
 }
 
 TEST(HandChecksTest, BadInputIsAnError) {
@@ -54,6 +62,8 @@ TEST(HandChecksTest, BadInputIsAnError) {
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", std::nullopt, std::nullopt, "1", {}, {}}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", std::nullopt, true, "1", 1.0, {}}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", 2.0, 1.0}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", std::nan(""), {}}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", {}, HUGE_VAL}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"checks", 1.0, std::nullopt, "1", {}, {}}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"--", 1.0, std::nullopt, "1", {}, {}}}), Error);
 }

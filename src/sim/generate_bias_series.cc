@@ -51,7 +51,7 @@ double record_static_f64(Lab& lab, GyroModel& model, const TemperatureProfile& t
   const Rig rig = static_rig(lab.site, ia_east(), temperature);
   const double fs = model.parameters().sample_rate_hz;
   const double start = model.time_s();
-  const auto pulses = model.record(rig, static_cast<std::size_t>(std::llround(seconds * fs)), 1);
+  const auto pulses = model.record(rig, lab.samples(seconds, fs), 1);
   lab.write(file, f64_record(pulses, fs));
   double total = 0.0;
   const int points = 200;
@@ -172,7 +172,7 @@ void generate_power_on_time(campaign::PlanTable& test, const std::string& name, 
     GyroModel model(gyro, lab.random(fmt::format("{}/run{}", name, q)), 0.0);
     settled = gyro.scale_factor * model.static_output_deg_s(rig(0.0), 1e9);
     const std::string file = fmt::format("{}/power_on_{}.f64", name, q);
-    lab.write(file, f64_record(model.record(rig, static_cast<std::size_t>(std::llround(seconds * fs)), 1), fs));
+    lab.write(file, f64_record(model.record(rig, lab.samples(seconds, fs), 1), fs));
     steps += fmt::format("[[procedure.run]]\nfile = \"{}\"\n", file);
   }
   // 5.5.4 on the noise-free transient b·e^(−t/τ): window k, [kS, (k+1)S), has the mean
@@ -225,7 +225,7 @@ void generate_polarity(campaign::PlanTable& test, const std::string& name, Lab& 
                                        constant_temperature(gyro.reference_temperature_c));
     model.record(rig, static_cast<std::size_t>(std::llround(fs)));
     const double start = model.time_s();
-    const auto pulses = model.record(rig, static_cast<std::size_t>(std::llround(seconds * fs)));
+    const auto pulses = model.record(rig, lab.samples(seconds, fs));
     lab.write(fmt::format("{}/{}.csv", name, sign > 0 ? "plus" : "minus"),
               time_series_csv(pulses, fs, start, fmt::format("table rate {} deg/s about IA", sign * rate)));
   }

@@ -64,7 +64,7 @@ void generate_imu_noise(campaign::PlanTable& test, const std::string& name, Lab&
   for (const AxisTruth& t : kAccelerometers) add(t, false);
   axes[2].sine_amplitude = sine_amplitude;
   axes[2].sine_frequency_hz = sine_frequency;
-  const auto samples = static_cast<std::size_t>(hours * 3600.0 * rate);
+  const auto samples = lab.samples(hours * 3600.0, rate);
   const auto columns = simulate_imu_noise(axes, rate, samples, lab.random(name + "/imu").seed());
   std::string text = "time_s,gx,gy,gz,ax,ay,az\n";
   for (std::size_t i = 0; i < samples; ++i) {

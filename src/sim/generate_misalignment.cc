@@ -220,7 +220,7 @@ void generate_accelerometer_misalignment(campaign::PlanTable& test, const std::s
   if (lab.dry_run) return;
   const AccelerometerParameters& acc = lab.accelerometer;
   AccelerometerModel model(acc, lab.random(name));
-  const std::size_t samples = static_cast<std::size_t>(std::llround(seconds * acc.sample_rate_hz));
+  const std::size_t samples = lab.samples(seconds, acc.sample_rate_hz);
   std::string text = fmt::format("# accelerometer 4-position test '{}' ({}): mean output over {} s per position\n"
                                  "beta_deg,output,run\n",
                                  name, citations::kMisalignmentPaper, seconds);

@@ -37,7 +37,7 @@ StaticRun record_static(const std::string& name, Lab& lab, const GyroParameters&
   GyroModel model(gyro, lab.random(name), 3600.0);
   const double start = model.time_s();
   const double fs = gyro.sample_rate_hz;
-  const std::size_t count = static_cast<std::size_t>(std::llround(seconds * fs));
+  const std::size_t count = lab.samples(seconds, fs);
   StaticRun run;
   run.true_bias_deg_h = model.static_output_deg_s(rig(start), 1e9) * kDegHourPerDegSecond;
   // Long records are made in blocks so that progress can be shown.

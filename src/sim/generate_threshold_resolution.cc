@@ -66,7 +66,7 @@ void generate_threshold(campaign::PlanTable& test, const std::string& name, Lab&
     const Rig rig = static_rig(lab.site, mounting({std::sin(beta), std::cos(beta), 0.0}, {0, 0, 1}),
                                constant_temperature(gyro.reference_temperature_c));
     model.record(rig, static_cast<std::size_t>(std::llround(fs)));
-    const auto pulses = model.record(rig, static_cast<std::size_t>(std::llround(seconds * fs)));
+    const auto pulses = model.record(rig, lab.samples(seconds, fs));
     fmt::format_to(std::back_inserter(text), "{},{}\n", exact(angle), exact(mean_output(pulses, fs)));
   }
   lab.write(name + "/positions.csv", text);
@@ -111,7 +111,7 @@ void generate_resolution(campaign::PlanTable& test, const std::string& name, Lab
     const Rig rig = lab.rate_table.rig(lab.site, ia_up, rate * constants::kDegree, 0.0, model.time_s(),
                                        constant_temperature(gyro.reference_temperature_c));
     model.record(rig, static_cast<std::size_t>(std::llround(fs)));
-    return mean_output(model.record(rig, static_cast<std::size_t>(std::llround(seconds * fs))), fs);
+    return mean_output(model.record(rig, lab.samples(seconds, fs)), fs);
   };
   std::string text = fmt::format("# resolution '{}' (GJB 2426A 5.11): mean outputs over {} s\n"
                                  "base_rate,base_output,rate,output\n",

@@ -19,6 +19,18 @@ void Lab::require_not_the_plan(const std::string& relative) const {
   }
 }
 
+std::size_t Lab::samples(double seconds, double rate_hz) const {
+  constexpr double kMostSamples = 1e9;
+  const double count = std::round(seconds * rate_hz);
+  if (!(count >= 0.0 && count <= kMostSamples)) {
+    throw Error(SourceLocation{plan_path, 0, 0},
+                fmt::format("a record of {:g} s at {:g} Hz is {:.3g} samples, more than the simulator makes in one "
+                            "record ({:g}): shorten a test's seconds or hours, or lower its sample_rate_hz",
+                            seconds, rate_hz, count, kMostSamples));
+  }
+  return static_cast<std::size_t>(count);
+}
+
 void Lab::write(const std::string& relative, const std::string& content) {
   require_not_the_plan(relative);
   const std::filesystem::path path = std::filesystem::path(out_dir) / relative;

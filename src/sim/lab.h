@@ -67,6 +67,10 @@ struct Lab {
   // Throws Error when out_dir/relative is the simulation plan (by any path to it): `simulate
   // lab/plan.toml --out lab` replaced the plan with the processing plan it made.
   void require_not_the_plan(const std::string& relative) const;
+  // The samples of a record of `seconds` at `rate_hz`, rounded; more than the simulator makes in one
+  // record (10^9, 8 GB of counts), or no number, is an Error at the plan (seconds = 1e12 was an
+  // internal error, std::bad_alloc).
+  std::size_t samples(double seconds, double rate_hz) const;
   Random random(const std::string& stream) const { return Random(seed).stream(stream); }
 };
 

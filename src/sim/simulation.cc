@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
-#include <functional>
 #include <map>
-#include <new>
-#include <stdexcept>
 #include <toml++/toml.h>
 
 #include "inertest/core/error.h"
@@ -317,18 +314,6 @@ toml::table parse(std::string_view text, const std::string& source) {
   }
 }
 
-// A plan whose records cannot be held (seconds = 1e12, sample_rate_hz = 1e9) is the plan's mistake,
-// said at the plan: it was an internal error (std::bad_alloc, vector::reserve).
-SimulationSummary within_memory(const std::string& source, const std::function<SimulationSummary()>& work) {
-  try {
-    return work();
-  } catch (const std::bad_alloc&) {
-  } catch (const std::length_error&) {
-  }
-  throw Error(SourceLocation{source, 0, 0}, "its records need more memory than there is: shorten a test's seconds or "
-                                            "hours, or lower its sample_rate_hz");
-}
-
 }  // namespace
 
 SimulationSummary simulate(const std::string& plan_path, const std::string& out_dir, const SimulationOptions& options) {
@@ -336,7 +321,7 @@ SimulationSummary simulate(const std::string& plan_path, const std::string& out_
   if (!std::filesystem::is_regular_file(plan_path, error)) throw Error(SourceLocation{plan_path, 0, 0}, "simulation plan not found");
   try {
     const toml::table root = toml::parse_file(plan_path);
-    return within_memory(plan_path, [&] { return run(root, plan_path, out_dir, options); });
+    return run(root, plan_path, out_dir, options);
   } catch (const toml::parse_error& e) {
     const auto& begin = e.source().begin;
     throw Error(SourceLocation{plan_path, static_cast<std::size_t>(begin.line), static_cast<std::size_t>(begin.column)},
@@ -347,7 +332,7 @@ SimulationSummary simulate(const std::string& plan_path, const std::string& out_
 SimulationSummary simulate_text(std::string_view plan_text, const std::string& source, const std::string& out_dir,
                                 const SimulationOptions& options) {
   const toml::table root = parse(plan_text, source);
-  return within_memory(source, [&] { return run(root, source, out_dir, options); });
+  return run(root, source, out_dir, options);
 }
 
 }  // namespace inertest::sim

@@ -22,7 +22,7 @@ struct HandCheck {
   std::optional<bool> verdict;  // the "pass" / "fail" verdict when there is no value
   std::string unit = "1";
   std::optional<double> min;
-  std::optional<double> max;
+  std::optional<double> max;  // alone, it bounds the magnitude (as a plan's limit): |value| <= max
 };
 
 struct HandCheckResult {

@@ -4,8 +4,10 @@
 // characteristic shall meet the scale factor nonlinearity requirement." The scale-factor test is
 // run out to rates beyond the expected maximum; for each tested rate magnitude R (ascending) the
 // points with |Ω| <= R (and the static runs) are processed by 5.8.1.4-5.8.2.4 (eqs. 1-9). The
-// maximum input rate is the largest R up to which every such nonlinearity Kn(R) meets the
-// requirement: scanning upward, the last R before the first failure.
+// maximum input rate is the largest R whose nonlinearity Kn(R) meets the requirement, as 5.9 reads
+// ("at the maximum input rate"); smaller ranges that miss it are a warning. (Requiring every smaller
+// range to meet it too refused the README's own record: over |Ω| <= 0.2 deg/s its noise alone is
+// 34 ppm of that full scale, while over +-300 deg/s Kn is 17 ppm.)
 #pragma once
 
 #include <span>

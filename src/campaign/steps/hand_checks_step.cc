@@ -50,13 +50,13 @@ PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
                         table.location_of_key(check.verdict ? "value" : check.min ? "min" : "max")});
     }
     checks.push_back(check);
-    figures.push_back({first->first, FieldRole::headline, check.name});
+    figures.push_back({first->first, FieldRole::headline, check.name, "", ""});
     figures.back().value = FieldValue::figure;
     figures.back().unit = check.verdict ? "1" : check.unit;
   }
   if (checks.empty()) step.fail("needs at least one [[procedure.check]] table (name, value, unit, min, max)");
   // The table of every check, which a limit may name by a JSON pointer ("/checks/0/value").
-  figures.push_back({"checks", FieldRole::table, "checks"});
+  figures.push_back({"checks", FieldRole::table, "checks", "", ""});
   figures.back().value = FieldValue::rows;
   return {[checks](const StepRunContext&) { return hand_checks(checks).to_json(); }, nlohmann::json::object(), figures,
           limits};

@@ -127,13 +127,15 @@ std::string add_form(const Words& w) {
       w.add, w.add_file, w.add_token, w.add_send, w.add_no_file, w.added, w.already, add_script);
 }
 
-// A path segment of a URL: every byte but the unreserved ones percent-encoded (RFC 3986 2.3), so that
-// an id with a space, a '/' or Chinese characters links to its page.
-std::string path_segment(const std::string& text) {
+// A path segment of a URL, or (kept "/") a query's value: every byte but the unreserved ones and
+// `kept` percent-encoded (RFC 3986 2.3), so that an id with a space, a '/' or Chinese characters
+// links to its page, and a figure of a step named "SF & NL #1+x" to its history (its '&' ended the
+// value, its '#' the query, its '+' read as a space).
+std::string percent_encoded(const std::string& text, std::string_view kept = "") {
   std::string encoded;
   for (const char c : text) {
     const auto byte = static_cast<unsigned char>(c);
-    if (std::isalnum(byte) != 0 || c == '-' || c == '.' || c == '_' || c == '~') {
+    if (std::isalnum(byte) != 0 || c == '-' || c == '.' || c == '_' || c == '~' || kept.find(c) != std::string_view::npos) {
       encoded += c;
     } else {
       encoded += fmt::format("%{:02X}", byte);
@@ -160,7 +162,7 @@ std::string render_instrument_list_page(const nlohmann::json& instruments, repor
         id, lang_query, i.at("campaigns").get<std::size_t>(), escape_xml(latest.at("tested_on").get<std::string>()),
         verdict == "PASS" ? "pass" : verdict == "FAIL" ? "fail" : "none", escape_xml(verdict_word(verdict, zh)),
         escape_xml(latest.at("id").get<std::string>()), escape_xml(latest.at("title").get<std::string>()),
-        path_segment(instrument));
+        percent_encoded(instrument));
   }
   return fmt::format(
       "<!DOCTYPE html>\n<html lang=\"{0}\">\n<head>\n<meta charset=\"utf-8\">\n<title>inertest · {1}</title>\n"
@@ -211,10 +213,9 @@ std::string with_history_switcher(std::string page, const std::vector<std::strin
   const bool zh = language == report::Language::chinese;
   const std::string lang_query = zh ? "lang=zh" : "";
   auto href = [&](const std::string& id, const std::string& f) {
-    std::string query = f.empty() ? "" : "figure=";
-    for (char c : f) query += c == '+' ? std::string("%2B") : std::string(1, c);  // '+' would read as a space
+    std::string query = f.empty() ? "" : "figure=" + percent_encoded(f, "/");
     if (!lang_query.empty()) query += (query.empty() ? "" : "&") + lang_query;
-    return escape_xml("/instruments/" + path_segment(id) + (query.empty() ? "" : "?" + query));
+    return escape_xml("/instruments/" + percent_encoded(id) + (query.empty() ? "" : "?" + query));
   };
   std::string instrument_options;
   for (const auto& id : instruments) {

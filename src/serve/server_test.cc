@@ -20,6 +20,7 @@
 
 #include "inertest/archive/archive.h"
 #include "inertest/core/error.h"
+#include "serve/pages.h"
 #include "test_util/scale_factor_campaign.h"
 #include "test_util/test_util.h"
 
@@ -513,6 +514,15 @@ TEST(Serve, MissingArchiveIsAnError) {
   options.db = scratch.path() + "/none.sqlite";
   options.port = 0;
   EXPECT_THROW(Server server(options), Error);
+}
+
+// A figure of a step named with '&', '#', '+' or blanks links to its history: the query's value is
+// percent-encoded ('&' ended it, '#' the query, and the server answered 400).
+TEST(HistorySwitcher, FigureLinksArePercentEncoded) {
+  const std::string page = with_history_switcher("<html><body><h1>x</h1></body></html>", {"FOG 1"}, "FOG 1",
+                                                 {"SF & NL #1+x/nonlinearity"}, "", report::Language::english);
+  EXPECT_NE(page.find("value=\"/instruments/FOG%201?figure=SF%20%26%20NL%20%231%2Bx/nonlinearity\""), std::string::npos)
+      << page;
 }
 
 }  // namespace

@@ -293,6 +293,10 @@ TEST(AllanCommand, ChannelsOfAnHdf5RecordAtTheirStoredRateAndUnit) {
   const std::string record = testing::source_path("data/lab_formats/record.h5");
   const auto one = run_cli({"allan", record, "--column", "imu/gyro_x", "--taus", "decade", "--json"});
   ASSERT_EQ(one.exit_code, 0) << one.err;
+  // A stored rate is no raw output: a scale factor would divide its deg/h by K once more.
+  const auto scaled = run_cli({"allan", record, "--column", "imu/gyro_x", "--scale-factor", "2"});
+  EXPECT_EQ(scaled.exit_code, 2);
+  EXPECT_THAT(scaled.err, HasSubstr("the record stores its samples in deg/h, not a raw output: scale_factor divides"));
   const auto single = nlohmann::json::parse(one.out);
   EXPECT_EQ(single["input_unit"], "deg/h");
   EXPECT_EQ(single["sample_rate_hz"], 200.0);

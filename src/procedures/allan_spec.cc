@@ -61,11 +61,11 @@ struct AllanParameters {
   // wf_increment...), else an Error naming the file and what a time column shows.
   AllanOptions options(const RateRecordSource& source) const {
     AllanOptions options;
-    const RateRecordFormat format = resolve_rate_record_format(source);
-    const bool text = format == RateRecordFormat::kCsv;
+    const RateRecordFormat stored_as = resolve_rate_record_format(source);
+    const bool text = stored_as == RateRecordFormat::kCsv;
     if (sample_rate_hz) {
       options.sample_rate_hz = *sample_rate_hz;
-    } else if (columns && channel_record_format_of(format)) {
+    } else if (columns && channel_record_format_of(stored_as)) {
       // several channels of a record that stores each one's rate: each its own (allan_channels.cc)
     } else if (const std::optional<double> stored = stored_sample_rate(source)) {
       options.sample_rate_hz = *stored;
@@ -83,7 +83,17 @@ struct AllanParameters {
     options.worker_count = threads;
     options.fit_range = fit_range;
     if (scale_factor) {
-      // raw / (output per deg/s) = deg/s; times 3600 = deg/h.
+      // raw / (output per deg/s) = deg/s; times 3600 = deg/h. A record that stores a rate or an
+      // acceleration (HDF5 units, TDMS unit_string) is no raw output: dividing its deg/s by K again
+      // gave a mean of 449 deg/h for 0.25 deg/s.
+      if (!columns) {
+        if (const std::optional<std::string> stored = resolved_unit(source, std::nullopt);
+            stored && sensor_kind_of(*stored) != SensorKind::kOther) {
+          throw ParameterError("scale_factor", "the record stores its samples in " + *stored +
+                                                   ", not a raw output: scale_factor divides a raw output by K "
+                                                   "(leave it out, or give input_unit)");
+        }
+      }
       options.scale = 3600.0 / *scale_factor;
       options.input_unit = "deg/h";
     } else if (!columns) {

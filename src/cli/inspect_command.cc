@@ -177,6 +177,7 @@ CommandAction setup(CLI::App& root) {
       if (!arguments->time_column.empty()) throw Error("--time-column needs a text record (--format csv)");
       BinaryFormat format = BinaryFormat::parse(arguments->format);
       format.channels = arguments->channels;
+      if (format.channels == 0) throw Error("--channels is 0: a binary record holds at least one channel");
       for (std::size_t c = 0; c < format.channels; ++c) {
         format.channel = c;
         const auto values = read_binary_record(arguments->file, format);

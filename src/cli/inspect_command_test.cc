@@ -74,6 +74,16 @@ TEST(InspectCommand, ConstantChannelIsAWarningInTheJson) {
   EXPECT_EQ(nlohmann::json::parse(run.out)["warnings"].size(), 1u);
 }
 
+// A binary record of no channels is no record: an error, not "0 rows, 0 columns" and exit 0.
+TEST(InspectCommand, ZeroChannelsOfABinaryRecordIsAnError) {
+  testing::ScratchDirectory dir;
+  const std::string file = dir.write("r.f64", testing::f64_bytes({1.0, 2.0}));
+  const auto run = testing::run_cli({"inspect", file, "--format", "f64", "--channels", "0"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  EXPECT_THAT(run.err, HasSubstr("--channels is 0: a binary record holds at least one channel"));
+}
+
 // Every format lists its channels with the stored type, length, unit and rate (found by magic bytes).
 TEST(InspectCommand, ListsTheChannelsOfMatHdf5AndTdmsRecords) {
   const auto tdms = nlohmann::json::parse(

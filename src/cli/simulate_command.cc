@@ -1,4 +1,5 @@
 // inertest simulate PLAN.toml --out DIR [--seed N] [--instrument ID] [--date YYYY-MM-DD]
+#include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
 
@@ -11,7 +12,7 @@ namespace {
 struct Arguments {
   std::string plan;
   std::string out;
-  std::uint64_t seed = 0;
+  double seed = 0.0;  // checked as the plan's seed is: a whole number from 0 to 2^53
   std::string instrument;
   std::string date;
 };
@@ -28,12 +29,20 @@ CommandAction setup(CLI::App& root) {
   command->add_option("PLAN", arguments->plan, "simulation plan, TOML")->required();
   command->add_option("--out", arguments->out, "output directory")->required();
   CLI::Option* seed = command->add_option("--seed", arguments->seed, "seed instead of the plan's (one instrument of a batch)");
-  command->add_option("--instrument", arguments->instrument, "the gyro's id instead of the plan's");
+  CLI::Option* instrument = command->add_option("--instrument", arguments->instrument, "the gyro's id instead of the plan's");
   command->add_option("--date", arguments->date, "test date written into the processing plan, YYYY-MM-DD");
-  return [arguments, seed] {
+  return [arguments, seed, instrument] {
     sim::SimulationOptions options;
     options.progress = terminal_progress();
-    if (seed->count() > 0) options.seed = arguments->seed;
+    if (seed->count() > 0) {
+      // -1 and 1e23 became 18446744073709551615, one lab for both; the plan's seed is held to this.
+      const double given = arguments->seed;
+      if (!(given >= 0.0 && given == std::floor(given) && given <= 9.007199254740992e15)) {
+        throw Error(fmt::format("--seed {}: must be a whole number from 0 to 2^53", given));
+      }
+      options.seed = static_cast<std::uint64_t>(given);
+    }
+    if (instrument->count() > 0 && arguments->instrument.empty()) throw Error("--instrument is empty: give the gyro's id");
     options.instrument_id = arguments->instrument;
     options.date = arguments->date;
     const sim::SimulationSummary summary = sim::simulate(arguments->plan, arguments->out, options);

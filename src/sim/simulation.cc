@@ -6,6 +6,7 @@
 #include <map>
 #include <toml++/toml.h>
 
+#include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
 #include "inertest/version.h"
@@ -159,12 +160,10 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
     if (date.empty()) date = plan_date;
     header->require_all_used();
   }
-  const bool date_ok = date.empty() || (date.size() == 10 && std::all_of(date.begin(), date.end(), [i = 0](char c) mutable {
-                                          const bool dash = (i == 4 || i == 7);
-                                          ++i;
-                                          return dash ? c == '-' : (c >= '0' && c <= '9');
-                                        }));
-  if (!date_ok) throw Error(SourceLocation{source, 0, 0}, "test date '" + date + "': expected YYYY-MM-DD");
+  // A day of the calendar, as the plan it writes must give (2024-02-30 was written, then refused by run).
+  if (!date.empty() && !parse_calendar_date(date)) {
+    throw Error(SourceLocation{source, 0, 0}, "test date '" + date + "': expected a day as YYYY-MM-DD");
+  }
   if (auto site = top.optional_table("site")) {
     lab.site_name = site->string_or("name", "");
     lab.site.latitude_deg = site->number_or("latitude_deg", 0.0);

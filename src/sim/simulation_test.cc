@@ -119,6 +119,8 @@ TEST(SimSimulate, SeedInstrumentAndDateOverrideThePlan) {
   SimulationOptions bad_date;
   bad_date.date = "04/03/2026";
   EXPECT_THROW(simulate_text(kSmallPlan, "small", a.path() + "/y", bad_date), Error);
+  bad_date.date = "2024-02-30";  // written into the plan, then refused by run
+  EXPECT_THROW(simulate_text(kSmallPlan, "small", a.path() + "/y", bad_date), Error);
 }
 
 void expect_plan_error(const std::string& text, const std::string& fragment, std::size_t line) {
@@ -171,6 +173,15 @@ TEST(SimSimulate, ThePlansMistakesAboutSizeAndPlaceAreErrors) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr("the simulation would write its plan.toml over this plan"));
   }
   EXPECT_EQ(testing::read_file(plan), kSmallPlan);
+  // The command line's seed is held to the plan's rule: -1 and 1e23 made one lab (2^64 - 1).
+  for (const char* seed : {"-1", "1e23", "2.5"}) {
+    const auto run = testing::run_cli({"simulate", plan, "--out", dir.path() + "/seeded", "--seed", seed});
+    EXPECT_EQ(run.exit_code, 2) << seed;
+    EXPECT_THAT(run.err, ::testing::HasSubstr("must be a whole number from 0 to 2^53")) << seed;
+  }
+  const auto unnamed = testing::run_cli({"simulate", plan, "--out", dir.path() + "/unnamed", "--instrument", ""});
+  EXPECT_EQ(unnamed.exit_code, 2);
+  EXPECT_THAT(unnamed.err, ::testing::HasSubstr("--instrument is empty"));
 }
 
 // [test.limits] of a simulation plan becomes [procedure.limits] of the processing plan it writes,

@@ -81,7 +81,7 @@ TEST(BiasCommandTest, NamedColumnAndBinaryFormat) {
   EXPECT_EQ(nlohmann::json::parse(by_header.out).at("bias"), nlohmann::json::parse(by_name.out).at("bias"));
   // The text says which smoothing time each bias stability is of.
   const auto printed = run_cli({"bias", csv, "--rate", "10", "--scale-factor", "5", "--column", "gyro"});
-  EXPECT_THAT(printed.out, ::testing::HasSubstr("    smoothing_s 1.0: "));
+  EXPECT_THAT(printed.out, ::testing::HasSubstr("    smoothing_s 1: "));
 }
 
 TEST(BiasCommandTest, ClearErrors) {

@@ -218,7 +218,7 @@ std::string numbers_text(const nlohmann::json& value, int digits) {
 
 // A figure ({"value", "unit", "uncertainty"}, the value a number or an array of them) as
 // "v ± u unit"; one the data could not give (value null, with its "reason") as "not measured
-// (reason)"; other values as they read.
+// (reason)"; a plain number to 9 digits as a figure's; other values as they read.
 std::string value_text(const nlohmann::json& value) {
   if (is_figure(value) && value.at("value").is_null()) {
     const auto reason = value.find("reason");
@@ -234,17 +234,33 @@ std::string value_text(const nlohmann::json& value) {
   }
   if (value.is_string()) return value.get<std::string>();
   if (value.is_boolean()) return value.get<bool>() ? "yes" : "no";
+  if (value.is_number_float()) return numbers_text(value, 9);  // as a figure's value reads
   return json_text(value);
 }
 
-// A table field: its label, then a row a line: a figure as it reads, another object as its cells
-// "key value" (keys in JSON order).
-std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
-  std::string text = fmt::format("  {}\n", field.label_en);
+bool is_nested_rows(const nlohmann::json& value) {
+  return value.is_array() && !value.empty() && std::all_of(value.begin(), value.end(), [](const nlohmann::json& element) {
+           return element.is_object() && !is_figure(element);
+         });
+}
+
+// The rows of a table, a row a line `indent` deep: a figure as it reads, another object as its cells
+// "key value" (keys in JSON order); a cell that is a table of its own (threshold's points of each
+// direction) follows its row, a row a line, deeper (it was printed as raw JSON).
+std::string rows_text(const nlohmann::json& rows, std::size_t indent) {
+  std::string text;
   for (const auto& row : rows) {
     std::string line;
+    std::string nested;
     if (row.is_object() && !is_figure(row)) {
-      for (const auto& [key, cell] : row.items()) line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
+      for (const auto& [key, cell] : row.items()) {
+        if (is_nested_rows(cell)) {
+          line += (line.empty() ? "" : ", ") + fmt::format("{} ({} below)", key, cell.size());
+          nested += fmt::format("{}{}:\n", std::string(indent + 2, ' '), key) + rows_text(cell, indent + 4);
+        } else {
+          line += (line.empty() ? "" : ", ") + key + " " + value_text(cell);
+        }
+      }
     } else {
       // A figure with members of its own says what it is of first (bias stability: "smoothing_s 10: ...").
       if (row.is_object()) {
@@ -256,9 +272,14 @@ std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
       }
       line += (line.empty() ? "" : ": ") + value_text(row);
     }
-    text += "    " + line + "\n";
+    text += std::string(indent, ' ') + line + "\n" + nested;
   }
   return text;
+}
+
+// A table field: its label, then its rows.
+std::string table_text(const FieldSpec& field, const nlohmann::json& rows) {
+  return fmt::format("  {}\n", field.label_en) + rows_text(rows, 4);
 }
 
 // A field whose value is an object (figures by name, or objects of them): its label, then a member

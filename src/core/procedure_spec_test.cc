@@ -97,9 +97,19 @@ TEST(ProcedureSpec, TextPrintsEveryShownFieldTheSameWay) {
             "  figure                           1.5 ± 0.25 ppm\n"
             "  flag                             no\n"
             "  rows\n"
-            "    meets yes, rate 100.0\n"
-            "    meets no, rate 200.0\n"
+            "    meets yes, rate 100\n"
+            "    meets no, rate 200\n"
             "  warning: only 2 runs\n");
+  // A cell that is a table of its own follows its row, a row a line (it was raw JSON); plain numbers
+  // read to 9 digits, as figures.
+  const nlohmann::json nested = {{"rows", {{{"rate", 100.0}, {"points", {{{"output", 1.0 / 3.0}}, {{"output", 2.0}}}}}}}};
+  EXPECT_EQ(procedure_text(example_spec(), nested),
+            "Example (GJB 2426A-2004 5.0)\n"
+            "  rows\n"
+            "    points (2 below), rate 100\n"
+            "      points:\n"
+            "        output 0.333333333\n"
+            "        output 2\n");
 }
 
 // The polarity spec runs the procedure and names its fields as the JSON contract has them.

@@ -268,7 +268,7 @@ TEST(BiasTest, ShortRecordGivesEveryFigureItSupports) {
   EXPECT_FALSE(rows[2].at("measured").get<bool>());
   EXPECT_THAT(rows[3].at("reason").get<std::string>(), ::testing::HasSubstr("100 s (1000 samples)"));
   EXPECT_EQ(rows[4].at("smoothing_s"), 0.15);
-  EXPECT_THAT(text_of(result), ::testing::HasSubstr("smoothing_s 30.0: not measured (bias stability: the record holds 1 whole window(s) of 30 s"));
+  EXPECT_THAT(text_of(result), ::testing::HasSubstr("smoothing_s 30: not measured (bias stability: the record holds 1 whole window(s) of 30 s"));
   // Two samples: the bias, and warnings for every smoothing time and the random walk coefficient.
   const BiasResult two = bias(std::vector<double>{1.0, 2.0}, unit_options(10.0, {1.0}, true));
   EXPECT_DOUBLE_EQ(two.bias.value, 1.5);

@@ -38,6 +38,8 @@ HandCheck parse_check(const std::string& spec) {
     } else if (key == "value") {
       if (value == "pass" || value == "fail") {
         check.verdict = value == "pass";
+      } else if (value == "PASS" || value == "FAIL" || value == "Pass" || value == "Fail") {
+        throw Error("hand-checks: value '" + value + "': a verdict is written pass or fail in --check \"" + spec + "\"");
       } else {
         check.value = number_of(value, spec);
       }
@@ -61,7 +63,8 @@ CommandAction setup(CLI::App& root) {
       "hand-checks",
       "Checks measured by hand (GJB 2426A-2004 5.2 appearance, 5.3 insulation resistance, impedance,\n"
       "dielectric strength, 5.4 power per supply): each --check gives name, value (a number, or pass/fail\n"
-      "for appearance), unit, and optional min and max, as \"name=Insulation resistance,value=120,unit=Mohm,min=20\".\n"
+      "for appearance), unit, and optional min and max (max alone bounds the magnitude), as\n"
+      "\"name=Insulation resistance,value=120,unit=Mohm,min=20\". Exit 0 when every check passes, 1 when one fails.\n"
       "JSON: one figure per check under its snake_case name, check_pass, checks, all_pass.");
   command->add_option("--check", arguments->checks, "one check: name=...,value=...,unit=...,min=...,max=...")->required();
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");

@@ -36,6 +36,12 @@ TEST(HandChecksCommand, BadChecksAreErrors) {
   run = run_cli({"hand-checks", "--check", "name=R,colour=red"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("unknown key 'colour'"));
+  run = run_cli({"hand-checks", "--check", "name=Appearance,value=PASS"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("value 'PASS': a verdict is written pass or fail"));
+  run = run_cli({"hand-checks", "--check", "name=R,value=5,min=nan"});  // a nan bound failed every value
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("the min of 'R' is not a finite number"));
 }
 
 }  // namespace

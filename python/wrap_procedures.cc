@@ -231,7 +231,7 @@ void wrap_procedures(py::module_& module) {
       "Members:\n"
       "    procedure: str\n"
       "    clause: str\n"
-      "    check_pass: Record  # by check key: whether it is within its min and max\n"
+      "    check_pass: Record  # by check key: whether it is within its min and max (a max alone: |value| <= max)\n"
       "    checks: list[Record]  # key, name, value, unit, min, max, pass\n"
       "    all_pass: bool\n");
   module.def("hand_checks", &hand_checks_of, "checks"_a,

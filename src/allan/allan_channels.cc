@@ -13,6 +13,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/core/units.h"
+#include "inertest/io/time_stamps.h"
 
 namespace inertest {
 
@@ -161,6 +162,7 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
     text.record_row_lines = false;
     text.columns = columns;
     TextTable table = read_text_table(source.path, text);
+    check_time_column_span(source.path, table.rows());  // a gap in its stamps, a rate that changes
     std::vector<std::string> names;
     std::vector<std::span<double>> spans;  // read only to be analysed: in place
     for (std::size_t i = 0; i < table.columns.size(); ++i) {

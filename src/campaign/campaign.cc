@@ -539,11 +539,16 @@ nlohmann::json campaign_results(const Plan& plan, nlohmann::json procedures, nlo
 // a step that reads what an earlier step exports read the file of the run before (a plan's data
 // are the files as they are when it starts).
 void require_exports_replace_no_data(const Plan& plan, const std::filesystem::path& out) {
-  for (const auto& [path, where] : plan.context.outputs.claims()) {
-    for (const auto& [file, read_at] : plan.data_files) {
+  std::vector<std::pair<std::string, SourceLocation>> writes(plan.context.outputs.claims().begin(),
+                                                             plan.context.outputs.claims().end());
+  for (const char* own : {"results.json", "report.html"}) writes.emplace_back(own, SourceLocation{plan.path, 0, 0});
+  std::vector<std::pair<std::string, SourceLocation>> reads = plan.data_files;
+  reads.emplace_back(plan.path, SourceLocation{plan.path, 0, 0});  // the plan itself
+  for (const auto& [path, where] : writes) {
+    for (const auto& [file, read_at] : reads) {
       std::error_code error;  // equivalent() is false, with an error, when either does not exist
       if (std::filesystem::equivalent(out / path, file, error)) {
-        throw Error(where, "the export '" + path + "' would replace '" + file + "', which the plan reads (at " +
+        throw Error(where, "the run would write '" + path + "' over '" + file + "', which the plan reads (at " +
                                read_at.to_string() + "): give the export another name, or the run another --out; "
                                "a step cannot read what another exports in the same run");
       }

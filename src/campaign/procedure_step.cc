@@ -113,30 +113,6 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
       }
     }
   }
-  // [instrument] defaults where the step gives none (and their condition holds), then what is missing.
-  for (const ParameterSpec& parameter : spec.parameters) {
-    if (!parameter.instrument_default.empty() && !given.contains(parameter.name)) {
-      const auto& condition = parameter.instrument_condition;
-      if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
-        const nlohmann::json value = instrument_value(context, parameter);
-        if (!value.is_null() && (!parameter.instrument_applies || parameter.instrument_applies(call.parameters, context.instrument.to_json()))) {
-          call.parameters[parameter.name] = value;
-        }
-      }
-    }
-    if (parameter.required && !call.parameters.contains(parameter.name)) {
-      std::string where;
-      if (!parameter.instrument_default.empty()) {
-        where = fmt::format(" (give it here or as [{}] {}", parameter.site_default ? "site" : "instrument",
-                            parameter.instrument_default);
-        if (parameter.instrument_condition) {
-          where += " with " + parameter.instrument_condition->first + " = \"" + parameter.instrument_condition->second + "\"";
-        }
-        where += ")";
-      }
-      step.fail(fmt::format("missing '{}'{}", parameter.plan_name(), where));
-    }
-  }
   // Each input from exactly one source; records read when the step runs.
   std::map<std::string, std::string> files;
   bool reads_records = false;
@@ -171,6 +147,31 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     if (value) call.inputs[input.name] = *value;
     if (file) files[input.name] = *file;
   }
+  // [instrument] defaults where the step gives none (and their condition holds), then what is missing;
+  // after the inputs, so that a condition may look at the step's files.
+  for (const ParameterSpec& parameter : spec.parameters) {
+    if (!parameter.instrument_default.empty() && !given.contains(parameter.name)) {
+      const auto& condition = parameter.instrument_condition;
+      if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
+        const nlohmann::json value = instrument_value(context, parameter);
+        if (!value.is_null() && (!parameter.instrument_applies || parameter.instrument_applies(call, context.instrument.to_json()))) {
+          call.parameters[parameter.name] = value;
+        }
+      }
+    }
+    if (parameter.required && !call.parameters.contains(parameter.name)) {
+      std::string where;
+      if (!parameter.instrument_default.empty()) {
+        where = fmt::format(" (give it here or as [{}] {}", parameter.site_default ? "site" : "instrument",
+                            parameter.instrument_default);
+        if (parameter.instrument_condition) {
+          where += " with " + parameter.instrument_condition->first + " = \"" + parameter.instrument_condition->second + "\"";
+        }
+        where += ")";
+      }
+      step.fail(fmt::format("missing '{}'{}", parameter.plan_name(), where));
+    }
+  }
   const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
   std::optional<double> rate;
   std::string time_column;
@@ -189,10 +190,10 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     if (e.location()) throw;  // already at its place, e.g. a run's (RunInput::where)
     step.fail(e.message());
   }
-  const auto run = [&spec, call, files](const StepRunContext& context) {
+  const auto run = [&spec, call, files](const StepRunContext& running) {
     ProcedureCall run_call = call;
-    run_call.progress = context.progress;
-    run_call.output_directory = context.output_directory;
+    run_call.progress = running.progress;
+    run_call.output_directory = running.output_directory;
     for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
     // As the command: a complaint about the data of the step's one file names that file.
     return with_call_file_context(run_call, [&] { return procedure_json(spec, spec.run(run_call).fields); });

@@ -237,6 +237,14 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
       }
     };
     naming_options([&] { spec.check(call); });
+    // A file the procedure would write over one of its inputs: said before a record of 10^9 samples
+    // is analysed, not after (ProcedureCall::output_path refuses it again when it writes).
+    for (const ParameterSpec& parameter : spec.parameters) {
+      if (!parameter.output_file || !call.parameters.contains(parameter.name)) continue;
+      const nlohmann::json& value = call.parameters.at(parameter.name);
+      const nlohmann::json& path = value.is_array() ? (value.empty() ? value : value.back()) : value;
+      if (path.is_string() && !path.get<std::string>().empty()) call.output_path(path.get<std::string>());
+    }
     for (const InputSpec& input : spec.inputs) {
       if (input.kind == InputKind::value_or_record) {
         call.inputs[input.name] = input_value(spec, input, arguments->inputs.at(input.name), arguments->source);

@@ -11,6 +11,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/io/text_table.h"
+#include "inertest/io/time_stamps.h"
 
 namespace inertest {
 namespace {
@@ -145,6 +146,7 @@ std::vector<double> read_text_rate_record(const RateRecordSource& source) {
   options.record_row_lines = false;
   if (source.column) options.columns = {*source.column};
   TextTable table = read_text_table(source.path, options);
+  check_time_column_span(source.path, table.rows());  // a gap in its stamps, a rate that changes
   if (table.columns.size() != 1) {
     std::string names;
     for (const auto& name : table.names) names += (names.empty() ? "" : ", ") + name;

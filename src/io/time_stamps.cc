@@ -230,17 +230,17 @@ void check_sample_rate_against_time_column(const std::string& path, double sampl
                           time->name));
 }
 
-void check_time_column_span(const std::string& path, double sample_rate_hz, std::size_t samples) {
+void check_time_column_span(const std::string& path, std::size_t rows) {
   const std::optional<RecordTimeColumn> time = find_record_time_column(path);
-  if (!(sample_rate_hz > 0.0) || samples < 2 || !time || !time->unit_stated || !std::isfinite(time->last_s)) return;
+  if (rows < 2 || !time || !time->unit_stated || !(time->last_s > time->first_s)) return;
   const double span = time->last_s - time->first_s;
-  const double expected = static_cast<double>(samples - 1) / sample_rate_hz;
-  if (std::abs(span - expected) <= std::max(0.01 * expected, 2.0 / sample_rate_hz)) return;
+  const double expected = static_cast<double>(rows - 1) * time->sample_interval_s;
+  if (std::abs(span - expected) <= 3.0 * time->sample_interval_s + 2e-4 * expected) return;
   throw Error(time->header,
-              fmt::format("the time column '{}' spans {:.6g} s from the first sample to the last, but {} samples at "
-                          "{:g} Hz span {:.6g} s: samples are missing (a gap) or the rate changes within the record "
-                          "(`inertest inspect {} --time-column '{}'` lists the gaps)",
-                          time->name, span, samples, sample_rate_hz, expected, path, time->name));
+              fmt::format("the time column '{}' spans {:.6g} s from the first sample to the last, but its {} samples "
+                          "at the interval of its first rows ({:.6g} s) span {:.6g} s: samples are missing (a gap) or "
+                          "the rate changes within the record (`inertest inspect {} --time-column '{}'` lists the gaps)",
+                          time->name, span, rows, time->sample_interval_s, expected, path, time->name));
 }
 
 GapPolicy parse_gap_policy(std::string_view text) {

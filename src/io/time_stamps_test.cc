@@ -239,9 +239,10 @@ TEST(RecordTimeColumn, ARateItContradictsIsAnError) {
   EXPECT_NO_THROW(check_sample_rate_against_time_column(dir.write("none.csv", "gyro\n1\n2\n3\n"), 100.0));
 }
 
-// The whole record's span against its samples at the rate: a gap or a change of rate past the
-// head (read from the file's end, under the header and a comment), and the count the reader gives.
-TEST(RecordTimeColumn, ItsSpanMustBeTheSamplesAtTheRate) {
+// The whole record's span against its rows at the column's own interval: a gap or a change of rate
+// past the head (read from the file's end, under the header and a comment) is an error; a clock a
+// few percent off its nominal rate, or one that wraps past midnight, is not.
+TEST(RecordTimeColumn, ItsSpanMustBeItsRowsAtItsInterval) {
   testing::ScratchDirectory dir;
   const auto record = [&](const std::string& name, const std::vector<double>& stamps) {
     std::string text = "# logger export\ntime_s,gyro\n";
@@ -251,28 +252,37 @@ TEST(RecordTimeColumn, ItsSpanMustBeTheSamplesAtTheRate) {
   std::vector<double> regular;  // 60000 rows at 10 Hz: longer than the 256 KiB head
   for (int i = 0; i < 60000; ++i) regular.push_back(i / 10.0);
   const std::string whole = record("whole.csv", regular);
-  EXPECT_NO_THROW(check_time_column_span(whole, 10.0, regular.size()));
-  EXPECT_NO_THROW(check_time_column_span(whole, 10.0, regular.size() - 2));  // within 2 intervals
+  EXPECT_NO_THROW(check_time_column_span(whole, regular.size()));
+  // Within 3 intervals and 2e-4 of the span: 1.5 s, 15 rows here.
+  EXPECT_NO_THROW(check_time_column_span(whole, regular.size() - 14));
+  EXPECT_THROW(check_time_column_span(whole, regular.size() - 16), Error);
   std::vector<double> gapped = regular;
-  gapped.erase(gapped.begin() + 40000, gapped.begin() + 41000);  // 100 s missing past the head
+  gapped.erase(gapped.begin() + 40000, gapped.begin() + 40500);  // 50 s missing past the head
   const std::string gap = record("gap.csv", gapped);
   EXPECT_NO_THROW(check_sample_rate_against_time_column(gap, 10.0));  // the head is regular
   try {
-    check_time_column_span(gap, 10.0, gapped.size());
+    check_time_column_span(gap, gapped.size());
     ADD_FAILURE() << "the gap went unsaid";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("gap.csv:2: the time column 'time_s' spans 5999.9 s from the first sample to the "
-                                    "last, but 59000 samples at 10 Hz span 5899.9 s: samples are missing (a gap) or "
-                                    "the rate changes within the record"));
+                                    "last, but its 59500 samples at the interval of its first rows (0.1 s) span "
+                                    "5949.9 s: samples are missing (a gap) or the rate changes within the record"));
   }
   std::vector<double> slower = regular;  // from 4000 s on at 1 Hz
   for (std::size_t i = 40000; i < slower.size(); ++i) slower[i] = 4000.0 + static_cast<double>(i - 40000);
-  EXPECT_THROW(check_time_column_span(record("slower.csv", slower), 10.0, slower.size()), Error);
+  EXPECT_THROW(check_time_column_span(record("slower.csv", slower), slower.size()), Error);
+  // A clock 3 % slow (stamps every 10.3 ms of a nominal 100 Hz): its own interval, no gap.
+  std::vector<double> drifting;
+  for (int i = 0; i < 40000; ++i) drifting.push_back(i * 0.0103);
+  EXPECT_NO_THROW(check_time_column_span(record("drift.csv", drifting), drifting.size()));
+  // Seconds of the day past midnight (after the head): not held to the span.
+  std::vector<double> midnight;
+  for (int i = 0; i < 60000; ++i) midnight.push_back(std::fmod(82000.0 + i / 10.0, 86400.0));
+  EXPECT_NO_THROW(check_time_column_span(record("midnight.csv", midnight), midnight.size()));
   // A short record is its own head; ticks (no unit stated) and no time column are not checked.
-  const std::string short_gap = record("short.csv", {0.0, 0.1, 0.2, 0.3, 1.4, 1.5});
-  EXPECT_THROW(check_time_column_span(short_gap, 10.0, 6), Error);
-  EXPECT_NO_THROW(check_time_column_span(dir.write("ticks.csv", "time,gyro\n0,1\n1,1\n9,1\n10,1\n"), 10.0, 4));
-  EXPECT_NO_THROW(check_time_column_span(dir.write("none.csv", "gyro\n1\n2\n3\n"), 10.0, 3));
+  EXPECT_THROW(check_time_column_span(record("short.csv", {0.0, 0.1, 0.2, 0.3, 1.4, 1.5}), 6), Error);
+  EXPECT_NO_THROW(check_time_column_span(dir.write("ticks.csv", "time,gyro\n0,1\n1,1\n9,1\n10,1\n"), 4));
+  EXPECT_NO_THROW(check_time_column_span(dir.write("none.csv", "gyro\n1\n2\n3\n"), 3));
 }
 
 TEST(TimeStamps, ParsesThePolicy) {

@@ -229,11 +229,6 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
                                                          call.progress);
     result.several = true;
   }
-  // A gap in a text record's time stamps, or a rate that changes within it (the check only sees its head).
-  if (resolve_rate_record_format(source) == RateRecordFormat::kCsv) {
-    const AllanResult& first = result.channels.channels.front().result;
-    check_time_column_span(file, first.sample_rate_hz, first.sample_count);
-  }
   if (!parameters.export_to.empty()) {
     write_file_atomically(call.output_path(parameters.export_to[1]),
                           format_filter_parameters(filter_noise_parameters(result.channels),
@@ -242,20 +237,35 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
   return result;
 }
 
-// In a plan, the [instrument] says what a record of one channel holds: an output in a unit of
-// angular rate or acceleration is the samples' unit; a gyro's output in another (pulse/s, V) is
-// divided by its nominal scale factor. The step's input_unit or scale_factor (they exclude each
-// other) takes precedence; the columns of an IMU record hold rates and accelerations, each named
-// by input_unit. Without either from the instrument the samples are in deg/h, the command line's
-// default. (A step that took neither read a MEMS gyro's deg/s, or a FOG's pulse/s, as deg/h.)
-bool takes_instrument_output_unit(const nlohmann::json& parameters, const nlohmann::json& instrument) {
-  if (parameters.contains("scale_factor") || parameters.contains("columns")) return false;
-  return sensor_kind_of(instrument.at("output_unit").get<std::string>()) != SensorKind::kOther;
+// In a plan, the [instrument] says what a record of one channel holds, where the record does not
+// (HDF5 units, TDMS unit_string win): an output in a unit of angular rate or acceleration is the
+// samples' unit; a gyro's output in another (pulse/s, V) is divided by its nominal scale factor.
+// The step's input_unit or scale_factor (they exclude each other) takes precedence; the columns of
+// an IMU record hold rates and accelerations, each named by input_unit. Without either from the
+// instrument the samples are in deg/h, the command line's default. (A step that took neither read a
+// MEMS gyro's deg/s, or a FOG's pulse/s, as deg/h.)
+std::optional<std::string> stored_unit(const ProcedureCall& call) {
+  try {
+    RateRecordSource source;
+    source.path = call.files.at("record");
+    source.format = parse_rate_record_format(call.parameters.value("format", std::string("auto")));
+    if (call.parameters.contains("column")) source.column = ColumnSelector::parse(call.parameters.at("column").get<std::string>());
+    return resolved_unit(source, std::nullopt);
+  } catch (const Error&) {
+    return std::nullopt;  // a bad format, column or record: the step's check says it, at its key
+  }
 }
 
-bool takes_instrument_scale_factor(const nlohmann::json& parameters, const nlohmann::json& instrument) {
-  return !parameters.contains("input_unit") && !parameters.contains("columns") &&
-         instrument.value("type", std::string("gyro")) == "gyro";
+bool takes_instrument_output_unit(const ProcedureCall& call, const nlohmann::json& instrument) {
+  if (call.parameters.contains("scale_factor") || call.parameters.contains("columns")) return false;
+  return sensor_kind_of(instrument.at("output_unit").get<std::string>()) != SensorKind::kOther && !stored_unit(call);
+}
+
+bool takes_instrument_scale_factor(const ProcedureCall& call, const nlohmann::json& instrument) {
+  if (call.parameters.contains("input_unit") || call.parameters.contains("columns")) return false;
+  if (instrument.value("type", std::string("gyro")) != "gyro") return false;
+  const std::optional<std::string> stored = stored_unit(call);
+  return !stored || sensor_kind_of(*stored) == SensorKind::kOther;  // a stored raw unit (pulse/s) takes K
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "inertest/io/time_stamps.h"
 #include "inertest/procedures/bias.h"
 #include "inertest/procedures/earth_rate_parameters.h"
 
@@ -132,9 +131,7 @@ ProcedureSpec bias_spec() {
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
         options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored
-        const std::vector<double> record = read_bias_record(call, file, options);
-        check_time_column_span(file, options.sample_rate_hz, record.size());  // a gap in a text record's stamps
-        return bias(record, options);
+        return bias(read_bias_record(call, file, options), options);
       });
 }
 

@@ -58,6 +58,11 @@ HandChecksResult hand_checks(std::span<const HandCheck> checks) {
         throw Error(fmt::format("hand checks: the {} of '{}' is not a finite number", word, check.name));
       }
     }
+    if (check.max && !check.min && *check.max < 0.0) {
+      throw Error(fmt::format("hand checks: '{}' has max {} alone, which bounds the magnitude and cannot be negative "
+                              "(a signed range takes min too)",
+                              check.name, *check.max));
+    }
     if (check.min && check.max && *check.min > *check.max) {
       throw Error(fmt::format("hand checks: '{}' has min {} above max {}", check.name, *check.min, *check.max));
     }

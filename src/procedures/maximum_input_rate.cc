@@ -93,15 +93,16 @@ MaximumInputRateResult maximum_input_rate(std::span<const ScaleFactorPoint> poin
   std::vector<std::string> failing_below;  // smaller ranges that miss the requirement: said, not the figure
   for (std::size_t i = 0; i < *last_pass; ++i) {
     if (!result.ranges[i].meets_requirement) {
-      failing_below.push_back(fmt::format("{} ({:.3g} ppm)", result.ranges[i].rate, result.ranges[i].nonlinearity));
+      failing_below.push_back(fmt::format("{} {} ({:.3g} ppm)", result.ranges[i].rate, result.rate_unit,
+                                          result.ranges[i].nonlinearity));
     }
   }
   if (!failing_below.empty()) {
     result.warnings.push_back(fmt::format(
-        "the nonlinearity over the smaller ranges |rate| <= {} {} is above the requirement; the maximum input rate is "
-        "the largest at which it is met (GJB 2426A 5.9). Over a small range the output's noise is most of a "
-        "nonlinearity in ppm of its full scale",
-        fmt::join(failing_below, ", "), result.rate_unit));
+        "the nonlinearity over the smaller ranges |rate| <= {} is above the requirement; the maximum input rate is "
+        "the largest range at which it is met (GJB 2426A 5.9): look at those ranges (a small full scale makes the "
+        "output's noise a large nonlinearity in ppm; a range in the middle that fails is the characteristic's own)",
+        fmt::join(failing_below, ", ")));
   }
   const auto& chosen = result.ranges[*last_pass];
   result.maximum_input_rate = {chosen.rate, result.rate_unit, std::nullopt};

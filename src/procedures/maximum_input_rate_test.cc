@@ -67,8 +67,8 @@ TEST(MaximumInputRate, SmallRangesThatMissTheRequirementAreAWarning) {
   EXPECT_FALSE(result.ranges.front().meets_requirement);  // |rate| <= 0.2
   EXPECT_TRUE(result.ranges.back().meets_requirement);
   ASSERT_GE(result.warnings.size(), 1u);
-  EXPECT_THAT(result.warnings[0], HasSubstr("the nonlinearity over the smaller ranges |rate| <= 0.2 ("));
-  EXPECT_THAT(result.warnings[0], HasSubstr("deg/s is above the requirement"));
+  EXPECT_THAT(result.warnings[0], HasSubstr("the nonlinearity over the smaller ranges |rate| <= 0.2 deg/s ("));
+  EXPECT_THAT(result.warnings[0], HasSubstr("ppm) is above the requirement"));
 }
 
 // Ranges must be tested both ways: with the negative rates stopping at 5 deg/s, a point at 400

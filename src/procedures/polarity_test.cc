@@ -64,6 +64,7 @@ TEST(HandChecksTest, BadInputIsAnError) {
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", 2.0, 1.0}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", std::nan(""), {}}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", 1.0, std::nullopt, "1", {}, HUGE_VAL}}), Error);
+  EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"x", -15.2, std::nullopt, "V", {}, -14.0}}), Error);  // |v| <= -14
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"checks", 1.0, std::nullopt, "1", {}, {}}}), Error);
   EXPECT_THROW(hand_checks(std::vector<HandCheck>{{"--", 1.0, std::nullopt, "1", {}, {}}}), Error);
 }

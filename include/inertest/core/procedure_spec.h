@@ -92,6 +92,8 @@ auto with_file_context(const std::string& file, Work&& work) {
   }
 }
 
+struct ProcedureCall;
+
 // A parameter of the procedure's Options: ParameterSpec("rate_unit", "unit of the rates") and the
 // setters below, e.g. .unit_is("deg/s").required_on_command_line().
 struct ParameterSpec {
@@ -128,11 +130,11 @@ struct ParameterSpec {
     instrument_condition = {std::move(parameter), std::move(value)};
     return *this;
   }
-  // The [instrument] default applies only where `applies` holds, given the step's parameters so far
-  // (those it gives, and the defaults of the parameters declared before) and the plan's [instrument]
-  // (Instrument::to_json: id, type, output_unit, nominal_scale_factor, sample_rate_hz).
+  // The [instrument] default applies only where `applies` holds, given the step's call so far (its
+  // input files, the parameters it gives and the defaults of those declared before) and the plan's
+  // [instrument] (Instrument::to_json: id, type, output_unit, nominal_scale_factor, sample_rate_hz).
   ParameterSpec& instrument_gives_if(
-      std::function<bool(const nlohmann::json& parameters, const nlohmann::json& instrument)> applies) {
+      std::function<bool(const ProcedureCall& call, const nlohmann::json& instrument)> applies) {
     instrument_applies = std::move(applies);
     return *this;
   }
@@ -176,7 +178,7 @@ struct ParameterSpec {
   bool instrument_only = false;
   bool site_default = false;  // instrument_default is a key of [site]
   std::optional<std::pair<std::string, std::string>> instrument_condition;  // parameter, value
-  std::function<bool(const nlohmann::json&, const nlohmann::json&)> instrument_applies;  // empty: always
+  std::function<bool(const ProcedureCall&, const nlohmann::json&)> instrument_applies;  // empty: always
   std::string plan_key;  // "" : the plan key is `name`
   bool whole = false;    // a number that must be a whole number >= 0 (a count, e.g. minimum_runs)
   std::string cli_flag;  // "": the command line has --kebab-case(name) VALUE

@@ -96,12 +96,14 @@ std::optional<RecordTimeColumn> find_record_time_column(const std::string& path)
 // analysed as 100 Hz put every tau 10x short). No such column: no check.
 void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz);
 
-// After `samples` samples of a text record were read at `sample_rate_hz`: its time column (as above)
-// from the first stamp to the last must span (samples - 1) / rate, within 1 % (clocks drift apart)
-// or 2 sample intervals. Else an Error naming both spans: samples are missing (a gap) or the rate
-// changes within the record, which the check of the head above cannot see (1000 of 3000 samples
-// gone from the middle of a 10 Hz record went into the Allan variance without a word).
-void check_time_column_span(const std::string& path, double sample_rate_hz, std::size_t samples);
+// After the `rows` samples of a text record were read (by the record readers, whatever the rate):
+// its time column (as above), from the first stamp to the last, must span (rows - 1) intervals of the
+// column's own (its head's), within 3 intervals and 2e-4 of the span (a clock drifting over hours).
+// Else an Error naming both spans: samples are missing (a gap) or the rate changes within the
+// record, which the head alone cannot show (1000 of 3000 samples gone from the middle of a 10 Hz
+// record went into the Allan variance without a word). A clock that wraps (seconds of the day past
+// midnight) is not held to it.
+void check_time_column_span(const std::string& path, std::size_t rows);
 
 // Checks table column `time_column` (an index into table.columns) and applies the policy.
 // Throws Error at the time stamp's file:line:column when time stands still or goes backwards, when

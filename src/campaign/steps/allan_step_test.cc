@@ -128,6 +128,18 @@ TEST(AllanStep, TakesTheInstrumentsOutputUnitOrNominalScaleFactor) {
                    oadev_direct(1.0));
   EXPECT_DOUBLE_EQ(oadev_of_plan("nominal_scale_factor = 36000.0\n", "").first, oadev_direct(0.1));
   EXPECT_DOUBLE_EQ(oadev_of_plan("", "").first, oadev_direct(1.0));
+  // A record that stores its unit (HDF5 units) keeps it: the instrument's deg/s contradicted its
+  // deg/h, and its K was refused as scaling a stored rate, with no key of the step to blame.
+  const std::string h5 = testing::source_path("data/lab_formats/record.h5");
+  for (const std::string& instrument : {std::string("output_unit = \"deg/s\"\n"),
+                                        std::string("output_unit = \"pulse/s\"\nnominal_scale_factor = 36000.0\n")}) {
+    const std::string plan = dir.write("h5.toml", "[plan]\ntitle = \"noise\"\n[instrument]\nid = \"G-1\"\n" + instrument +
+                                                      "[[procedure]]\nkind = \"allan\"\nfile = \"" + h5 +
+                                                      "\"\ncolumn = \"imu/gyro_x\"\ntaus = \"decade\"\n");
+    const nlohmann::json result = run_campaign(plan, dir.path() + "/h5").results.at("procedures").at(0).at("result");
+    EXPECT_EQ(result.at("input_unit"), "deg/h") << instrument;
+    EXPECT_EQ(result.at("oadev").at("unit"), "deg/h") << instrument;
+  }
 }
 
 // fit_range = [tau_min, tau_max] sets the taus of the eq. (30) fit (a list of numbers, as Python's
@@ -313,12 +325,20 @@ TEST(AllanStep, AnExportOntoTheStepsRecordIsRefused) {
     run_campaign(plan, dir.path());
     ADD_FAILURE() << "the run replaced its record";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("plan.toml:11:10: the export 'w.f64' would replace '" + dir.path() +
+    EXPECT_THAT(e.what(), HasSubstr("plan.toml:11:10: the run would write 'w.f64' over '" + dir.path() +
                                     "/w.f64', which the plan reads (at " + dir.path() + "/plan.toml:9:8)"));
   }
   EXPECT_EQ(testing::read_file(dir.path() + "/w.f64"), before);
   EXPECT_FALSE(std::filesystem::exists(dir.path() + "/results.json"));
   EXPECT_EQ(run_campaign(plan, dir.path() + "/elsewhere").written_files.size(), 2u);  // results.json, w.f64
+  // Nor over the plan itself, named by the export or as results.json.
+  const std::string over_plan = white_noise_plan(dir, "results.json", "export = [\"json\", \"filter.json\"]");
+  EXPECT_THROW(run_campaign(over_plan, dir.path()), Error);
+  std::filesystem::remove(over_plan);
+  const std::string named = white_noise_plan(dir, "own.toml", "export = [\"json\", \"own.toml\"]");
+  const std::string plan_text = testing::read_file(named);
+  EXPECT_THROW(run_campaign(named, dir.path()), Error);
+  EXPECT_EQ(testing::read_file(named), plan_text);
 }
 
 // A file where an export's directory is to be made: an error before anything moves, the earlier

@@ -195,5 +195,23 @@ TEST(ProcedureCommandsTest, TurnOnTimePolarityThresholdResolution) {
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(res.out).at("resolution").at("value").get<double>(), 4.0);
 }
 
+// A text record whose own stamps have a gap: bias's windows, counted in samples at the rate, would
+// hold unequal times (an error naming both spans); a record read for its mean alone is not held to it.
+TEST(BiasCommandTest, AGapInTheStampsIsAnErrorWhereTheRateTimesTheSamples) {
+  ScratchDirectory dir;
+  std::string text = "time_s,output\n";
+  for (int i = 0; i < 3000; ++i) {
+    if (i < 1000 || i >= 2000) text += fmt::format("{:.1f},{}\n", i / 10.0, 3600.0 + (i % 7));
+  }
+  const std::string gap = dir.write("gap.csv", text);
+  const auto bias = run_cli({"bias", gap, "--rate", "10", "--scale-factor", "3600", "--column", "output"});
+  EXPECT_EQ(bias.exit_code, 2);
+  EXPECT_THAT(bias.err, ::testing::HasSubstr("gap.csv:1: the time column 'time_s' spans 299.9 s from the first sample to the last, "
+                                  "but its 2000 samples at the interval of its first rows (0.1 s) span 199.9 s"));
+  const std::string minus = dir.write("minus.csv", "output\n-3600\n-3601\n");
+  const auto polarity = run_cli({"polarity", "--positive-file", gap, "--negative-file", minus, "--column", "output"});
+  EXPECT_EQ(polarity.exit_code, 0) << polarity.err;
+}
+
 }  // namespace
 }  // namespace inertest

@@ -77,7 +77,6 @@ std::vector<double> read_output_record(const OutputRecordSource& source, std::si
   options.record_row_lines = false;
   options.minimum_rows = minimum_samples;
   TextTable table = read_text_table(source.path, options);
-  check_time_column_span(source.path, table.rows());  // a gap in its stamps, a rate that changes
   if (table.columns.size() == 1) return std::move(table.columns.front());
   // Several columns and none chosen: the one headed "output", else the choice is the user's (the
   // first column of a time,output record is the time: taking it silently gave its mean as a bias).
@@ -125,6 +124,8 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
     if (!(*sample_rate_hz > 0.0)) throw Error(fmt::format("sample rate must be positive, got {} Hz", *sample_rate_hz));
     if (is_text(source.format)) check_sample_rate_against_time_column(source.path, *sample_rate_hz);
     record.output = read_output_record(source, minimum_samples);
+    // Times made from the rate: a gap in the record's own stamps, or a rate that changes, would shift them.
+    if (is_text(source.format)) check_time_column_span(source.path, record.output.size());
     record.time_s.resize(record.output.size());
     for (std::size_t i = 0; i < record.output.size(); ++i) {
       record.time_s[i] = static_cast<double>(i + 1) / *sample_rate_hz;

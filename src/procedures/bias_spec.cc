@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "inertest/io/time_stamps.h"
 #include "inertest/procedures/bias.h"
 #include "inertest/procedures/earth_rate_parameters.h"
 
@@ -131,7 +132,12 @@ ProcedureSpec bias_spec() {
       .compute([](const ProcedureCall& call, BiasOptions options) {
         const std::string& file = call.files.at("record");
         options.sample_rate_hz = call.record_sample_rate(file, options.sample_rate_hz);  // given or stored
-        return bias(read_bias_record(call, file, options), options);
+        const std::vector<double> record = read_bias_record(call, file, options);
+        // Eq. (20)'s windows are counted in samples at the rate: a gap in a text record's own stamps,
+        // or a rate that changes, would put unequal times in them (a bias alone, by its mean, needs no
+        // such check: the repeatability and temperature runs are not held to it).
+        check_time_column_span(file, record.size());
+        return bias(record, options);
       });
 }
 

@@ -96,7 +96,8 @@ std::optional<RecordTimeColumn> find_record_time_column(const std::string& path)
 // analysed as 100 Hz put every tau 10x short). No such column: no check.
 void check_sample_rate_against_time_column(const std::string& path, double sample_rate_hz);
 
-// After the `rows` samples of a text record were read (by the record readers, whatever the rate):
+// After the `rows` samples of a text record were read where the rate gives their times (a rate
+// record, bias's windows, a timed record at a rate; not a record read for its mean alone):
 // its time column (as above), from the first stamp to the last, must span (rows - 1) intervals of the
 // column's own (its head's), within 3 intervals and 2e-4 of the span (a clock drifting over hours).
 // Else an Error naming both spans: samples are missing (a gap) or the rate changes within the

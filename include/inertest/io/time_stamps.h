@@ -85,9 +85,9 @@ struct RecordTimeColumn {
   double first_s = 0.0;         // the first stamp, in s
   double last_s = 0.0;          // the last stamp of the whole record, in s (read from the file's end)
 };
-// Reads the first 256 KiB of the file (a rate record of 10^9 lines is not read twice): the first
-// such column with at least 3 increasing numbers there; nullopt for no such column, or for what is
-// not a regular text file.
+// Reads the first 256 KiB of the file, and the last 64 KiB for last_s (a rate record of 10^9 lines
+// is not read twice): the first such column with at least 3 increasing numbers in the head; nullopt
+// for no such column, or for what is not a regular text file.
 std::optional<RecordTimeColumn> find_record_time_column(const std::string& path);
 
 // A sample rate given for a text record (--rate, sample_rate_hz) checked against the record's own

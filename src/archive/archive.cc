@@ -62,60 +62,6 @@ std::int64_t Row::integer(std::size_t i) const {
 
 namespace {
 
-// ---- The schema. Migration i brings version i to version i + 1; never edit a released one. ----
-
-const std::vector<std::vector<std::string>> migrations = {
-    {
-        // Version 1: campaigns stored whole, one row per figure.
-        "CREATE TABLE campaign ("
-        " id TEXT PRIMARY KEY,"
-        " instrument TEXT NOT NULL,"
-        " title TEXT NOT NULL,"
-        " tested_on TEXT NOT NULL,"
-        " processed_at TEXT NOT NULL,"
-        " operator TEXT,"
-        " station TEXT,"
-        " verdict TEXT NOT NULL,"
-        " inertest_version TEXT NOT NULL,"
-        " results TEXT NOT NULL)",
-        "CREATE INDEX campaign_by_instrument ON campaign (instrument, tested_on)",
-        "CREATE TABLE figure ("
-        " campaign TEXT NOT NULL REFERENCES campaign (id),"
-        " procedure TEXT NOT NULL,"
-        " figure TEXT NOT NULL,"
-        " value DOUBLE PRECISION NOT NULL,"
-        " unit TEXT NOT NULL,"
-        " uncertainty DOUBLE PRECISION,"
-        " verdict TEXT,"
-        " lower_limit DOUBLE PRECISION,"
-        " upper_limit DOUBLE PRECISION,"
-        " PRIMARY KEY (campaign, procedure, figure))",
-        "CREATE INDEX figure_by_name ON figure (procedure, figure)",
-    },
-};
-static_assert(schema_version == 1, "one migration per schema version");
-
-void migrate(Database& db, const std::string& location) {
-  Transaction transaction(db, true);  // one process migrates; the others wait, then find it done
-  db.query("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
-  const auto rows = db.query("SELECT MAX(version) FROM schema_version");
-  const std::int64_t current = rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
-  if (current > schema_version) {
-    throw Error(SourceLocation{location, 0, 0},
-                fmt::format("the archive's schema version is {}, newer than this inertest knows ({}): "
-                            "use a newer inertest",
-                            current, schema_version));
-  }
-  for (std::int64_t version = current; version < schema_version; ++version) {
-    for (const auto& statement : migrations[static_cast<std::size_t>(version)]) db.query(statement);
-  }
-  if (current < schema_version) {
-    db.query("DELETE FROM schema_version");
-    db.query("INSERT INTO schema_version (version) VALUES ($1)", {std::int64_t{schema_version}});
-  }
-  transaction.commit();
-}
-
 // ---- Reading results.json ----
 
 // The results_schema_version this inertest reads (campaign.cc writes it; absent means 1).
@@ -124,7 +70,7 @@ constexpr int results_schema_version = 1;
 struct FigureRow {
   std::string procedure;
   std::string figure;
-  double value = 0.0;
+  std::optional<double> value;  // none: not measured (null in results.json)
   std::string unit;
   std::optional<double> uncertainty;
   std::optional<std::string> verdict;
@@ -196,7 +142,6 @@ void check_instrument_id(const std::string& id, const std::string& source) {
 void collect_values(const nlohmann::json& value, const nlohmann::json* uncertainty, const std::string& unit,
                     const std::string& procedure, const std::string& path, const std::string& source,
                     std::vector<FigureRow>& out) {
-  if (value.is_null()) return;  // a figure the procedure could not compute (NaN is written null)
   if (value.is_array() && !value.empty()) {
     for (std::size_t i = 0; i < value.size(); ++i) {
       const nlohmann::json* element =
@@ -205,7 +150,10 @@ void collect_values(const nlohmann::json& value, const nlohmann::json* uncertain
     }
     return;
   }
-  if (!value.is_number()) malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
+  // null: a figure the procedure could not compute (NaN is written null), archived as not measured.
+  if (!value.is_number() && !value.is_null()) {
+    malformed(source, "figure '" + procedure + "/" + path + "': \"value\" is not a number");
+  }
   try {
     Unit::parse(unit);  // a unit nothing converts would fail every fleet and history of the figure
   } catch (const Error& e) {
@@ -214,7 +162,7 @@ void collect_values(const nlohmann::json& value, const nlohmann::json* uncertain
   FigureRow row;
   row.procedure = procedure;
   row.figure = path;
-  row.value = value.get<double>();
+  if (value.is_number()) row.value = value.get<double>();
   row.unit = unit;
   if (uncertainty != nullptr && uncertainty->is_number()) row.uncertainty = uncertainty->get<double>();
   out.push_back(std::move(row));
@@ -372,6 +320,111 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
   return record;
 }
 
+// ---- The schema. Migration i brings version i to version i + 1; never edit a released one. ----
+
+const std::vector<std::vector<std::string>> migrations = {
+    {
+        // Version 1: campaigns stored whole, one row per figure.
+        "CREATE TABLE campaign ("
+        " id TEXT PRIMARY KEY,"
+        " instrument TEXT NOT NULL,"
+        " title TEXT NOT NULL,"
+        " tested_on TEXT NOT NULL,"
+        " processed_at TEXT NOT NULL,"
+        " operator TEXT,"
+        " station TEXT,"
+        " verdict TEXT NOT NULL,"
+        " inertest_version TEXT NOT NULL,"
+        " results TEXT NOT NULL)",
+        "CREATE INDEX campaign_by_instrument ON campaign (instrument, tested_on)",
+        "CREATE TABLE figure ("
+        " campaign TEXT NOT NULL REFERENCES campaign (id),"
+        " procedure TEXT NOT NULL,"
+        " figure TEXT NOT NULL,"
+        " value DOUBLE PRECISION NOT NULL,"
+        " unit TEXT NOT NULL,"
+        " uncertainty DOUBLE PRECISION,"
+        " verdict TEXT,"
+        " lower_limit DOUBLE PRECISION,"
+        " upper_limit DOUBLE PRECISION,"
+        " PRIMARY KEY (campaign, procedure, figure))",
+        "CREATE INDEX figure_by_name ON figure (procedure, figure)",
+    },
+    {
+        // Version 2: a figure not measured (null in results.json) is a row with a null value. Both
+        // back-ends rebuild the table (SQLite cannot drop a NOT NULL); fill_not_measured_figures then
+        // adds the rows version 1 left out.
+        "CREATE TABLE figure_v2 ("
+        " campaign TEXT NOT NULL REFERENCES campaign (id),"
+        " procedure TEXT NOT NULL,"
+        " figure TEXT NOT NULL,"
+        " value DOUBLE PRECISION,"
+        " unit TEXT NOT NULL,"
+        " uncertainty DOUBLE PRECISION,"
+        " verdict TEXT,"
+        " lower_limit DOUBLE PRECISION,"
+        " upper_limit DOUBLE PRECISION,"
+        " PRIMARY KEY (campaign, procedure, figure))",
+        "INSERT INTO figure_v2 (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit, upper_limit)"
+        " SELECT campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit, upper_limit FROM figure",
+        "DROP TABLE figure",
+        "ALTER TABLE figure_v2 RENAME TO figure",
+        "CREATE INDEX figure_by_name ON figure (procedure, figure)",
+    },
+};
+static_assert(schema_version == 2, "one migration per schema version");
+
+void insert_figure(Database& db, const std::string& campaign, const FigureRow& row, bool unless_stored) {
+  const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
+  db.query(std::string("INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
+                       " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)") +
+               (unless_stored ? " ON CONFLICT DO NOTHING" : ""),
+           {campaign, row.procedure, row.figure, optional(row.value), row.unit, optional(row.uncertainty),
+            optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
+}
+
+// The figures not measured that schema version 1 did not store, read again from each campaign's
+// stored results. A campaign today's checks refuse (an instrument id since made stricter) keeps
+// the rows it has.
+void fill_not_measured_figures(Database& db, const std::string& location) {
+  for (const auto& campaign : db.query("SELECT id, results FROM campaign")) {
+    const std::string id = campaign.text(0);
+    try {
+      const CampaignRecord record = read_campaign(nlohmann::json::parse(campaign.text(1)), location);
+      for (const auto& row : record.figures) {
+        if (!row.value) insert_figure(db, id, row, true);
+      }
+    } catch (const Error&) {
+      // refused today: its measured figures stay as they were
+    } catch (const nlohmann::json::exception&) {
+      // not JSON (stored by hand): nothing to read
+    }
+  }
+}
+
+
+void migrate(Database& db, const std::string& location) {
+  Transaction transaction(db, true);  // one process migrates; the others wait, then find it done
+  db.query("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
+  const auto rows = db.query("SELECT MAX(version) FROM schema_version");
+  const std::int64_t current = rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
+  if (current > schema_version) {
+    throw Error(SourceLocation{location, 0, 0},
+                fmt::format("the archive's schema version is {}, newer than this inertest knows ({}): "
+                            "use a newer inertest",
+                            current, schema_version));
+  }
+  for (std::int64_t version = current; version < schema_version; ++version) {
+    for (const auto& statement : migrations[static_cast<std::size_t>(version)]) db.query(statement);
+    if (version == 1) fill_not_measured_figures(db, location);
+  }
+  if (current < schema_version) {
+    db.query("DELETE FROM schema_version");
+    db.query("INSERT INTO schema_version (version) VALUES ($1)", {std::int64_t{schema_version}});
+  }
+  transaction.commit();
+}
+
 // PROCEDURE/FIGURE split at the first '/'.
 std::pair<std::string, std::string> split_figure(const std::string& name) {
   const auto slash = name.find('/');
@@ -385,13 +438,13 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
 FigurePoint point_from_row(const Row& row, const std::string& unit) {
   FigurePoint point;
   point.tested_on = row.text(0);
-  point.value = row.real(1);
+  point.value = row.optional_real(1);
   point.uncertainty = row.optional_real(2);
   point.campaign = row.text(3);
   point.instrument = row.text(5);
   const std::string row_unit = row.text(4);
   if (row_unit != unit) {
-    point.value = convert(point.value, row_unit, unit);
+    if (point.value) point.value = convert(*point.value, row_unit, unit);
     if (point.uncertainty) point.uncertainty = std::abs(convert(*point.uncertainty, row_unit, unit) - convert(0.0, row_unit, unit));
   }
   return point;
@@ -552,12 +605,7 @@ class DatabaseArchive final : public Archive {
       const long kill_after = fault_injection_kill_after();
       for (const auto& row : record.figures) {
         if (++figures_written > kill_after && kill_after >= 0) ::raise(SIGKILL);
-        const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
-        db_->query(
-            "INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
-            " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)",
-            {record.entry.id, row.procedure, row.figure, row.value, row.unit, optional(row.uncertainty),
-             optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
+        insert_figure(*db_, record.entry.id, row, false);
       }
       outcome.added = true;
     }
@@ -573,7 +621,7 @@ nlohmann::json FigureHistory::to_json() const {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& p : points) {
     list.push_back({{"tested_on", p.tested_on},
-                    {"value", p.value},
+                    {"value", p.value ? nlohmann::json(*p.value) : nlohmann::json(nullptr)},
                     {"uncertainty", p.uncertainty ? nlohmann::json(*p.uncertainty) : nlohmann::json(nullptr)},
                     {"campaign", p.campaign}});
   }

@@ -79,6 +79,18 @@ class ArchiveBackend : public ::testing::TestWithParam<const char*> {
     }
   }
   std::unique_ptr<Archive> open() const { return open_archive(location_); }
+  // Runs one SQL statement on the archive with the back-end's own client, behind inertest's back.
+  void execute_sql(const std::string& sql) const {
+    std::string command;
+    if (std::string(GetParam()) == "postgresql") {
+      command = fmt::format("/usr/lib/postgresql/15/bin/psql -q '{}' -c '{}' > /dev/null", location_, sql);
+    } else {
+      command = fmt::format("/usr/bin/python3 -c \"import sqlite3; c = sqlite3.connect('{}'); c.execute('{}'); "
+                            "c.commit()\"",
+                            location_, sql);
+    }
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  }
   std::string error_of_add(Archive& archive, const nlohmann::json& results) const {
     try {
       archive.add(results, "bad/results.json");
@@ -193,6 +205,59 @@ TEST_P(ArchiveBackend, AFigureALimitNamesInAListIsArchivedWithItsLimit) {
   EXPECT_EQ(std::count(all.begin(), all.end(), "bias_static/normalised_stability_curve/0"), 0);
 }
 
+// A figure the procedure could not compute ("value": null: a noise term the fit did not identify)
+// is archived as not measured: the history shows that test, the fleet shows the instrument's latest
+// test as not measured (not its older value) and charts the measured instruments only.
+TEST_P(ArchiveBackend, AFigureNotMeasuredIsArchivedAsSuch) {
+  auto archive = open();
+  nlohmann::json later = campaign("FOG-N", "2026-02-01", 36000.0);
+  later["procedures"][1]["result"]["noise"]["white"]["value"] = nullptr;
+  archive->add(campaign("FOG-N", "2026-01-01", 36000.0), "a.json");
+  archive->add(later, "b.json");
+  archive->add(campaign("FOG-M", "2026-01-05", 36000.0), "c.json");
+  const auto history = archive->history("FOG-N", "bias_static/noise/white");
+  ASSERT_EQ(history.points.size(), 2u);
+  EXPECT_EQ(history.points[0].value, 1e-3);
+  EXPECT_FALSE(history.points[1].value);
+  EXPECT_EQ(history.points[1].tested_on, "2026-02-01");
+  EXPECT_EQ(history.to_json()["points"][1]["value"], nullptr);
+  const auto text = testing::run_cli({"archive", "history", "FOG-N", "--figure", "bias_static/noise/white", "--db", location_});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("2026-02-01  not measured"));
+
+  const auto fleet = fleet_summary(archive->fleet("bias_static/noise/white", std::nullopt), std::nullopt);
+  ASSERT_EQ(fleet["instruments"].size(), 2u);
+  EXPECT_EQ(fleet["instruments"][0]["instrument"], "FOG-N");  // first tested first
+  EXPECT_EQ(fleet["instruments"][0]["value"], nullptr);  // not the 1e-3 of its first test
+  EXPECT_EQ(fleet["instruments"][0]["tested_on"], "2026-02-01");
+  EXPECT_EQ(fleet["instruments"][0]["tests"], 2);
+  EXPECT_EQ(fleet["control_chart"], nullptr);  // one measured instrument: no moving range
+
+  // Repeatability (5.12.3 eq. (21)) is over the campaigns that measured the figure, 1e-3 and 3e-3
+  // deg/h: Br = sqrt(2 · 1e-6 / 1) deg/h; the one that did not is said.
+  nlohmann::json third = campaign("FOG-N", "2026-03-01", 36000.0);
+  third["procedures"][1]["result"]["noise"]["white"]["value"] = 3e-3;
+  archive->add(third, "d.json");
+  const auto repeatability = testing::run_cli({"archive", "repeatability", "FOG-N", "--figure", "bias_static/noise/white",
+                                               "--db", location_, "--json"});
+  ASSERT_EQ(repeatability.exit_code, 0) << repeatability.err;
+  const auto r = nlohmann::json::parse(repeatability.out);
+  EXPECT_EQ(r["campaigns"].size(), 2u);
+  EXPECT_NEAR(r["result"]["bias_repeatability"]["value"].get<double>(), std::sqrt(2.0) * 1e-3, 1e-15);
+  const auto said = testing::run_cli({"archive", "repeatability", "FOG-N", "--figure", "bias_static/noise/white", "--db", location_});
+  EXPECT_THAT(said.out, HasSubstr("across 2 campaigns (1 more did not measure it)"));
+
+  // Schema version 1 left such figures out: opening such an archive fills them in from the stored
+  // results, and the measured ones stay as they were.
+  execute_sql("DELETE FROM figure WHERE value IS NULL");
+  execute_sql("UPDATE schema_version SET version = 1");
+  const auto migrated = open()->history("FOG-N", "bias_static/noise/white");
+  ASSERT_EQ(migrated.points.size(), 3u);
+  EXPECT_EQ(migrated.points[0].value, 1e-3);
+  EXPECT_FALSE(migrated.points[1].value);
+  EXPECT_EQ(open()->history("FOG-N", "scale_factor/scale_factor").points.size(), 3u);
+}
+
 TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
   auto archive = open();
   const auto once = archive->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
@@ -297,22 +362,13 @@ TEST_P(ArchiveBackend, FleetCarriesEveryInstrumentAndTheLimits) {
 // The archive's schema is newer than this inertest: a clear error, and the archive untouched.
 TEST_P(ArchiveBackend, NewerSchemaIsRefused) {
   open()->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json");
-  const std::string sql = "UPDATE schema_version SET version = 99";
-  std::string command;
-  if (std::string(GetParam()) == "postgresql") {
-    command = fmt::format("/usr/lib/postgresql/15/bin/psql -q '{}' -c '{}' > /dev/null", location_, sql);
-  } else {
-    command = fmt::format("/usr/bin/python3 -c \"import sqlite3; c = sqlite3.connect('{}'); c.execute('{}'); "
-                          "c.commit()\"",
-                          location_, sql);
-  }
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  execute_sql("UPDATE schema_version SET version = 99");
   try {
     open();
     FAIL() << "opened an archive of schema version 99";
   } catch (const Error& e) {
     EXPECT_THAT(std::string(e.what()),
-                HasSubstr("the archive's schema version is 99, newer than this inertest knows (1): use a newer inertest"));
+                HasSubstr("the archive's schema version is 99, newer than this inertest knows (2): use a newer inertest"));
   }
 }
 

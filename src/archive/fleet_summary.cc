@@ -32,13 +32,20 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
   for (const auto& [id, instrument] : by_id) order.push_back(&instrument);
   std::stable_sort(order.begin(), order.end(),
                    [](const Instrument* a, const Instrument* b) { return a->first_test < b->first_test; });
+  // The chart and the indices are over the measured latest values; an instrument whose latest test
+  // did not measure the figure is listed with a null value, not with an older one.
   std::vector<double> values;
+  std::vector<std::size_t> measured;  // measured[k]: the place in instruments of values[k]
   nlohmann::json instruments = nlohmann::json::array();
   for (const Instrument* i : order) {
     const FigurePoint& p = *i->latest;
-    values.push_back(p.value);
-    instruments.push_back({{"instrument", p.instrument}, {"value", p.value}, {"uncertainty", optional_json(p.uncertainty)},
-                           {"tested_on", p.tested_on},   {"campaign", p.campaign}, {"tests", i->tests}});
+    if (p.value) {
+      values.push_back(*p.value);
+      measured.push_back(instruments.size());
+    }
+    instruments.push_back({{"instrument", p.instrument}, {"value", optional_json(p.value)},
+                           {"uncertainty", optional_json(p.uncertainty)}, {"tested_on", p.tested_on},
+                           {"campaign", p.campaign}, {"tests", i->tests}});
   }
   nlohmann::json json = {{"figure", fleet.figure},
                          {"unit", fleet.unit},
@@ -49,11 +56,11 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
                          {"instruments", instruments},
                          {"control_chart", nullptr},
                          {"capability", {{"cp", nullptr}, {"cpk", nullptr}}}};
-  if (values.size() < 2) return json;  // one instrument: no moving range
+  if (values.size() < 2) return json;  // one measured instrument: no moving range
   const ControlChart chart = individuals_control_chart(values);
   nlohmann::json flagged = nlohmann::json::array();
   for (const auto& o : chart.out_of_control) {
-    flagged.push_back({{"instrument", instruments[o.index]["instrument"]}, {"value", values[o.index]}, {"rule", o.rule}});
+    flagged.push_back({{"instrument", instruments[measured[o.index]]["instrument"]}, {"value", values[o.index]}, {"rule", o.rule}});
   }
   json["control_chart"] = {{"center", chart.center},
                            {"ucl", chart.ucl},

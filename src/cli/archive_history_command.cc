@@ -25,7 +25,7 @@ CommandAction setup(CLI::App& archive) {
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,
                     "print {\"instrument\", \"figure\", \"unit\", \"points\": [{\"tested_on\", \"value\", "
-                    "\"uncertainty\", \"campaign\"}], \"lower_limit\", \"upper_limit\", \"limit_on_magnitude\"} (a plan's "
+                    "\"uncertainty\", \"campaign\"}] (value null: not measured), \"lower_limit\", \"upper_limit\", \"limit_on_magnitude\"} (a plan's "
                     "max alone bounds |value|: lower_limit is -max, limit_on_magnitude true)");
   return [arguments] {
     const auto store = open_archive_option(arguments->db);
@@ -38,7 +38,7 @@ CommandAction setup(CLI::App& archive) {
                     : fmt::format("  limits: min {}, max {}\n", limit(history.lower_limit), limit(history.upper_limit));
     }
     for (const auto& p : history.points) {
-      report += fmt::format("  {}  {:.10g}{}  {}\n", p.tested_on, p.value,
+      report += fmt::format("  {}  {}{}  {}\n", p.tested_on, p.value ? fmt::format("{:.10g}", *p.value) : "not measured",
                             p.uncertainty ? fmt::format(" ± {:.3g}", *p.uncertainty) : std::string(), p.campaign);
     }
     print_result(history.to_json(), report, arguments->json);

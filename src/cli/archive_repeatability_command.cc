@@ -1,4 +1,7 @@
 // inertest archive repeatability ID --figure PROCEDURE/FIGURE [--db DB] [--json]
+#include <algorithm>
+#include <iterator>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -53,18 +56,22 @@ CommandAction setup(CLI::App& archive) {
   return [arguments] {
     const auto store = open_archive_option(arguments->db);
     const archive::FigureHistory history = store->history(arguments->instrument, arguments->figure);
+    // One value per campaign that measured the figure; a campaign that did not is left out, and said.
+    std::vector<archive::FigurePoint> measured;
+    std::copy_if(history.points.begin(), history.points.end(), std::back_inserter(measured),
+                 [](const archive::FigurePoint& p) { return p.value.has_value(); });
     std::vector<double> values;
     nlohmann::json campaigns = nlohmann::json::array();
-    for (const auto& p : history.points) campaigns.push_back(p.campaign);
+    for (const auto& p : measured) campaigns.push_back(p.campaign);
     nlohmann::json json = {{"instrument", history.instrument}, {"figure", history.figure}, {"campaigns", campaigns}};
     std::string report;
     const std::string name = history.figure.substr(history.figure.rfind('/') + 1);
     if (is_rate(history.unit)) {
-      for (const auto& p : history.points) values.push_back(convert(p.value, history.unit, "deg/h"));
+      for (const auto& p : measured) values.push_back(convert(*p.value, history.unit, "deg/h"));
       json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
       report = write_result(*find_procedure_spec("bias_repeatability"), bias_repeatability(values), json);
     } else if (name.find("scale_factor") != std::string::npos) {
-      for (const auto& p : history.points) values.push_back(p.value);
+      for (const auto& p : measured) values.push_back(*p.value);
       ScaleFactorRepeatabilityOptions options;
       options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning
       json["clause"] = "GJB 2426A-2004 5.8.4, eq. (12)";
@@ -74,8 +81,11 @@ CommandAction setup(CLI::App& archive) {
       throw Error("figure '" + history.figure + "' (" + history.unit +
                   "): repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias in a rate unit (5.12.3)");
     }
-    print_result(json, fmt::format("{} {} across {} campaigns ({}):\n{}", history.instrument, history.figure,
-                                   values.size(), json["clause"].get<std::string>(), report),
+    const std::size_t left_out = history.points.size() - measured.size();
+    print_result(json, fmt::format("{} {} across {} campaigns{} ({}):\n{}", history.instrument, history.figure,
+                                   values.size(),
+                                   left_out == 0 ? std::string() : fmt::format(" ({} more did not measure it)", left_out),
+                                   json["clause"].get<std::string>(), report),
                  arguments->json);
     return 0;
   };

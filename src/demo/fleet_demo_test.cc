@@ -31,7 +31,8 @@ TEST(FleetDemo, ArchivesTheBatchAndWritesThePages) {
   // B08 drifts +6 ppm per test: the history shows it (each point has σ ≈ 0.001 pulse/s/(deg/s)).
   const auto drift = store->history("FOG-B08", "scale_factor/scale_factor");
   ASSERT_EQ(drift.points.size(), 3u);
-  EXPECT_NEAR(drift.points[2].value - drift.points[0].value, 2 * 6e-6 * 36000.0, 0.006);  // 4 sigma of the difference
+  ASSERT_TRUE(drift.points[0].value && drift.points[2].value);
+  EXPECT_NEAR(*drift.points[2].value - *drift.points[0].value, 2 * 6e-6 * 36000.0, 0.006);  // 4 sigma of the difference
   ASSERT_EQ(summary.fleet.size(), 2u);
   EXPECT_EQ(summary.fleet[0]["instruments"].size(), 12u);
 

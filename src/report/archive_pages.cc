@@ -34,6 +34,7 @@ constexpr PageWord page_words[] = {
     {"days", "days since first test", "距首次测试天数"},
     {"campaign", "Campaign", "测试记录"},
     {"tests", "Tests", "测试次数"},
+    {"not_measured", "not measured", "未测得"},
     {"control_chart", "Control chart (individuals, moving range)", "控制图（单值-移动极差）"},
     {"capability", "Process capability", "过程能力"},
     {"center", "center line", "中心线"},
@@ -96,6 +97,11 @@ class Page {
 
 std::string number(const json& value) { return value.is_number() ? fmt::format("{:.10g}", value.get<double>()) : "—"; }
 
+// A figure's value and unit in a table; null: the test did not measure it.
+std::string value_cell(const json& value, const std::string& unit, const Page& page) {
+  return value.is_number() ? number(value) + " " + escape_xml(unit) : escape_xml(page.word("not_measured"));
+}
+
 // Days from 1970-01-01 of a YYYY-MM-DD date (the archive checked the form).
 double days(const std::string& date) {
   const int y = std::stoi(date.substr(0, 4));
@@ -134,6 +140,7 @@ std::string render_history_page(const json& history, const ReportOptions& option
     series.line = LineStyle::solid;
     series.marker = Marker::circle;
     for (const auto& p : points) {
+      if (!p.at("value").is_number()) continue;  // not measured: in the table, not on the plot
       const double value = p.at("value").get<double>();
       const double u = p.at("uncertainty").is_number() ? p.at("uncertainty").get<double>() : 0.0;
       series.x.push_back(days(p.at("tested_on").get<std::string>()) - days(first));
@@ -149,15 +156,18 @@ std::string render_history_page(const json& history, const ReportOptions& option
     const std::vector<double> plotted = series.y;
     panel.series.push_back(std::move(series));
     add_limits(panel, figure, plotted, page);
-    page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
-                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
+    page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n", escape_xml(panel.title));
+    if (!plotted.empty()) {
+      page.out() += fmt::format("<figure>\n{}</figure>\n", render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
+    }
     page.out() += fmt::format("<table><tr><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
                               escape_xml(page.word("tested_on")), escape_xml(page.labels()("ui.value")),
                               escape_xml(page.labels()("ui.uncertainty")), escape_xml(page.word("campaign")));
     for (const auto& p : points) {
-      page.out() += fmt::format("<tr><td>{}</td><td>{} {}</td><td>{}</td><td><code>{}</code></td></tr>\n",
-                                escape_xml(p.at("tested_on").get<std::string>()), number(p.at("value")),
-                                escape_xml(figure.at("unit").get<std::string>()), number(p.at("uncertainty")),
+      page.out() += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td></tr>\n",
+                                escape_xml(p.at("tested_on").get<std::string>()),
+                                value_cell(p.at("value"), figure.at("unit").get<std::string>(), page),
+                                number(p.at("uncertainty")),
                                 escape_xml(p.at("campaign").get<std::string>()));
     }
     page.out() += "</table>\n</section>\n";
@@ -183,7 +193,9 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
         "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
         "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
         escape_xml(f.at("figure").get<std::string>()), escape_xml(f.at("unit").get<std::string>()),
-        f.at("instruments").size(), number(chart.is_null() ? none : chart.at("center")),
+        std::count_if(f.at("instruments").begin(), f.at("instruments").end(),
+                      [](const json& i) { return i.at("value").is_number(); }),
+        number(chart.is_null() ? none : chart.at("center")),
         number(chart.is_null() ? none : chart.at("sigma")),
         number(f.at("lower_limit")) + (f.value("limit_on_magnitude", false) ? " " + escape_xml(page.word("magnitude")) : ""),
         number(f.at("upper_limit")),
@@ -206,7 +218,8 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
     flagged.color = "#b3261e";
     std::size_t index = 0;
     for (const auto& i : f.at("instruments")) {
-      ++index;
+      ++index;  // the instrument's number in the table, measured or not
+      if (!i.at("value").is_number()) continue;
       values.x.push_back(static_cast<double>(index));
       values.y.push_back(i.at("value").get<double>());
       if (chart.is_null()) continue;
@@ -231,8 +244,10 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
       panel.references.push_back({ReferenceLine::Direction::horizontal, chart.at("lcl").get<double>(), page.word("lcl"), "#1f6feb"});
     }
     add_limits(panel, f, plotted, page);
-    page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n<figure>\n{}</figure>\n",
-                              escape_xml(panel.title), render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
+    page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n", escape_xml(panel.title));
+    if (!plotted.empty()) {
+      page.out() += fmt::format("<figure>\n{}</figure>\n", render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
+    }
     page.out() += fmt::format("<table><tr><th>#</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
                               escape_xml(page.labels()("ui.instrument")), escape_xml(page.word("tested_on")),
                               escape_xml(page.labels()("ui.value")), escape_xml(page.word("tests")),
@@ -245,10 +260,11 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
           if (o.at("instrument") == i.at("instrument")) rule = page.word("rule." + o.at("rule").get<std::string>());
         }
       }
-      page.out() += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{} {}</td><td>{}</td><td>{}</td></tr>\n", ++index,
+      page.out() += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", ++index,
                                 escape_xml(i.at("instrument").get<std::string>()),
-                                escape_xml(i.at("tested_on").get<std::string>()), number(i.at("value")),
-                                escape_xml(f.at("unit").get<std::string>()), i.at("tests").get<std::size_t>(),
+                                escape_xml(i.at("tested_on").get<std::string>()),
+                                value_cell(i.at("value"), f.at("unit").get<std::string>(), page),
+                                i.at("tests").get<std::size_t>(),
                                 escape_xml(rule));
     }
     page.out() += "</table>\n</section>\n";

@@ -71,6 +71,27 @@ TEST(ArchivePages, FleetShowsTheChartTheFlaggedPointAndTheCapability) {
   EXPECT_THAT(zh, HasSubstr("过程能力"));
 }
 
+// A test that did not measure the figure (value null) is a row "not measured" and no point; a figure
+// no test measured is a table without a plot. The fleet numbers every instrument, measured or not.
+TEST(ArchivePages, AFigureNotMeasuredIsSaidAndNotPlotted) {
+  nlohmann::json data = history();
+  data["figures"][0]["points"][1]["value"] = nullptr;
+  const std::string page = render_history_page(data, {Language::english, ""});
+  EXPECT_THAT(page, HasSubstr("<td>2026-02-08</td><td>not measured</td>"));
+  EXPECT_THAT(page, HasSubstr("<svg"));
+  EXPECT_THAT(render_history_page(data, {Language::chinese, ""}), HasSubstr("<td>未测得</td>"));
+  data["figures"][0]["points"][0]["value"] = nullptr;
+  EXPECT_THAT(render_history_page(data, {Language::english, ""}), Not(HasSubstr("<svg")));
+
+  nlohmann::json unmeasured = fleet();
+  unmeasured[0]["instruments"][0]["value"] = nullptr;
+  unmeasured[0]["control_chart"] = nullptr;
+  const std::string fleet_page = render_fleet_page(unmeasured, {Language::english, ""});
+  EXPECT_THAT(fleet_page, HasSubstr("<tr><td>1</td><td>FOG-1</td><td>2026-02-01</td><td>not measured</td>"));
+  EXPECT_THAT(fleet_page, HasSubstr("<tr><td>2</td><td>FOG-&lt;2&gt;</td><td>2026-02-02</td><td>0.09 deg/h</td>"));
+  EXPECT_THAT(fleet_page, HasSubstr("<td>bias/bias</td><td>deg/h</td><td>1</td>"));  // n: the measured ones
+}
+
 // A limit on the magnitude (|value| <= 0.05: the archive gives lower_limit -0.05) draws its -0.05
 // only when a value plotted is negative: a positive figure keeps its scale.
 TEST(ArchivePages, AMagnitudeLimitDrawsItsLowerLineOnlyUnderANegativeValue) {

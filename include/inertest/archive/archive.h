@@ -5,7 +5,10 @@
 //
 // The archive knows results, not procedures: a figure is any object {"value": number, "unit":
 // string} inside a procedure's "result", named PROCEDURE/FIGURE as in results.json (the step's
-// name, then the keys down to the figure, e.g. "scale_factor/scale_factor").
+// name, then the keys down to the figure, e.g. "scale_factor/scale_factor"). A figure the
+// procedure could not compute ("value": null, e.g. a noise term the fit did not identify) is
+// archived too, as not measured: its history shows that test, and the fleet does not take an older
+// value for the instrument's latest.
 //
 // Contract: the schema is versioned and migrated on open; an add is one transaction (a process
 // killed mid-add leaves the archive as it was); a campaign is identified by its content (the
@@ -35,7 +38,7 @@ class DatabaseError : public Error {
 };
 
 // The schema version this inertest writes and reads (migrations bring older archives up to it).
-inline constexpr int schema_version = 1;
+inline constexpr int schema_version = 2;
 
 // One archived campaign, as `archive list` shows it.
 struct CampaignEntry {
@@ -50,7 +53,7 @@ struct CampaignEntry {
 // One archived value of a figure.
 struct FigurePoint {
   std::string tested_on;
-  double value = 0.0;
+  std::optional<double> value;        // none: not measured (the procedure ran and could not compute it)
   std::optional<double> uncertainty;  // 1 sigma, in the figure's unit
   std::string campaign;               // CampaignEntry::id
   std::string instrument;
@@ -69,8 +72,8 @@ struct FigureHistory {
   std::optional<double> upper_limit;
   bool limit_on_magnitude = false;
   // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}],
-  // "lower_limit", "upper_limit", "limit_on_magnitude"}; "uncertainty" and the limits are null where
-  // none is known.
+  // "lower_limit", "upper_limit", "limit_on_magnitude"}; "value" is null where the figure was not
+  // measured, "uncertainty" and the limits where none is known.
   nlohmann::json to_json() const;
 };
 
@@ -130,11 +133,12 @@ class Archive {
 };
 
 // The fleet's view of one figure (`inertest archive fleet --json`): each instrument's latest
-// value, ordered by the instrument's first test (the order a batch came off the line),
+// value (null when its latest test did not measure the figure), ordered by the instrument's first
+// test (the order a batch came off the line),
 // {"figure", "unit", "since", "lower_limit", "upper_limit", "limit_on_magnitude", "instruments": [{"instrument",
 // "value", "uncertainty", "tested_on", "campaign", "tests"}], "control_chart": {"center", "ucl",
-// "lcl", "moving_range_mean", "sigma", "out_of_control": [{"instrument", "value", "rule"}]} (null
-// for fewer than 2 instruments), "capability": {"cp", "cpk"} (null where limits or spread lack;
+// "lcl", "moving_range_mean", "sigma", "out_of_control": [{"instrument", "value", "rule"}]} (over the
+// measured latest values; null for fewer than 2), "capability": {"cp", "cpk"} (null where limits or spread lack;
 // against [-max, max] when limit_on_magnitude)}.
 // The chart and indices: numerics/control_chart.h.
 nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::string>& since);

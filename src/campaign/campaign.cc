@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -556,6 +557,64 @@ void require_exports_replace_no_data(const Plan& plan, const std::filesystem::pa
   }
 }
 
+namespace {
+
+// The files a run wrote into its output directory (relative paths, one per line), for the next
+// run of the same campaign there to remove those it does not write again.
+constexpr const char* written_list = ".inertest-written";
+
+// What names a campaign in an output directory: its instrument, and its plan's title and date.
+std::string campaign_named(const nlohmann::json& instrument_id, const nlohmann::json& header) {
+  const auto text = [](const nlohmann::json& v) { return v.is_string() ? v.get<std::string>() : std::string(); };
+  const auto of_header = [&](const char* key) {
+    return header.is_object() && header.contains(key) ? text(header.at(key)) : std::string();
+  };
+  return fmt::format("instrument '{}', title '{}', date '{}'", text(instrument_id), of_header("title"), of_header("date"));
+}
+
+// An output directory that holds another campaign's results.json (another instrument, plan title or
+// date) is refused before anything runs: the run would replace that campaign's results and report
+// and leave its exports beside the new ones. A run of the same campaign replaces its own.
+void require_no_other_campaign(const Plan& plan, const std::filesystem::path& out) {
+  const std::filesystem::path file = out / "results.json";
+  if (!std::filesystem::is_regular_file(file)) return;
+  const std::string ours = campaign_named(plan.context.instrument.id, plan.header);
+  std::string theirs;
+  try {
+    std::ifstream in(file, std::ios::binary);
+    const nlohmann::json earlier = nlohmann::json::parse(in);
+    theirs = campaign_named(earlier.at("instrument").at("id"), earlier.contains("plan") ? earlier.at("plan") : nlohmann::json());
+  } catch (const nlohmann::json::exception&) {
+    theirs = "not an inertest results file";
+  }
+  if (theirs != ours) {
+    throw Error(SourceLocation{file.string(), 0, 0},
+                "holds the results of another campaign (" + theirs + "; this plan is " + ours +
+                    "): give the run another --out, or move those results away first");
+  }
+}
+
+// Removes what the last run of the campaign wrote into out and this one did not (an export the plan
+// no longer names), then lists what this one wrote. Only plain relative paths inside out are removed.
+std::vector<std::string> replace_written_list(const std::filesystem::path& out, const std::vector<std::filesystem::path>& written) {
+  std::vector<std::string> removed;
+  std::ifstream earlier(out / written_list);
+  for (std::string line; std::getline(earlier, line);) {
+    const std::filesystem::path name = std::filesystem::path(line).lexically_normal();
+    const bool inside = !name.empty() && name.is_relative() && *name.begin() != "..";
+    if (!inside || std::find(written.begin(), written.end(), name) != written.end()) continue;
+    if (std::filesystem::is_regular_file(out / name) && std::filesystem::remove(out / name)) {
+      removed.push_back((out / name).string());
+    }
+  }
+  std::string list;
+  for (const auto& name : written) list += name.generic_string() + "\n";
+  write_file_atomically((out / written_list).string(), list);
+  return removed;
+}
+
+}  // namespace
+
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir, const CampaignOptions& options) {
   const Plan plan = load_plan(plan_path);
   // Everything the run writes (the steps' exports, results.json, the report) goes first into a
@@ -564,6 +623,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   // made of the output directory's path (and only that).
   const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
   require_output_directory(out);
+  require_no_other_campaign(plan, out);
   require_exports_replace_no_data(plan, out);
   const std::filesystem::path made = first_missing(out);
   std::filesystem::create_directories(out);
@@ -607,6 +667,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   }
   for (const auto& relative : staged) summary.written_files.push_back((out / relative).string());
   std::filesystem::remove_all(staging);
+  summary.removed_files = replace_written_list(out, staged);
   if (options.progress) options.progress("done", 1.0);
   return summary;
 }

@@ -57,6 +57,9 @@ CommandAction setup(CLI::App& root) {
       fmt::print(stderr, "results written to {}\nreport written to {}\n", summary.written_files.front(),
                  (std::filesystem::path(summary.written_files.front()).parent_path() / "report.html").string());
     }
+    for (const auto& file : summary.removed_files) {
+      fmt::print(stderr, "removed {}: the last run wrote it, this plan does not\n", file);
+    }
     return 0;
   };
 }

@@ -24,6 +24,7 @@ struct CampaignOptions {
 struct CampaignSummary {
   nlohmann::json results;                 // what results.json holds
   std::vector<std::string> written_files; // paths written under the output directory, results.json first
+  std::vector<std::string> removed_files; // what the last run of the campaign there wrote and this one did not
 };
 
 // Loads and validates the plan; throws Error naming the plan file and line on any problem.
@@ -35,7 +36,10 @@ nlohmann::json validate_plan(const std::string& plan_path);
 std::vector<std::string> plan_kinds();
 
 // Runs the plan and writes out_dir/results.json, the steps' exports and the report (all of them or,
-// on an error, none; the output directory is left as it was).
+// on an error, none; the output directory is left as it was). An out_dir holding another campaign's
+// results.json (another instrument, plan title or date) is an error before anything runs; in one
+// holding the same campaign's, the files its last run wrote and this one does not are removed
+// (out_dir/.inertest-written lists what a run wrote).
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir,
                              const CampaignOptions& options = {});
 

@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <regex>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -309,7 +310,7 @@ TEST(AllanStep, EstimatorsAndExportAsTheCommandTakesThem) {
     left.push_back(entry.path().filename().string());
   }
   std::sort(left.begin(), left.end());
-  EXPECT_EQ(left, (std::vector<std::string>{"filter.json", "results.json"}));
+  EXPECT_EQ(left, (std::vector<std::string>{".inertest-written", "filter.json", "results.json"}));
   std::ifstream earlier(dir.path() + "/out/filter.json");
   EXPECT_EQ(nlohmann::json::parse(earlier), filter);
 }
@@ -341,12 +342,47 @@ TEST(AllanStep, AnExportOntoTheStepsRecordIsRefused) {
   EXPECT_EQ(testing::read_file(named), plan_text);
 }
 
+// The same campaign run again into its directory: what its last run exported and this one does not
+// (the plan no longer names it) is removed, and said; another campaign's directory is refused
+// before anything runs, its files as they were.
+TEST(AllanStep, ARunReplacesItsOwnCampaignAndNoOther) {
+  testing::ScratchDirectory dir;
+  const std::string out = dir.path() + "/out";
+  run_campaign(white_noise_plan(dir, "plan.toml", "export = [\"json\", \"filter.json\"]"), out);
+  ASSERT_TRUE(std::filesystem::exists(out + "/filter.json"));
+  const CampaignSummary again = run_campaign(white_noise_plan(dir, "plan.toml", "export = [\"json\", \"noise.json\"]"), out);
+  EXPECT_FALSE(std::filesystem::exists(out + "/filter.json"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/noise.json"));
+  EXPECT_EQ(again.removed_files, std::vector<std::string>{out + "/filter.json"});
+  EXPECT_EQ(testing::read_file(out + "/.inertest-written"), "results.json\nnoise.json\n");
+  const auto cli = testing::run_cli({"run", dir.path() + "/plan.toml", "--out", out});
+  EXPECT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_THAT(cli.err, Not(HasSubstr("removed")));
+
+  const std::string results = testing::read_file(out + "/results.json");
+  const std::string other =
+      dir.write("other.toml", std::regex_replace(testing::read_file(dir.path() + "/plan.toml"), std::regex("FOG-1"), "FOG-2"));
+  try {
+    run_campaign(other, out);
+    ADD_FAILURE() << "a run replaced another campaign's results";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("out/results.json: holds the results of another campaign (instrument 'FOG-1', "
+                                    "title 'noise', date ''; this plan is instrument 'FOG-2', title 'noise', date '')"));
+  }
+  EXPECT_EQ(testing::read_file(out + "/results.json"), results);
+  EXPECT_TRUE(std::filesystem::exists(out + "/noise.json"));
+  dir.write("elsewhere/results.json", "[1, 2]");  // not inertest's: not replaced either
+  EXPECT_THAT(testing::run_cli({"run", other, "--out", dir.path() + "/elsewhere"}).err,
+              HasSubstr("holds the results of another campaign (not an inertest results file;"));
+}
+
 // A file where an export's directory is to be made: an error before anything moves, the earlier
 // run's results.json as it was (it had been replaced, then an internal error, exit 3).
 TEST(AllanStep, AFileWhereAnExportsDirectoryGoesLeavesTheEarlierRun) {
   testing::ScratchDirectory dir;
   const std::string plan = white_noise_plan(dir, "plan.toml", "export = [\"json\", \"coefficients/filter.json\"]");
-  const std::string earlier = dir.write("out/results.json", "{\"an earlier\": \"run\"}\n");
+  const std::string text = "{\"instrument\": {\"id\": \"FOG-1\"}, \"plan\": {\"title\": \"noise\"}}\n";  // the same campaign's
+  const std::string earlier = dir.write("out/results.json", text);
   dir.write("out/coefficients", "a file");
   try {
     run_campaign(plan, dir.path() + "/out");
@@ -354,7 +390,7 @@ TEST(AllanStep, AFileWhereAnExportsDirectoryGoesLeavesTheEarlierRun) {
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("out/coefficients: a file is where the directory of 'coefficients/filter.json' is to be made"));
   }
-  EXPECT_EQ(testing::read_file(earlier), "{\"an earlier\": \"run\"}\n");
+  EXPECT_EQ(testing::read_file(earlier), text);
   EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out/.inertest-exports"));
 }
 

@@ -228,6 +228,28 @@ void check_limit_units(const PreparedStep& step) {
   }
 }
 
+// A limit on a row of a table with one row per element of a list parameter names one of them:
+// "/bias_stability/5" with three smoothing times, or "/bias_stability/x", is a plan error at the
+// limit once the step's parameters are read; it was found only after the step had run.
+void check_limit_rows(const PreparedStep& step) {
+  for (const Limit& limit : step.limits) {
+    if (!limit.declared || limit.declared->one_row_per.empty() || limit.figure.front() != '/') continue;
+    const std::vector<std::string> tokens = pointer_tokens(limit.figure);
+    const auto list = step.parameters.find(limit.declared->one_row_per);
+    if (tokens.size() < 2 || list == step.parameters.end() || !list->is_array()) continue;
+    const std::string& row = tokens[1];
+    const bool number = !row.empty() && row.size() <= 9 && std::all_of(row.begin(), row.end(), [](char c) {
+      return c >= '0' && c <= '9';
+    }) && (row == "0" || row.front() != '0');
+    if (!number || std::stoul(row) >= list->size()) {
+      throw Error(limit.where, fmt::format("limit on '{}': procedure '{}' reports {} rows of '{}', one per {} ({}), "
+                                           "numbered from 0: '{}' is none of them",
+                                           limit.figure, step.name, list->size(), tokens.front(),
+                                           limit.declared->one_row_per, list->dump(), row));
+    }
+  }
+}
+
 // The specification a step states itself, judged with the plan's limits (its verdicts count in the
 // campaign's): a hand check's min and max, a pass/fail check's "pass" (its figure 1, min 1), and a
 // yes/no a procedure judges itself with (polarity's pass against `expected`). A failed insulation
@@ -351,6 +373,7 @@ Plan load_plan(const std::string& path) {
     prepared.parameters = std::move(action.parameters);
     if (!spec) check_declared_figures(action.figures, prepared);
     check_limit_units(prepared);  // and those its parameters make
+    check_limit_rows(prepared);
     add_stated_limits(spec ? spec->fields : action.figures, action.limits, prepared);
     step.require_all_used();
     plan.steps.push_back(std::move(prepared));

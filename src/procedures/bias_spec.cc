@@ -99,7 +99,7 @@ ProcedureSpec bias_spec() {
   earth_rate_parameters(definition, &BiasOptions::remove_earth_rate);
   return definition
       .field({"bias", FieldRole::headline, "bias B0", "零偏", "eq. (19)"}, &BiasResult::bias)
-      .field_from({"bias_stability", FieldRole::table, "bias stability", "零偏稳定性", "eq. (20)"},
+      .field_from(FieldSpec{"bias_stability", FieldRole::table, "bias stability", "零偏稳定性", "eq. (20)"}.rows_follow("smoothing_s"),
                   bias_stability_json)
       .field_from({"noise_equivalent_rate", FieldRole::detail, "noise equivalent rate Bs(1 s)", "噪声等效角速率",
                    "eq. (24)"},

@@ -347,6 +347,15 @@ struct FieldSpec {
   // A yes/no the procedure judges its own specification with (polarity's pass, given the expected
   // polarity): in a plan, a verdict of the step (FAIL when false), none when the result leaves it null.
   bool states_verdict = false;
+  // A table with one row per element of this list parameter, in its order (bias stability, one row
+  // per smoothing time: "smoothing_s"): a plan's limit on a row beyond them ("/bias_stability/5" of
+  // three) is an error before anything runs. Empty: the rows follow the data.
+  std::string one_row_per = {};
+
+  FieldSpec&& rows_follow(std::string parameter) && {
+    one_row_per = std::move(parameter);
+    return std::move(*this);
+  }
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place

@@ -139,6 +139,15 @@ sample_rate_hz = 1
                         "[[procedure]]\nkind = \"bias_temperature\"\n[[procedure.run]]\ntemperature_degC = 20\n"
                         "file = \"rest.txt\"\ncolour = 1\n",
                     "unknown key 'colour'");
+  // A limit on a row of bias stability names one of the smoothing times asked for (rows from 0),
+  // checked before anything runs.
+  const std::string stability = std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"rest.txt\"\n"
+                                                       "smoothing_s = [1, 10, 100]\n[procedure.limits]\n";
+  expect_plan_error(stability + "\"/bias_stability/3\" = { max = 1 }\n",
+                    "plan.toml:15:23: limit on '/bias_stability/3': procedure 'bias' reports 3 rows of 'bias_stability', "
+                    "one per smoothing_s ([1.0,10.0,100.0]), numbered from 0: '3' is none of them");
+  expect_plan_error(stability + "\"/bias_stability/one\" = { max = 1 }\n", "'one' is none of them");
+  expect_plan_error(stability + "\"/bias_stability/01\" = { max = 1 }\n", "'01' is none of them");
 }
 
 // smoothing_s = [1, 3000, 10] on a 100 s record: 3000 s is left out, and the limit on

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
@@ -75,8 +76,14 @@ ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const S
 
   std::vector<double> rates;
   std::vector<double> outputs;  // F_j = F̄_j - F̄r, eq. (3)
+  std::vector<std::size_t> inner_zeros;  // 1-based places of zero rates between the first and last rate
   for (auto it = first_moving; it != last_moving; ++it) {
-    if (it->rate == 0.0) continue;  // a zero rate inside the sequence carries no scale information
+    // A zero rate inside the sequence (a stop between the directions) is no test point of eqs. (3)-(6),
+    // which fit the input rates; the static runs of eq. (2) are those at the start and the end. Said.
+    if (it->rate == 0.0) {
+      inner_zeros.push_back(static_cast<std::size_t>(it - points.begin()) + 1);
+      continue;
+    }
     rates.push_back(it->rate);
     outputs.push_back(it->output - static_mean);
   }
@@ -142,6 +149,12 @@ ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const S
                                             direction->count, direction == &positive ? "positive" : "negative",
                                             options.recommended_rates_per_direction));
     }
+  }
+  if (!inner_zeros.empty()) {
+    result.warnings.push_back(fmt::format(
+        "the zero-rate point{} {} (the table's points counted from 1) {} left out of the fit: the static runs of "
+        "eq. (2) are those at the start and the end (GJB 2426A 5.8.1.3 d)",
+        inner_zeros.size() == 1 ? "" : "s", fmt::join(inner_zeros, ", "), inner_zeros.size() == 1 ? "is" : "are"));
   }
   return result;
 }

@@ -42,6 +42,18 @@ TEST(ScaleFactor, HandComputedCase) {
   EXPECT_EQ(r.warnings.size(), 2u);  // 2 rates each way, the standard asks for 11
 }
 
+// A stop between the directions (a zero rate inside the sequence) is no test point: the figures are
+// those of the hand case without it, and the point is named in a warning.
+TEST(ScaleFactor, AZeroRateInsideTheSequenceIsLeftOutAndSaid) {
+  const auto data = points({{0, 1.0}, {-2, -2.1}, {-1, 0.0}, {0, 2.5}, {1, 4.1}, {2, 6.0}, {0, 3.0}});
+  const ScaleFactorResult r = scale_factor(data);
+  EXPECT_NEAR_RELATIVE(r.scale_factor.value, 2.03, 1e-14);
+  EXPECT_NEAR_RELATIVE(r.nonlinearity.value, 0.07 / 4.1 * 1e6, 1e-12);
+  EXPECT_EQ(r.nonlinearity_curve.size(), 4u);
+  ASSERT_EQ(r.warnings.size(), 3u);
+  EXPECT_THAT(r.warnings[2], HasSubstr("the zero-rate point 4 (the table's points counted from 1) is left out of the fit"));
+}
+
 TEST(ScaleFactor, ExactLineHasNoNonlinearityOrAsymmetry) {
   std::vector<ScaleFactorPoint> data = {{0, 7.0}};
   for (double rate : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 300.0, 400.0, 500.0}) {

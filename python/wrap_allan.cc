@@ -74,7 +74,7 @@ AllanOptions allan_options(double sample_rate_hz, const std::string& input_unit,
 RateRecordSource rate_source(const std::string& path, const std::string& format, const std::optional<std::string>& column) {
   RateRecordSource source;
   source.path = path;
-  source.format = parse_rate_record_format(format);
+  source.set_format(format);
   if (column) source.column = ColumnSelector::parse(*column);
   return source;
 }
@@ -238,8 +238,9 @@ void wrap_allan(py::module_& module) {
         return to_numpy(std::move(samples));
       },
       "path"_a, "format"_a = "auto", "column"_a = py::none(),
-      "Reads one channel of a rate record (text, raw little-endian f64/f32, or a channel of a .mat, HDF5 or\n"
-      "TDMS record, by name as 'group/channel' or 'struct.field') into a float64 array that owns the buffer.\n"
+      "Reads one channel of a rate record (text; raw binary 'f64', 'f32', 'i32' or 'i16', optionally with 'le'\n"
+      "or 'be'; or a channel of a .mat, HDF5 or TDMS record, by name as 'group/channel' or 'struct.field')\n"
+      "into a float64 array that owns the buffer.\n"
       "Raises inertest.Error with file:line:column (or channel and sample) for a bad sample.");
   module.def(
       "fit_noise_terms",

@@ -247,27 +247,21 @@ struct FileCloser {
   void operator()(std::FILE* file) const { std::fclose(file); }
 };
 
-// Random access to a raw little-endian f64/f32 record, for the engine's second pass.
+// Random access to a raw binary record, for the engine's second pass.
 SampleReader binary_sample_reader(const RateRecordSource& source) {
-  const std::size_t size = source.format == RateRecordFormat::kFloat64 ? 8 : 4;
+  const std::size_t size = source.binary.sample_size();
   std::shared_ptr<std::FILE> file(std::fopen(source.path.c_str(), "rb"), FileCloser{});
   if (!file) throw Error(SourceLocation{source.path, 0, 0}, std::string("cannot open: ") + std::strerror(errno));
   auto bytes = std::make_shared<std::vector<char>>();
-  return [file, bytes, size, path = source.path](std::size_t first, std::span<double> out) {
+  auto decoded = std::make_shared<std::vector<double>>();
+  return [file, bytes, decoded, size, format = source.binary, path = source.path](std::size_t first, std::span<double> out) {
     bytes->resize(out.size() * size);
     if (fseeko(file.get(), static_cast<off_t>(first * size), SEEK_SET) != 0 ||
         std::fread(bytes->data(), 1, bytes->size(), file.get()) != bytes->size()) {
       throw Error(SourceLocation{path, 0, 0}, "read error in the second pass (did the file change?)");
     }
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      if (size == 8) {
-        std::memcpy(&out[i], bytes->data() + i * 8, 8);
-      } else {
-        float narrow = 0.0F;
-        std::memcpy(&narrow, bytes->data() + i * 4, 4);
-        out[i] = static_cast<double>(narrow);
-      }
-    }
+    decode_binary_frames(std::string_view(bytes->data(), bytes->size()), format, *decoded);
+    std::copy(decoded->begin(), decoded->end(), out.begin());
   };
 }
 
@@ -422,7 +416,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
   if (record) {
     count = static_cast<std::size_t>(record->channels()[channel].length);
   } else {
-    const std::size_t sample_size = source.format == RateRecordFormat::kFloat64 ? 8 : 4;
+    const std::size_t sample_size = source.binary.sample_size();
     const auto bytes = static_cast<std::size_t>(std::filesystem::file_size(source.path));
     count = bytes % sample_size == 0 ? bytes / sample_size : 0;
   }

@@ -153,8 +153,8 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
   for (const ColumnSelector& column : columns) {
     selectors.push_back(column.index > 0 ? std::to_string(column.index) : column.name);
   }
-  if (source.format == RateRecordFormat::kFloat64 || source.format == RateRecordFormat::kFloat32) {
-    throw Error(SourceLocation{source.path, 0, 0}, "a raw f64/f32 record holds one channel: use --column, not --columns");
+  if (source.format == RateRecordFormat::kBinary) {
+    throw Error(SourceLocation{source.path, 0, 0}, "a raw binary record holds one channel: use --column, not --columns");
   }
   if (source.format == RateRecordFormat::kCsv) {
     if (progress) progress("reading " + source.path, 0.0);

@@ -246,7 +246,7 @@ TEST(AllanVariance, FileWithSecondPassAgreesWithMemory) {
   options.ring_capacity_limit = 20000;  // 3m + 2 blocks > 20000 for m >= 4000 (block 32768: all but m = 1)
   RateRecordSource source;
   source.path = path;
-  source.format = RateRecordFormat::kFloat32;
+  source.set_format("f32");
   const AllanResult file = allan_variance_of_file(source, options);
   ASSERT_EQ(file.tau_s, memory.tau_s);
   for (const auto& [estimator, curve] : memory.curves) {

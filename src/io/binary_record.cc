@@ -69,6 +69,15 @@ std::size_t BinaryFormat::sample_size() const {
   return 8;
 }
 
+void decode_binary_frames(std::string_view bytes, const BinaryFormat& format, std::vector<double>& out) {
+  switch (format.type) {
+    case BinaryFormat::SampleType::kFloat64: decode<double, std::uint64_t>(bytes, format, out); break;
+    case BinaryFormat::SampleType::kFloat32: decode<float, std::uint32_t>(bytes, format, out); break;
+    case BinaryFormat::SampleType::kInt32: decode<std::int32_t, std::uint32_t>(bytes, format, out); break;
+    case BinaryFormat::SampleType::kInt16: decode<std::int16_t, std::uint16_t>(bytes, format, out); break;
+  }
+}
+
 std::vector<double> decode_binary_record(std::string_view bytes, const std::string& source, const BinaryFormat& format) {
   if (format.channels == 0 || format.channel >= format.channels) {
     throw Error(SourceLocation{source, 0, 0}, "channel " + std::to_string(format.channel + 1) + " of " +
@@ -82,12 +91,7 @@ std::vector<double> decode_binary_record(std::string_view bytes, const std::stri
                     "-byte frame: " + std::to_string(bytes.size() % frame) + " trailing bytes (truncated record?)");
   }
   std::vector<double> values;
-  switch (format.type) {
-    case BinaryFormat::SampleType::kFloat64: decode<double, std::uint64_t>(bytes, format, values); break;
-    case BinaryFormat::SampleType::kFloat32: decode<float, std::uint32_t>(bytes, format, values); break;
-    case BinaryFormat::SampleType::kInt32: decode<std::int32_t, std::uint32_t>(bytes, format, values); break;
-    case BinaryFormat::SampleType::kInt16: decode<std::int16_t, std::uint16_t>(bytes, format, values); break;
-  }
+  decode_binary_frames(bytes, format, values);
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i])) {
       throw Error(SourceLocation{source, 0, 0}, "sample " + std::to_string(i + 1) + " (byte offset " +

@@ -63,20 +63,46 @@ TEST(RateRecord, BadTextNamesFileLineAndColumn) {
   EXPECT_THROW(read_all({missing, RateRecordFormat::kCsv, ColumnSelector::parse("2")}), Error);
   const std::string empty = dir.write("empty.csv", "# nothing\n");
   EXPECT_THROW(read_all({empty, RateRecordFormat::kCsv, std::nullopt}), Error);
-  EXPECT_THROW(parse_rate_record_format("f16"), Error);
+  RateRecordSource unknown;
+  EXPECT_THROW(unknown.set_format("f16"), Error);
 }
 
 TEST(RateRecord, BinaryRecords) {
   testing::ScratchDirectory dir;
   const std::string path = dir.write("r.f64", testing::f64_bytes({1.0, -2.0, 0.5}));
-  EXPECT_THAT(read_all({path, RateRecordFormat::kFloat64, std::nullopt}), ElementsAre(1.0, -2.0, 0.5));
+  EXPECT_THAT(read_all({path, RateRecordFormat::kBinary, std::nullopt}), ElementsAre(1.0, -2.0, 0.5));  // f64 by default
   const float narrow[2] = {1.5F, 2.5F};
   const std::string f32 = dir.write("r.f32", std::string(reinterpret_cast<const char*>(narrow), sizeof narrow));
-  EXPECT_THAT(read_all({f32, RateRecordFormat::kFloat32, std::nullopt}), ElementsAre(1.5, 2.5));
+  EXPECT_THAT(read_all({f32, RateRecordFormat::kBinary, std::nullopt, BinaryFormat::parse("f32")}), ElementsAre(1.5, 2.5));
   const std::string ragged = dir.write("ragged.f64", testing::f64_bytes({1.0}) + "abc");
-  EXPECT_THROW(read_all({ragged, RateRecordFormat::kFloat64, std::nullopt}), Error);
+  EXPECT_THROW(read_all({ragged, RateRecordFormat::kBinary, std::nullopt}), Error);
   const std::string nan = dir.write("nan.f64", testing::f64_bytes({1.0, std::numeric_limits<double>::quiet_NaN()}));
-  EXPECT_THROW(read_all({nan, RateRecordFormat::kFloat64, std::nullopt}), Error);
+  EXPECT_THROW(read_all({nan, RateRecordFormat::kBinary, std::nullopt}), Error);
+  // Integers of either byte order, named as the other commands name them ("i32be"), exactly; a
+  // record longer than one read chunk keeps its samples across the chunks' seams.
+  std::string i32be;
+  std::string i16;
+  std::vector<double> expected;
+  for (std::int32_t i = 0; i < 100000; ++i) {
+    const std::int32_t v = (i % 7 == 0 ? -1 : 1) * (i * 7919 % 2000003);
+    for (int b = 3; b >= 0; --b) i32be += static_cast<char>((static_cast<std::uint32_t>(v) >> (8 * b)) & 0xFF);
+    const auto s = static_cast<std::int16_t>(v % 32768);
+    i16 += static_cast<char>(static_cast<std::uint16_t>(s) & 0xFF);
+    i16 += static_cast<char>(static_cast<std::uint16_t>(s) >> 8);
+    expected.push_back(v);
+  }
+  RateRecordSource big;
+  big.path = dir.write("r.i32be", i32be);
+  big.set_format("i32be");
+  EXPECT_EQ(read_all(big), expected);
+  RateRecordSource little;
+  little.path = dir.write("r.i16", i16);
+  little.set_format("i16");
+  const std::vector<double> shorts = read_all(little);
+  ASSERT_EQ(shorts.size(), expected.size());
+  for (std::size_t i = 0; i < shorts.size(); ++i) ASSERT_EQ(shorts[i], std::fmod(expected[i], 32768.0)) << i;
+  little.path = dir.write("odd.i16", i16 + "x");
+  EXPECT_THAT([&] { read_all(little); }, ::testing::ThrowsMessage<Error>(HasSubstr("not a whole number of 2-byte samples (1 trailing bytes)")));
 }
 
 // Every text file of the bad-input corpus, read as a rate record and as a table: the same values,

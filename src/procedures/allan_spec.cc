@@ -51,7 +51,7 @@ struct AllanParameters {
   RateRecordSource source(const std::string& path) const {
     RateRecordSource source;
     source.path = path;
-    source.format = parse_rate_record_format(format);
+    source.set_format(format);
     if (column) source.column = ColumnSelector::parse(*column);
     return source;
   }
@@ -138,11 +138,12 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     fit.fit_range = parameters.fit_range;
     fit.validate();
   });
+  check_parameter("format", [&] { RateRecordSource().set_format(parameters.format); });
   RateRecordSource source;
   check_parameter("column", [&] {
     source = parameters.source(call.files.at("record"));
-    if (parameters.column && (source.format == RateRecordFormat::kFloat64 || source.format == RateRecordFormat::kFloat32)) {
-      throw Error("a raw f64/f32 record holds one channel: column does not apply");
+    if (parameters.column && source.format == RateRecordFormat::kBinary) {
+      throw Error("a raw binary record holds one channel: column does not apply");
     }
   });
   check_parameter("columns", [&] {
@@ -248,7 +249,7 @@ std::optional<std::string> stored_unit(const ProcedureCall& call) {
   try {
     RateRecordSource source;
     source.path = call.files.at("record");
-    source.format = parse_rate_record_format(call.parameters.value("format", std::string("auto")));
+    source.set_format(call.parameters.value("format", std::string("auto")));
     if (call.parameters.contains("column")) source.column = ColumnSelector::parse(call.parameters.at("column").get<std::string>());
     return resolved_unit(source, std::nullopt);
   } catch (const Error&) {
@@ -290,8 +291,9 @@ ProcedureSpec allan_spec() {
           "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
           "-2..2），各噪声项按其特征斜率读取。")
       .input(InputSpec("record", "rate record").read_from_file("FILE", "file"))
-      .parameter(ParameterSpec("format", "how FILE is stored: auto, csv, f64 or f32 (raw little-endian), mat, hdf5 or tdms")
-                     .one_of({"auto", "csv", "f64", "f32", "mat", "hdf5", "tdms"}),
+      .parameter(ParameterSpec("format", "how FILE is stored: auto (.mat, HDF5 or TDMS by magic bytes, else text), csv, "
+                                         "mat, hdf5, tdms, or raw binary: f64, f32, i32 or i16, optionally with le/be "
+                                         "(e.g. i32be; little-endian without)"),
                  &AllanParameters::format)
       .parameter(ParameterSpec("column", "text column (header name or 1-based index), or channel: group/channel, "
                                          "struct.field (default: the only one)"),

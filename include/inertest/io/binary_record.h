@@ -23,6 +23,10 @@ struct BinaryFormat {
   std::size_t frame_size() const { return sample_size() * channels; }
 };
 
+// Decodes the bytes.size() / format.frame_size() whole frames of bytes, format.channel of each, into
+// out (resized to their count); no other check.
+void decode_binary_frames(std::string_view bytes, const BinaryFormat& format, std::vector<double>& out);
+
 // Reads one channel of a binary record as doubles. Throws Error for an empty file, a size that is
 // not a multiple of the frame size (naming the trailing byte count), or a NaN/Inf sample (naming
 // the sample index).

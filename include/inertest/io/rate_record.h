@@ -1,6 +1,6 @@
 // Streaming reader of one channel of a rate record, for records too long to hold (the Allan
 // engine reads 10^9 samples through it): text (CSV, TSV, semicolon or whitespace separated,
-// optional header, '#' comments), raw little-endian f64/f32, or a record of named channels
+// optional header, '#' comments), raw binary (f64, f32, i32 or i16, little- or big-endian), or a record of named channels
 // (MATLAB .mat, HDF5, NI TDMS; io/channel_record.h). The file is read in chunks, never held whole:
 // a record of any length passes through a few MB of buffer. Text rows are checked exactly as
 // read_text_table checks them (same messages, same file:line:column).
@@ -14,17 +14,15 @@
 #include <string_view>
 #include <vector>
 
+#include "inertest/io/binary_record.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
 
 namespace inertest {
 
 // kAuto: a .mat, HDF5 or TDMS record by its magic bytes (detect_channel_record_format), else text.
-// Raw binary has no magic bytes: f64 and f32 are always named.
-enum class RateRecordFormat { kAuto, kCsv, kFloat64, kFloat32, kMat, kHdf5, kTdms };
-
-// "auto", "csv", "f64", "f32", "mat", "hdf5", "tdms"; throws Error.
-RateRecordFormat parse_rate_record_format(std::string_view text);
+// Raw binary has no magic bytes: its sample type is always named (RateRecordSource::binary).
+enum class RateRecordFormat { kAuto, kCsv, kBinary, kMat, kHdf5, kTdms };
 
 struct RateRecordSource {
   std::string path;
@@ -32,6 +30,10 @@ struct RateRecordSource {
   // Text: the column, by header name or 1-based index; .mat, HDF5, TDMS: the channel, by name or
   // 1-based index (io/channel_record.h). Without it the record must have one column (channel).
   std::optional<ColumnSelector> column;
+  BinaryFormat binary = {};  // kBinary: the sample type and byte order (one channel)
+  // "auto", "csv", "mat", "hdf5", "tdms", or raw binary: "f64", "f32", "i32" or "i16", optionally
+  // with "le" or "be" ("i32be"; BinaryFormat::parse); throws Error.
+  void set_format(std::string_view text);
 };
 
 // source.format with kAuto replaced by what the file holds (kMat, kHdf5, kTdms or kCsv). Throws

@@ -72,7 +72,7 @@ scale_factor = 2.0
   options.sample_rate_hz = 100.0;
   options.taus = "decade";
   options.scale = 1800.0;
-  const AllanResult direct = allan_variance_of_file({dir.path() + "/w.f64", RateRecordFormat::kFloat64, std::nullopt}, options);
+  const AllanResult direct = allan_variance_of_file({dir.path() + "/w.f64", RateRecordFormat::kBinary, std::nullopt}, options);
   EXPECT_THAT(text, HasSubstr(nlohmann::json(direct.curves.at(Estimator::kOadev).values[0]).dump()));
 
   const std::string bad = dir.write("bad.toml", R"(
@@ -109,7 +109,7 @@ TEST(AllanStep, TakesTheInstrumentsOutputUnitOrNominalScaleFactor) {
     options.sample_rate_hz = 10.0;
     options.taus = "decade";
     options.scale = scale;
-    return allan_variance_of_file({dir.path() + "/w.f64", RateRecordFormat::kFloat64, std::nullopt}, options)
+    return allan_variance_of_file({dir.path() + "/w.f64", RateRecordFormat::kBinary, std::nullopt}, options)
         .curves.at(Estimator::kOadev).values[0];
   };
   const auto [in_deg_s, unit_deg_s] = oadev_of_plan("output_unit = \"deg/s\"\n", "");

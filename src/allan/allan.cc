@@ -233,7 +233,7 @@ constexpr std::size_t kMemoryReserveBytes = 32u << 20;
 constexpr std::size_t kSmallestRingLimitBytes = 64u << 20;
 
 // The ring limit that keeps the peak resident memory within 1.5 times the raw binary size of the
-// record (issue bound): 8 bytes per sample for text, the file size for f64, f32 and records of named
+// record (issue bound): 8 bytes per sample for text, the file size for raw binary and records of named
 // channels (.mat, HDF5, TDMS). Text records
 // cannot be read at random, and their 8 (N+1)-byte ring is within the bound anyway: no limit.
 std::size_t automatic_ring_limit(const RateRecordSource& source) {

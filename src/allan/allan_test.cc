@@ -227,7 +227,8 @@ TEST(AllanVariance, EveryTauGridFitsTheNoiseTermsOnTheOctavePoints) {
 }
 
 // A raw f32 file whose largest factors exceed the ring limit: the second pass re-reads the file and
-// gives the deviations of the record in memory.
+// gives the deviations of the record in memory; so does the same record as big-endian i32 counts
+// (the values times 1000, rounded: the second pass decodes them as the first).
 TEST(AllanVariance, FileWithSecondPassAgreesWithMemory) {
   std::mt19937_64 random(8);
   std::normal_distribution<float> white(0.0F, 1.0F);
@@ -252,6 +253,26 @@ TEST(AllanVariance, FileWithSecondPassAgreesWithMemory) {
   for (const auto& [estimator, curve] : memory.curves) {
     for (std::size_t i = 0; i < curve.values.size(); ++i) {
       EXPECT_NEAR_RELATIVE(file.curves.at(estimator).values[i], curve.values[i], 1e-12)
+          << estimator_name(estimator) << " " << i;
+    }
+  }
+
+  std::vector<double> counts;
+  std::string i32be;
+  for (const double v : y) {
+    const auto count = static_cast<std::int32_t>(std::lround(v * 1000.0));
+    counts.push_back(count);
+    for (int b = 3; b >= 0; --b) i32be += static_cast<char>((static_cast<std::uint32_t>(count) >> (8 * b)) & 0xFF);
+  }
+  source.path = dir.write("counts.i32", i32be);
+  source.set_format("i32be");
+  options.ring_capacity_limit = 0;
+  const AllanResult in_memory = allan_variance(counts, options);
+  options.ring_capacity_limit = 20000;
+  const AllanResult integers = allan_variance_of_file(source, options);
+  for (const auto& [estimator, curve] : in_memory.curves) {
+    for (std::size_t i = 0; i < curve.values.size(); ++i) {
+      EXPECT_NEAR_RELATIVE(integers.curves.at(estimator).values[i], curve.values[i], 1e-12)
           << estimator_name(estimator) << " " << i;
     }
   }

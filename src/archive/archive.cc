@@ -384,24 +384,26 @@ void insert_figure(Database& db, const std::string& campaign, const FigureRow& r
 }
 
 // The figures not measured that schema version 1 did not store, read again from each campaign's
-// stored results. A campaign today's checks refuse (an instrument id since made stricter) keeps
-// the rows it has.
+// stored results, one campaign at a time. A campaign today's checks refuse (an instrument id since
+// made stricter), or stored results that are no JSON, keep the rows they have; a failure of the
+// database is no such case: it fails the migration, which then changes nothing.
 void fill_not_measured_figures(Database& db, const std::string& location) {
-  for (const auto& campaign : db.query("SELECT id, results FROM campaign")) {
+  for (const auto& campaign : db.query("SELECT id FROM campaign ORDER BY id")) {
     const std::string id = campaign.text(0);
+    const auto stored = db.query("SELECT results FROM campaign WHERE id = $1", {id});
+    std::vector<FigureRow> figures;
     try {
-      const CampaignRecord record = read_campaign(nlohmann::json::parse(campaign.text(1)), location);
-      for (const auto& row : record.figures) {
-        if (!row.value) insert_figure(db, id, row, true);
-      }
-    } catch (const Error&) {
-      // refused today: its measured figures stay as they were
+      figures = read_campaign(nlohmann::json::parse(stored.front().text(0)), location).figures;
     } catch (const nlohmann::json::exception&) {
-      // not JSON (stored by hand): nothing to read
+      continue;  // not JSON (stored by hand): nothing to read
+    } catch (const Error&) {
+      continue;  // refused today: its measured figures stay as they were
+    }
+    for (const auto& row : figures) {
+      if (!row.value) insert_figure(db, id, row, true);
     }
   }
 }
-
 
 void migrate(Database& db, const std::string& location) {
   Transaction transaction(db, true);  // one process migrates; the others wait, then find it done

@@ -232,9 +232,17 @@ TEST_P(ArchiveBackend, AFigureNotMeasuredIsArchivedAsSuch) {
   EXPECT_EQ(fleet["instruments"][0]["tested_on"], "2026-02-01");
   EXPECT_EQ(fleet["instruments"][0]["tests"], 2);
   EXPECT_EQ(fleet["control_chart"], nullptr);  // one measured instrument: no moving range
+  const auto fleet_text = testing::run_cli({"archive", "fleet", "--figure", "bias_static/noise/white", "--db", location_});
+  ASSERT_EQ(fleet_text.exit_code, 0) << fleet_text.err;
+  EXPECT_THAT(fleet_text.out, HasSubstr("FOG-N            2026-02-01 not measured"));
 
   // Repeatability (5.12.3 eq. (21)) is over the campaigns that measured the figure, 1e-3 and 3e-3
   // deg/h: Br = sqrt(2 · 1e-6 / 1) deg/h; the one that did not is said.
+  const auto too_few = testing::run_cli({"archive", "repeatability", "FOG-N", "--figure", "bias_static/noise/white",
+                                         "--db", location_});
+  EXPECT_EQ(too_few.exit_code, 2);
+  EXPECT_THAT(too_few.err, HasSubstr("figure 'bias_static/noise/white' of 'FOG-N': 1 of its 2 campaigns did not measure "
+                                     "it, which leaves 1: repeatability needs at least 2"));
   nlohmann::json third = campaign("FOG-N", "2026-03-01", 36000.0);
   third["procedures"][1]["result"]["noise"]["white"]["value"] = 3e-3;
   archive->add(third, "d.json");
@@ -243,13 +251,21 @@ TEST_P(ArchiveBackend, AFigureNotMeasuredIsArchivedAsSuch) {
   ASSERT_EQ(repeatability.exit_code, 0) << repeatability.err;
   const auto r = nlohmann::json::parse(repeatability.out);
   EXPECT_EQ(r["campaigns"].size(), 2u);
+  EXPECT_EQ(r["not_measured"], nlohmann::json::array({history.points[1].campaign}));
   EXPECT_NEAR(r["result"]["bias_repeatability"]["value"].get<double>(), std::sqrt(2.0) * 1e-3, 1e-15);
   const auto said = testing::run_cli({"archive", "repeatability", "FOG-N", "--figure", "bias_static/noise/white", "--db", location_});
   EXPECT_THAT(said.out, HasSubstr("across 2 campaigns (1 more did not measure it)"));
 
-  // Schema version 1 left such figures out: opening such an archive fills them in from the stored
-  // results, and the measured ones stay as they were.
-  execute_sql("DELETE FROM figure WHERE value IS NULL");
+  // Schema version 1 left such figures out (its table, as it made it: value NOT NULL): opening such
+  // an archive rebuilds the table, fills them in from the stored results, and keeps the measured ones.
+  execute_sql("CREATE TABLE figure_v1 (campaign TEXT NOT NULL REFERENCES campaign (id), procedure TEXT NOT NULL,"
+              " figure TEXT NOT NULL, value DOUBLE PRECISION NOT NULL, unit TEXT NOT NULL, uncertainty DOUBLE PRECISION,"
+              " verdict TEXT, lower_limit DOUBLE PRECISION, upper_limit DOUBLE PRECISION,"
+              " PRIMARY KEY (campaign, procedure, figure))");
+  execute_sql("INSERT INTO figure_v1 SELECT * FROM figure WHERE value IS NOT NULL");
+  execute_sql("DROP TABLE figure");
+  execute_sql("ALTER TABLE figure_v1 RENAME TO figure");
+  execute_sql("CREATE INDEX figure_by_name ON figure (procedure, figure)");
   execute_sql("UPDATE schema_version SET version = 1");
   const auto migrated = open()->history("FOG-N", "bias_static/noise/white");
   ASSERT_EQ(migrated.points.size(), 3u);

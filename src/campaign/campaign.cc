@@ -582,8 +582,9 @@ void require_exports_replace_no_data(const Plan& plan, const std::filesystem::pa
 
 namespace {
 
-// The files a run wrote into its output directory (relative paths, one per line), for the next
-// run of the same campaign there to remove those it does not write again.
+// What a run wrote into its output directory, for the next run of the same plan there:
+// {"plan": the plan file's canonical path, "files": [{"path" (relative), "size", "modified" (the
+// file time's count)}]}.
 constexpr const char* written_list = ".inertest-written";
 
 // What names a campaign in an output directory: its instrument, and its plan's title and date.
@@ -595,13 +596,32 @@ std::string campaign_named(const nlohmann::json& instrument_id, const nlohmann::
   return fmt::format("instrument '{}', title '{}', date '{}'", text(instrument_id), of_header("title"), of_header("date"));
 }
 
-// An output directory that holds another campaign's results.json (another instrument, plan title or
-// date) is refused before anything runs: the run would replace that campaign's results and report
-// and leave its exports beside the new ones. A run of the same campaign replaces its own.
-void require_no_other_campaign(const Plan& plan, const std::filesystem::path& out) {
+std::string canonical_plan(const Plan& plan) {
+  std::error_code error;
+  const std::filesystem::path path = std::filesystem::weakly_canonical(plan.path, error);
+  return error ? plan.path : path.string();
+}
+
+// The list of an earlier run in out, or null when there is none or it cannot be read (then nothing of
+// it is removed).
+nlohmann::json read_written_list(const std::filesystem::path& out) {
+  std::ifstream in(out / written_list, std::ios::binary);
+  if (!in) return nullptr;
+  const nlohmann::json list = nlohmann::json::parse(in, nullptr, false);
+  const bool usable = list.is_object() && list.contains("plan") && list.at("plan").is_string() &&
+                      list.contains("files") && list.at("files").is_array();
+  return usable ? list : nullptr;
+}
+
+// An output directory holding another campaign's results.json (another instrument, plan title or
+// date, a results.json inertest did not write, or the results of another plan file) is refused
+// before anything runs: the run would replace that campaign's results and report and leave its
+// exports beside the new ones. A run of the same plan replaces its own: the earlier run's list is
+// returned (null when it has none), for remove_earlier_files.
+nlohmann::json earlier_run_of_this_plan(const Plan& plan, const std::filesystem::path& out) {
   const std::filesystem::path file = out / "results.json";
-  if (!std::filesystem::is_regular_file(file)) return;
-  const std::string ours = campaign_named(plan.context.instrument.id, plan.header);
+  if (!std::filesystem::is_regular_file(file)) return nullptr;
+  std::string ours = campaign_named(plan.context.instrument.id, plan.header);
   std::string theirs;
   try {
     std::ifstream in(file, std::ios::binary);
@@ -610,30 +630,65 @@ void require_no_other_campaign(const Plan& plan, const std::filesystem::path& ou
   } catch (const nlohmann::json::exception&) {
     theirs = "not an inertest results file";
   }
+  nlohmann::json list = read_written_list(out);
+  if (theirs == ours && !list.is_null() && list.at("plan") != canonical_plan(plan)) {
+    theirs += ", of the plan " + list.at("plan").get<std::string>();
+    ours += ", of the plan " + canonical_plan(plan);
+  }
   if (theirs != ours) {
     throw Error(SourceLocation{file.string(), 0, 0},
-                "holds the results of another campaign (" + theirs + "; this plan is " + ours +
-                    "): give the run another --out, or move those results away first");
+                "holds the results of another campaign (" + theirs + "; this one is " + ours +
+                    "): give the run another --out, or move that directory's files away first");
   }
+  return list;
 }
 
-// Removes what the last run of the campaign wrote into out and this one did not (an export the plan
-// no longer names), then lists what this one wrote. Only plain relative paths inside out are removed.
-std::vector<std::string> replace_written_list(const std::filesystem::path& out, const std::vector<std::filesystem::path>& written) {
+// Removes what the earlier run of this plan wrote into out and this one did not (an export the plan
+// no longer names), and only that: a plain relative path inside out, not a file the plan reads, and
+// still the size and time the earlier run left it with (a file edited or replaced since is kept).
+// Returns the paths removed.
+std::vector<std::string> remove_earlier_files(const Plan& plan, const std::filesystem::path& out,
+                                              const nlohmann::json& earlier, const std::vector<std::filesystem::path>& written) {
   std::vector<std::string> removed;
-  std::ifstream earlier(out / written_list);
-  for (std::string line; std::getline(earlier, line);) {
-    const std::filesystem::path name = std::filesystem::path(line).lexically_normal();
+  if (earlier.is_null()) return removed;
+  for (const auto& entry : earlier.at("files")) {
+    if (!entry.is_object() || !entry.contains("path") || !entry.at("path").is_string()) continue;
+    const std::filesystem::path name = std::filesystem::path(entry.at("path").get<std::string>()).lexically_normal();
     const bool inside = !name.empty() && name.is_relative() && *name.begin() != "..";
     if (!inside || std::find(written.begin(), written.end(), name) != written.end()) continue;
-    if (std::filesystem::is_regular_file(out / name) && std::filesystem::remove(out / name)) {
-      removed.push_back((out / name).string());
+    const std::filesystem::path path = out / name;
+    const auto is_path = [&path](const std::string& other) {
+      std::error_code ignored;
+      return std::filesystem::equivalent(path, other, ignored);
+    };
+    if (is_path(plan.path) ||
+        std::any_of(plan.data_files.begin(), plan.data_files.end(), [&](const auto& data) { return is_path(data.first); })) {
+      continue;  // the plan reads it now
     }
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) continue;
+    const auto size = std::filesystem::file_size(path, error);
+    if (error) continue;
+    const auto modified = std::filesystem::last_write_time(path, error).time_since_epoch().count();
+    if (error || entry.value("size", nlohmann::json()) != size || entry.value("modified", nlohmann::json()) != modified) {
+      continue;  // edited or replaced since
+    }
+    if (std::filesystem::remove(path, error)) removed.push_back(path.string());
   }
-  std::string list;
-  for (const auto& name : written) list += name.generic_string() + "\n";
-  write_file_atomically((out / written_list).string(), list);
   return removed;
+}
+
+void write_written_list(const Plan& plan, const std::filesystem::path& out, const std::vector<std::filesystem::path>& written) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& name : written) {
+    std::error_code size_error;
+    std::error_code time_error;
+    const auto size = std::filesystem::file_size(out / name, size_error);
+    const auto modified = std::filesystem::last_write_time(out / name, time_error).time_since_epoch().count();
+    if (!size_error && !time_error) files.push_back({{"path", name.generic_string()}, {"size", size}, {"modified", modified}});
+  }
+  write_file_atomically((out / written_list).string(),
+                        json_text(nlohmann::json{{"plan", canonical_plan(plan)}, {"files", files}}, 2) + "\n");
 }
 
 }  // namespace
@@ -646,7 +701,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   // made of the output directory's path (and only that).
   const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
   require_output_directory(out);
-  require_no_other_campaign(plan, out);
+  const nlohmann::json earlier = earlier_run_of_this_plan(plan, out);
   require_exports_replace_no_data(plan, out);
   const std::filesystem::path made = first_missing(out);
   std::filesystem::create_directories(out);
@@ -690,7 +745,8 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   }
   for (const auto& relative : staged) summary.written_files.push_back((out / relative).string());
   std::filesystem::remove_all(staging);
-  summary.removed_files = replace_written_list(out, staged);
+  summary.removed_files = remove_earlier_files(plan, out, earlier, staged);
+  write_written_list(plan, out, staged);
   if (options.progress) options.progress("done", 1.0);
   return summary;
 }

@@ -1,6 +1,7 @@
 // The allan command's contract: `inertest allan FILE --rate HZ ... --json`.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdio>
 #include <fmt/format.h>
 #include <filesystem>
@@ -109,13 +110,15 @@ TEST(AllanCommand, JsonOfAnF64Record) {
 }
 
 // A counter logged as raw integers (pulse counts, i32 or i16, either byte order, named as the other
-// commands name them): the same figures as the same values stored as f64, bit for bit; a format
-// no reader knows is an error at --format.
+// commands name them), or the values as big-endian floats: the same figures as the same values
+// stored as f64, bit for bit; a format no reader knows is an error at --format.
 TEST(AllanCommand, IntegerRecordsOfEitherByteOrder) {
   testing::ScratchDirectory dir;
   std::vector<double> counts;
   std::string i32be;
   std::string i16;
+  std::string f64be;
+  std::string f32be;
   std::mt19937_64 random(3);
   std::uniform_int_distribution<int> count(-20000, 20000);
   for (int i = 0; i < 4096; ++i) {
@@ -124,12 +127,17 @@ TEST(AllanCommand, IntegerRecordsOfEitherByteOrder) {
     for (int b = 3; b >= 0; --b) i32be += static_cast<char>((static_cast<std::uint32_t>(v) >> (8 * b)) & 0xFF);
     i16 += static_cast<char>(static_cast<std::uint16_t>(v) & 0xFF);
     i16 += static_cast<char>((static_cast<std::uint16_t>(v) >> 8) & 0xFF);
+    const auto wide = std::bit_cast<std::uint64_t>(static_cast<double>(v));
+    const auto narrow = std::bit_cast<std::uint32_t>(static_cast<float>(v));  // |v| <= 20000: exact
+    for (int b = 7; b >= 0; --b) f64be += static_cast<char>((wide >> (8 * b)) & 0xFF);
+    for (int b = 3; b >= 0; --b) f32be += static_cast<char>((narrow >> (8 * b)) & 0xFF);
   }
   const auto as_f64 = testing::run_cli({"allan", dir.write("c.f64", testing::f64_bytes(counts)), "--rate", "100",
                                         "--format", "f64", "--input-unit", "count", "--json"});
   ASSERT_EQ(as_f64.exit_code, 0) << as_f64.err;
   for (const auto& [name, bytes, format] : {std::tuple{"c.i32", i32be, "i32be"}, std::tuple{"c.i16", i16, "i16le"},
-                                            std::tuple{"c2.i16", i16, "i16"}}) {
+                                            std::tuple{"c2.i16", i16, "i16"}, std::tuple{"c.f64be", f64be, "f64be"},
+                                            std::tuple{"c.f32be", f32be, "f32be"}}) {
     const auto run = testing::run_cli({"allan", dir.write(name, bytes), "--rate", "100", "--format", format,
                                        "--input-unit", "count", "--json"});
     ASSERT_EQ(run.exit_code, 0) << format << ": " << run.err;

@@ -36,8 +36,8 @@ CommandAction setup(CLI::App& archive) {
     std::string report = fmt::format("{} ({}), {} instruments\n", json["figure"].get<std::string>(),
                                      json["unit"].get<std::string>(), json["instruments"].size());
     for (const auto& i : json["instruments"]) {
-      report += fmt::format("  {:<16} {:<10} {:.10g}\n", i["instrument"].get<std::string>(),
-                            i["tested_on"].get<std::string>(), i["value"].get<double>());
+      report += fmt::format("  {:<16} {:<10} {}\n", i["instrument"].get<std::string>(), i["tested_on"].get<std::string>(),
+                            i["value"].is_number() ? fmt::format("{:.10g}", i["value"].get<double>()) : "not measured");
     }
     if (const auto& chart = json["control_chart"]; !chart.is_null()) {
       report += fmt::format("  center {:.10g}, UCL {:.10g}, LCL {:.10g}\n", chart["center"].get<double>(),

@@ -52,7 +52,8 @@ CommandAction setup(CLI::App& archive) {
       ->required();
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,
-                    "print {\"instrument\", \"figure\", \"clause\", \"campaigns\", \"result\"}");
+                    "print {\"instrument\", \"figure\", \"clause\", \"campaigns\", \"not_measured\" (the campaigns left "
+                    "out), \"result\"}");
   return [arguments] {
     const auto store = open_archive_option(arguments->db);
     const archive::FigureHistory history = store->history(arguments->instrument, arguments->figure);
@@ -62,8 +63,16 @@ CommandAction setup(CLI::App& archive) {
                  [](const archive::FigurePoint& p) { return p.value.has_value(); });
     std::vector<double> values;
     nlohmann::json campaigns = nlohmann::json::array();
-    for (const auto& p : measured) campaigns.push_back(p.campaign);
-    nlohmann::json json = {{"instrument", history.instrument}, {"figure", history.figure}, {"campaigns", campaigns}};
+    nlohmann::json not_measured = nlohmann::json::array();
+    for (const auto& p : history.points) (p.value ? campaigns : not_measured).push_back(p.campaign);
+    const std::size_t left_out = not_measured.size();
+    if (measured.size() < 2 && left_out > 0) {
+      throw Error(fmt::format("figure '{}' of '{}': {} of its {} campaigns did not measure it, which leaves {}: "
+                              "repeatability needs at least 2",
+                              history.figure, history.instrument, left_out, history.points.size(), measured.size()));
+    }
+    nlohmann::json json = {{"instrument", history.instrument}, {"figure", history.figure}, {"campaigns", campaigns},
+                           {"not_measured", not_measured}};
     std::string report;
     const std::string name = history.figure.substr(history.figure.rfind('/') + 1);
     if (is_rate(history.unit)) {
@@ -81,7 +90,6 @@ CommandAction setup(CLI::App& archive) {
       throw Error("figure '" + history.figure + "' (" + history.unit +
                   "): repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias in a rate unit (5.12.3)");
     }
-    const std::size_t left_out = history.points.size() - measured.size();
     print_result(json, fmt::format("{} {} across {} campaigns{} ({}):\n{}", history.instrument, history.figure,
                                    values.size(),
                                    left_out == 0 ? std::string() : fmt::format(" ({} more did not measure it)", left_out),

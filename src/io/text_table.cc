@@ -249,7 +249,7 @@ TextTable read_text_table(const std::string& path, const TextTableOptions& optio
     const std::size_t nul = head.find('\0');
     if (nul == std::string_view::npos) throw;
     throw Error(SourceLocation{path, 0, 0}, "not text: a NUL byte at offset " + std::to_string(nul) +
-                                                 " (a binary record? give its format, e.g. --format f64 or f32)");
+                                                 " (a binary record? give its format, e.g. --format f64, f32, i32 or i16)");
   }
 }
 

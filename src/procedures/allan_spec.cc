@@ -280,7 +280,7 @@ ProcedureSpec allan_spec() {
              "ADEV, OADEV, MDEV, HDEV, OHDEV, TOTDEV with chi-squared bounds (IEEE Std 952-1997 Annex C,\n"
              "NIST SP 1065), and the noise terms Q, N (ARW), B (bias instability), K (RRW), R (rate ramp) by the\n"
              "fit of GJB eq. (30) and by slope read-off. FILE: one channel of rate samples, text (csv), raw\n"
-             "little-endian f64/f32, or a channel of a MATLAB .mat, HDF5 or NI TDMS file (found by its magic\n"
+             "binary (f64, f32, i32 or i16, le or be), or a channel of a MATLAB .mat, HDF5 or NI TDMS file (found by its magic\n"
              "bytes; --column names the channel); --columns several channels in one pass. Text is parsed once,\n"
              "into memory; the others stream once.")
       .json_procedure_is("allan_variance")

@@ -152,8 +152,9 @@ ScaleFactorResult scale_factor(std::span<const ScaleFactorPoint> points, const S
   }
   if (!inner_zeros.empty()) {
     result.warnings.push_back(fmt::format(
-        "the zero-rate point{} {} (the table's points counted from 1) {} left out of the fit: the static runs of "
-        "eq. (2) are those at the start and the end (GJB 2426A 5.8.1.3 d)",
+        "test point{} {} (counted from 1 among the test points, not the file's lines) {} at zero rate inside the "
+        "sequence and left out of the fit: the static runs of eq. (2) are those at the start and the end (GJB 2426A "
+        "5.8.1.3 d)",
         inner_zeros.size() == 1 ? "" : "s", fmt::join(inner_zeros, ", "), inner_zeros.size() == 1 ? "is" : "are"));
   }
   return result;

@@ -51,7 +51,8 @@ TEST(ScaleFactor, AZeroRateInsideTheSequenceIsLeftOutAndSaid) {
   EXPECT_NEAR_RELATIVE(r.nonlinearity.value, 0.07 / 4.1 * 1e6, 1e-12);
   EXPECT_EQ(r.nonlinearity_curve.size(), 4u);
   ASSERT_EQ(r.warnings.size(), 3u);
-  EXPECT_THAT(r.warnings[2], HasSubstr("the zero-rate point 4 (the table's points counted from 1) is left out of the fit"));
+  EXPECT_THAT(r.warnings[2], HasSubstr("test point 4 (counted from 1 among the test points, not the file's lines) is at "
+                                       "zero rate inside the sequence and left out of the fit"));
 }
 
 TEST(ScaleFactor, ExactLineHasNoNonlinearityOrAsymmetry) {

@@ -100,7 +100,7 @@ AllanResult allan_variance_in_place(std::span<double> rate, const AllanOptions& 
 // Streams a binary file once (the engine integrates about the mean of the first chunk and the mean
 // comes from the phase total); text is parsed once into memory and analysed there in place (8 N
 // bytes, no ring). Memory for a binary record is the engine's ring buffer, at most 8 (N + 1) bytes
-// plus a few MB, and for raw f64/f32 records and records of named
+// plus a few MB, and for raw binary records and records of named
 // channels (.mat, HDF5, TDMS) at most 1.5 times the file size: the largest averaging factors are
 // then computed in a second, partial pass that re-reads the file. A record that stores its sample rate (HDF5
 // sample_rate_hz, TDMS wf_increment) must agree with options.sample_rate_hz, else an Error naming both.

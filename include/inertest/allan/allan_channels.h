@@ -49,7 +49,7 @@ AllanChannels allan_variance_of_channels(const std::vector<std::span<const doubl
 
 // From a file, each byte read once: text is parsed once, in parallel chunks, into all the columns
 // asked for (read_text_table); a record of named channels (.mat, HDF5, TDMS) streams each channel
-// once (allan_variance_of_file). Raw f64/f32 records hold one channel: asking for several is an
+// once (allan_variance_of_file). Raw binary records hold one channel: asking for several is an
 // Error. `units` as in channel_options; errors name the file, line and column (or channel).
 AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& source,
                                                  const std::vector<ColumnSelector>& columns, std::string_view units,

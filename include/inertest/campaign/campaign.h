@@ -37,9 +37,10 @@ std::vector<std::string> plan_kinds();
 
 // Runs the plan and writes out_dir/results.json, the steps' exports and the report (all of them or,
 // on an error, none; the output directory is left as it was). An out_dir holding another campaign's
-// results.json (another instrument, plan title or date) is an error before anything runs; in one
-// holding the same campaign's, the files its last run wrote and this one does not are removed
-// (out_dir/.inertest-written lists what a run wrote).
+// results.json (another instrument, plan title or date, or another plan file) is an error before
+// anything runs; in one holding the same plan's, the files its last run wrote and this one does not
+// are removed, unless edited since or read by the plan (out_dir/.inertest-written lists what a run
+// wrote).
 CampaignSummary run_campaign(const std::string& plan_path, const std::string& out_dir,
                              const CampaignOptions& options = {});
 

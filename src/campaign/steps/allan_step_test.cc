@@ -342,35 +342,65 @@ TEST(AllanStep, AnExportOntoTheStepsRecordIsRefused) {
   EXPECT_EQ(testing::read_file(named), plan_text);
 }
 
-// The same campaign run again into its directory: what its last run exported and this one does not
-// (the plan no longer names it) is removed, and said; another campaign's directory is refused
-// before anything runs, its files as they were.
+// The same plan run again into its directory: what its last run exported and this one does not (the
+// plan no longer names it) is removed, and said; not a file the plan now reads, nor one edited since.
+// Another campaign's directory (another instrument, or the same one's results of another plan file)
+// is refused before anything runs, its files as they were.
 TEST(AllanStep, ARunReplacesItsOwnCampaignAndNoOther) {
   testing::ScratchDirectory dir;
   const std::string out = dir.path() + "/out";
-  run_campaign(white_noise_plan(dir, "plan.toml", "export = [\"json\", \"filter.json\"]"), out);
+  const std::string plan = white_noise_plan(dir, "plan.toml", "export = [\"json\", \"filter.json\"]");
+  run_campaign(plan, out);
   ASSERT_TRUE(std::filesystem::exists(out + "/filter.json"));
   const CampaignSummary again = run_campaign(white_noise_plan(dir, "plan.toml", "export = [\"json\", \"noise.json\"]"), out);
   EXPECT_FALSE(std::filesystem::exists(out + "/filter.json"));
   EXPECT_TRUE(std::filesystem::exists(out + "/noise.json"));
   EXPECT_EQ(again.removed_files, std::vector<std::string>{out + "/filter.json"});
-  EXPECT_EQ(testing::read_file(out + "/.inertest-written"), "results.json\nnoise.json\n");
-  const auto cli = testing::run_cli({"run", dir.path() + "/plan.toml", "--out", out});
+  const auto list = nlohmann::json::parse(testing::read_file(out + "/.inertest-written"));
+  EXPECT_EQ(list["plan"], std::filesystem::weakly_canonical(plan).string());
+  ASSERT_EQ(list["files"].size(), 2u);
+  EXPECT_EQ(list["files"][1]["path"], "noise.json");
+  EXPECT_EQ(list["files"][1]["size"], std::filesystem::file_size(out + "/noise.json"));
+  const auto cli = testing::run_cli({"run", plan, "--out", out});
   EXPECT_EQ(cli.exit_code, 0) << cli.err;
   EXPECT_THAT(cli.err, Not(HasSubstr("removed")));
+  // An export edited since stays, and so does a file listed as the last run's that the plan now reads.
+  dir.write("out/noise.json", "edited by hand");
+  std::filesystem::copy_file(dir.path() + "/w.f64", out + "/w.f64");
+  nlohmann::json listed = nlohmann::json::parse(testing::read_file(out + "/.inertest-written"));
+  listed["files"].push_back({{"path", "w.f64"}, {"size", std::filesystem::file_size(out + "/w.f64")},
+                             {"modified", std::filesystem::last_write_time(out + "/w.f64").time_since_epoch().count()}});
+  dir.write("out/.inertest-written", listed.dump());
+  const std::string reading = white_noise_plan(dir, "plan.toml", "export = [\"json\", \"filter.json\"]\n[[procedure]]\n"
+                                                                 "kind = \"allan\"\nname = \"again\"\nfile = \"out/w.f64\"\n"
+                                                                 "format = \"f64\"");
+  // (The command line's run wrote the report; this one, without one, leaves no earlier report beside its results.)
+  EXPECT_EQ(run_campaign(reading, out).removed_files, std::vector<std::string>{out + "/report.html"});
+  EXPECT_TRUE(std::filesystem::exists(out + "/w.f64"));
+  EXPECT_EQ(testing::read_file(out + "/noise.json"), "edited by hand");
 
   const std::string results = testing::read_file(out + "/results.json");
   const std::string other =
-      dir.write("other.toml", std::regex_replace(testing::read_file(dir.path() + "/plan.toml"), std::regex("FOG-1"), "FOG-2"));
+      dir.write("other.toml", std::regex_replace(testing::read_file(plan), std::regex("FOG-1"), "FOG-2"));
   try {
     run_campaign(other, out);
     ADD_FAILURE() << "a run replaced another campaign's results";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("out/results.json: holds the results of another campaign (instrument 'FOG-1', "
-                                    "title 'noise', date ''; this plan is instrument 'FOG-2', title 'noise', date '')"));
+                                    "title 'noise', date ''; this one is instrument 'FOG-2', title 'noise', date '')"));
   }
+  // The same instrument, title and date from another plan file: another campaign too.
+  const std::string copy = dir.write("copy.toml", testing::read_file(plan));
+  EXPECT_THAT([&] { run_campaign(copy, out); },
+              ::testing::ThrowsMessage<Error>(HasSubstr(", of the plan " + std::filesystem::weakly_canonical(plan).string() +
+                                                        "; this one is instrument 'FOG-1', title 'noise', date '', of the plan " +
+                                                        std::filesystem::weakly_canonical(copy).string() + ")")));
   EXPECT_EQ(testing::read_file(out + "/results.json"), results);
-  EXPECT_TRUE(std::filesystem::exists(out + "/noise.json"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/filter.json"));
+  // Its results moved away, the directory takes another campaign, and removes nothing of the last.
+  std::filesystem::rename(out + "/results.json", dir.path() + "/kept.json");
+  EXPECT_TRUE(run_campaign(other, out).removed_files.empty());
+  EXPECT_TRUE(std::filesystem::exists(out + "/filter.json"));
   dir.write("elsewhere/results.json", "[1, 2]");  // not inertest's: not replaced either
   EXPECT_THAT(testing::run_cli({"run", other, "--out", dir.path() + "/elsewhere"}).err,
               HasSubstr("holds the results of another campaign (not an inertest results file;"));

@@ -405,17 +405,44 @@ void fill_not_measured_figures(Database& db, const std::string& location) {
   }
 }
 
-void migrate(Database& db, const std::string& location) {
-  Transaction transaction(db, true);  // one process migrates; the others wait, then find it done
-  db.query("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
+// The schema version stored, 0 when none is.
+std::int64_t stored_schema_version(Database& db) {
   const auto rows = db.query("SELECT MAX(version) FROM schema_version");
-  const std::int64_t current = rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
+  return rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
+}
+
+void refuse_newer_schema(std::int64_t current, const std::string& location) {
   if (current > schema_version) {
     throw Error(SourceLocation{location, 0, 0},
                 fmt::format("the archive's schema version is {}, newer than this inertest knows ({}): "
                             "use a newer inertest",
                             current, schema_version));
   }
+}
+
+// A read-only archive (Database::read_only) is read as it is: one of this version, or an error.
+void check_read_only_schema(Database& db, const std::string& location) {
+  std::int64_t current = 0;
+  try {
+    current = stored_schema_version(db);
+  } catch (const DatabaseError&) {
+    throw Error(SourceLocation{location, 0, 0}, "holds no archive, and this process cannot write it to make one");
+  }
+  refuse_newer_schema(current, location);
+  if (current < schema_version) {
+    throw Error(SourceLocation{location, 0, 0},
+                fmt::format("the archive's schema version is {} and this inertest reads {}; this process cannot write "
+                            "the file or its directory to migrate it: open it once where it can",
+                            current, schema_version));
+  }
+}
+
+void migrate(Database& db, const std::string& location) {
+  if (db.read_only()) return check_read_only_schema(db, location);
+  Transaction transaction(db, true);  // one process migrates; the others wait, then find it done
+  db.query("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
+  const std::int64_t current = stored_schema_version(db);
+  refuse_newer_schema(current, location);
   for (std::int64_t version = current; version < schema_version; ++version) {
     for (const auto& statement : migrations[static_cast<std::size_t>(version)]) db.query(statement);
     if (version == 1) fill_not_measured_figures(db, location);
@@ -488,12 +515,13 @@ long fault_injection_kill_after() {
 
 class DatabaseArchive final : public Archive {
  public:
-  DatabaseArchive(std::unique_ptr<Database> db, const std::string& location) : db_(std::move(db)) {
+  DatabaseArchive(std::unique_ptr<Database> db, const std::string& location) : db_(std::move(db)), location_(location) {
     migrate(*db_, location);
   }
 
   AddOutcome add(const nlohmann::json& results, const std::string& source) override {
     const CampaignRecord record = read_campaign(results, source);
+    require_writable();
     Transaction transaction(*db_, true);
     long figures_written = 0;
     const AddOutcome outcome = insert(record, figures_written);
@@ -504,6 +532,7 @@ class DatabaseArchive final : public Archive {
   std::vector<AddOutcome> add_all(const std::vector<std::pair<nlohmann::json, std::string>>& files) override {
     std::vector<CampaignRecord> records;
     for (const auto& [results, source] : files) records.push_back(read_campaign(results, source));
+    require_writable();
     std::vector<AddOutcome> outcomes;
     Transaction transaction(*db_, true);
     long figures_written = 0;
@@ -614,7 +643,15 @@ class DatabaseArchive final : public Archive {
     return outcome;
   }
 
+  void require_writable() const {
+    if (db_->read_only()) {
+      throw Error(SourceLocation{location_, 0, 0},
+                  "this process cannot write the archive (the file or its directory is read-only to it): nothing added");
+    }
+  }
+
   std::unique_ptr<Database> db_;
+  std::string location_;
 };
 
 }  // namespace

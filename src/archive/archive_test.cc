@@ -782,6 +782,66 @@ TEST(ArchiveOpening, AReadOfAMissingFileIsAnErrorAndCreatesNothing) {
   EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/typo"));
 }
 
+// An archive this process cannot write (a file shared read-only, `inertest serve` run by a service
+// account) is read as it is, and an add to it is refused, naming it and changing nothing. It failed
+// with "attempt to write a readonly database": opening migrated, and SQLite's WAL needs its -shm
+// file in the directory. The reading runs in a child process as nobody when this one is root (which
+// file permissions do not stop); the child reports through a pipe.
+TEST(ArchiveOpening, AnArchiveThisProcessCannotWriteIsRead) {
+  testing::ScratchDirectory scratch;
+  const std::string directory = scratch.path() + "/shared";
+  const std::string path = directory + "/archive.sqlite";
+  const auto id = open_archive(path, ArchiveOpening::create)->add(campaign("FOG-0417", "2026-02-01", 36000.2), "a.json").id;
+  namespace fs = std::filesystem;
+  fs::permissions(scratch.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                      fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(directory, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                 fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(path, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  int channel[2];
+  ASSERT_EQ(::pipe(channel), 0);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(channel[0]);
+    nlohmann::json report;
+    try {
+      if (::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) throw std::runtime_error("cannot become nobody");
+      auto archive = open_archive(path);
+      report["listed"] = archive->list(std::nullopt).size();
+      report["value"] = *archive->history("FOG-0417", "scale_factor/scale_factor").points.at(0).value;
+      try {
+        archive->add(campaign("FOG-0418", "2026-02-02", 36000.1), "b.json");
+        report["add"] = "added";
+      } catch (const Error& e) {
+        report["add"] = e.what();
+      }
+    } catch (const std::exception& e) {
+      report["error"] = e.what();
+    }
+    const std::string text = report.dump();
+    const ssize_t written = ::write(channel[1], text.data(), text.size());
+    ::_exit(written == static_cast<ssize_t>(text.size()) ? 0 : 1);
+  }
+  ::close(channel[1]);
+  std::string text;
+  char buffer[4096];
+  for (ssize_t got; (got = ::read(channel[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(got));
+  ::close(channel[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  fs::permissions(directory, fs::perms::owner_all, fs::perm_options::add);  // for the clean-up
+  fs::permissions(path, fs::perms::owner_write, fs::perm_options::add);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+  const auto report = nlohmann::json::parse(text);
+  ASSERT_FALSE(report.contains("error")) << report.dump();
+  EXPECT_EQ(report["listed"], 1);
+  EXPECT_EQ(report["value"], 36000.2);
+  EXPECT_EQ(report["add"], path + ": this process cannot write the archive (the file or its directory is read-only to it): "
+                                  "nothing added");
+  EXPECT_EQ(open_archive(path)->list(std::nullopt).size(), 1u);
+  EXPECT_EQ(open_archive(path)->list(std::nullopt)[0].id, id);
+}
+
 // A server that accepts the connection and never answers: an error within seconds, not a hang.
 TEST(ArchiveOpening, ASilentServerIsATimeoutNotAHang) {
   const int listener = ::socket(AF_INET, SOCK_STREAM, 0);

@@ -39,6 +39,9 @@ class Database {
   virtual void commit() = 0;
   virtual void rollback() noexcept = 0;
   virtual std::string backend() const = 0;
+  // The connection can read but not write (a file this process cannot write): the archive is read
+  // as it is, neither migrated nor added to.
+  virtual bool read_only() const { return false; }
 };
 
 std::unique_ptr<Database> open_sqlite(const std::string& path);

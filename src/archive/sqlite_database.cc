@@ -1,6 +1,9 @@
 // The embedded back-end: one SQLite file in WAL mode (readers never block the writer), with a
-// busy timeout so that several stations adding at once wait for the write lock in turn.
+// busy timeout so that several stations adding at once wait for the write lock in turn. A file
+// this process cannot write (the file, or its directory where WAL keeps its -wal and -shm files:
+// an archive shared read-only, `inertest serve` run by a service account) is opened read-only.
 #include <sqlite3.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -24,11 +27,13 @@ class SqliteDatabase final : public Database {
     const std::filesystem::path parent = std::filesystem::path(path).parent_path();
     std::error_code ignored;
     if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
-    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
-                        nullptr) != SQLITE_OK) {
-      const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
-      sqlite3_close(db_);
-      throw DatabaseError(SourceLocation{path, 0, 0}, "cannot open the archive: " + message);
+    const std::string directory = parent.empty() ? "." : parent.string();
+    read_only_ = std::filesystem::exists(path, ignored) &&
+                 (::access(path.c_str(), W_OK) != 0 || ::access(directory.c_str(), W_OK) != 0);
+    if (read_only_) {
+      open_read_only();
+    } else {
+      open(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
     }
     try {
       sqlite3_busy_timeout(db_, busy_timeout_ms);
@@ -38,7 +43,7 @@ class SqliteDatabase final : public Database {
         tables.push_back(row.text(0));
       }
       refuse_foreign_database(tables, path);
-      enter_wal_mode();
+      if (!read_only_) enter_wal_mode();
       query("PRAGMA foreign_keys=ON", {});
       query("PRAGMA synchronous=FULL", {});
     } catch (...) {
@@ -96,8 +101,38 @@ class SqliteDatabase final : public Database {
   void commit() override { query("COMMIT", {}); }
   void rollback() noexcept override { sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr); }
   std::string backend() const override { return "sqlite"; }
+  bool read_only() const override { return read_only_; }
 
  private:
+  void open(const std::string& name, int flags) {
+    if (sqlite3_open_v2(name.c_str(), &db_, flags | SQLITE_OPEN_FULLMUTEX, nullptr) != SQLITE_OK) {
+      const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+      sqlite3_close(db_);
+      db_ = nullptr;
+      throw DatabaseError(SourceLocation{path_, 0, 0}, "cannot open the archive: " + message);
+    }
+  }
+
+  // mode=ro reads a WAL file as any reader does, but needs its -shm file: one a writer has open, or
+  // one it can make. Where neither is (a closed archive in a directory it cannot write), the file is
+  // read as it stands (immutable=1: no locks, no -shm): what the last writer checkpointed, which a
+  // writer that closes cleanly has done with everything.
+  void open_read_only() {
+    std::string uri = "file:";
+    for (const char c : path_) {
+      if (c == '%' || c == '?' || c == '#') {
+        uri += fmt::format("%{:02X}", static_cast<unsigned char>(c));
+      } else {
+        uri += c;
+      }
+    }
+    open(uri + "?mode=ro", SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
+    if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) == SQLITE_OK) return;
+    sqlite3_close(db_);
+    db_ = nullptr;
+    open(uri + "?immutable=1", SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
+  }
+
   // Turning a new file to WAL takes an exclusive lock, and SQLite answers SQLITE_BUSY at once,
   // without the busy handler, while another station opens the same new file: retry until the
   // busy timeout (seen with 8 stations adding to a new archive at once under the sanitizers).
@@ -118,6 +153,7 @@ class SqliteDatabase final : public Database {
 
   std::string path_;
   sqlite3* db_ = nullptr;
+  bool read_only_ = false;
 };
 
 }  // namespace

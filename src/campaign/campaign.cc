@@ -678,6 +678,8 @@ std::vector<std::string> remove_earlier_files(const Plan& plan, const std::files
   return removed;
 }
 
+// The list is written after the results are in place; one that cannot be written (a full disk) fails
+// nothing: the next run of the plan then finds the last list, whose files it removes only as above.
 void write_written_list(const Plan& plan, const std::filesystem::path& out, const std::vector<std::filesystem::path>& written) {
   nlohmann::json files = nlohmann::json::array();
   for (const auto& name : written) {
@@ -687,8 +689,12 @@ void write_written_list(const Plan& plan, const std::filesystem::path& out, cons
     const auto modified = std::filesystem::last_write_time(out / name, time_error).time_since_epoch().count();
     if (!size_error && !time_error) files.push_back({{"path", name.generic_string()}, {"size", size}, {"modified", modified}});
   }
-  write_file_atomically((out / written_list).string(),
-                        json_text(nlohmann::json{{"plan", canonical_plan(plan)}, {"files", files}}, 2) + "\n");
+  try {
+    write_file_atomically((out / written_list).string(),
+                          json_text(nlohmann::json{{"plan", canonical_plan(plan)}, {"files", files}}, 2) + "\n");
+  } catch (const Error&) {
+    // see above
+  }
 }
 
 }  // namespace

@@ -150,18 +150,23 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
   // [instrument] defaults where the step gives none (and their condition holds), then what is missing;
   // after the inputs, so that a condition may look at the step's files.
   for (const ParameterSpec& parameter : spec.parameters) {
+    bool declined = false;  // the plan gives the value, which does not apply to this step
     if (!parameter.instrument_default.empty() && !given.contains(parameter.name)) {
       const auto& condition = parameter.instrument_condition;
       if (!condition || call.parameters.value(condition->first, nlohmann::json()) == condition->second) {
         const nlohmann::json value = instrument_value(context, parameter);
-        if (!value.is_null() && (!parameter.instrument_applies || parameter.instrument_applies(call, context.instrument.to_json()))) {
-          call.parameters[parameter.name] = value;
-        }
+        declined = !value.is_null() && parameter.instrument_applies &&
+                   !parameter.instrument_applies(call, context.instrument.to_json());
+        if (!value.is_null() && !declined) call.parameters[parameter.name] = value;
       }
     }
     if (parameter.required && !call.parameters.contains(parameter.name)) {
       std::string where;
-      if (!parameter.instrument_default.empty()) {
+      if (declined) {
+        where = fmt::format(" (the plan's [instrument] {} is {}'s, which does not apply to this step: give it here)",
+                            parameter.instrument_default,
+                            context.instrument.type == "accelerometer" ? "an accelerometer" : "a " + context.instrument.type);
+      } else if (!parameter.instrument_default.empty()) {
         where = fmt::format(" (give it here or as [{}] {}", parameter.site_default ? "site" : "instrument",
                             parameter.instrument_default);
         if (parameter.instrument_condition) {

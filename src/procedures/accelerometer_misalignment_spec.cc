@@ -7,6 +7,7 @@
 #include "inertest/core/citations.h"
 #include "inertest/misalignment/accelerometer_misalignment.h"
 #include "inertest/misalignment/misalignment_files.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 
@@ -32,9 +33,12 @@ ProcedureSpec accelerometer_misalignment_spec() {
       .input(InputSpec("positions", "CSV of positions").read_from_file("POSITIONS", "file"))
       .parameter(ParameterSpec("scale_factor", "kI, output units per g")
                      .required_on_command_line()
-                     .instrument_gives("nominal_scale_factor"),
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(instrument_is_accelerometer),
                  &Options::scale_factor)
-      .parameter(ParameterSpec("output_unit", "instrument output unit, e.g. V").instrument_gives("output_unit", true),
+      .parameter(ParameterSpec("output_unit", "instrument output unit, e.g. V")
+                     .instrument_gives("output_unit")
+                     .instrument_gives_if(instrument_is_accelerometer),
                  &Options::output_unit)
       .figure_from({"delta_theta_y2", FieldRole::headline, "Δθy2 (input axis)", "Δθy2（输入轴）", "(V(π) − V(0))/(2kI)"},
                    [](const Result& r) { return r.combined.delta_theta_y2; })

@@ -60,6 +60,7 @@
 #include "inertest/io/text_table.h"
 #include "inertest/core/units.h"
 #include "inertest/numerics/least_squares.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 namespace {
@@ -380,7 +381,9 @@ ProcedureSpec accelerometer_tumble_spec() {
           "将加速度计在夹具中绕输入轴转180°重复翻滚时，失准角变号而夹具安装误差不变，由此将二者分离。")
       .example({"examples/accelerometer_tumble/positions.csv", "--output-unit", "mA", "--gravity", "9.7936"})
       .input(InputSpec("positions", "CSV of head angles and outputs").read_from_file("POSITIONS", "file"))
-      .parameter(ParameterSpec("output_unit", "accelerometer output unit").instrument_gives("output_unit"),
+      .parameter(ParameterSpec("output_unit", "accelerometer output unit")
+                     .instrument_gives("output_unit")
+                     .instrument_gives_if(instrument_is_accelerometer),
                  &Options::output_unit)
       .parameter(ParameterSpec("gravity_m_s2", "local gravity")
                      .unit_is("m/s^2")

@@ -28,6 +28,7 @@
 #include "inertest/io/atomic_write.h"
 #include "inertest/io/rate_record.h"
 #include "inertest/io/time_stamps.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 namespace {
@@ -264,7 +265,7 @@ bool takes_instrument_output_unit(const ProcedureCall& call, const nlohmann::jso
 
 bool takes_instrument_scale_factor(const ProcedureCall& call, const nlohmann::json& instrument) {
   if (call.parameters.contains("input_unit") || call.parameters.contains("columns")) return false;
-  if (instrument.value("type", std::string("gyro")) != "gyro") return false;
+  if (!instrument_is_gyro(call, instrument)) return false;
   const std::optional<std::string> stored = stored_unit(call);
   return !stored || sensor_kind_of(*stored) == SensorKind::kOther;  // a stored raw unit (pulse/s) takes K
 }

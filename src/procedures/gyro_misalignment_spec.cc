@@ -7,6 +7,7 @@
 #include "inertest/core/citations.h"
 #include "inertest/misalignment/gyro_misalignment.h"
 #include "inertest/misalignment/misalignment_files.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 namespace {
@@ -47,7 +48,8 @@ ProcedureSpec gyro_misalignment_spec() {
       .input(InputSpec("positions", "CSV of positions (or of records with --records)").read_from_file("POSITIONS", "file"))
       .parameter(ParameterSpec("scale_factor", "kI, output units per deg/s")
                      .required_on_command_line()
-                     .instrument_gives("nominal_scale_factor"),
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(instrument_is_gyro),
                  &Options::misalignment, &GyroMisalignmentOptions::scale_factor)
       .parameter(ParameterSpec("output_unit", "instrument output unit, e.g. V").instrument_gives("output_unit", true),
                  &Options::misalignment, &GyroMisalignmentOptions::output_unit)

@@ -3,6 +3,7 @@
 // report are all generated from it.
 #include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/input_axis_misalignment.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 namespace {
@@ -29,7 +30,8 @@ ProcedureSpec input_axis_misalignment_spec() {
       .parameter(ParameterSpec("scale_factor", "K, output unit per rate unit")
                      .required_on_command_line()
                      .instrument_gives("nominal_scale_factor")
-                     .instrument_gives_when("rate_unit", "deg/s"),
+                     .instrument_gives_when("rate_unit", "deg/s")
+                     .instrument_gives_if(instrument_is_gyro),
                  &InputAxisMisalignmentOptions::scale_factor)
       .parameter(ParameterSpec("rate", "table rate magnitude, rate unit").required_on_command_line(),
                  &InputAxisMisalignmentOptions::rate)

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/procedures/resolution.h"
+#include "inertest/procedures/instrument_sensor.h"
 #include "procedures/fifty_percent_criterion.h"
 
 namespace inertest {
@@ -33,7 +34,8 @@ ProcedureSpec resolution_spec() {
       .parameter(ParameterSpec("scale_factor", "K")
                      .unit_is("output units per deg/s")
                      .required_on_command_line()
-                     .instrument_gives("nominal_scale_factor"),
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(instrument_is_gyro),
                  &ResolutionOptions::scale_factor)
       .parameter(ParameterSpec("rate_unit", "unit of the rate columns"), &ResolutionOptions::rate_unit)
       .field({"resolution", FieldRole::headline, "resolution", "分辨率", "GJB 2426A-2004 5.11.3 f, eq. (18)"},

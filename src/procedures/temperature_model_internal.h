@@ -8,6 +8,7 @@
 
 #include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/temperature_model.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest::thermal {
 
@@ -38,7 +39,8 @@ void record_parameters(ProcedureDefinition<TemperatureModelOptions, Result>& def
       .parameter(ParameterSpec("scale_factor", "K: bias = output / K")
                      .unit_is("output units per deg/s")
                      .required_on_command_line()
-                     .instrument_gives("nominal_scale_factor"),
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(instrument_is_gyro),
                  &Options::scale_factor)
       .parameter(ParameterSpec("time_column", "the time column (s) by name or 1-based index"), &Options::time_column)
       .parameter(ParameterSpec("output_column", "the output column by name or 1-based index"), &Options::output_column)

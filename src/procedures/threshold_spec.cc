@@ -8,6 +8,7 @@
 #include "inertest/io/output_record.h"
 #include "inertest/io/text_table.h"
 #include "inertest/procedures/threshold.h"
+#include "inertest/procedures/instrument_sensor.h"
 #include "procedures/fifty_percent_criterion.h"
 
 namespace inertest {
@@ -78,7 +79,8 @@ ProcedureSpec threshold_spec() {
       .parameter(ParameterSpec("scale_factor", "K")
                      .unit_is("output units per deg/s")
                      .required_on_command_line()
-                     .instrument_gives("nominal_scale_factor"),
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(instrument_is_gyro),
                  &Options::threshold, &ThresholdOptions::scale_factor)
       .parameter(
           ParameterSpec("zero", "zero output (output at zero input)").plan_key_is("zero_output"),

@@ -8,6 +8,7 @@
 #include "inertest/io/output_record.h"
 #include "inertest/procedures/earth_rate_parameters.h"
 #include "inertest/procedures/turn_on_time.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 
@@ -44,7 +45,8 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
       .parameter(ParameterSpec("scale_factor", "K")
                      .unit_is("output units per deg/s")
                      .required_on_command_line()
-                     .instrument_gives("nominal_scale_factor"),
+                     .instrument_gives("nominal_scale_factor")
+                     .instrument_gives_if(instrument_is_gyro),
                  &TurnOnTimeOptions::scale_factor)
       .parameter(ParameterSpec("zero_output", "calibrated zero output F0").unit_is("output units").command_line_name_is("zero"),
                  &TurnOnTimeOptions::zero_output)

@@ -261,9 +261,10 @@ void generate_accelerometer_misalignment(campaign::PlanTable& test, const std::s
                        basis, (y2_expected - y2) / kArcsec});
   lab.truth.push_back({name, "accelerometer IA dtheta_z2", "delta_theta_z2", z2 / kArcsec, "arcsec", 4.0 * sigma / kArcsec,
                        basis, (z2_expected - z2) / kArcsec});
+  // The plan's [instrument] is the gyro: the accelerometer's own K and output unit are the step's.
   lab.plan_steps += fmt::format("[[procedure]]\nkind = \"accelerometer_misalignment\"\nname = \"{}\"\n"
-                                "file = \"{}/positions.csv\"\nscale_factor = {}\n\n",
-                                name, name, exact(acc.scale_factor));
+                                "file = \"{}/positions.csv\"\nscale_factor = {}\noutput_unit = \"{}\"\n\n",
+                                name, name, exact(acc.scale_factor), acc.output_unit);
   lab.tests.push_back({{"name", name}, {"kind", "accelerometer_misalignment"}, {"file", name + "/positions.csv"},
                        {"accelerometer", acc.to_json()}, {"runs", runs}, {"seconds_per_position", seconds}});
 }

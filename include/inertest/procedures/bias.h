@@ -30,6 +30,7 @@
 #include "inertest/core/procedure_spec.h"
 #include "inertest/procedures/earth_rate.h"
 #include "inertest/procedures/random_walk_normalisation.h"
+#include "inertest/procedures/instrument_sensor.h"
 
 namespace inertest {
 
@@ -111,7 +112,8 @@ ProcedureDefinition<Options, Result>& bias_conversion_parameters(ProcedureDefini
       .parameter(ParameterSpec("scale_factor", "K")
                      .unit_is("output units per deg/s")
                      .instrument_gives("nominal_scale_factor")
-                     .instrument_gives_when("input", "output"),
+                     .instrument_gives_when("input", "output")
+                     .instrument_gives_if(instrument_is_gyro),
                  [conversion](Options& options, const nlohmann::json& value) {
                    conversion(options).scale_factor = value.get<double>();
                  })

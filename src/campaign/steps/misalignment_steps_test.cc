@@ -77,5 +77,32 @@ TEST(MisalignmentSteps, ZeroOrMissingScaleFactorFailsAtValidation) {
                   "missing 'scale_factor' (give it here or as [instrument] nominal_scale_factor)")));
 }
 
+// An [instrument]'s nominal scale factor is per deg/s for a gyro and per g for an accelerometer, and
+// its output unit is that sensor's: an accelerometer step takes them from an accelerometer only (a
+// gyro's 36000 pulse/s per deg/s was taken for kI per g), and a gyro step from a gyro only.
+TEST(MisalignmentSteps, TheInstrumentsScaleFactorAppliesToItsOwnSensorOnly) {
+  testing::ScratchDirectory scratch;
+  const std::string accelerometer_data = testing::source_path("data/misalignment/accelerometer_table2.csv");
+  const std::string accelerometer_step =
+      fmt::format("[[procedure]]\nkind = \"accelerometer_misalignment\"\nfile = \"{}\"\n", accelerometer_data);
+  const std::string of_a_gyro = scratch.write("gyro.toml", plan_text("gyro", "nominal_scale_factor = 1.299", accelerometer_step));
+  EXPECT_THAT([&] { validate_plan(of_a_gyro); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr(
+                  "missing 'scale_factor' (the plan's [instrument] nominal_scale_factor is a gyro's, which does not "
+                  "apply to this step: give it here)")));
+  const std::string of_its_own = scratch.write("own.toml", plan_text("accelerometer", "nominal_scale_factor = 1.299", accelerometer_step));
+  const CampaignSummary summary = run_campaign(of_its_own, scratch.path() + "/out");
+  const auto& result = summary.results["procedures"][0]["result"];
+  EXPECT_NEAR(result["delta_theta_z2"]["value"].get<double>(), 20.5, 0.1);  // as with scale_factor = 1.299 in the step
+  EXPECT_EQ(result["scale_factor"]["unit"], "V/g");
+
+  const std::string gyro_step = fmt::format("[[procedure]]\nkind = \"gyro_misalignment\"\nfile = \"{}\"\n",
+                                            testing::source_path("data/misalignment/gyro_table1.csv"));
+  const std::string of_an_accelerometer =
+      scratch.write("accelerometer.toml", plan_text("accelerometer", "nominal_scale_factor = -2.9222", gyro_step));
+  EXPECT_THAT([&] { validate_plan(of_an_accelerometer); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("nominal_scale_factor is an accelerometer's")));
+}
+
 }  // namespace
 }  // namespace inertest

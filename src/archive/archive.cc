@@ -405,9 +405,15 @@ void fill_not_measured_figures(Database& db, const std::string& location) {
   }
 }
 
-// The schema version stored, 0 when none is.
-std::int64_t stored_schema_version(Database& db) {
-  const auto rows = db.query("SELECT MAX(version) FROM schema_version");
+// The schema version stored, 0 when none is; nullopt when the database has no schema_version table
+// to ask (a new file or database, or another program's: refuse_foreign_database said which).
+std::optional<std::int64_t> stored_schema_version(Database& db) {
+  std::vector<Row> rows;
+  try {
+    rows = db.query("SELECT MAX(version) FROM schema_version");
+  } catch (const DatabaseError&) {
+    return std::nullopt;  // no such table (outside a transaction: nothing to roll back)
+  }
   return rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
 }
 
@@ -422,12 +428,9 @@ void refuse_newer_schema(std::int64_t current, const std::string& location) {
 
 // A read-only archive (Database::read_only) is read as it is: one of this version, or an error.
 void check_read_only_schema(Database& db, const std::string& location) {
-  std::int64_t current = 0;
-  try {
-    current = stored_schema_version(db);
-  } catch (const DatabaseError&) {
-    throw Error(SourceLocation{location, 0, 0}, "holds no archive, and this process cannot write it to make one");
-  }
+  const std::optional<std::int64_t> stored = stored_schema_version(db);
+  if (!stored) throw Error(SourceLocation{location, 0, 0}, "holds no archive, and this process cannot write it to make one");
+  const std::int64_t current = *stored;
   refuse_newer_schema(current, location);
   if (current < schema_version) {
     throw Error(SourceLocation{location, 0, 0},
@@ -439,9 +442,15 @@ void check_read_only_schema(Database& db, const std::string& location) {
 
 void migrate(Database& db, const std::string& location) {
   if (db.read_only()) return check_read_only_schema(db, location);
+  // An archive at this version is opened without a write: a PostgreSQL role that may only read (a
+  // lab's web view) opens it (CREATE TABLE IF NOT EXISTS alone needs the right to create).
+  if (const std::optional<std::int64_t> stored = stored_schema_version(db)) {
+    refuse_newer_schema(*stored, location);
+    if (*stored == schema_version) return;
+  }
   Transaction transaction(db, true);  // one process migrates; the others wait, then find it done
   db.query("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
-  const std::int64_t current = stored_schema_version(db);
+  const std::int64_t current = stored_schema_version(db).value_or(0);
   refuse_newer_schema(current, location);
   for (std::int64_t version = current; version < schema_version; ++version) {
     for (const auto& statement : migrations[static_cast<std::size_t>(version)]) db.query(statement);

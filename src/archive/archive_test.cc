@@ -941,6 +941,30 @@ TEST(ArchivePostgresql, ABrokenConnectionIsMadeAgainOnce) {
   EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
 }
 
+// A role that may only read (a lab's web view on the lab's server) opens the archive and reads it;
+// an add is the server's refusal, naming the archive with its password hidden. Opening wrote
+// (CREATE TABLE IF NOT EXISTS) and failed for such a role.
+TEST(ArchivePostgresql, ARoleThatMayOnlyReadReadsTheArchive) {
+  auto& server = testing::PostgresqlServer::instance();
+  ASSERT_TRUE(server.available()) << server.why_unavailable();
+  const std::string location = server.create_database();
+  open_archive(location)->add(campaign("FOG-1", "2026-02-01", 36000.0), "a.json");
+  const std::string role = "reader_" + location.substr(location.rfind('/') + 1);
+  const std::string command = fmt::format(
+      "/usr/lib/postgresql/15/bin/psql -q '{}' -c 'CREATE ROLE {} LOGIN' -c 'GRANT SELECT ON ALL TABLES IN SCHEMA "
+      "public TO {}' > /dev/null",
+      location, role, role);
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::string reader = location;
+  reader.replace(reader.find("inertest@"), std::string("inertest").size(), role);
+  auto archive = open_archive(reader);
+  ASSERT_EQ(archive->list(std::nullopt).size(), 1u);
+  EXPECT_EQ(archive->history("FOG-1", "scale_factor/scale_factor").points.at(0).value, 36000.0);
+  EXPECT_THAT([&] { archive->add(campaign("FOG-2", "2026-02-02", 36000.0), "b.json"); },
+              ::testing::ThrowsMessage<DatabaseError>(HasSubstr("permission denied")));
+  EXPECT_EQ(open_archive(location)->list(std::nullopt).size(), 1u);
+}
+
 TEST(ArchiveLocation, DefaultIsTheEnvironmentThenHome) {
   const char* saved = std::getenv("INERTEST_DB");
   const std::string saved_value = saved ? saved : "";

@@ -253,15 +253,13 @@ SampleReader binary_sample_reader(const RateRecordSource& source) {
   std::shared_ptr<std::FILE> file(std::fopen(source.path.c_str(), "rb"), FileCloser{});
   if (!file) throw Error(SourceLocation{source.path, 0, 0}, std::string("cannot open: ") + std::strerror(errno));
   auto bytes = std::make_shared<std::vector<char>>();
-  auto decoded = std::make_shared<std::vector<double>>();
-  return [file, bytes, decoded, size, format = source.binary, path = source.path](std::size_t first, std::span<double> out) {
+  return [file, bytes, size, format = source.binary, path = source.path](std::size_t first, std::span<double> out) {
     bytes->resize(out.size() * size);
     if (fseeko(file.get(), static_cast<off_t>(first * size), SEEK_SET) != 0 ||
         std::fread(bytes->data(), 1, bytes->size(), file.get()) != bytes->size()) {
       throw Error(SourceLocation{path, 0, 0}, "read error in the second pass (did the file change?)");
     }
-    decode_binary_frames(std::string_view(bytes->data(), bytes->size()), format, *decoded);
-    std::copy(decoded->begin(), decoded->end(), out.begin());
+    decode_binary_frames(std::string_view(bytes->data(), bytes->size()), format, out);
   };
 }
 

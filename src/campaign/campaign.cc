@@ -556,7 +556,20 @@ nlohmann::json campaign_results(const Plan& plan, nlohmann::json procedures, nlo
   };
 }
 
-}  // namespace
+// The data file of the plan, or the plan itself, that `path` is by any path to it, with where the
+// plan names it; nullopt when it is none of them.
+std::optional<std::pair<std::string, SourceLocation>> file_the_plan_reads(const Plan& plan,
+                                                                          const std::filesystem::path& path) {
+  const auto is_path = [&path](const std::string& file) {
+    std::error_code error;  // equivalent() is false, with an error, when either does not exist
+    return std::filesystem::equivalent(path, file, error);
+  };
+  for (const auto& data : plan.data_files) {
+    if (is_path(data.first)) return data;
+  }
+  if (is_path(plan.path)) return std::pair{plan.path, SourceLocation{plan.path, 0, 0}};
+  return std::nullopt;
+}
 
 // An export that would land on a data file of the plan (by any path to it) is an error at the
 // export before anything runs: `--out .` with an export named as a record replaced the record, and
@@ -566,21 +579,14 @@ void require_exports_replace_no_data(const Plan& plan, const std::filesystem::pa
   std::vector<std::pair<std::string, SourceLocation>> writes(plan.context.outputs.claims().begin(),
                                                              plan.context.outputs.claims().end());
   for (const char* own : {"results.json", "report.html"}) writes.emplace_back(own, SourceLocation{plan.path, 0, 0});
-  std::vector<std::pair<std::string, SourceLocation>> reads = plan.data_files;
-  reads.emplace_back(plan.path, SourceLocation{plan.path, 0, 0});  // the plan itself
   for (const auto& [path, where] : writes) {
-    for (const auto& [file, read_at] : reads) {
-      std::error_code error;  // equivalent() is false, with an error, when either does not exist
-      if (std::filesystem::equivalent(out / path, file, error)) {
-        throw Error(where, "the run would write '" + path + "' over '" + file + "', which the plan reads (at " +
-                               read_at.to_string() + "): give the export another name, or the run another --out; "
-                               "a step cannot read what another exports in the same run");
-      }
+    if (const auto read = file_the_plan_reads(plan, out / path)) {
+      throw Error(where, "the run would write '" + path + "' over '" + read->first + "', which the plan reads (at " +
+                             read->second.to_string() + "): give the export another name, or the run another --out; "
+                             "a step cannot read what another exports in the same run");
     }
   }
 }
-
-namespace {
 
 // What a run wrote into its output directory, for the next run of the same plan there:
 // {"plan": the plan file's canonical path, "files": [{"path" (relative), "size", "modified" (the
@@ -657,14 +663,7 @@ std::vector<std::string> remove_earlier_files(const Plan& plan, const std::files
     const bool inside = !name.empty() && name.is_relative() && *name.begin() != "..";
     if (!inside || std::find(written.begin(), written.end(), name) != written.end()) continue;
     const std::filesystem::path path = out / name;
-    const auto is_path = [&path](const std::string& other) {
-      std::error_code ignored;
-      return std::filesystem::equivalent(path, other, ignored);
-    };
-    if (is_path(plan.path) ||
-        std::any_of(plan.data_files.begin(), plan.data_files.end(), [&](const auto& data) { return is_path(data.first); })) {
-      continue;  // the plan reads it now
-    }
+    if (file_the_plan_reads(plan, path)) continue;
     std::error_code error;
     if (!std::filesystem::is_regular_file(path, error)) continue;
     const auto size = std::filesystem::file_size(path, error);

@@ -1,7 +1,4 @@
 // inertest archive repeatability ID --figure PROCEDURE/FIGURE [--db DB] [--json]
-#include <algorithm>
-#include <iterator>
-
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -57,14 +54,16 @@ CommandAction setup(CLI::App& archive) {
   return [arguments] {
     const auto store = open_archive_option(arguments->db);
     const archive::FigureHistory history = store->history(arguments->instrument, arguments->figure);
-    // One value per campaign that measured the figure; a campaign that did not is left out, and said.
-    std::vector<archive::FigurePoint> measured;
-    std::copy_if(history.points.begin(), history.points.end(), std::back_inserter(measured),
-                 [](const archive::FigurePoint& p) { return p.value.has_value(); });
+    // One value per campaign that measured the figure (in its unit); a campaign that did not is left
+    // out, and said.
+    std::vector<double> measured;
     std::vector<double> values;
     nlohmann::json campaigns = nlohmann::json::array();
     nlohmann::json not_measured = nlohmann::json::array();
-    for (const auto& p : history.points) (p.value ? campaigns : not_measured).push_back(p.campaign);
+    for (const auto& p : history.points) {
+      (p.value ? campaigns : not_measured).push_back(p.campaign);
+      if (p.value) measured.push_back(*p.value);
+    }
     const std::size_t left_out = not_measured.size();
     if (measured.size() < 2 && left_out > 0) {
       throw Error(fmt::format("figure '{}' of '{}': {} of its {} campaigns did not measure it, which leaves {}: "
@@ -76,11 +75,11 @@ CommandAction setup(CLI::App& archive) {
     std::string report;
     const std::string name = history.figure.substr(history.figure.rfind('/') + 1);
     if (is_rate(history.unit)) {
-      for (const auto& p : measured) values.push_back(convert(*p.value, history.unit, "deg/h"));
+      for (const double v : measured) values.push_back(convert(v, history.unit, "deg/h"));
       json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
       report = write_result(*find_procedure_spec("bias_repeatability"), bias_repeatability(values), json);
     } else if (name.find("scale_factor") != std::string::npos) {
-      for (const auto& p : measured) values.push_back(*p.value);
+      values = measured;
       ScaleFactorRepeatabilityOptions options;
       options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning
       json["clause"] = "GJB 2426A-2004 5.8.4, eq. (12)";

@@ -1,5 +1,6 @@
 #include "inertest/io/binary_record.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -21,12 +22,11 @@ Unsigned byte_swap(Unsigned value) {
 }
 
 template <typename Sample, typename Unsigned>
-void decode(std::string_view bytes, const BinaryFormat& format, std::vector<double>& out) {
+void decode(std::string_view bytes, const BinaryFormat& format, std::span<double> out) {
   static_assert(sizeof(Sample) == sizeof(Unsigned));
   const bool swap = (format.endian == BinaryFormat::Endian::kBig) != (std::endian::native == std::endian::big);
   const std::size_t frame = format.frame_size();
-  const std::size_t count = bytes.size() / frame;
-  out.resize(count);
+  const std::size_t count = std::min(bytes.size() / frame, out.size());
   const char* base = bytes.data() + format.channel * sizeof(Sample);
   for (std::size_t i = 0; i < count; ++i) {
     Unsigned raw = 0;
@@ -69,7 +69,7 @@ std::size_t BinaryFormat::sample_size() const {
   return 8;
 }
 
-void decode_binary_frames(std::string_view bytes, const BinaryFormat& format, std::vector<double>& out) {
+void decode_binary_frames(std::string_view bytes, const BinaryFormat& format, std::span<double> out) {
   switch (format.type) {
     case BinaryFormat::SampleType::kFloat64: decode<double, std::uint64_t>(bytes, format, out); break;
     case BinaryFormat::SampleType::kFloat32: decode<float, std::uint32_t>(bytes, format, out); break;
@@ -90,7 +90,7 @@ std::vector<double> decode_binary_record(std::string_view bytes, const std::stri
                 "size " + std::to_string(bytes.size()) + " bytes is not a multiple of the " + std::to_string(frame) +
                     "-byte frame: " + std::to_string(bytes.size() % frame) + " trailing bytes (truncated record?)");
   }
-  std::vector<double> values;
+  std::vector<double> values(bytes.size() / frame);
   decode_binary_frames(bytes, format, values);
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i])) {

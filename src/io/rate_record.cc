@@ -63,7 +63,10 @@ std::size_t read_binary(const RateRecordSource& source, const SampleSink& sink) 
     }
     const std::size_t available = carried + got;
     const std::size_t whole = available / sample_size;
-    if (!direct) decode_binary_frames(std::string_view(bytes.data(), whole * sample_size), source.binary, samples);
+    if (!direct) {
+      decode_binary_frames(std::string_view(bytes.data(), whole * sample_size), source.binary,
+                           std::span<double>(samples.data(), whole));
+    }
     if (!all_finite(samples.data(), whole)) {
       for (std::size_t i = 0; i < whole; ++i) {
         if (!std::isfinite(samples[i])) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,9 +24,9 @@ struct BinaryFormat {
   std::size_t frame_size() const { return sample_size() * channels; }
 };
 
-// Decodes the bytes.size() / format.frame_size() whole frames of bytes, format.channel of each, into
-// out (resized to their count); no other check.
-void decode_binary_frames(std::string_view bytes, const BinaryFormat& format, std::vector<double>& out);
+// Decodes the whole frames of bytes, format.channel of each, into out (as many as both hold); no
+// other check.
+void decode_binary_frames(std::string_view bytes, const BinaryFormat& format, std::span<double> out);
 
 // Reads one channel of a binary record as doubles. Throws Error for an empty file, a size that is
 // not a multiple of the frame size (naming the trailing byte count), or a NaN/Inf sample (naming

@@ -98,12 +98,14 @@ std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input,
     if (py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item)) {
       const auto pair = item.cast<py::sequence>();
       if (pair.size() != 2) throw Error(fmt::format("{}: a run is (number, path)", input.plan_key));
-      runs.push_back({pair[0].cast<double>(), py::str(pair[1]).cast<std::string>()});
+      const auto file = py::str(pair[1]).cast<std::string>();
+      runs.push_back({pair[0].cast<double>(), file, file});
     } else {
       if (!input.number_key.empty()) {
         throw Error(fmt::format("{}: each run is ({}, path)", input.plan_key, input.number_key));
       }
-      runs.push_back({static_cast<double>(runs.size() + 1), py::str(item).cast<std::string>()});
+      const auto file = py::str(item).cast<std::string>();
+      runs.push_back({static_cast<double>(runs.size() + 1), file, file});
     }
   }
   if (runs.size() < input.minimum_runs) {

@@ -140,7 +140,7 @@ std::vector<std::string> PlanTable::strings(std::string_view key) {
   return values;
 }
 
-std::string PlanTable::resolve(const toml::node* node, std::string_view key) const {
+PlanTable::NamedFile PlanTable::resolve(const toml::node* node, std::string_view key) const {
   const auto* s = node->as_string();
   if (s == nullptr) fail_at(key, "must be a file path (a string)");
   std::filesystem::path path(s->get());
@@ -151,29 +151,37 @@ std::string PlanTable::resolve(const toml::node* node, std::string_view key) con
                                        path.string() + ")");
   }
   data_files_->emplace_back(path.lexically_normal().string(), location_of(node));
-  return path.lexically_normal().string();
+  return {path.lexically_normal().string(), std::filesystem::path(s->get()).lexically_normal().string()};
 }
 
-std::string PlanTable::file(std::string_view key) {
-  auto value = optional_file(key);
-  if (!value) fail("missing required key '" + std::string(key) + "' (a data file)");
-  return *value;
+std::string PlanTable::file(std::string_view key) { return named_file(key).path; }
+
+PlanTable::NamedFile PlanTable::named_file(std::string_view key) {
+  const toml::node* node = find(key);
+  if (node == nullptr) fail("missing required key '" + std::string(key) + "' (a data file)");
+  return resolve(node, key);
 }
 
 std::optional<std::string> PlanTable::optional_file(std::string_view key) {
   const toml::node* node = find(key);
   if (node == nullptr) return std::nullopt;
-  return resolve(node, key);
+  return resolve(node, key).path;
 }
 
 std::vector<std::string> PlanTable::files(std::string_view key) {
+  std::vector<std::string> paths;
+  for (NamedFile& file : named_files(key)) paths.push_back(std::move(file.path));
+  return paths;
+}
+
+std::vector<PlanTable::NamedFile> PlanTable::named_files(std::string_view key) {
   const toml::node* node = find(key);
   if (node == nullptr) fail("missing required key '" + std::string(key) + "' (an array of data files)");
   const auto* array = node->as_array();
   if (array == nullptr) fail_at(key, "must be an array of file paths");
-  std::vector<std::string> paths;
-  for (const auto& element : *array) paths.push_back(resolve(&element, key));
-  return paths;
+  std::vector<NamedFile> files;
+  for (const auto& element : *array) files.push_back(resolve(&element, key));
+  return files;
 }
 
 std::optional<PlanTable> PlanTable::optional_table(std::string_view key) {

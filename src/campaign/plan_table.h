@@ -38,6 +38,14 @@ class PlanTable {
   std::string file(std::string_view key);
   std::optional<std::string> optional_file(std::string_view key);
   std::vector<std::string> files(std::string_view key);
+  // A data file resolved as by `file`, and the path as the plan wrote it (lexically normal): its
+  // name in results, the same whichever directory the plan is run from.
+  struct NamedFile {
+    std::string path;
+    std::string as_written;
+  };
+  NamedFile named_file(std::string_view key);
+  std::vector<NamedFile> named_files(std::string_view key);
   // A nested table (e.g. [procedure.options]).
   std::optional<PlanTable> optional_table(std::string_view key);
   // An array of tables (e.g. [[procedure.run]]).
@@ -65,7 +73,7 @@ class PlanTable {
  private:
   const toml::node* find(std::string_view key);
   SourceLocation location_of(const toml::node* node) const;
-  std::string resolve(const toml::node* node, std::string_view key) const;
+  NamedFile resolve(const toml::node* node, std::string_view key) const;
 
   const toml::table* table_;
   std::string plan_path_;

@@ -44,8 +44,9 @@ std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
   std::vector<RunInput> runs;
   if (input.number_key.empty()) {
     // At the key: a run of the array has no table of its own (its data errors name its file).
-    for (std::string& file : step.files(input.plan_key)) {
-      runs.push_back({static_cast<double>(runs.size() + 1), file, step.location_of_key(input.plan_key)});
+    for (PlanTable::NamedFile& file : step.named_files(input.plan_key)) {
+      runs.push_back({static_cast<double>(runs.size() + 1), std::move(file.path), std::move(file.as_written),
+                      step.location_of_key(input.plan_key)});
     }
     if (runs.size() < input.minimum_runs) {
       step.fail_at(input.plan_key, fmt::format("needs at least {} runs ({})", input.minimum_runs, input.minimum_why));
@@ -55,7 +56,8 @@ std::vector<RunInput> read_runs(const InputSpec& input, PlanTable& step) {
   for (PlanTable& run : step.tables(input.plan_key)) {
     const double number = input.number_default ? run.number_or(input.number_key, *input.number_default)
                                                : run.number(input.number_key);
-    runs.push_back({number, run.file("file"), run.location_of_key(input.number_key)});
+    PlanTable::NamedFile file = run.named_file("file");
+    runs.push_back({number, std::move(file.path), std::move(file.as_written), run.location_of_key(input.number_key)});
     run.require_all_used();
   }
   if (runs.size() < input.minimum_runs) {

@@ -1,6 +1,8 @@
 // The plan step made from a procedure's spec (issue 22), on the declared polarity procedure.
 #include "campaign/procedure_step.h"
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "inertest/campaign/campaign.h"
@@ -51,6 +53,32 @@ expected = "negative"
   EXPECT_EQ(result.at("output_negative_rate").at("unit"), "pulse/s");
   EXPECT_FALSE(result.at("pass").get<bool>());
   EXPECT_EQ(result.at("clause"), "GJB 2426A-2004 5.7");
+}
+
+TEST(ProcedureStep, ARunIsNamedAsThePlanWritesItWhereverThePlanIsRunFrom) {
+  // The run's file is read resolved against the plan's directory, but named in the results as the
+  // plan writes it: run from another directory (the plan's path relative to it), the campaign's
+  // results are the same, and the archive, which identifies a campaign by them, holds it once.
+  ScratchDirectory scratch;
+  scratch.write("lab/runs/power_on.csv", "time_s,output\n1,5\n2,0.1\n3,0\n4,0\n");
+  const std::string plan = scratch.write("lab/plan.toml", std::string(kHeader) + R"([[procedure]]
+kind = "turn_on_time"
+scale_factor = 1
+rest_band_deg_h = 1
+[[procedure.run]]
+file = "runs/../runs/power_on.csv"
+)");
+  const std::string plan_from_here = std::filesystem::relative(plan).string();
+  ASSERT_TRUE(std::filesystem::path(plan_from_here).is_relative());
+  run_campaign(plan, scratch.path() + "/a");
+  run_campaign(plan_from_here, scratch.path() + "/b");
+  const auto results = [&](const std::string& out) {
+    auto json = nlohmann::json::parse(testing::read_file(scratch.path() + out + "/results.json"));
+    json.erase("processed_at");
+    return json;
+  };
+  EXPECT_EQ(results("/a").at("procedures").at(0).at("result").at("runs").at(0).at("name"), "runs/power_on.csv");
+  EXPECT_EQ(results("/a"), results("/b"));
 }
 
 TEST(ProcedureStep, EachInputFromExactlyOneSource) {

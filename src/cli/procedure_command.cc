@@ -87,15 +87,15 @@ std::vector<RunInput> runs_given(const ProcedureSpec& spec, const InputSpec& inp
   std::vector<RunInput> runs;
   if (const std::string& listing = arguments.listings.at(input.name); !listing.empty()) {
     for (ListedFile& row : read_file_listing(listing, input.listing_column())) {
-      runs.push_back({row.key, std::move(row.path), row.where});
+      runs.push_back({row.key, row.path, row.path, row.where});
     }
   }
   for (const std::string& text : arguments.runs.at(input.name)) {
     if (input.number_key.empty()) {
-      runs.push_back({static_cast<double>(runs.size() + 1), text});
+      runs.push_back({static_cast<double>(runs.size() + 1), text, text});
     } else {
       auto [number, file] = parse_number_and_file(text, input.cli_name, input.number_example);
-      runs.push_back({number, std::move(file)});
+      runs.push_back({number, file, file});
     }
   }
   if (runs.size() < input.minimum_runs) {

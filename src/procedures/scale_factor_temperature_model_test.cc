@@ -29,7 +29,8 @@ TEST(ScaleFactorTemperatureModel, RecoversAQuadraticWithinItsUncertainty) {
       points += fmt::format("{},{}\n", rate, k * rate + 5.0 * noise.next());
     }
     points += "0,0\n";
-    call.runs["runs"].push_back({t, scratch.write(fmt::format("points_{}C.csv", t), points)});
+    const std::string file = scratch.write(fmt::format("points_{}C.csv", t), points);
+    call.runs["runs"].push_back({t, file, file});
   }
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
   ASSERT_NE(spec, nullptr);
@@ -71,7 +72,8 @@ Trial trial(const RelativeChange& y_ppm, std::size_t order, double run_scatter_p
     for (const double rate : {0.0, -300.0, -100.0, -10.0, -1.0, 1.0, 10.0, 100.0, 300.0, 0.0}) {
       points += fmt::format("{},{:.9f}\n", rate, 3.0 + k * rate + 1e-3 * normal(uniform));
     }
-    call.runs["runs"].push_back({t, scratch.write(fmt::format("points_{}C.csv", t), points)});
+    const std::string file = scratch.write(fmt::format("points_{}C.csv", t), points);
+    call.runs["runs"].push_back({t, file, file});
   }
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
   call.parameters = nlohmann::json{{"order", order}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
@@ -159,7 +161,8 @@ TEST(ScaleFactorTemperatureModel, NoResidualDegreeOfFreedomIsSaid) {
     for (const double rate : {0.0, -300.0, -10.0, 10.0, 300.0, 0.0}) {
       points += fmt::format("{},{:.9f}\n", rate, k * rate + 1e-3 * normal(uniform));
     }
-    call.runs["runs"].push_back({t, scratch.write(fmt::format("points_{}C.csv", t), points)});
+    const std::string file = scratch.write(fmt::format("points_{}C.csv", t), points);
+    call.runs["runs"].push_back({t, file, file});
   }
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
   call.parameters = nlohmann::json{{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "pulse/s"}};
@@ -174,7 +177,7 @@ TEST(ScaleFactorTemperatureModel, AnOrderNeedsEnoughRuns) {
   const ProcedureSpec* spec = find_procedure_spec("scale_factor_temperature_model");
   ASSERT_NE(spec, nullptr);
   ProcedureCall call;
-  call.runs["runs"] = {{20.0, "a.csv"}, {60.0, "b.csv"}};
+  call.runs["runs"] = {{20.0, "a.csv", "a.csv"}, {60.0, "b.csv", "b.csv"}};
   call.parameters = nlohmann::json{{"order", 2}, {"rate_unit", "deg/s"}, {"output_unit", "1"}};
   EXPECT_THROW(spec->check(call), ParameterError);
 }

@@ -86,7 +86,7 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
         std::vector<PowerOnRun> runs;
         for (const RunInput& run : call.runs.at("runs")) {
           TimedRecord record = call.read_timed_record(run.file);
-          runs.push_back({run.file, run.number, std::move(record.time_s), std::move(record.output)});
+          runs.push_back({run.name, run.number, std::move(record.time_s), std::move(record.output)});
         }
         return turn_on_time(runs, options);
       });

@@ -359,12 +359,16 @@ struct FieldSpec {
 };
 
 // One run of an InputKind::runs input: its number (the temperature, the input rate; its place
-// 1, 2, ... when the runs have no numbers of their own), its file and where it was given (the plan's
+// 1, 2, ... when the runs have no numbers of their own), its file, its name: the file as the plan
+// or the command line wrote it, which a result may show (a plan's file is read resolved against the
+// plan's directory, but named as written, so that the same plan run from another directory gives
+// the same results, and the archive one campaign), and where it was given (the plan's
 // [[procedure.run]] table, at its number key when it has one, or the listing's row; empty when
 // neither), for the procedure's errors about the run.
 struct RunInput {
   double number = 0.0;
   std::string file;
+  std::string name;
   SourceLocation where = {};
 };
 

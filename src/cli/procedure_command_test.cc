@@ -76,24 +76,29 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   run = run_cli({"bias", first, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr(first + ": --rate is needed: the record stores no sample rate"));
-  // A record that stores its unit: deg/s is not the deg/h --input-deg-h says (the bias was read
-  // 3600 times too small), for each procedure of eq. (19); with K (output units per deg/s) the
-  // output is in its own units: 0.2495 deg/s (the mean, make_records.py) is 898.2 deg/h at K = 1.
+  // A record that stores its unit: its deg/s are rates, converted to deg/h for --input-deg-h (they
+  // were an error), for each procedure of eq. (19): 0.2495 deg/s (the mean, make_records.py) is
+  // 898.2 deg/h. They are no output for K to divide (K = 36000 gave 0.025 deg/h, and a PASS).
   const std::string deg_s = testing::source_path("data/lab_formats/rate_deg_s.h5");
   const std::string copy = scratch.path() + "/copy.h5";  // a second run (one file twice is an error)
   std::filesystem::copy_file(deg_s, copy);
-  for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"bias", deg_s, "--input-deg-h"},
-        std::vector<std::string>{"bias-repeatability", deg_s, copy, "--input-deg-h"},
-        std::vector<std::string>{"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + copy, "--input-deg-h"}}) {
-    run = run_cli(args);
-    EXPECT_EQ(run.exit_code, 2) << args[0];
-    EXPECT_THAT(run.err, HasSubstr(deg_s + ": the unit given, deg/h, contradicts the unit deg/s stored for channel 'gyro_z'"))
-        << args[0];
-  }
-  run = run_cli({"bias", deg_s, "--scale-factor", "1", "--json"});
+  run = run_cli({"bias", deg_s, "--input-deg-h", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NEAR(nlohmann::json::parse(run.out)["bias"]["value"].get<double>(), 0.2495 * 3600.0, 1e-9);
+  run = run_cli({"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + copy, "--input-deg-h", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NEAR(nlohmann::json::parse(run.out)["runs"][0]["bias"]["value"].get<double>(), 0.2495 * 3600.0, 1e-9);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"bias", deg_s, "--scale-factor", "36000"},
+        std::vector<std::string>{"bias-repeatability", deg_s, copy, "--scale-factor", "1"},
+        std::vector<std::string>{"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + copy, "--scale-factor", "1"},
+        std::vector<std::string>{"turn-on-time", "--run", "0:" + deg_s, "--scale-factor", "1", "--rest-band", "1"}}) {
+    run = run_cli(args);
+    EXPECT_EQ(run.exit_code, 2) << args[0];
+    EXPECT_THAT(run.err, HasSubstr(deg_s + ": the record stores its samples in deg/s, not the instrument's raw output that "
+                                           "the scale factor K divides"))
+        << args[0];
+  }
   const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
   run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);

@@ -6,6 +6,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
+#include "inertest/core/units.h"
 #include "inertest/io/binary_record.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/text_table.h"
@@ -140,8 +141,7 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
   options.columns = {selector_or(time_column, 1), selector_or(source.column, 2)};
   options.minimum_rows = minimum_samples;
   TextTable table = read_text_table(source.path, options);
-  require_increasing_time(table, 0);
-  record.time_s = std::move(table.columns[0]);
+  record.time_s = take_time_column_s(table, 0);
   record.output = std::move(table.columns[1]);
   return record;
 }
@@ -187,6 +187,22 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
   call.record_unit = [of_file](const std::string& file, const std::optional<std::string>& given) {
     return of_file(file, [&](const OutputRecordSource& record) { return record_unit(record, given); });
   };
+}
+
+void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& instead) {
+  std::optional<std::string> stored;
+  try {
+    stored = call.record_unit(file, std::nullopt);
+  } catch (const Error&) {
+    return;  // a stored unit inertest does not know is no rate or acceleration it could convert
+  }
+  if (!stored) return;
+  const Dimension dimension = Unit::parse(*stored).dimension();
+  if (dimension != Unit::parse("rad/s").dimension() && dimension != Unit::parse("m/s^2").dimension()) return;
+  throw Error(SourceLocation{file, 0, 0},
+              fmt::format("the record stores its samples in {}, not the instrument's raw output that the scale factor K "
+                          "divides: {}",
+                          *stored, instead));
 }
 
 }  // namespace inertest

@@ -5,6 +5,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/io/output_record.h"
 #include "inertest/numerics/statistics.h"
 #include "inertest/procedures/bias_stability.h"
 
@@ -49,8 +50,26 @@ void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options
 }
 
 std::vector<double> read_bias_record(const ProcedureCall& call, const std::string& file, const BiasOptions& options) {
-  if (options.input_in_deg_h) call.record_unit(file, "deg/h");
-  return call.read_record(file);
+  if (!options.input_in_deg_h) {
+    require_raw_output(call, file, "leave K out and give input = \"deg/h\" (--input-deg-h): a stored rate is converted");
+    return call.read_record(file);
+  }
+  // Records of rates: a unit the record stores (HDF5, TDMS) converts its samples to deg/h; another
+  // stored unit (V) contradicts deg/h, an Error naming both.
+  std::optional<std::string> stored;
+  try {
+    stored = call.record_unit(file, std::nullopt);
+  } catch (const Error&) {
+    // a stored unit inertest does not know yields to deg/h, below
+  }
+  if (!stored || Unit::parse(*stored).dimension() != Unit::parse("deg/h").dimension()) {
+    stored = call.record_unit(file, "deg/h");
+  }
+  std::vector<double> samples = call.read_record(file);
+  if (const double factor = convert(1.0, *stored, "deg/h"); factor != 1.0) {
+    for (double& sample : samples) sample *= factor;
+  }
+  return samples;
 }
 
 double BiasOptions::deg_h_per_output() const { return input_in_deg_h ? 1.0 : kSecondsPerHour / scale_factor; }

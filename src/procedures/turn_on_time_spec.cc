@@ -85,6 +85,7 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
         options.warm_up = warm_up;
         std::vector<PowerOnRun> runs;
         for (const RunInput& run : call.runs.at("runs")) {
+          require_raw_output(call, run.file, "the indicated rate is (F - F0)/K");
           TimedRecord record = call.read_timed_record(run.file);
           runs.push_back({run.name, run.number, std::move(record.time_s), std::move(record.output)});
         }

@@ -94,10 +94,12 @@ ProcedureSpec bias_spec();
 // and not given when they do (it would go unused), then validate_conversion(). Throws Error.
 void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options, const std::string& procedure);
 
-// One run's record for eq. (19), read as `call` says it is stored. Records said to hold deg/h are
-// checked against the unit the file stores (an HDF5 or TDMS channel's): deg/s stored is an Error
-// naming both, not a bias 3600 times too small. Records of the output are in output units, whatever
-// their name. Throws Error naming the file.
+// One run's record for eq. (19), read as `call` says it is stored. Records said to hold rates
+// (input = "deg/h") are converted to deg/h from the rate unit the file stores (an HDF5 or TDMS
+// channel's: deg/s, not a bias 3600 times too small); another stored unit (V) is an Error naming
+// both. Records of the output, which K divides, must not store a rate or an acceleration: an Error
+// (dividing a record's deg/s by K gave 0.025 deg/h for a bias of 898 deg/h). Throws Error naming
+// the file.
 std::vector<double> read_bias_record(const ProcedureCall& call, const std::string& file, const BiasOptions& options);
 
 // Declares eq. (19)'s conversion on `definition`, alike for bias, its repeatability and temperature
@@ -117,7 +119,7 @@ ProcedureDefinition<Options, Result>& bias_conversion_parameters(ProcedureDefini
                  [conversion](Options& options, const nlohmann::json& value) {
                    conversion(options).scale_factor = value.get<double>();
                  })
-      .parameter(ParameterSpec("input", "what the records hold: the output, or rate in deg/h already")
+      .parameter(ParameterSpec("input", "what the records hold: the output, or rate in deg/h (or in the rate unit the file stores)")
                      .one_of({"output", "deg/h"})
                      .command_line_flag("input-deg-h", "deg/h"),
                  "output",

@@ -176,10 +176,10 @@ std::vector<AngularVibrationRecord> read_angular_vibration_records(std::span<con
   std::vector<AngularVibrationRecord> records;
   for (const ListedFile& run : runs) {
     TextTable table = read_columns(run.path, {time_column, output_column, angle_column});
-    require_increasing_time(table, 0);  // a time going back, or the record pasted twice: accepted silently
     AngularVibrationRecord record;
     record.frequency_hz = run.key;
-    record.time_s = std::move(table.columns[0]);
+    // A time going back, or the record pasted twice, was accepted silently.
+    record.time_s = take_time_column_s(table, 0);
     record.output = std::move(table.columns[1]);
     record.angle = std::move(table.columns[2]);
     record.source = run.path;

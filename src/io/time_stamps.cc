@@ -177,6 +177,17 @@ std::optional<double> last_stamp(const std::string& path, const std::string& hea
 
 }  // namespace
 
+std::vector<double> take_time_column_s(TextTable& table, std::size_t column) {
+  require_increasing_time(table, column);
+  std::vector<double> time = std::move(table.columns.at(column));
+  bool unit_stated = false;
+  const std::string& name = column < table.names.size() ? table.names[column] : std::string();
+  if (const std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated); seconds && unit_stated) {
+    for (double& stamp : time) stamp *= *seconds;
+  }
+  return time;
+}
+
 std::optional<RecordTimeColumn> find_record_time_column(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;  // a pipe is not read ahead

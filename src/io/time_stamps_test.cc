@@ -291,5 +291,28 @@ TEST(TimeStamps, ParsesThePolicy) {
   EXPECT_THROW(parse_gap_policy("ignore"), Error);
 }
 
+// The time column of a record read by name or place: in s, converted by the unit its name states.
+TEST(TimeColumnInSeconds, TheUnitItsNameStatesConvertsIt) {
+  testing::ScratchDirectory scratch;
+  const auto stamps_of = [&](const std::string& header, const std::string& column) {
+    TextTableOptions options;
+    options.columns = {ColumnSelector::parse(column), ColumnSelector::parse("2")};
+    TextTable table = read_text_table(scratch.write("record.csv", header + ",output\n1000,5\n2000,6\n3500,7\n"), options);
+    return take_time_column_s(table, 0);
+  };
+  EXPECT_EQ(stamps_of("time_ms", "time_ms"), (std::vector<double>{1.0, 2.0, 3.5}));
+  EXPECT_EQ(stamps_of("t [ms]", "1"), (std::vector<double>{1.0, 2.0, 3.5}));
+  EXPECT_EQ(stamps_of("Time (min)", "1"), (std::vector<double>{60000.0, 120000.0, 210000.0}));
+  // No unit stated, or a name that is no time's: in s, as before.
+  EXPECT_EQ(stamps_of("time", "1"), (std::vector<double>{1000.0, 2000.0, 3500.0}));
+  EXPECT_EQ(stamps_of("stamp", "1"), (std::vector<double>{1000.0, 2000.0, 3500.0}));
+  EXPECT_EQ(stamps_of("time_s", "1"), (std::vector<double>{1000.0, 2000.0, 3500.0}));
+  // Going back is still an error at its cell.
+  TextTableOptions options;
+  options.columns = {ColumnSelector::parse("1")};
+  TextTable table = read_text_table(scratch.write("back.csv", "time_ms\n1\n3\n2\n"), options);
+  EXPECT_THROW(take_time_column_s(table, 0), Error);
+}
+
 }  // namespace
 }  // namespace inertest

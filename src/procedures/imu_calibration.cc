@@ -593,11 +593,10 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
   }
   options.minimum_rows = 2;
   TextTable table = read_text_table(path, options);
-  require_increasing_time(table, 0);
   ImuRecord record;
   record.source = path;
+  record.time_s = take_time_column_s(table, 0);
   record.lines = std::move(table.row_lines);
-  record.time_s = std::move(table.columns[0]);
   for (int j = 0; j < 3; ++j) {
     record.accelerometer[j] = std::move(table.columns[1 + j]);
     record.gyro[j] = std::move(table.columns[4 + j]);

@@ -14,6 +14,7 @@
 #include "inertest/core/units.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
+#include "inertest/io/time_stamps.h"
 #include "inertest/numerics/least_squares.h"
 #include "inertest/numerics/statistics.h"
 #include "io/text_rows.h"
@@ -707,8 +708,7 @@ ThermalRecord read_thermal_record(const std::string& path, const std::string& ti
   for (const std::string& column : temperature_columns) table_options.columns.push_back(ColumnSelector::parse(column));
   TextTable table = read_text_table(path, table_options);
   ThermalRecord record;
-  require_increasing_time(table, 0);
-  record.time_s = std::move(table.columns[0]);
+  record.time_s = take_time_column_s(table, 0);
   record.output = std::move(table.columns[1]);
   for (std::size_t s = 0; s < temperature_columns.size(); ++s) {
     // A sensor's fault code (-999) or a typo is no temperature: it bent the model silently.

@@ -73,6 +73,12 @@ struct TimeGaps {
 TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,
                         const TimeStampOptions& options);
 
+// Returned column `column` of a text table as time stamps in s, moved out of the table: they must
+// increase (require_increasing_time), and a header name that states a time unit ("time_ms",
+// "t [us]", "Time (min)", as RecordTimeColumn) converts them; a name that states none, or no
+// header, is taken in s. (Stamps in ms taken as s made a turn-on time 1000 times too long.)
+std::vector<double> take_time_column_s(TextTable& table, std::size_t column);
+
 // The time column a text record's header names, and the sample interval its first rows show.
 // The column is "time" or "timestamp" (taken in s), or "time", "t" or "timestamp" with a time unit in
 // the name ("time_s", "t_ms", "Time (s)", "time [us]", "time/s"); "t" alone or "T_degC" names no time.

@@ -6,6 +6,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
 #include "inertest/io/text_table.h"
+#include "inertest/numerics/statistics.h"
 
 namespace inertest {
 namespace {
@@ -74,6 +75,14 @@ InputAxisMisalignmentResult input_axis_misalignment(std::span<const Misalignment
   }
   result.misalignment = arcsec(alpha);
   result.misalignment_deg = {alpha / kDegree, "deg", std::nullopt};
+  // A stuck channel gives F+ = F- at every position, which reads as a perfectly aligned input axis.
+  std::vector<double> outputs;
+  for (const auto& p : positions) outputs.insert(outputs.end(), {p.output_positive, p.output_negative});
+  if (is_constant(outputs)) {
+    result.warnings.push_back(fmt::format("every output equals {:.10g} {} (a stuck channel?); angles of 0 arcsec from "
+                                          "it are not a measurement",
+                                          outputs.front(), options.output_unit));
+  }
   return result;
 }
 

@@ -69,6 +69,20 @@ TEST(InputAxisMisalignment, FourPositionsCancelTheMountingError) {
   EXPECT_FALSE(procedure_json(spec, spec.fields_of(&two)).contains("mounting_error"));
 }
 
+TEST(InputAxisMisalignment, AStuckChannelIsNamedNotReportedAsAligned) {
+  // Every output the same: delta = 0 at each position, alpha = 0, which is no measurement.
+  const std::vector<MisalignmentPosition> stuck = {position(0.0, 7.25), position(0.0, 7.25)};
+  const auto result = input_axis_misalignment(stuck, options());
+  EXPECT_EQ(result.misalignment.value, 0.0);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], HasSubstr("every output equals 7.25"));
+  EXPECT_THAT(result.warnings[0], HasSubstr("stuck channel"));
+  // An aligned axis that still sees the bias change between positions is a measurement.
+  const std::vector<MisalignmentPosition> aligned = {position(0.0, 7.25), position(0.0, 7.5)};
+  EXPECT_TRUE(input_axis_misalignment(aligned, options()).warnings.empty());
+  EXPECT_TRUE(input_axis_misalignment(std::vector{position(1e-4), position(-2e-4)}, options()).warnings.empty());
+}
+
 TEST(InputAxisMisalignment, BadInputIsAnError) {
   const std::vector<MisalignmentPosition> three = {position(0), position(0), position(0)};
   try {

@@ -499,6 +499,8 @@ TEST_P(ArchiveBackend, RepeatabilityAcrossArchivedCampaigns) {
   for (int i = 0; i < 3; ++i) {
     nlohmann::json results = campaign("FOG-0417", fmt::format("2026-02-0{}", i + 1), scale_factors[i]);
     results["procedures"][1]["result"]["bias"] = {{"value", 0.01 * (i + 1) / 3600.0}, {"unit", "deg/s"}};
+    results["procedures"][0]["result"]["scale_factor_temperature_sensitivity"] = {{"value", 1.5 + i},
+                                                                                 {"unit", "ppm/degC"}};
     archive->add(results, "r.json");
   }
   const auto scale = testing::run_cli({"archive", "repeatability", "FOG-0417", "--figure",
@@ -521,6 +523,11 @@ TEST_P(ArchiveBackend, RepeatabilityAcrossArchivedCampaigns) {
       {"archive", "repeatability", "FOG-0417", "--figure", "scale_factor/nonlinearity", "--db", location_});
   EXPECT_EQ(neither.exit_code, 2);
   EXPECT_THAT(neither.err, HasSubstr("repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias"));
+  // Named for the scale factor, but no output per input: no Kr of it (it gave 222.9 ppm).
+  const auto sensitivity = testing::run_cli({"archive", "repeatability", "FOG-0417", "--figure",
+                                             "scale_factor/scale_factor_temperature_sensitivity", "--db", location_});
+  EXPECT_EQ(sensitivity.exit_code, 2);
+  EXPECT_THAT(sensitivity.err, HasSubstr("(ppm/degC): repeatability is defined for a scale factor"));
 }
 
 // The fleet: each instrument's latest value in the order of first test; A = 36000.0,

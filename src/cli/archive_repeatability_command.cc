@@ -34,6 +34,31 @@ bool is_rate(const std::string& unit) {
   }
 }
 
+// A scale factor is output per input (GJB 2426A 5.8.1, IEEE Std 1293 K1): times an angular rate or
+// an acceleration its unit is an output's (pulse/s, V, mA, count), with no angle or length left.
+// Eq. (12) is defined for it alone: not for the ppm of a repeatability or a sensitivity, nor for
+// 1/g or deg/h/g coefficients, whose figure names hold "scale_factor" too.
+bool is_scale_factor(const std::string& unit) {
+  Dimension per_input;
+  try {
+    per_input = Unit::parse(unit).dimension();
+  } catch (const Error&) {
+    return false;
+  }
+  for (const char* input : {"rad/s", "m/s^2"}) {
+    Dimension output = per_input;
+    const Dimension input_dimension = Unit::parse(input).dimension();
+    for (std::size_t base = 0; base < output.half_powers.size(); ++base) {
+      output.half_powers[base] += input_dimension.half_powers[base];
+    }
+    if (output != Dimension{} && output.half_powers[Dimension::kAngle] == 0 &&
+        output.half_powers[Dimension::kLength] == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
 CommandAction setup(CLI::App& archive) {
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = archive.add_subcommand(
@@ -73,12 +98,11 @@ CommandAction setup(CLI::App& archive) {
     nlohmann::json json = {{"instrument", history.instrument}, {"figure", history.figure}, {"campaigns", campaigns},
                            {"not_measured", not_measured}};
     std::string report;
-    const std::string name = history.figure.substr(history.figure.rfind('/') + 1);
     if (is_rate(history.unit)) {
       for (const double v : measured) values.push_back(convert(v, history.unit, "deg/h"));
       json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
       report = write_result(*find_procedure_spec("bias_repeatability"), bias_repeatability(values), json);
-    } else if (name.find("scale_factor") != std::string::npos) {
+    } else if (is_scale_factor(history.unit)) {
       values = measured;
       ScaleFactorRepeatabilityOptions options;
       options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning

@@ -164,8 +164,9 @@ void generate_scale_factor_repeatability(campaign::PlanTable& test, const std::s
   }
   // Eq. (12) on the K each power-on had; the noise of each K moves the sample sd by at most the
   // sample sd of the noise (triangle inequality), bounded at 4 sigma by its chi quantile.
-  const double truth = sample_sd(k_true) / mean_of(k_true) * 1e6;
-  const double expected = sample_sd(k_expected) / mean_of(k_expected) * 1e6;
+  // Kr >= 0: the sd over |K̄| (a gyro of negative K, -36000 pulse/s per deg/s, has the same Kr).
+  const double truth = sample_sd(k_true) / std::abs(mean_of(k_true)) * 1e6;
+  const double expected = sample_sd(k_expected) / std::abs(mean_of(k_expected)) * 1e6;
   lab.truth.push_back({name, "scale factor repeatability", "scale_factor_repeatability", truth, "ppm",
                        sample_sd_bound(sigma, runs) / std::abs(mean_of(k_true)) * 1e6,
                        "4-sigma chi bound on the sample sd of the runs' K noise", expected - truth});

@@ -472,6 +472,25 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
   return {name.substr(0, slash), name.substr(slash + 1)};
 }
 
+// Throws NotOneQuantity unless every row's unit (column 4) converts to the first's.
+void require_one_quantity(const std::vector<Row>& rows, const std::string& figure) {
+  const Dimension first = Unit::parse(rows.front().text(4)).dimension();
+  std::map<std::string, std::set<std::string>> instruments_by_unit;
+  bool mixed = false;
+  for (const auto& row : rows) {
+    instruments_by_unit[row.text(4)].insert(row.text(5));
+    mixed = mixed || Unit::parse(row.text(4)).dimension() != first;
+  }
+  if (!mixed) return;
+  std::vector<std::string> units;
+  for (const auto& [unit, instruments] : instruments_by_unit) {
+    units.push_back(fmt::format("{} ({})", unit, fmt::join(instruments, ", ")));
+  }
+  throw NotOneQuantity(fmt::format("figure '{}' is archived in units that do not convert to one another: {}; these are "
+                          "different quantities under one name (name the step differently in one kind of plan)",
+                          figure, fmt::join(units, "; ")));
+}
+
 // Points converted into unit (the first point's), value and uncertainty alike.
 FigurePoint point_from_row(const Row& row, const std::string& unit) {
   FigurePoint point;
@@ -587,6 +606,7 @@ class DatabaseArchive final : public Archive {
       }
       throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
     }
+    require_one_quantity(rows, figure);
     FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
     for (const auto& row : rows) history.points.push_back(point_from_row(row, history.unit));
     take_limits(rows, history.unit, history.lower_limit, history.upper_limit, history.limit_on_magnitude);
@@ -604,6 +624,7 @@ class DatabaseArchive final : public Archive {
     if (rows.empty()) {
       throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
     }
+    require_one_quantity(rows, figure);
     FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
     for (const auto& row : rows) fleet.points.push_back(point_from_row(row, fleet.unit));
     take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit, fleet.limit_on_magnitude);

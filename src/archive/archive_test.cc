@@ -573,6 +573,40 @@ TEST_P(ArchiveBackend, RunAddsItsResultsToTheArchive) {
   EXPECT_EQ(open()->results(campaigns[0].id), written);
 }
 
+// An analog gyro's K in V/(deg/s) and a digital one's in pulse/s/(deg/s) under one step name are
+// two quantities: history and fleet say so, naming the units and their instruments (a fleet failed
+// with "cannot convert"); the report names the figure on the fleet page and writes every other page.
+TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
+  auto archive = open();
+  archive->add(campaign("FOG-D1", "2026-01-01", 36000.0), "d1");
+  nlohmann::json analog = campaign("FOG-A1", "2026-01-02", 36000.3);
+  analog["procedures"][0]["result"]["scale_factor"]["unit"] = "V/(deg/s)";
+  analog["verdicts"][0]["unit"] = "V/(deg/s)";
+  archive->add(analog, "a1");
+  try {
+    archive->fleet("scale_factor/scale_factor", std::nullopt);
+    ADD_FAILURE() << "expected NotOneQuantity";
+  } catch (const archive::NotOneQuantity& e) {
+    EXPECT_THAT(e.message(), HasSubstr("figure 'scale_factor/scale_factor' is archived in units that do not convert to one "
+                                       "another: V/(deg/s) (FOG-A1); pulse/s/(deg/s) (FOG-D1)"));
+  }
+  EXPECT_EQ(archive->fleet("scale_factor/nonlinearity", std::nullopt).points.size(), 2u);  // ppm for both
+  EXPECT_EQ(archive->history("FOG-A1", "scale_factor/scale_factor").unit, "V/(deg/s)");  // one instrument, one unit
+  const auto report = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/pages", "--figure",
+                                        "scale_factor/scale_factor", "--figure", "scale_factor/nonlinearity",
+                                        "--db", location_});
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  const std::string fleet = testing::read_file(scratch_.path() + "/pages/fleet.html");
+  EXPECT_THAT(fleet, HasSubstr("Not comparable: archived in units that do not convert"));
+  EXPECT_THAT(fleet, HasSubstr("V/(deg/s) (FOG-A1); pulse/s/(deg/s) (FOG-D1)"));
+  const std::string history = testing::read_file(scratch_.path() + "/pages/history-FOG-A1.html");
+  EXPECT_THAT(history, HasSubstr("scale_factor/nonlinearity"));
+  EXPECT_THAT(history, Not(HasSubstr("scale_factor/scale_factor")));
+  const auto fleet_command = testing::run_cli({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--db", location_});
+  EXPECT_EQ(fleet_command.exit_code, 2);
+  EXPECT_THAT(fleet_command.err, HasSubstr("different quantities under one name"));
+}
+
 // inertest archive report: the fleet page and one history page per instrument; by default the
 // figures some plan set limits on; an unknown figure is an error that writes nothing.
 TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {

@@ -76,16 +76,28 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
 }
 
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures) {
-  nlohmann::json histories = nlohmann::json::array();
   std::vector<std::string> instruments;
   for (const auto& campaign : archive.list(std::nullopt)) instruments.push_back(campaign.instrument);
   std::sort(instruments.begin(), instruments.end());
   instruments.erase(std::unique(instruments.begin(), instruments.end()), instruments.end());
   const std::vector<std::string> archived = archive.figures(false);
+  // The fleet first: a figure of two quantities is named once, and left out of every page.
+  nlohmann::json fleet = nlohmann::json::array();
+  nlohmann::json not_comparable = nlohmann::json::array();
+  std::vector<std::string> shown;
+  for (const auto& figure : figures) {
+    if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
+    try {
+      fleet.push_back(fleet_summary(archive.fleet(figure, std::nullopt), std::nullopt));
+      shown.push_back(figure);
+    } catch (const NotOneQuantity& e) {
+      not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
+    }
+  }
+  nlohmann::json histories = nlohmann::json::array();
   for (const auto& instrument : instruments) {
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& figure : figures) {
-      if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
+    for (const auto& figure : shown) {
       try {
         list.push_back(archive.history(instrument, figure).to_json());
       } catch (const Error&) {
@@ -94,13 +106,7 @@ nlohmann::json report_data(Archive& archive, const std::vector<std::string>& fig
     }
     histories.push_back({{"instrument", instrument}, {"figures", list}});
   }
-  nlohmann::json fleet = nlohmann::json::array();
-  for (const auto& figure : figures) {
-    if (std::binary_search(archived.begin(), archived.end(), figure)) {
-      fleet.push_back(fleet_summary(archive.fleet(figure, std::nullopt), std::nullopt));
-    }
-  }
-  return {{"histories", histories}, {"fleet", fleet}};
+  return {{"histories", histories}, {"fleet", fleet}, {"not_comparable", not_comparable}};
 }
 
 }  // namespace inertest::archive

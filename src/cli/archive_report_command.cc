@@ -1,5 +1,7 @@
 // inertest archive report --out DIR [--figure PROCEDURE/FIGURE]... [--lang en|zh] [--db DB]
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "archive_command.h"
@@ -32,7 +34,11 @@ CommandAction setup(CLI::App& archive) {
     const auto store = open_archive_option(arguments->db);
     const std::vector<std::string> figures = arguments->figures.empty() ? store->figures(true) : arguments->figures;
     if (figures.empty()) throw Error("no figure has specification limits in the archive: name them with --figure");
-    for (const auto& figure : figures) store->fleet(figure, std::nullopt);  // an unknown name is an error, not an empty page
+    // An unknown name is an error, not an empty page.
+    const std::vector<std::string> archived = store->figures(false);
+    for (const auto& figure : figures) {
+      if (!std::binary_search(archived.begin(), archived.end(), figure)) throw Error("figure '" + figure + "' is not archived");
+    }
     const auto written = report::write_archive_pages(archive::report_data(*store, figures), arguments->out,
                                                      {report::parse_language(arguments->lang), report::current_date()});
     for (const auto& path : written) fmt::print(stderr, "written: {}\n", path);

@@ -45,6 +45,7 @@ constexpr PageWord page_words[] = {
     {"out_of_control", "Out of control", "失控点"},
     {"magnitude", "(−max: the max bounds |value|)", "（−max：上限约束 |值|）"},
     {"instrument_number", "instrument, in order of first test", "仪表（按首次测试顺序）"},
+    {"not_comparable", "Not comparable: archived in units that do not convert", "无法比较：存档单位不能相互换算"},
     {"rule.beyond_3_sigma", "beyond 3σ (rule 1)", "超出 3σ 控制限（准则 1）"},
     {"rule.8_on_one_side", "8 on one side of the center (rule 4)", "连续 8 点位于中心线同侧（准则 4）"},
     {"method", "Shewhart individuals chart: limits x̄ ± 3·MR̄/1.128 (NIST/SEMATECH e-Handbook 6.3.2.2), Western Electric rules 1 and 4; Cp = (USL − LSL)/6σ, Cpk = min(USL − x̄, x̄ − LSL)/3σ with σ = MR̄/1.128 (6.1.6); each instrument's latest value.",
@@ -175,7 +176,7 @@ std::string render_history_page(const json& history, const ReportOptions& option
   return page.close();
 }
 
-std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
+std::string render_fleet_page(const json& fleet, const ReportOptions& options, const json& not_comparable) {
   Page page(options);
   page.open(page.word("fleet"), page.word("control_chart"));
   page.out() += fmt::format("<p>{}</p>\n", escape_xml(page.word("method")));
@@ -204,6 +205,11 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options) {
         chart.is_null() ? 0 : chart.at("out_of_control").size());
   }
   page.out() += "</table>\n</section>\n";
+  if (!not_comparable.empty()) {
+    page.out() += fmt::format("<section><h2>{}</h2>\n<ul>\n", escape_xml(page.word("not_comparable")));
+    for (const auto& f : not_comparable) page.out() += fmt::format("<li>{}</li>\n", escape_xml(f.at("why").get<std::string>()));
+    page.out() += "</ul>\n</section>\n";
+  }
 
   for (const auto& f : fleet) {
     const json& chart = f.at("control_chart");
@@ -288,7 +294,8 @@ std::string history_page_file_name(const std::string& instrument) {
 std::vector<std::string> write_archive_pages(const json& data, const std::string& out_dir, const ReportOptions& options) {
   namespace fs = std::filesystem;
   // Every page is rendered before any is written.
-  std::vector<std::pair<std::string, std::string>> pages = {{"fleet.html", render_fleet_page(data.at("fleet"), options)}};
+  std::vector<std::pair<std::string, std::string>> pages = {
+      {"fleet.html", render_fleet_page(data.at("fleet"), options, data.value("not_comparable", json::array()))}};
   for (const auto& history : data.at("histories")) {
     pages.emplace_back(history_page_file_name(history.at("instrument").get<std::string>()),
                        render_history_page(history, options));

@@ -278,8 +278,9 @@ struct Server::Impl {
       return nlohmann::json();
     }));
     http.Get("/fleet", route([this](const httplib::Request& request, httplib::Response& response) {
-      response.set_content(with_interactive_plots(report::render_fleet_page(
-                               archive::report_data(*store, page_figures()).at("fleet"), page_options(request))),
+      const nlohmann::json data = archive::report_data(*store, page_figures());
+      response.set_content(with_interactive_plots(report::render_fleet_page(data.at("fleet"), page_options(request),
+                                                                            data.at("not_comparable"))),
                            "text/html; charset=utf-8");
       return nlohmann::json();
     }));

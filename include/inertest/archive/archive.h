@@ -90,6 +90,14 @@ struct FleetFigure {
   bool limit_on_magnitude = false;
 };
 
+// A figure archived in units that do not convert to one another (V/(deg/s) for analog gyros,
+// pulse/s/(deg/s) for digital ones under one step name): two quantities, which no history, control
+// chart or capability may mix. The message names the units and their instruments.
+class NotOneQuantity : public Error {
+ public:
+  using Error::Error;
+};
+
 // What one add did.
 struct AddOutcome {
   std::string id;
@@ -114,11 +122,13 @@ class Archive {
   virtual std::vector<CampaignEntry> list(const std::optional<std::string>& instrument) = 0;
 
   // The archived values of figure (PROCEDURE/FIGURE) for instrument. Throws Error when the
-  // instrument or the figure is not in the archive (the message lists the figures that are).
+  // instrument or the figure is not in the archive (the message lists the figures that are), and
+  // NotOneQuantity when its units do not convert to one another.
   virtual FigureHistory history(const std::string& instrument, const std::string& figure) = 0;
 
   // The values of figure across the fleet, from tests on or after since (YYYY-MM-DD) when given.
-  // Throws Error when no campaign archived the figure.
+  // Throws Error when no campaign archived the figure, and NotOneQuantity when its units do not
+  // convert to one another.
   virtual FleetFigure fleet(const std::string& figure, const std::optional<std::string>& since) = 0;
 
   // The figures (PROCEDURE/FIGURE) archived, sorted; only those some plan set limits on when
@@ -154,7 +164,8 @@ nlohmann::json instrument_list_json(const std::vector<CampaignEntry>& campaigns)
 
 // What the archive's report pages show (report/archive_pages.h): {"histories": [{"instrument",
 // "figures": [FigureHistory::to_json() of each of figures the instrument has]}], "fleet":
-// [fleet_summary of each figure]}.
+// [fleet_summary of each figure], "not_comparable": [{"figure", "why"} of each figure archived in
+// units that do not convert (NotOneQuantity), left out of the fleet and of the histories]}.
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures);
 
 // Whether opening an archive may create it: a read of a mistyped path must not make an empty one.

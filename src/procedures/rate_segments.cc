@@ -1,5 +1,6 @@
 #include "inertest/procedures/rate_segments.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -69,11 +70,33 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
   const auto minimum_samples =
       static_cast<std::size_t>(std::ceil(options.minimum_segment_s * options.timing.sample_rate_hz - 1e-9));
 
+  // A sample belongs to the segment while it lies within the tolerance of the mean of the segment's
+  // samples so far; the segment ends where kPersistence samples in a row (fewer at the record's end)
+  // lie outside it: the table rate changed. A lone sample outside (a glitch of the measured rate)
+  // stays in the segment, out of the running mean. Against the segment's first sample, noise within
+  // the tolerance cut each plateau wherever it swung the other way (24 test points became 56).
+  constexpr std::size_t kPersistence = 3;
+  const std::size_t count = table_rate.size();
   std::vector<RateSegment> segments;
   std::size_t begin = 0;
-  while (begin < table_rate.size()) {
+  while (begin < count) {
+    CompensatedSum rate_sum;
+    rate_sum.add(table_rate[begin]);
+    std::size_t in_mean = 1;
     std::size_t end = begin + 1;
-    while (end < table_rate.size() && std::abs(table_rate[end] - table_rate[begin]) <= options.rate_tolerance) ++end;
+    while (end < count) {
+      const double running_mean = rate_sum.value() / static_cast<double>(in_mean);
+      const auto outside = [&](std::size_t i) { return !(std::abs(table_rate[i] - running_mean) <= options.rate_tolerance); };
+      if (outside(end)) {
+        bool persists = true;
+        for (std::size_t i = end + 1; i < std::min(count, end + kPersistence) && persists; ++i) persists = outside(i);
+        if (persists) break;
+      } else {
+        rate_sum.add(table_rate[end]);
+        ++in_mean;
+      }
+      ++end;
+    }
     if (end - begin >= minimum_samples) {
       RateSegment segment;
       segment.first_sample = begin;

@@ -98,6 +98,28 @@ TEST(RateSegments, CutsARecordIntoConstantRatePointsInTestOrder) {
   EXPECT_NEAR_RELATIVE(result.scale_factor.value, kScale, 1e-9);
 }
 
+TEST(RateSegments, NoiseOfTheMeasuredRateWithinTheToleranceKeepsEachPlateauWhole) {
+  // A measured table-rate column: uniform noise of half-width 0.9 x tolerance. Against a segment's
+  // first sample two samples differ by up to 1.8 x tolerance, which cut the plateaus into pieces
+  // (points added, short pieces dropped); against the running mean each plateau is one segment.
+  Record record;
+  for (const double rate : {0.0, 10.0, -10.0, 20.0, -20.0, 0.0}) {
+    add_segment(record, rate, 30.0);
+    add_ramp(record, rate, rate == 0.0 ? 10.0 : 0.0);
+  }
+  testing::UniformSequence noise(7);
+  for (double& rate : record.rate) rate += 1.8 * options().rate_tolerance * noise.next();
+  // A lone glitch of the rate column is no change of rate.
+  record.rate[100] += 0.5;
+  const std::vector<RateSegment> segments = segment_by_rate(record.rate, record.output, options());
+  const std::vector<double> rates = {0.0, 10.0, -10.0, 20.0, -20.0, 0.0};
+  ASSERT_EQ(segments.size(), rates.size());
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    EXPECT_NEAR(segments[i].rate, rates[i], 0.5 / 290.0 + 1e-3) << i;
+    EXPECT_EQ(segments[i].end_sample - segments[i].first_sample, 300u) << i;
+  }
+}
+
 TEST(RateSegments, ShortSegmentsAreSkipped) {
   Record record;
   add_segment(record, 0.0, 3.0);

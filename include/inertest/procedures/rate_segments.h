@@ -37,7 +37,8 @@ struct RateSegmentOptions {
   // A segment shorter than this (before the settling time is dropped) is a transition, skipped.
   // Must exceed the settling time.
   double minimum_segment_s = 1.0;
-  // Table rates within this of the rate at the segment's start belong to the same segment; a
+  // Table rates within this of the mean rate of the segment so far belong to it (it ends where 3
+  // samples in a row lie outside: a lone one is a glitch of the measured rate); a
   // segment whose mean rate lies within it of zero is a static run (rate exactly 0). In the rate
   // column's unit.
   double rate_tolerance = 1e-3;

@@ -76,6 +76,9 @@ struct FigureRow {
   std::optional<std::string> verdict;
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
+  // Where a row of a table a limit names lies in it: the row's plain members ("smoothing_s = 10"),
+  // none for a figure that is no such row or a row without them.
+  std::optional<std::string> abscissa;
 };
 
 struct CampaignRecord {
@@ -210,7 +213,16 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
     } catch (const nlohmann::json::exception&) {
       // not a JSON pointer into this result (the campaign wrote the verdict; nothing to archive)
     }
-    if (node != nullptr && node->is_object()) collect_figures(*node, procedure, key.second, source, rows);
+    if (node == nullptr || !node->is_object()) continue;
+    const std::size_t row_figures = rows.size();
+    collect_figures(*node, procedure, key.second, source, rows);
+    std::string abscissa;
+    for (const auto& [member, value] : node->items()) {
+      if (member == "value" || member == "unit" || member == "uncertainty" || value.is_structured() || value.is_null()) continue;
+      abscissa += (abscissa.empty() ? "" : ", ") + member + " = " + (value.is_string() ? value.get<std::string>() : value.dump());
+    }
+    if (abscissa.empty()) continue;
+    for (std::size_t i = row_figures; i < rows.size(); ++i) rows[i].abscissa = abscissa;
   }
 }
 
@@ -371,23 +383,30 @@ const std::vector<std::vector<std::string>> migrations = {
         "ALTER TABLE figure_v2 RENAME TO figure",
         "CREATE INDEX figure_by_name ON figure (procedure, figure)",
     },
+    {
+        // Version 3: where a limited row of a table lies in it (FigureRow::abscissa), so that rows
+        // of one name at other places are not taken for one quantity; filled in from the stored
+        // results (fill_from_stored_results).
+        "ALTER TABLE figure ADD COLUMN abscissa TEXT",
+    },
 };
-static_assert(schema_version == 2, "one migration per schema version");
+static_assert(schema_version == 3, "one migration per schema version");
 
 void insert_figure(Database& db, const std::string& campaign, const FigureRow& row, bool unless_stored) {
   const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
   db.query(std::string("INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
-                       " upper_limit) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)") +
+                       " upper_limit, abscissa) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)") +
                (unless_stored ? " ON CONFLICT DO NOTHING" : ""),
            {campaign, row.procedure, row.figure, optional(row.value), row.unit, optional(row.uncertainty),
-            optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit)});
+            optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit), optional(row.abscissa)});
 }
 
-// The figures not measured that schema version 1 did not store, read again from each campaign's
-// stored results, one campaign at a time. A campaign today's checks refuse (an instrument id since
-// made stricter), or stored results that are no JSON, keep the rows they have; a failure of the
-// database is no such case: it fails the migration, which then changes nothing.
-void fill_not_measured_figures(Database& db, const std::string& location) {
+// What an archive of schema version `from` did not store, read again from each campaign's stored
+// results, one campaign at a time: the figures not measured (version 1 left them out) and where a
+// limited row lies in its table (version 3). A campaign today's checks refuse (an instrument id
+// since made stricter), or stored results that are no JSON, keep the rows they have; a failure of
+// the database is no such case: it fails the migration, which then changes nothing.
+void fill_from_stored_results(Database& db, const std::string& location, std::int64_t from) {
   for (const auto& campaign : db.query("SELECT id FROM campaign ORDER BY id")) {
     const std::string id = campaign.text(0);
     const auto stored = db.query("SELECT results FROM campaign WHERE id = $1", {id});
@@ -397,10 +416,14 @@ void fill_not_measured_figures(Database& db, const std::string& location) {
     } catch (const nlohmann::json::exception&) {
       continue;  // not JSON (stored by hand): nothing to read
     } catch (const Error&) {
-      continue;  // refused today: its measured figures stay as they were
+      continue;  // refused today: its figures stay as they were
     }
     for (const auto& row : figures) {
-      if (!row.value) insert_figure(db, id, row, true);
+      if (from < 2 && !row.value) insert_figure(db, id, row, true);
+      if (from < 3 && row.abscissa) {
+        db.query("UPDATE figure SET abscissa = $1 WHERE campaign = $2 AND procedure = $3 AND figure = $4",
+                 {*row.abscissa, id, row.procedure, row.figure});
+      }
     }
   }
 }
@@ -454,8 +477,8 @@ void migrate(Database& db, const std::string& location) {
   refuse_newer_schema(current, location);
   for (std::int64_t version = current; version < schema_version; ++version) {
     for (const auto& statement : migrations[static_cast<std::size_t>(version)]) db.query(statement);
-    if (version == 1) fill_not_measured_figures(db, location);
   }
+  if (current > 0 && current < schema_version) fill_from_stored_results(db, location, current);
   if (current < schema_version) {
     db.query("DELETE FROM schema_version");
     db.query("INSERT INTO schema_version (version) VALUES ($1)", {std::int64_t{schema_version}});
@@ -472,23 +495,34 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
   return {name.substr(0, slash), name.substr(slash + 1)};
 }
 
-// Throws NotOneQuantity unless every row's unit (column 4) converts to the first's.
+// Throws NotOneQuantity unless every row's unit (column 4) converts to the first's, and every row
+// lies at one place in its table (column 8, the abscissa).
 void require_one_quantity(const std::vector<Row>& rows, const std::string& figure) {
   const Dimension first = Unit::parse(rows.front().text(4)).dimension();
+  const auto abscissa_of = [](const Row& row) { return row.is_null(8) ? std::string("no abscissa") : row.text(8); };
   std::map<std::string, std::set<std::string>> instruments_by_unit;
-  bool mixed = false;
+  std::map<std::string, std::set<std::string>> tests_by_abscissa;
+  bool mixed_units = false;
   for (const auto& row : rows) {
     instruments_by_unit[row.text(4)].insert(row.text(5));
-    mixed = mixed || Unit::parse(row.text(4)).dimension() != first;
+    tests_by_abscissa[abscissa_of(row)].insert(row.text(5) + " " + row.text(0));
+    mixed_units = mixed_units || Unit::parse(row.text(4)).dimension() != first;
   }
-  if (!mixed) return;
-  std::vector<std::string> units;
-  for (const auto& [unit, instruments] : instruments_by_unit) {
-    units.push_back(fmt::format("{} ({})", unit, fmt::join(instruments, ", ")));
+  const auto listed = [](const std::map<std::string, std::set<std::string>>& groups) {
+    std::vector<std::string> texts;
+    for (const auto& [key, members] : groups) texts.push_back(fmt::format("{} ({})", key, fmt::join(members, ", ")));
+    return fmt::format("{}", fmt::join(texts, "; "));
+  };
+  if (mixed_units) {
+    throw NotOneQuantity(fmt::format("figure '{}' is archived in units that do not convert to one another: {}; these are "
+                                     "different quantities under one name (name the step differently in one kind of plan)",
+                                     figure, listed(instruments_by_unit)));
   }
-  throw NotOneQuantity(fmt::format("figure '{}' is archived in units that do not convert to one another: {}; these are "
-                          "different quantities under one name (name the step differently in one kind of plan)",
-                          figure, fmt::join(units, "; ")));
+  if (tests_by_abscissa.size() > 1) {
+    throw NotOneQuantity(fmt::format("figure '{}' names rows at different places in their table: {}; these are different "
+                                     "quantities under one name (the plans' tables differ, e.g. in their smoothing times)",
+                                     figure, listed(tests_by_abscissa)));
+  }
 }
 
 // Points converted into unit (the first point's), value and uncertainty alike.
@@ -530,7 +564,7 @@ void take_limits(const std::vector<Row>& rows, const std::string& unit, std::opt
 }
 
 constexpr const char* figure_columns =
-    "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit "
+    "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit, f.abscissa "
     "FROM figure f JOIN campaign c ON c.id = f.campaign ";
 
 // Fault injection for the kill tests (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N

@@ -262,7 +262,8 @@ TEST_P(ArchiveBackend, AFigureNotMeasuredIsArchivedAsSuch) {
               " figure TEXT NOT NULL, value DOUBLE PRECISION NOT NULL, unit TEXT NOT NULL, uncertainty DOUBLE PRECISION,"
               " verdict TEXT, lower_limit DOUBLE PRECISION, upper_limit DOUBLE PRECISION,"
               " PRIMARY KEY (campaign, procedure, figure))");
-  execute_sql("INSERT INTO figure_v1 SELECT * FROM figure WHERE value IS NOT NULL");
+  execute_sql("INSERT INTO figure_v1 SELECT campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
+              " upper_limit FROM figure WHERE value IS NOT NULL");
   execute_sql("DROP TABLE figure");
   execute_sql("ALTER TABLE figure_v1 RENAME TO figure");
   execute_sql("CREATE INDEX figure_by_name ON figure (procedure, figure)");
@@ -272,6 +273,44 @@ TEST_P(ArchiveBackend, AFigureNotMeasuredIsArchivedAsSuch) {
   EXPECT_EQ(migrated.points[0].value, 1e-3);
   EXPECT_FALSE(migrated.points[1].value);
   EXPECT_EQ(open()->history("FOG-N", "scale_factor/scale_factor").points.size(), 3u);
+}
+
+// A limit on a row of a table ("/bias_stability/1") archives the row with where it lies in the
+// table (smoothing_s = 10): in plans of other smoothing times the same row is another quantity,
+// which history and repeatability do not mix (one record at 10 s and at 100 s gave a Br of
+// 0.0047 deg/h).
+TEST_P(ArchiveBackend, ARowOfATableIsOneQuantityAtOnePlaceInIt) {
+  auto archive = open();
+  const auto with_stability = [](const std::string& date, double smoothing_s, double value) {
+    nlohmann::json results = campaign("FOG-R", date, 36000.0);
+    results["procedures"][1]["result"]["bias_stability"] = nlohmann::json::array(
+        {{{"smoothing_s", 1.0}, {"value", 0.05}, {"unit", "deg/h"}},
+         {{"smoothing_s", smoothing_s}, {"value", value}, {"unit", "deg/h"}}});
+    results["verdicts"].push_back({{"procedure", "bias_static"}, {"figure", "/bias_stability/1"}, {"value", value},
+                                   {"unit", "deg/h"}, {"pass", true}, {"max", 0.05}});
+    return results;
+  };
+  archive->add(with_stability("2026-03-01", 10.0, 0.012), "a");
+  archive->add(with_stability("2026-03-02", 10.0, 0.013), "b");
+  EXPECT_EQ(archive->history("FOG-R", "bias_static/bias_stability/1").points.size(), 2u);
+  archive->add(with_stability("2026-03-03", 100.0, 0.0057), "c");
+  const std::string mixed = "figure 'bias_static/bias_stability/1' names rows at different places in their table: "
+                            "smoothing_s = 10.0 (FOG-R 2026-03-01, FOG-R 2026-03-02); smoothing_s = 100.0 (FOG-R 2026-03-03)";
+  try {
+    archive->history("FOG-R", "bias_static/bias_stability/1");
+    ADD_FAILURE() << "expected NotOneQuantity";
+  } catch (const archive::NotOneQuantity& e) {
+    EXPECT_THAT(e.message(), HasSubstr(mixed));
+  }
+  const auto repeatability = testing::run_cli(
+      {"archive", "repeatability", "FOG-R", "--figure", "bias_static/bias_stability/1", "--db", location_});
+  EXPECT_EQ(repeatability.exit_code, 2);
+  EXPECT_THAT(repeatability.err, HasSubstr(mixed));
+  // Schema version 2 stored no place: opening such an archive fills it in from the stored results.
+  execute_sql("ALTER TABLE figure DROP COLUMN abscissa");
+  execute_sql("UPDATE schema_version SET version = 2");
+  EXPECT_THROW(open()->history("FOG-R", "bias_static/bias_stability/1"), archive::NotOneQuantity);
+  EXPECT_EQ(open()->history("FOG-R", "scale_factor/scale_factor").points.size(), 3u);
 }
 
 TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
@@ -384,7 +423,7 @@ TEST_P(ArchiveBackend, NewerSchemaIsRefused) {
     FAIL() << "opened an archive of schema version 99";
   } catch (const Error& e) {
     EXPECT_THAT(std::string(e.what()),
-                HasSubstr("the archive's schema version is 99, newer than this inertest knows (2): use a newer inertest"));
+                HasSubstr("the archive's schema version is 99, newer than this inertest knows (3): use a newer inertest"));
   }
 }
 

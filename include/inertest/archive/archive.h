@@ -38,7 +38,7 @@ class DatabaseError : public Error {
 };
 
 // The schema version this inertest writes and reads (migrations bring older archives up to it).
-inline constexpr int schema_version = 2;
+inline constexpr int schema_version = 3;
 
 // One archived campaign, as `archive list` shows it.
 struct CampaignEntry {
@@ -91,8 +91,10 @@ struct FleetFigure {
 };
 
 // A figure archived in units that do not convert to one another (V/(deg/s) for analog gyros,
-// pulse/s/(deg/s) for digital ones under one step name): two quantities, which no history, control
-// chart or capability may mix. The message names the units and their instruments.
+// pulse/s/(deg/s) for digital ones under one step name), or a row of a table archived at different
+// places in it (a limit on "/bias_stability/1" in plans of other smoothing times: 10 s here, 100 s
+// there): two quantities, which no history, control chart or capability may mix. The message names
+// them and their instruments.
 class NotOneQuantity : public Error {
  public:
   using Error::Error;

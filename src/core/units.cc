@@ -59,6 +59,7 @@ const std::unordered_map<std::string_view, NamedUnit>& simple_units() {
       // sensitivity (ppm/degC, deg/h/degC) converts by factor 1; an absolute temperature would need
       // the 273.15 offset, which convert() refuses to guess (see there)
       {"degC", {1.0, Dimension::kTemperature}},
+      {"°C", {1.0, Dimension::kTemperature}},  // as the report writes it (ppm/°C)
       {"K", {1.0, Dimension::kTemperature}},
       // electrical
       {"V", {1.0, Dimension::kVoltage}},
@@ -270,7 +271,11 @@ double convert(double value, const Unit& from, const Unit& to) {
   // is a difference and converts by its factor.
   Dimension bare_temperature;
   bare_temperature.half_powers[Dimension::kTemperature] = 2;
-  if (from.dimension() == bare_temperature && from.symbol() != to.symbol()) {
+  const auto celsius_as_degC = [](std::string symbol) {
+    if (symbol == "°C") symbol = "degC";
+    return symbol;
+  };
+  if (from.dimension() == bare_temperature && celsius_as_degC(from.symbol()) != celsius_as_degC(to.symbol())) {
     throw Error("cannot convert the temperature '" + from.symbol() + "' to '" + to.symbol() +
                 "': an absolute temperature needs an offset a difference does not, and the unit cannot say which; "
                 "give the value in '" + from.symbol() + "', the figure's unit");

@@ -65,6 +65,10 @@ TEST(Units, BareTemperaturesAreNotConvertedCompoundOnesAre) {
   EXPECT_EQ(convert(3.0, "deg/h/K", "deg/h/degC"), 3.0);
   EXPECT_EQ(convert(0.5, "degC/s", "K/s"), 0.5);
   EXPECT_EQ(convert(2.0, "degC^2", "K^2"), 2.0);
+  // °C, as the report prints it, is degC (a unit copied from a report into a plan was refused).
+  EXPECT_EQ(convert(-40.0, "°C", "degC"), -40.0);
+  EXPECT_EQ(convert(1.5, "ppm/°C", "ppm/degC"), 1.5);
+  EXPECT_THROW(convert(-40.0, "°C", "K"), Error);
 }
 
 TEST(Units, UnknownNamesAreAnErrorNotAGuess) {

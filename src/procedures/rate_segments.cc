@@ -1,6 +1,7 @@
 #include "inertest/procedures/rate_segments.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -72,9 +73,10 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
 
   // A sample belongs to the segment while it lies within the tolerance of the mean of the segment's
   // samples so far; the segment ends where kPersistence samples in a row (fewer at the record's end)
-  // lie outside it: the table rate changed. A lone sample outside (a glitch of the measured rate)
-  // stays in the segment, out of the running mean. Against the segment's first sample, noise within
-  // the tolerance cut each plateau wherever it swung the other way (24 test points became 56).
+  // lie outside it: the table rate changed. A lone sample outside is a glitch of the measured rate,
+  // left out of the segment's means (kept in them, a dropout to 0 in a 300 deg/s plateau moved K by
+  // 0.15 %). Against the segment's first sample, noise within the tolerance cut each plateau
+  // wherever it swung the other way (24 test points became 56).
   constexpr std::size_t kPersistence = 3;
   const std::size_t count = table_rate.size();
   std::vector<RateSegment> segments;
@@ -83,6 +85,7 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
     CompensatedSum rate_sum;
     rate_sum.add(table_rate[begin]);
     std::size_t in_mean = 1;
+    std::vector<std::size_t> glitches;
     std::size_t end = begin + 1;
     while (end < count) {
       const double running_mean = rate_sum.value() / static_cast<double>(in_mean);
@@ -91,20 +94,55 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
         bool persists = true;
         for (std::size_t i = end + 1; i < std::min(count, end + kPersistence) && persists; ++i) persists = outside(i);
         if (persists) break;
+        glitches.push_back(end);
       } else {
         rate_sum.add(table_rate[end]);
         ++in_mean;
       }
       ++end;
     }
-    if (end - begin >= minimum_samples) {
+    const std::size_t first_used = begin + skip;
+    // The samples of [from, end) but the glitches.
+    const auto for_each_kept = [&](std::size_t from, const auto& visit) {
+      auto glitch = std::lower_bound(glitches.begin(), glitches.end(), from);
+      for (std::size_t i = from; i < end; ++i) {
+        if (glitch != glitches.end() && *glitch == i) {
+          ++glitch;
+        } else {
+          visit(i);
+        }
+      }
+    };
+    // A piece of a slow ramp stays within the tolerance of its running mean for about 2 tol / (its
+    // acceleration), long enough to pass for a test point: its table rate moves by about tol across
+    // it, where a plateau's halves agree to its noise / sqrt(n).
+    std::size_t kept = 0;
+    if (end - begin >= minimum_samples) for_each_kept(begin, [&](std::size_t) { ++kept; });
+    std::array<CompensatedSum, 2> halves;
+    std::size_t k = 0;
+    const std::size_t first_count = (kept + 1) / 2;
+    if (kept >= 2) for_each_kept(begin, [&](std::size_t i) { halves[k++ < first_count ? 0 : 1].add(table_rate[i]); });
+    const bool ramp = kept >= 2 && std::abs(halves[1].value() / static_cast<double>(kept - first_count) -
+                                            halves[0].value() / static_cast<double>(first_count)) >
+                                       0.5 * options.rate_tolerance;
+    std::size_t used = 0;
+    CompensatedSum rate_used;
+    CompensatedSum output_used;
+    if (kept > 0 && !ramp) {
+      for_each_kept(first_used, [&](std::size_t i) {
+        rate_used.add(table_rate[i]);
+        output_used.add(output[i]);
+        ++used;
+      });
+    }
+    if (used > 0) {
       RateSegment segment;
       segment.first_sample = begin;
-      segment.first_used = begin + skip;
+      segment.first_used = first_used;
       segment.end_sample = end;
-      const double rate = mean_of(table_rate.subspan(segment.first_used, end - segment.first_used));
+      const double rate = rate_used.value() / static_cast<double>(used);
       segment.rate = std::abs(rate) <= options.rate_tolerance ? 0.0 : rate;
-      segment.mean_output = mean_of(output.subspan(segment.first_used, end - segment.first_used));  // eq. (1)
+      segment.mean_output = output_used.value() / static_cast<double>(used);  // eq. (1)
       segments.push_back(segment);
     }
     begin = end;

@@ -120,6 +120,48 @@ TEST(RateSegments, NoiseOfTheMeasuredRateWithinTheToleranceKeepsEachPlateauWhole
   }
 }
 
+TEST(RateSegments, AGlitchOfTheMeasuredRateIsLeftOutOfThePoint) {
+  // One rate sample of the 300 deg/s plateau drops to 0 (the output does not): no change of rate,
+  // and no part of the point's rate (kept in its mean, it moved K by 0.15 %).
+  Record record;
+  add_segment(record, 0.0, 3.0);
+  add_segment(record, 300.0, 3.0);
+  add_segment(record, 0.0, 3.0);
+  record.rate[45] = 0.0;
+  const std::vector<RateSegment> segments = segment_by_rate(record.rate, record.output, options());
+  ASSERT_EQ(segments.size(), 3u);
+  EXPECT_EQ(segments[1].rate, 300.0);
+  EXPECT_EQ(segments[1].mean_output, kScale * 300.0 + kBias);
+  EXPECT_EQ(segments[1].end_sample - segments[1].first_sample, 30u);
+}
+
+TEST(RateSegments, PiecesOfASlowRampAreNoTestPoints) {
+  // 1 deg/s^2 ramps at 10 Hz with a tolerance of 1 deg/s: a piece stays within the tolerance of its
+  // running mean for about 2 s, the minimum segment, but its rate moves by about 1 deg/s across it.
+  RateSegmentOptions slow = options();
+  slow.rate_tolerance = 1.0;
+  Record record;
+  const auto ramp = [&](double from, double to) {
+    const int steps = static_cast<int>(std::abs(to - from) * kSampleRate);
+    for (int i = 1; i < steps; ++i) {
+      const double rate = from + (to - from) * i / steps;
+      record.rate.push_back(rate);
+      record.output.push_back(kScale * rate + kBias);
+    }
+  };
+  add_segment(record, 0.0, 5.0);
+  ramp(0.0, 10.0);
+  add_segment(record, 10.0, 5.0);
+  ramp(10.0, -10.0);
+  add_segment(record, -10.0, 5.0);
+  ramp(-10.0, 0.0);
+  add_segment(record, 0.0, 5.0);
+  const std::vector<RateSegment> segments = segment_by_rate(record.rate, record.output, slow);
+  const std::vector<double> rates = {0.0, 10.0, -10.0, 0.0};
+  ASSERT_EQ(segments.size(), rates.size());
+  for (std::size_t i = 0; i < rates.size(); ++i) EXPECT_NEAR(segments[i].rate, rates[i], 0.2) << i;
+}
+
 TEST(RateSegments, ShortSegmentsAreSkipped) {
   Record record;
   add_segment(record, 0.0, 3.0);

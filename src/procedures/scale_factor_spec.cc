@@ -31,8 +31,10 @@ ProcedureSpec scale_factor_spec() {
              "Instead of POINTS, raw records (the mean after --settling-time is F_j of eq. 1):\n"
              "  --record FILE: one long record with a table-rate column (--rate-column) and the output\n"
              "    (--output-column), cut into constant-rate segments: rates within --rate-tolerance of the\n"
-             "    segment's first rate belong to it, segments shorter than --minimum-segment s are skipped\n"
-             "    (ramps), and a segment whose rate is within the tolerance of zero is a static run.\n"
+             "    segment's mean rate so far belong to it (3 outside in a row end it; a lone one is a glitch,\n"
+             "    left out), segments shorter than --minimum-segment s, or whose rate moves across them by\n"
+             "    half the tolerance, are skipped (ramps), and a segment whose rate is within the tolerance\n"
+             "    of zero is a static run.\n"
              "  --records LIST: a CSV with the header 'rate,file', one record per test point in test\n"
              "    order (paths relative to LIST), each with the output column --output-column.\n"
              "  Both need --sample-rate (Hz). Columns are header names or 1-based indexes.")

@@ -92,13 +92,22 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
        {std::vector<std::string>{"bias", deg_s, "--scale-factor", "36000"},
         std::vector<std::string>{"bias-repeatability", deg_s, copy, "--scale-factor", "1"},
         std::vector<std::string>{"bias-temperature", "--run", "20:" + deg_s, "--run", "40:" + copy, "--scale-factor", "1"},
-        std::vector<std::string>{"turn-on-time", "--run", "0:" + deg_s, "--scale-factor", "1", "--rest-band", "1"}}) {
+        std::vector<std::string>{"turn-on-time", "--run", "0:" + deg_s, "--scale-factor", "1", "--rest-band", "1"},
+        std::vector<std::string>{"threshold", deg_s, "--method", "3", "--scale-factor", "36000", "--latitude", "40",
+                                 "--table-rate", "0.36"}}) {
     run = run_cli(args);
     EXPECT_EQ(run.exit_code, 2) << args[0];
     EXPECT_THAT(run.err, HasSubstr(deg_s + ": the record stores its samples in deg/s, not the instrument's raw output that "
                                            "the scale factor K divides"))
         << args[0];
   }
+  // An instrument whose output is in deg/s (K near 1) stores its own output: read as such.
+  run = run_cli({"bias", deg_s, "--scale-factor", "1.0003", "--output-unit", "deg/s", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NEAR(nlohmann::json::parse(run.out)["bias"]["value"].get<double>(), 0.2495 / 1.0003 * 3600.0, 1e-9);
+  run = run_cli({"bias", deg_s, "--scale-factor", "1.0003", "--output-unit", "deg/h"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("stores its samples in deg/s, not the instrument's output in deg/h that the scale factor K"));
   const std::string bad = scratch.write("bad.txt", "0.1\nabc\n");
   run = run_cli({"bias-repeatability", first, bad, "--input-deg-h"});
   EXPECT_EQ(run.exit_code, 2);

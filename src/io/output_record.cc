@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
@@ -96,7 +98,11 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
     const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);
     const std::size_t output = file->find(channel_selector(source.column));
     if (!sample_rate_hz && !file->channels()[output].sample_rate_hz && !time_column.empty()) {
-      record.time_s = read_channel(*file, file->find(ColumnSelector::parse(time_column)));
+      const std::size_t time_channel = file->find(ColumnSelector::parse(time_column));
+      record.time_s = read_channel(*file, time_channel);
+      const ChannelInfo& time_info = file->channels()[time_channel];
+      const double seconds = with_file_context(source.path, [&] { return seconds_per_time_stamp(time_info.name, time_info.unit); });
+      for (double& stamp : record.time_s) stamp *= seconds;
       record.output = read_channel(*file, output);
       if (record.time_s.size() != record.output.size()) {
         throw Error(SourceLocation{source.path, 0, 0},
@@ -189,7 +195,8 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
   };
 }
 
-void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& instead) {
+void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& output_unit,
+                        const std::string& instead) {
   std::optional<std::string> stored;
   try {
     stored = call.record_unit(file, std::nullopt);
@@ -199,10 +206,16 @@ void require_raw_output(const ProcedureCall& call, const std::string& file, cons
   if (!stored) return;
   const Dimension dimension = Unit::parse(*stored).dimension();
   if (dimension != Unit::parse("rad/s").dimension() && dimension != Unit::parse("m/s^2").dimension()) return;
+  try {
+    if (std::abs(convert(1.0, output_unit, *stored) - 1.0) <= 1e-12) return;  // the instrument's own output
+  } catch (const Error&) {
+    // another dimension, or no unit inertest knows: not the instrument's output unit
+  }
   throw Error(SourceLocation{file, 0, 0},
-              fmt::format("the record stores its samples in {}, not the instrument's raw output that the scale factor K "
+              fmt::format("the record stores its samples in {}, not the instrument's {} that the scale factor K "
                           "divides: {}",
-                          *stored, instead));
+                          *stored, output_unit.empty() || output_unit == "1" ? "raw output" : "output in " + output_unit,
+                          instead));
 }
 
 }  // namespace inertest

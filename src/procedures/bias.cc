@@ -51,7 +51,8 @@ void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options
 
 std::vector<double> read_bias_record(const ProcedureCall& call, const std::string& file, const BiasOptions& options) {
   if (!options.input_in_deg_h) {
-    require_raw_output(call, file, "leave K out and give input = \"deg/h\" (--input-deg-h): a stored rate is converted");
+    require_raw_output(call, file, options.output_unit,
+                       "leave K out and give input = \"deg/h\" (--input-deg-h): a stored rate is converted");
     return call.read_record(file);
   }
   // Records of rates: a unit the record stores (HDF5, TDMS) converts its samples to deg/h; another

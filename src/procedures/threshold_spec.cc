@@ -23,6 +23,7 @@ struct ThresholdInputOptions {
   std::string time_column;
   std::string column;
   std::string format;
+  std::string output_unit = "1";  // a record that stores a rate unit must store the instrument's own
 };
 
 // The rows of a table with the header `first,second` (methods 1 and 2) as points.
@@ -117,6 +118,8 @@ ProcedureSpec threshold_spec() {
                                "method 3: binary record instead of text: f64, f32, i32 or i16, optionally "
                                "with le/be (e.g. f32be)"),
                  &Options::format)
+      .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
+                 &Options::output_unit)
       .field({"threshold", FieldRole::headline, "threshold", "阈值", "eqs. (14)-(17)"}, &ThresholdResult::threshold)
       .field({"method", FieldRole::detail, "method", "方法", "5.10.4"}, &ThresholdResult::method)
       .field_from({"criterion_denominator", FieldRole::hidden, "criterion denominator", "判据分母", "eq. (15)"},
@@ -156,6 +159,9 @@ ProcedureSpec threshold_spec() {
         source.path = file;
         source.column = options.column;
         source.format = options.format;
+        ProcedureCall reading;  // the record readers of a timed input, for the unit the record stores
+        set_record_readers(reading, source, 4, options.sample_rate_hz, options.time_column);
+        require_raw_output(reading, file, options.output_unit, "method 3 divides the output by K");
         const TimedRecord record = read_timed_record(source, options.sample_rate_hz, options.time_column, 4);
         return threshold_rotating(record.time_s, record.output, options.table_rate_deg_s, options.threshold);
       });

@@ -54,7 +54,9 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
       .parameter(ParameterSpec("rest_band_deg_h", "allowed indicated rate at rest").unit_is("deg/h").command_line_name_is("rest-band"),
                  &TurnOnTimeOptions::rest_band_deg_h)
       .parameter(ParameterSpec("smoothing_s", "averaging window before the test (0: none)").unit_is("s").command_line_name_is("smoothing"),
-                 &TurnOnTimeOptions::smoothing_s);
+                 &TurnOnTimeOptions::smoothing_s)
+      .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
+                 &TurnOnTimeOptions::output_unit);
   earth_rate_parameters(definition, &TurnOnTimeOptions::earth_rate);
   return definition
       .field({kind, FieldRole::headline, warm_up ? "warm-up time" : "turn-on time", warm_up ? "预热时间" : "启动时间",
@@ -85,7 +87,7 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
         options.warm_up = warm_up;
         std::vector<PowerOnRun> runs;
         for (const RunInput& run : call.runs.at("runs")) {
-          require_raw_output(call, run.file, "the indicated rate is (F - F0)/K");
+          require_raw_output(call, run.file, options.output_unit, "the indicated rate is (F - F0)/K");
           TimedRecord record = call.read_timed_record(run.file);
           runs.push_back({run.name, run.number, std::move(record.time_s), std::move(record.output)});
         }

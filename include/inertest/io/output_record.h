@@ -68,10 +68,12 @@ std::optional<std::string> record_unit(const OutputRecordSource& source, const s
 void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,
                         std::optional<double> sample_rate_hz, const std::string& time_column);
 
-// For a procedure that divides the instrument's raw output by its scale factor K: throws Error
-// naming the file when the record stores its samples as the input quantity (a unit of angular rate
-// or of acceleration: HDF5 units, TDMS unit_string), saying `instead` what to do. Dividing a
-// record's deg/s by K again gave 0.025 deg/h for a bias of 898 deg/h, and a PASS.
-void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& instead);
+// For a procedure that divides the instrument's output by its scale factor K: throws Error naming
+// the file when the record stores its samples in a unit of angular rate or of acceleration (HDF5
+// units, TDMS unit_string) other than the instrument's `output_unit` (an instrument whose output is
+// in deg/s, with a K near 1, stores that), saying `instead` what to do. Dividing a record's deg/s by
+// a K of 36000 gave 0.025 deg/h for a bias of 898 deg/h, and a PASS.
+void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& output_unit,
+                        const std::string& instead);
 
 }  // namespace inertest

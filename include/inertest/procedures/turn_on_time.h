@@ -38,6 +38,9 @@ struct TurnOnTimeOptions {
   double rest_band_deg_h = 0.0;  // at rest: allowed |ω| in deg/h; needed when a run is at rest
   double smoothing_s = 0.0;      // 0: test every sample
   std::optional<AxisOrientation> earth_rate;  // Earth rate along the IRA to remove (absent: none)
+  // The instrument's output unit: a record that stores a rate unit must store this one (an
+  // instrument whose output is in deg/s), not a rate K would divide again.
+  std::string output_unit = "1";
 
   void validate() const;  // throws Error for a zero scale factor, a negative band or smoothing time
 };

@@ -41,8 +41,13 @@ const std::unordered_map<std::string_view, NamedUnit>& simple_units() {
       {"rev", {2.0 * kPi, Dimension::kAngle}},
       // time
       {"s", {1.0, Dimension::kTime}},
+      {"sec", {1.0, Dimension::kTime}},
       {"ms", {1e-3, Dimension::kTime}},
+      {"msec", {1e-3, Dimension::kTime}},
       {"us", {1e-6, Dimension::kTime}},
+      {"µs", {1e-6, Dimension::kTime}},  // U+00B5 micro sign
+      {"μs", {1e-6, Dimension::kTime}},  // U+03BC Greek mu
+      {"ns", {1e-9, Dimension::kTime}},
       {"min", {60.0, Dimension::kTime}},
       {"h", {3600.0, Dimension::kTime}},
       {"hr", {3600.0, Dimension::kTime}},

@@ -177,13 +177,43 @@ std::optional<double> last_stamp(const std::string& path, const std::string& hea
 
 }  // namespace
 
+double seconds_per_time_stamp(const std::string& name, const std::string& stored_unit) {
+  Dimension time;
+  time.half_powers[Dimension::kTime] = 2;
+  if (!stored_unit.empty()) {
+    try {
+      if (const Unit unit = Unit::parse(stored_unit); unit.dimension() == time) return unit.factor();
+    } catch (const Error&) {
+      // a unit inertest does not know: the name may say
+    }
+  }
+  bool unit_stated = false;
+  std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated);
+  if (!seconds && !unit_stated && name.find_last_of("/.") != std::string::npos) {
+    // A channel's own name: the last part of a group's path ("imu/time_ms") or a struct's field
+    // (a header "time/ms" states its unit, above).
+    seconds = seconds_per_unit_of_time_name(name.substr(name.find_last_of("/.") + 1), unit_stated);
+  }
+  if (seconds && unit_stated) return *seconds;
+  if (unit_stated) {
+    throw Error(fmt::format("the time column '{}' states a unit that is not a time (s, ms, us, ns, min, h): give "
+                            "the time column (--time-column / time_column)",
+                            name));
+  }
+  return 1.0;
+}
+
 std::vector<double> take_time_column_s(TextTable& table, std::size_t column) {
   require_increasing_time(table, column);
+  double seconds = 1.0;
+  try {
+    seconds = seconds_per_time_stamp(column < table.names.size() ? table.names[column] : "");
+  } catch (const Error& e) {
+    throw Error(SourceLocation{table.source, table.header_line, 0}, e.message());
+  }
   std::vector<double> time = std::move(table.columns.at(column));
-  bool unit_stated = false;
-  const std::string& name = column < table.names.size() ? table.names[column] : std::string();
-  if (const std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated); seconds && unit_stated) {
-    for (double& stamp : time) stamp *= *seconds;
+  if (seconds != 1.0) {
+    for (double& stamp : time) stamp *= seconds;
   }
   return time;
 }

@@ -307,6 +307,27 @@ TEST(TimeColumnInSeconds, TheUnitItsNameStatesConvertsIt) {
   EXPECT_EQ(stamps_of("time", "1"), (std::vector<double>{1000.0, 2000.0, 3500.0}));
   EXPECT_EQ(stamps_of("stamp", "1"), (std::vector<double>{1000.0, 2000.0, 3500.0}));
   EXPECT_EQ(stamps_of("time_s", "1"), (std::vector<double>{1000.0, 2000.0, 3500.0}));
+  for (const auto& [header, seconds] : {std::pair{"time_ns", 1e-9}, std::pair{"t [µs]", 1e-6}, std::pair{"t [μs]", 1e-6}}) {
+    const std::vector<double> stamps = stamps_of(header, "1");
+    ASSERT_EQ(stamps.size(), 3u);
+    const std::vector<double> written = {1000.0, 2000.0, 3500.0};
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(stamps[i], seconds * written[i]) << header;
+  }
+  EXPECT_EQ(stamps_of("time_msec", "1"), (std::vector<double>{1.0, 2.0, 3.5}));
+  EXPECT_EQ(stamps_of("time/ms", "1"), (std::vector<double>{1.0, 2.0, 3.5}));
+  // A time's name that states no time unit is an error at the header, not seconds.
+  try {
+    stamps_of("T_degC", "1");
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("record.csv:1: the time column 'T_degC' states a unit that is not a time"));
+  }
+  // A channel: the unit its file stores, else the name of its own (the last part of its path).
+  EXPECT_EQ(seconds_per_time_stamp("imu/time_ms"), 1e-3);
+  EXPECT_EQ(seconds_per_time_stamp("run.time_us"), 1e-6);
+  EXPECT_EQ(seconds_per_time_stamp("imu/stamp", "ms"), 1e-3);
+  EXPECT_EQ(seconds_per_time_stamp("time_ms", "s"), 1.0);
+  EXPECT_EQ(seconds_per_time_stamp("imu/stamp"), 1.0);
   // Going back is still an error at its cell.
   TextTableOptions options;
   options.columns = {ColumnSelector::parse("1")};

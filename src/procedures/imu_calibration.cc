@@ -583,6 +583,9 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
     const std::unique_ptr<ChannelRecord> channels = open_channel_record(path, *format);
     std::array<std::vector<double>, 7> samples;
     for (std::size_t c = 0; c < 7; ++c) samples[c] = read_channel(*channels, channels->find(options.columns[c]));
+    const ChannelInfo& time = channels->channels()[channels->find(options.columns[0])];
+    const double seconds = with_file_context(path, [&] { return seconds_per_time_stamp(time.name, time.unit); });
+    for (double& stamp : samples[0]) stamp *= seconds;
     for (std::size_t i = 1; i < samples[0].size(); ++i) {
       if (!(samples[0][i] > samples[0][i - 1])) {
         throw Error(at_file(path), fmt::format("the time does not increase at sample {}", i + 1));

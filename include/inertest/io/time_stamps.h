@@ -73,10 +73,17 @@ struct TimeGaps {
 TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,
                         const TimeStampOptions& options);
 
+// Seconds per unit of the time stamps of a column or channel named `name`, whose file may store its
+// unit (`stored_unit`, "" for none: a .mat, HDF5 or TDMS channel's): the stored unit when it is a
+// time's, else the time unit the name (a channel's: its last part, "imu/time_ms") states
+// ("time_ms", "t [us]", "Time (min)", as RecordTimeColumn), else 1 (s). (Stamps in ms taken as s made a turn-on time 1000 times too
+// long.) Throws Error when a time's name states a unit that is no time's ("T_degC" taken as the
+// time column).
+double seconds_per_time_stamp(const std::string& name, const std::string& stored_unit = "");
+
 // Returned column `column` of a text table as time stamps in s, moved out of the table: they must
-// increase (require_increasing_time), and a header name that states a time unit ("time_ms",
-// "t [us]", "Time (min)", as RecordTimeColumn) converts them; a name that states none, or no
-// header, is taken in s. (Stamps in ms taken as s made a turn-on time 1000 times too long.)
+// increase (require_increasing_time), converted by seconds_per_time_stamp of the column's name; no
+// header: taken in s.
 std::vector<double> take_time_column_s(TextTable& table, std::size_t column);
 
 // The time column a text record's header names, and the sample interval its first rows show.

@@ -216,10 +216,12 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
     if (node == nullptr || !node->is_object()) continue;
     const std::size_t row_figures = rows.size();
     collect_figures(*node, procedure, key.second, source, rows);
+    // The row's plain numbers name its place (smoothing_s = 10); its flags and texts are results
+    // (measured = false, a reason), which differ from test to test.
     std::string abscissa;
     for (const auto& [member, value] : node->items()) {
-      if (member == "value" || member == "unit" || member == "uncertainty" || value.is_structured() || value.is_null()) continue;
-      abscissa += (abscissa.empty() ? "" : ", ") + member + " = " + (value.is_string() ? value.get<std::string>() : value.dump());
+      if (member == "value" || member == "uncertainty" || !value.is_number()) continue;
+      abscissa += (abscissa.empty() ? "" : ", ") + member + " = " + value.dump();
     }
     if (abscissa.empty()) continue;
     for (std::size_t i = row_figures; i < rows.size(); ++i) rows[i].abscissa = abscissa;
@@ -496,16 +498,16 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
 }
 
 // Throws NotOneQuantity unless every row's unit (column 4) converts to the first's, and every row
-// lies at one place in its table (column 8, the abscissa).
+// that says where it lies in its table (column 8, the abscissa; null where unknown: a campaign the
+// migration could not read again) lies at one place.
 void require_one_quantity(const std::vector<Row>& rows, const std::string& figure) {
   const Dimension first = Unit::parse(rows.front().text(4)).dimension();
-  const auto abscissa_of = [](const Row& row) { return row.is_null(8) ? std::string("no abscissa") : row.text(8); };
   std::map<std::string, std::set<std::string>> instruments_by_unit;
   std::map<std::string, std::set<std::string>> tests_by_abscissa;
   bool mixed_units = false;
   for (const auto& row : rows) {
     instruments_by_unit[row.text(4)].insert(row.text(5));
-    tests_by_abscissa[abscissa_of(row)].insert(row.text(5) + " " + row.text(0));
+    if (!row.is_null(8)) tests_by_abscissa[row.text(8)].insert(row.text(5) + " " + row.text(0));
     mixed_units = mixed_units || Unit::parse(row.text(4)).dimension() != first;
   }
   const auto listed = [](const std::map<std::string, std::set<std::string>>& groups) {

@@ -81,30 +81,32 @@ nlohmann::json report_data(Archive& archive, const std::vector<std::string>& fig
   std::sort(instruments.begin(), instruments.end());
   instruments.erase(std::unique(instruments.begin(), instruments.end()), instruments.end());
   const std::vector<std::string> archived = archive.figures(false);
-  // The fleet first: a figure of two quantities is named once, and left out of every page.
+  // A figure of two quantities across the fleet is named once, on the fleet page; an instrument's
+  // history of it is shown where the instrument's own campaigns measured one quantity.
   nlohmann::json fleet = nlohmann::json::array();
   nlohmann::json not_comparable = nlohmann::json::array();
-  std::vector<std::string> shown;
+  nlohmann::json histories = nlohmann::json::array();
+  for (const auto& instrument : instruments) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& figure : figures) {
+      if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
+      try {
+        list.push_back(archive.history(instrument, figure).to_json());
+      } catch (const DatabaseError&) {
+        throw;
+      } catch (const Error&) {
+        // this instrument's campaigns do not report the figure (or two quantities: the fleet page says)
+      }
+    }
+    histories.push_back({{"instrument", instrument}, {"figures", list}});
+  }
   for (const auto& figure : figures) {
     if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
     try {
       fleet.push_back(fleet_summary(archive.fleet(figure, std::nullopt), std::nullopt));
-      shown.push_back(figure);
     } catch (const NotOneQuantity& e) {
       not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
     }
-  }
-  nlohmann::json histories = nlohmann::json::array();
-  for (const auto& instrument : instruments) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const auto& figure : shown) {
-      try {
-        list.push_back(archive.history(instrument, figure).to_json());
-      } catch (const Error&) {
-        // this instrument's campaigns do not report the figure: nothing to plot
-      }
-    }
-    histories.push_back({{"instrument", instrument}, {"figures", list}});
   }
   return {{"histories", histories}, {"fleet", fleet}, {"not_comparable", not_comparable}};
 }

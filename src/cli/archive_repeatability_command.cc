@@ -34,11 +34,13 @@ bool is_rate(const std::string& unit) {
   }
 }
 
-// A scale factor is output per input (GJB 2426A 5.8.1, IEEE Std 1293 K1): times an angular rate or
-// an acceleration its unit is an output's (pulse/s, V, mA, count), with no angle or length left.
-// Eq. (12) is defined for it alone: not for the ppm of a repeatability or a sensitivity, nor for
-// 1/g or deg/h/g coefficients, whose figure names hold "scale_factor" too.
-bool is_scale_factor(const std::string& unit) {
+// A scale factor is output per input (GJB 2426A 5.8.1, IEEE Std 1293 K1): named scale_factor (its
+// output may be dimensionless: 1/(deg/s)), or of a unit that times an angular rate or an
+// acceleration is an output's (pulse/s, V, mA, count), with no angle or length left (an IMU's
+// count/(rad/s)). Eq. (12) is defined for it alone: not for the ppm of a repeatability or a
+// sensitivity (scale_factor_temperature_sensitivity), nor for 1/g or deg/h/g coefficients.
+bool is_scale_factor(const std::string& figure, const std::string& unit) {
+  if (figure.substr(figure.rfind('/') + 1) == "scale_factor") return true;
   Dimension per_input;
   try {
     per_input = Unit::parse(unit).dimension();
@@ -102,7 +104,7 @@ CommandAction setup(CLI::App& archive) {
       for (const double v : measured) values.push_back(convert(v, history.unit, "deg/h"));
       json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
       report = write_result(*find_procedure_spec("bias_repeatability"), bias_repeatability(values), json);
-    } else if (is_scale_factor(history.unit)) {
+    } else if (is_scale_factor(history.figure, history.unit)) {
       values = measured;
       ScaleFactorRepeatabilityOptions options;
       options.minimum_runs = 2;  // archived days, not a planned series: fewer than 6 is a warning

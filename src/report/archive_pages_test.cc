@@ -59,14 +59,14 @@ TEST(ArchivePages, HistoryShowsEveryPointWithItsUncertaintyAndTheLimits) {
 }
 
 TEST(ArchivePages, FleetShowsTheChartTheFlaggedPointAndTheCapability) {
-  const std::string page = render_fleet_page(fleet(), {Language::english, ""});
+  const std::string page = render_fleet_page(fleet(), {Language::english, ""}, nlohmann::json::array());
   EXPECT_THAT(page, HasSubstr("<svg"));
   EXPECT_THAT(page, HasSubstr("FOG-&lt;2&gt;"));  // escaped
   EXPECT_THAT(page, Not(HasSubstr("FOG-<2>")));
   EXPECT_THAT(page, HasSubstr("beyond 3σ (rule 1)"));
   EXPECT_THAT(page, HasSubstr("<td>-0.0268</td>"));  // Cpk
   EXPECT_THAT(page, HasSubstr("NIST/SEMATECH e-Handbook 6.3.2.2"));
-  const std::string zh = render_fleet_page(fleet(), {Language::chinese, ""});
+  const std::string zh = render_fleet_page(fleet(), {Language::chinese, ""}, nlohmann::json::array());
   EXPECT_THAT(zh, HasSubstr("超出 3σ 控制限（准则 1）"));
   EXPECT_THAT(zh, HasSubstr("过程能力"));
 }
@@ -86,7 +86,7 @@ TEST(ArchivePages, AFigureNotMeasuredIsSaidAndNotPlotted) {
   nlohmann::json unmeasured = fleet();
   unmeasured[0]["instruments"][0]["value"] = nullptr;
   unmeasured[0]["control_chart"] = nullptr;
-  const std::string fleet_page = render_fleet_page(unmeasured, {Language::english, ""});
+  const std::string fleet_page = render_fleet_page(unmeasured, {Language::english, ""}, nlohmann::json::array());
   EXPECT_THAT(fleet_page, HasSubstr("<tr><td>1</td><td>FOG-1</td><td>2026-02-01</td><td>not measured</td>"));
   EXPECT_THAT(fleet_page, HasSubstr("<tr><td>2</td><td>FOG-&lt;2&gt;</td><td>2026-02-02</td><td>0.09 deg/h</td>"));
   EXPECT_THAT(fleet_page, HasSubstr("<td>bias/bias</td><td>deg/h</td><td>1</td>"));  // n: the measured ones
@@ -115,7 +115,7 @@ TEST(ArchivePages, AMagnitudeLimitDrawsItsLowerLineOnlyUnderANegativeValue) {
   nlohmann::json magnitude = fleet();
   magnitude[0]["lower_limit"] = -0.05;
   magnitude[0]["limit_on_magnitude"] = true;
-  EXPECT_THAT(render_fleet_page(magnitude, {Language::english, ""}),
+  EXPECT_THAT(render_fleet_page(magnitude, {Language::english, ""}, nlohmann::json::array()),
               HasSubstr("<td>-0.05 (−max: the max bounds |value|)</td>"));
 }
 

@@ -58,6 +58,7 @@ const char* reason(int status) {
     case 401: return "the token is missing";
     case 403: return "forbidden";
     case 404: return "no such resource";
+    case 409: return "two quantities under one name";
     case 413: return "the request body is too large";
     case 414: return "the request URI is too long";
     default: return "the request was refused";
@@ -106,7 +107,8 @@ struct Server::Impl {
 
   // Runs answer under the archive's lock: it returns the JSON to send with 200, or fills in the
   // response itself (a page) and returns null. A Refusal becomes its 4xx, a failure of the
-  // database a 500, and any other archive Error (an unknown instrument, figure or campaign) a 404.
+  // database a 500, a figure of two quantities (NotOneQuantity) a 409, and any other archive Error
+  // (an unknown instrument, figure or campaign) a 404.
   template <typename Answer>
   httplib::Server::Handler route(Answer answer) {
     return [this, answer](const httplib::Request& request, httplib::Response& response) {
@@ -121,6 +123,8 @@ struct Server::Impl {
         send_json(response, refusal.status, {{"error", refusal.message}});
       } catch (const archive::DatabaseError& e) {
         send_json(response, 500, {{"error", "the archive's database failed: " + e.message()}});
+      } catch (const archive::NotOneQuantity& e) {
+        send_json(response, 409, {{"error", e.message()}});  // it exists, as two quantities
       } catch (const Error& e) {
         send_json(response, 404, {{"error", e.message()}});
       }

@@ -22,7 +22,7 @@ std::string render_history_page(const nlohmann::json& history, const ReportOptio
 // archived in units that do not convert (archive::report_data's "not_comparable"), each named with
 // why.
 std::string render_fleet_page(const nlohmann::json& fleet, const ReportOptions& options,
-                              const nlohmann::json& not_comparable = nlohmann::json::array());
+                              const nlohmann::json& not_comparable);
 
 // The file name of an instrument's history page: "history-<id>.html", every byte of the id but
 // letters, digits, '-', '.' and '_' percent-encoded ("LAB2/FOG-001": "history-LAB2%2FFOG-001.html"),

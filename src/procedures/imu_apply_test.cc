@@ -1,7 +1,9 @@
 // imu-apply (procedures/imu_apply_spec.cc) through the command: what it writes.
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "test_util/test_util.h"
@@ -33,6 +35,41 @@ TEST(ImuApply, AFailureWritesNoOutput) {
                                                   output, "--json"});
   EXPECT_EQ(whole.exit_code, 0) << whole.err;
   EXPECT_TRUE(std::filesystem::exists(output));
+}
+
+// The calibrated record keeps its time stamps to the last digit: epoch seconds (1.7e9 s) written to
+// 9 digits were 100 s apart, 32 653 rows under 34 times.
+TEST(ImuApply, TheOutputKeepsEveryTimeStamp) {
+  const testing::ScratchDirectory scratch;
+  const std::string tumble_csv = testing::read_file(testing::source_path("examples/imu_calibration/tumble.csv"));
+  std::string epoch;
+  std::vector<std::string> stamps;
+  for (std::size_t at = 0; at < tumble_csv.size();) {
+    const std::size_t end = tumble_csv.find('\n', at);
+    const std::string line = tumble_csv.substr(at, end - at);
+    at = end + 1;
+    const std::size_t comma = line.find(',');
+    if (stamps.empty() && epoch.empty()) {
+      epoch += line + "\n";  // the header
+      stamps.push_back("time_s");
+      continue;
+    }
+    stamps.push_back(fmt::format("{}", 1732700000.0 + std::stod(line.substr(0, comma))));
+    epoch += stamps.back() + line.substr(comma) + "\n";
+  }
+  const std::string output = scratch.path() + "/calibrated.csv";
+  const testing::CliRun run = testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"),
+                                                scratch.write("epoch.csv", epoch), "--output", output});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string written = testing::read_file(output);
+  std::size_t row = 0;
+  for (std::size_t at = 0; at < written.size(); ++row) {
+    const std::size_t end = written.find('\n', at);
+    ASSERT_LT(row, stamps.size());
+    EXPECT_EQ(written.substr(at, written.find(',', at) - at), stamps[row]) << "row " << row;
+    at = end + 1;
+  }
+  EXPECT_EQ(row, stamps.size());
 }
 
 // In a plan a relative --output goes beside results.json (staged with the campaign's other files: a

@@ -98,6 +98,10 @@ std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input,
     if (py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item)) {
       const auto pair = item.cast<py::sequence>();
       if (pair.size() != 2) throw Error(fmt::format("{}: a run is (number, path)", input.plan_key));
+      if (!is_number(pair[0])) {
+        throw Error(fmt::format("{}: run {}: its {} must be a number, got {}", input.plan_key, runs.size() + 1,
+                                input.number_key.empty() ? "number" : input.number_key, py::repr(pair[0]).cast<std::string>()));
+      }
       const auto file = py::str(pair[1]).cast<std::string>();
       runs.push_back({pair[0].cast<double>(), file, file});
     } else {

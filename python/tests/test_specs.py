@@ -111,6 +111,16 @@ def test_bad_keywords_raise_inertest_error(keywords, message):
     assert message in str(raised.value)
 
 
+@pytest.mark.parametrize("number", ["20", None])
+def test_a_run_whose_number_is_no_number_raises_inertest_error(tmp_path, number):
+    """A temperature read by Python's csv module is a string: an inertest.Error naming the run, not
+    pybind11's RuntimeError 'Unable to cast Python instance'."""
+    points = tmp_path / "points.csv"
+    points.write_text("rate,output\n0,0\n10,30\n-10,-30\n0,0\n")
+    with pytest.raises(inertest.Error, match=r"run: run 1: its temperature_degC must be a number, got "):
+        inertest.scale_factor_temperature(run=[(number, str(points)), (40.0, str(points))])
+
+
 @pytest.mark.parametrize("positive, dtype", [(numpy.array([1.0 + 1.0j]), "complex128"), (True, "bool")])
 def test_samples_of_no_real_numbers_are_refused_naming_their_dtype(positive, dtype):
     """The generated functions' samples pass the arrays' own check: numpy's cast dropped the

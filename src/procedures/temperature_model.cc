@@ -676,12 +676,23 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
       continue;
     }
     const double value = number_cell(cells[1], path, line_number);
+    // A setting in the unit its row states (as the D_ rows): 293.15 K is 20 degC, 2 min is 120 s; a
+    // unit not of its kind is an error at its cell (it was read as degC, s or degC/min, whatever it said).
+    const auto in_unit = [&](const char* unit) {
+      const std::string& stated = cells[2].text;
+      try {
+        if (std::string_view(unit) == "degC" && stated == "K") return value + constants::kAbsoluteZeroDegC;  // absolute
+        return convert(value, stated, unit);
+      } catch (const Error& e) {
+        throw Error(SourceLocation{path, line_number, cells[2].column}, fmt::format("{}: {}", name, e.message()));
+      }
+    };
     if (name == "reference_temperature") {
-      compensation.reference_temperature_degC = value;
+      compensation.reference_temperature_degC = in_unit("degC");
     } else if (name == "rate_window") {
-      compensation.rate_window_s = value;
+      compensation.rate_window_s = in_unit("s");
     } else if (name == "soak_rate") {
-      compensation.soak_rate_degC_per_min = value;
+      compensation.soak_rate_degC_per_min = in_unit("degC/min");
     } else if (name == "order") {
       set_order(value, SourceLocation{path, line_number, cells[1].column});
     } else if (name.starts_with("D_")) {

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <regex>
 
 #include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 #include "inertest/campaign/campaign.h"
@@ -159,6 +161,26 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
     // The same record and windows: the residual stability temperature-model reported.
     EXPECT_NEAR(applied.at("residual_bias_stability").at("value").get<double>(),
                 nlohmann::json::parse(model.out).at("residual_bias_stability").at("value").get<double>(), 1e-6);
+    if (std::string(name) != "coefficients.csv") continue;
+    // The settings of a .csv in the units their rows state (they were read as degC, s and degC/min
+    // whatever the row said: 293.15 K as 293.15 degC made the residual 0.55 deg/h for 0.0098).
+    const std::string exported = testing::read_file(coefficients);
+    const ThermalCompensation restated = read_thermal_compensation(scratch.write(
+        "restated.csv", std::regex_replace(std::regex_replace(std::regex_replace(exported,
+                            std::regex("reference_temperature,([0-9.]+),degC,"), "reference_temperature,293.15,K,"),
+                            std::regex("rate_window,([0-9.]+),s,"), "rate_window,2,min,"),
+                            std::regex("soak_rate,([0-9.]+),degC/min,"), "soak_rate,0.5,K/s,")));
+    EXPECT_NEAR(restated.reference_temperature_degC, 20.0, 1e-12);
+    EXPECT_EQ(restated.rate_window_s, 120.0);
+    EXPECT_EQ(restated.soak_rate_degC_per_min, 30.0);
+    const std::string banana = scratch.write(
+        "banana.csv", std::regex_replace(exported, std::regex("rate_window,([0-9.]+),s,"), "rate_window,2,banana,"));
+    try {
+      read_thermal_compensation(banana);
+      ADD_FAILURE() << "expected an error";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr(banana + ":5:15: rate_window: unknown unit 'banana'"));
+    }
   }
 }
 

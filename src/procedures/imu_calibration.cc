@@ -796,19 +796,42 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
   const std::vector<Motion> motions = motions_of(accelerometer.parameters);
   check_time_gaps(record, motions, result.warnings);
   const ResidualFunction residuals = [&](const Parameters& p) { return direction_residuals(record, motions, p, w.bias); };
-  // The common scale that best turns each gravity direction into the next, searched over nine
-  // decades of output unit per rad/s, starts the fit.
-  Parameters start(9, 0.0);
+  // The scales that best turn each gravity direction into the next start the fit: one magnitude,
+  // searched over twelve decades of rad/s per output unit (a counting MEMS gyro near 1e-4, an
+  // analog one near 70 rad/s per V), with each axis's sign, its polarity (GJB 2426A 5.7), relative to
+  // the accelerometer's (which gravity's magnitude cannot tell: its scale factors are taken
+  // positive). Positive scales alone turned a reversed axis, or an analog gyro, into nonsense.
+  // The magnitudes 1e-8 x 1.1^n (n < 290: to 1e4): every fourth of them for each sign pattern, then
+  // those around the best for its pattern.
+  std::vector<double> magnitudes = {1e-8};
+  while (magnitudes.back() * 1.1 < 1e4) magnitudes.push_back(magnitudes.back() * 1.1);
+  const auto trial_of = [&magnitudes](int signs, int n) {
+    const double k = magnitudes[static_cast<std::size_t>(n)];
+    const auto sign = [signs](int axis) { return (signs >> axis & 1) != 0 ? -1.0 : 1.0; };
+    return Parameters{sign(0) * k, sign(1) * k, sign(2) * k, 0, 0, 0, 0, 0, 0};
+  };
+  const int last_magnitude = static_cast<int>(magnitudes.size()) - 1;
+  constexpr int kCoarse = 4;
   double best = std::numeric_limits<double>::infinity();
-  for (double k = 1e-8; k < 10.0; k *= 1.1) {
-    const Parameters trial = {k, k, k, 0, 0, 0, 0, 0, 0};
-    const double cost = sum_of_squares(residuals(trial));
-    if (cost < best) {
+  int best_signs = 0;
+  int best_n = 0;
+  const auto consider = [&](int signs, int n) {
+    if (const double cost = sum_of_squares(residuals(trial_of(signs, n))); cost < best) {
       best = cost;
-      start = trial;
+      best_signs = signs;
+      best_n = n;
     }
+  };
+  for (int signs = 0; signs < 8; ++signs) {
+    for (int n = 0; n <= last_magnitude; n += kCoarse) consider(signs, n);
   }
-  const Parameters gyro_scales = {start[0], start[0], start[0], 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  const int coarse_n = best_n;
+  for (int n = std::max(0, coarse_n - kCoarse + 1); n <= std::min(last_magnitude, coarse_n + kCoarse - 1); ++n) {
+    consider(best_signs, n);
+  }
+  const Parameters start = trial_of(best_signs, best_n);
+  const double magnitude = std::abs(start[0]);
+  const Parameters gyro_scales = {magnitude, magnitude, magnitude, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   GaussNewtonFit gyro = gauss_newton(residuals, start, gyro_scales, kGyroNames);
   add_shared_covariance(gyro, gyro_scales, accelerometer, w, [&](const Parameters& calibration, const Vector3& bias) {
     return direction_residuals(record, motions_of(calibration), gyro.parameters, bias);
@@ -818,6 +841,14 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
     accepted[i + 1]->direction_residual_rad = std::hypot(gyro.residuals[2 * i], gyro.residuals[2 * i + 1]);
   }
   result.gyro_residual_rms_rad = std::sqrt(sum_of_squares(gyro.residuals) / static_cast<double>(motions.size()));
+  // A good record leaves well under a milliradian; degrees mean the model does not describe it.
+  if (constexpr double kDescribes = 0.05; !(result.gyro_residual_rms_rad <= kDescribes)) {
+    result.warnings.push_back(fmt::format(
+        "the gyro's calibration leaves {:.3g} rad ({:.3g} deg) rms between the gravity directions it predicts across "
+        "the rotations and the accelerometer's: it does not describe this record (a column that is not the axis named, "
+        "the IMU moved during a static, or a gyro the model cannot fit)",
+        result.gyro_residual_rms_rad, result.gyro_residual_rms_rad / constants::kDegree));
+  }
   warn_correlated(gyro, kGyroNames, "gyro", result.warnings);
   if (accelerometer.degrees_of_freedom == 0 || gyro.degrees_of_freedom == 0) {
     result.warnings.emplace_back("as many observations as parameters: the fit is exact and gives no uncertainty (hold "

@@ -72,6 +72,8 @@ ProcedureSpec imu_calibration_spec() {
              "sample is taken as the instantaneous rate at its time stamp.\n"
              "Model input = (I + M) diag(1/scale_factor) (output - bias); M (rad) upper-triangular for the\n"
              "accelerometer, full for the gyro, M[i][j] the lean of sensing axis i toward frame axis j.\n"
+             "The accelerometer's scale factors are taken positive (gravity's magnitude cannot tell a sign);\n"
+             "the gyro's carry their signs, relative to them (a reversed axis is negative).\n"
              "RECORD is a text record or a .mat, HDF5 or TDMS file; --columns names its time (s) and six outputs. --export FILE writes\n"
              "the calibration that `inertest imu-apply` applies.")
       .chinese_title("惯性测量单元多位置标定")

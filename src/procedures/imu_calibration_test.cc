@@ -215,6 +215,36 @@ TEST(ImuCalibration, RecoversEveryParameterWithinItsUncertainty) {
   EXPECT_GT(static_cast<double>(within) / static_cast<double>(z.size()), 0.88);
 }
 
+// A gyro axis of reversed polarity, and an analog gyro (0.0143 V per rad/s): each scale factor with
+// its sign (GJB 2426A 5.7). The search over positive scales of 0.1 to 1e8 per rad/s gave 3.6 count
+// per rad/s and 0.45 rad of misalignment for the first, and nonsense for the second, silently.
+TEST(ImuCalibration, AReversedAxisAndAnAnalogGyroAreFoundWithTheirSigns) {
+  for (const auto& [name, scale_factor, noise] :
+       {std::tuple{"reversed x", Vector3{-6258.0, 6190.0, 6320.0}, 4.0},
+        std::tuple{"analog", Vector3{0.0143, -0.0139, 0.0151}, 1e-5}}) {
+    sim::ImuTumbleOptions options;
+    options.gyro.scale_factor = scale_factor;
+    options.gyro.noise = noise;
+    options.gyro.bias = {0.0, 0.0, 0.0};
+    options.offset = 0.0;
+    options.quantised = false;
+    const ImuCalibrationResult result = calibrate_imu(sim::simulate_imu_tumble(options, 21), {});
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_NEAR(result.gyro.scale_factor[j], scale_factor[j], 5.0 * result.gyro.scale_factor_uncertainty[j])
+          << name << " axis " << j;
+    }
+    EXPECT_LT(result.gyro_residual_rms_rad, 1e-3) << name;
+    EXPECT_TRUE(result.warnings.empty()) << name;
+  }
+  // Gyro columns swapped (y read as x): no calibration describes the record, and the result says so.
+  ImuRecord swapped = tumble(22, 20);
+  std::swap(swapped.gyro[0], swapped.gyro[1]);
+  const ImuCalibrationResult result = calibrate_imu(swapped, {});
+  EXPECT_GT(result.gyro_residual_rms_rad, 0.05);
+  EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(),
+                          [](const std::string& w) { return w.find("does not describe this record") != std::string::npos; }));
+}
+
 TEST(ImuCalibration, AnUnknownOutputUnitIsAParameterError) {
   for (const auto& [parameter, member] : {std::pair{"accelerometer_unit", &ImuCalibrationOptions::accelerometer_unit},
                                           std::pair{"gyro_unit", &ImuCalibrationOptions::gyro_unit}}) {

@@ -116,8 +116,11 @@ ProcedureSpec imu_apply_spec() {
       .compute([](const ProcedureCall& call, Options options) {
         // In a plan, into the campaign's staging directory: beside results.json once every step has run.
         if (!options.output_file.empty()) options.output_file = call.output_path(options.output_file);
-        return apply_imu_calibration(read_imu_calibration(call.files.at("calibration")),
-                                     read_imu_record(call.files.at("record"), options.columns), options);
+        const std::array<TriadCalibration, 2> calibration = read_imu_calibration(call.files.at("calibration"));
+        const ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
+        // A record that stores its units must store the calibration's output units.
+        for (std::size_t triad = 0; triad < 2; ++triad) imu_output_unit(record, triad, calibration[triad].output_unit, false);
+        return apply_imu_calibration(calibration, record, options);
       });
 }
 

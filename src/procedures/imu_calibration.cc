@@ -566,6 +566,24 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
   return triads;
 }
 
+std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given, bool given_is_default) {
+  const std::string& stored = record.stored_units.at(triad);
+  if (stored.empty()) return given;
+  if (given_is_default) return stored;
+  bool same = false;
+  try {
+    same = std::abs(convert(1.0, given, stored) - 1.0) <= 1e-12;
+  } catch (const Error&) {
+    // of another dimension, or a unit inertest does not know: not the stored one
+  }
+  if (!same) {
+    throw Error(at_file(record.source), fmt::format("the {} unit given, {}, contradicts the unit {} the record stores "
+                                                    "for its channels",
+                                                    triad == 0 ? "accelerometer" : "gyro", given, stored));
+  }
+  return stored;
+}
+
 ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
   TextTableOptions options;
   std::string_view rest = columns;
@@ -591,8 +609,26 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
         throw Error(at_file(path), fmt::format("the time does not increase at sample {}", i + 1));
       }
     }
-    return {path, {}, std::move(samples[0]), {std::move(samples[1]), std::move(samples[2]), std::move(samples[3])},
-            {std::move(samples[4]), std::move(samples[5]), std::move(samples[6])}};
+    // The unit each triad's channels store: one for the three, or an error naming them.
+    std::array<std::string, 2> stored_units;
+    for (std::size_t triad = 0; triad < 2; ++triad) {
+      std::vector<std::string> units;
+      for (std::size_t c = 1 + 3 * triad; c < 4 + 3 * triad; ++c) {
+        const ChannelInfo& info = channels->channels()[channels->find(options.columns[c])];
+        units.push_back(info.unit);
+      }
+      if (units[0] != units[1] || units[0] != units[2]) {
+        throw Error(at_file(path), fmt::format("the {} channels store different units ({}): one triad, one output unit",
+                                               triad == 0 ? "accelerometer" : "gyro", fmt::join(units, ", ")));
+      }
+      stored_units[triad] = units[0];
+    }
+    return {path,
+            {},
+            std::move(samples[0]),
+            {std::move(samples[1]), std::move(samples[2]), std::move(samples[3])},
+            {std::move(samples[4]), std::move(samples[5]), std::move(samples[6])},
+            stored_units};
   }
   options.minimum_rows = 2;
   TextTable table = read_text_table(path, options);

@@ -142,7 +142,12 @@ ProcedureSpec imu_calibration_spec() {
                   [](const Result& result) { return residual_curve(result, true); })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
       .compute([](const ProcedureCall& call, const Options& options) {
-        Result result = calibrate_imu(read_imu_record(call.files.at("record"), options.columns), options);
+        const ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
+        Options in_stored_units = options;
+        in_stored_units.accelerometer_unit = imu_output_unit(
+            record, 0, options.accelerometer_unit, options.accelerometer_unit == Options().accelerometer_unit);
+        in_stored_units.gyro_unit = imu_output_unit(record, 1, options.gyro_unit, options.gyro_unit == Options().gyro_unit);
+        Result result = calibrate_imu(record, in_stored_units);
         if (!options.export_file.empty()) {
           write_file_atomically(call.output_path(options.export_file), json_text(calibration_file_json(result), 2) + "\n");
         }

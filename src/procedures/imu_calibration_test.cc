@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <hdf5.h>
+#include <nlohmann/json.hpp>
 
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
@@ -243,6 +245,66 @@ TEST(ImuCalibration, AReversedAxisAndAnAnalogGyroAreFoundWithTheirSigns) {
   EXPECT_GT(result.gyro_residual_rms_rad, 0.05);
   EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(),
                           [](const std::string& w) { return w.find("does not describe this record") != std::string::npos; }));
+}
+
+// The record as h5py writes it: a dataset per column, each with its `units` (a variable-length string).
+void write_hdf5(const std::string& path, const ImuRecord& record, const std::array<const char*, 7>& units) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const std::array<const std::vector<double>*, 7> columns = {&record.time_s,      &record.accelerometer[0],
+                                                             &record.accelerometer[1], &record.accelerometer[2],
+                                                             &record.gyro[0],     &record.gyro[1], &record.gyro[2]};
+  const std::array<const char*, 7> names = {"time", "ax", "ay", "az", "gx", "gy", "gz"};
+  const hid_t text = H5Tcopy(H5T_C_S1);
+  H5Tset_size(text, static_cast<std::size_t>(-1));  // H5T_VARIABLE
+  H5Tset_cset(text, H5T_CSET_UTF8);
+  for (std::size_t c = 0; c < 7; ++c) {
+    const hsize_t count = columns[c]->size();
+    const hid_t space = H5Screate_simple(1, &count, nullptr);
+    const hid_t dataset = H5Dcreate2(file, names[c], H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(dataset, H5T_NATIVE_DOUBLE, 0, 0, H5P_DEFAULT, columns[c]->data());  // 0: H5S_ALL
+    const hid_t scalar = H5Screate(H5S_SCALAR);
+    const hid_t attribute = H5Acreate2(dataset, "units", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(attribute, text, &units[c]);
+    H5Aclose(attribute);
+    H5Sclose(scalar);
+    H5Dclose(dataset);
+    H5Sclose(space);
+  }
+  H5Tclose(text);
+  H5Fclose(file);
+}
+
+// An IMU that logs m/s^2 and deg/s and says so in its file: the calibration is in those units (it
+// reported 57.3 count/(rad/s)), and a unit given that contradicts them is an error naming both.
+TEST(ImuCalibration, TheUnitsARecordStoresAreItsOutputUnits) {
+  sim::ImuTumbleOptions options;
+  options.accelerometer.scale_factor = {1.0, 1.0, 1.0};
+  options.accelerometer.bias = {0.01, -0.02, 0.03};
+  options.accelerometer.noise = 0.002;
+  options.gyro.scale_factor = {180.0 / std::numbers::pi, 180.0 / std::numbers::pi, 180.0 / std::numbers::pi};
+  options.gyro.bias = {0.1, -0.05, 0.02};
+  options.gyro.noise = 0.01;
+  options.offset = 0.0;
+  options.quantised = false;
+  const testing::ScratchDirectory scratch;
+  const std::string path = scratch.path() + "/imu.h5";
+  write_hdf5(path, sim::simulate_imu_tumble(options, 23), {"s", "m/s^2", "m/s^2", "m/s^2", "deg/s", "deg/s", "deg/s"});
+  const std::vector<std::string> command = {"imu-calibration", path, "--columns", "time,ax,ay,az,gx,gy,gz", "--json"};
+  const testing::CliRun run = testing::run_cli(command);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json gyro = nlohmann::json::parse(run.out).at("gyro").at("scale_factor");
+  EXPECT_EQ(gyro.at("unit"), "deg/s/(rad/s)");
+  EXPECT_NEAR(gyro.at("value").at(0).get<double>(), 180.0 / std::numbers::pi, 0.05);
+  EXPECT_EQ(nlohmann::json::parse(run.out).at("accelerometer").at("scale_factor").at("unit"), "m/s^2/(m/s^2)");
+  std::vector<std::string> contradicting = command;
+  contradicting.insert(contradicting.end(), {"--gyro-unit", "rad/s"});
+  const testing::CliRun refused = testing::run_cli(contradicting);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, ::testing::HasSubstr(path + ": the gyro unit given, rad/s, contradicts the unit deg/s the "
+                                                         "record stores for its channels"));
+  write_hdf5(path, sim::simulate_imu_tumble(options, 23), {"s", "m/s^2", "m/s^2", "m/s^2", "deg/s", "rad/s", "deg/s"});
+  EXPECT_THAT(testing::run_cli(command).err,
+              ::testing::HasSubstr("the gyro channels store different units (deg/s, rad/s, deg/s)"));
 }
 
 TEST(ImuCalibration, AnUnknownOutputUnitIsAParameterError) {

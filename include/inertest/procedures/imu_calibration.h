@@ -48,6 +48,9 @@ struct ImuRecord {
   std::vector<double> time_s;
   std::array<std::vector<double>, 3> accelerometer;
   std::array<std::vector<double>, 3> gyro;
+  // The output unit a record of named channels stores for each triad's channels (accelerometer,
+  // gyro; "" where none is stored), as imu_output_unit takes it.
+  std::array<std::string, 2> stored_units;
 };
 
 struct ImuCalibrationOptions {
@@ -121,6 +124,12 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path);
 // gy, gz, by header name or 1-based position): a text record, or a record of named channels (MAT,
 // HDF5, TDMS; io/channel_record.h). Errors name the file, line and column (or channel).
 ImuRecord read_imu_record(const std::string& path, const std::string& columns);
+
+// The output unit of the record's triad (0 the accelerometer, 1 the gyro): the unit its channels
+// store, else `given`. A stored unit replaces a `given` that is only a default; another `given` that
+// is not the stored unit is an Error naming both (a deg/s gyro calibrated as count reported 57.3
+// count/(rad/s)).
+std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given, bool given_is_default);
 
 struct StaticDetection {
   std::vector<StaticInterval> intervals;

@@ -712,6 +712,22 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
   return compensation;
 }
 
+namespace {
+
+// The offset that takes a temperature column to degC by the unit its name states after a '_' or in
+// brackets ("coil_K", "chamber [K]": -273.15; "coil_degC", "T [°C]", a sensor's name "T_1" or
+// "coil_top": 0). A temperature in kelvin read as degC put T_ref at 20 K and D_0 100 times off.
+double offset_to_degC(const std::string& name) {
+  const std::size_t cut = name.find_last_of("_[(");
+  if (cut == std::string::npos) return 0.0;
+  std::string unit = name.substr(cut + 1);
+  while (!unit.empty() && (unit.back() == ']' || unit.back() == ')' || unit.back() == ' ')) unit.pop_back();
+  while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
+  return unit == "K" ? constants::kAbsoluteZeroDegC : 0.0;
+}
+
+}  // namespace
+
 ThermalRecord read_thermal_record(const std::string& path, const std::string& time_column,
                                   const std::string& output_column, const std::vector<std::string>& temperature_columns) {
   TextTableOptions table_options;
@@ -722,6 +738,9 @@ ThermalRecord read_thermal_record(const std::string& path, const std::string& ti
   record.time_s = take_time_column_s(table, 0);
   record.output = std::move(table.columns[1]);
   for (std::size_t s = 0; s < temperature_columns.size(); ++s) {
+    if (const double offset = offset_to_degC(table.names[s + 2]); offset != 0.0) {
+      for (double& t : table.columns[s + 2]) t += offset;
+    }
     // A sensor's fault code (-999) or a typo is no temperature: it bent the model silently.
     const std::vector<double>& temperatures = table.columns[s + 2];
     for (std::size_t i = 0; i < temperatures.size(); ++i) {

@@ -184,6 +184,35 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
   }
 }
 
+// A temperature column whose name states kelvin ("coil_K", "chamber [K]") is read in kelvin: the
+// same record in K gives the same model (it was read as degC: T_ref at 20 K, D_0 2.14 for 0.02 deg/h).
+TEST(TemperatureModel, ATemperatureColumnInKelvinIsReadSo) {
+  const sim::ThermalGyroParameters gyro;
+  sim::Random random(5);
+  const sim::ThermalRecordSamples samples = sim::simulate_thermal_record(short_chamber(), gyro, random);
+  const testing::ScratchDirectory scratch;
+  const std::string celsius = sim::thermal_record_csv(samples);
+  // The same record with its coil temperature in kelvin, named so.
+  std::string kelvin = "time,output,coil [K],chamber\n";
+  for (std::size_t i = 0; i < samples.time_s.size(); ++i) {
+    kelvin += fmt::format("{},{},{},{}\n", samples.time_s[i], samples.output[i], samples.coil_degC[i] + 273.15,
+                          samples.chamber_degC[i]);
+  }
+  const auto model = [&](const std::string& name, const std::string& text, const std::string& column) {
+    const testing::CliRun run = testing::run_cli({"temperature-model", scratch.write(name, text), "--temperature-column",
+                                                  column, "--scale-factor", "36000", "--json"});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out);
+  };
+  const nlohmann::json in_celsius = model("c.csv", celsius, "coil");
+  const nlohmann::json in_kelvin = model("k.csv", kelvin, "coil [K]");
+  for (const auto& [name, figure] : in_celsius.at("bias_coefficients").items()) {
+    EXPECT_NEAR(in_kelvin.at("bias_coefficients").at(name).at("value").get<double>(), figure.at("value").get<double>(),
+                1e-6 * std::abs(figure.at("value").get<double>()) + 1e-12)
+        << name;
+  }
+}
+
 // A sensor's fault code in one row (-999) bent the model silently; it is an error at its cell.
 TEST(TemperatureModel, ATemperatureBelowAbsoluteZeroIsAnErrorAtItsCell) {
   const testing::ScratchDirectory scratch;

@@ -98,12 +98,17 @@ std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input,
     if (py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item)) {
       const auto pair = item.cast<py::sequence>();
       if (pair.size() != 2) throw Error(fmt::format("{}: a run is (number, path)", input.plan_key));
-      if (!is_number(pair[0])) {
+      // A real number: Python's or numpy's float or integer (not a bool, a complex or a string).
+      const py::module_ numpy = py::module_::import("numpy");
+      const bool real = !py::isinstance<py::bool_>(pair[0]) &&
+                        (py::isinstance<py::float_>(pair[0]) || py::isinstance<py::int_>(pair[0]) ||
+                         py::isinstance(pair[0], numpy.attr("floating")) || py::isinstance(pair[0], numpy.attr("integer")));
+      if (!real) {
         throw Error(fmt::format("{}: run {}: its {} must be a number, got {}", input.plan_key, runs.size() + 1,
                                 input.number_key.empty() ? "number" : input.number_key, py::repr(pair[0]).cast<std::string>()));
       }
       const auto file = py::str(pair[1]).cast<std::string>();
-      runs.push_back({pair[0].cast<double>(), file, file});
+      runs.push_back({py::float_(pair[0]).cast<double>(), file, file});
     } else {
       if (!input.number_key.empty()) {
         throw Error(fmt::format("{}: each run is ({}, path)", input.plan_key, input.number_key));

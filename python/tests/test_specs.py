@@ -111,7 +111,7 @@ def test_bad_keywords_raise_inertest_error(keywords, message):
     assert message in str(raised.value)
 
 
-@pytest.mark.parametrize("number", ["20", None])
+@pytest.mark.parametrize("number", ["20", None, 20 + 0j, numpy.bool_(True), True])
 def test_a_run_whose_number_is_no_number_raises_inertest_error(tmp_path, number):
     """A temperature read by Python's csv module is a string: an inertest.Error naming the run, not
     pybind11's RuntimeError 'Unable to cast Python instance'."""

@@ -68,10 +68,11 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
     for (std::size_t i = 0; i < record.time_s.size(); ++i) {
       const Vector3 a = calibration[0].apply(sample(record.accelerometer, i));
       const Vector3 w = calibration[1].apply(sample(record.gyro, i));
-      // The time as read, to the last digit (epoch stamps of 1.7e9 s at 9 digits were 100 s apart);
-      // the calibrated samples to 9 digits, beyond any IMU's resolution.
-      text += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", record.time_s[i], a[0], a[1], a[2], w[0],
-                          w[1], w[2]);
+      // The time to 16 digits, a microsecond of an epoch stamp (at 9 digits, 1.7e9 s stamps were 100 s
+      // apart), without the last bit's noise of a converted one (1.4000000000000001); the calibrated
+      // samples to 9 digits, beyond any IMU's resolution.
+      text += fmt::format("{:.16g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", record.time_s[i], a[0], a[1], a[2],
+                          w[0], w[1], w[2]);
     }
     write_file_atomically(options.output_file, text);
   }
@@ -118,9 +119,25 @@ ProcedureSpec imu_apply_spec() {
         if (!options.output_file.empty()) options.output_file = call.output_path(options.output_file);
         const std::array<TriadCalibration, 2> calibration = read_imu_calibration(call.files.at("calibration"));
         const ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
-        // A record that stores its units must store the calibration's output units.
-        for (std::size_t triad = 0; triad < 2; ++triad) imu_output_unit(record, triad, calibration[triad].output_unit, false);
-        return apply_imu_calibration(calibration, record, options);
+        // A record that stores its units must store the calibration's output units; a calibration in
+        // count (the label of every calibration made before records' units were read) is applied to
+        // the record's samples as they are, and said.
+        std::vector<std::string> warnings;
+        for (std::size_t triad = 0; triad < 2; ++triad) {
+          const std::string& unit = calibration[triad].output_unit;
+          if (unit == ImuCalibrationOptions().gyro_unit && !record.stored_units[triad].empty() &&
+              unit != record.stored_units[triad]) {
+            warnings.push_back(fmt::format("the calibration's {} output unit is count, the record's {}: its figures are "
+                                           "applied to the samples as they are (imu-calibration now calibrates in the "
+                                           "record's unit)",
+                                           triad == 0 ? "accelerometer" : "gyro", record.stored_units[triad]));
+          } else {
+            imu_output_unit(record, triad, unit, false);
+          }
+        }
+        ImuApplyResult result = apply_imu_calibration(calibration, record, options);
+        result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
+        return result;
       });
 }
 

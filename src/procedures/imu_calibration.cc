@@ -566,17 +566,24 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
   return triads;
 }
 
+namespace {
+
+// deg/s and °/s are one unit; another dimension, or a unit inertest does not know, is another.
+bool same_unit(const std::string& a, const std::string& b) {
+  try {
+    return std::abs(convert(1.0, a, b) - 1.0) <= 1e-12;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given, bool given_is_default) {
   const std::string& stored = record.stored_units.at(triad);
   if (stored.empty()) return given;
   if (given_is_default) return stored;
-  bool same = false;
-  try {
-    same = std::abs(convert(1.0, given, stored) - 1.0) <= 1e-12;
-  } catch (const Error&) {
-    // of another dimension, or a unit inertest does not know: not the stored one
-  }
-  if (!same) {
+  if (!same_unit(given, stored)) {
     throw Error(at_file(record.source), fmt::format("the {} unit given, {}, contradicts the unit {} the record stores "
                                                     "for its channels",
                                                     triad == 0 ? "accelerometer" : "gyro", given, stored));
@@ -609,19 +616,29 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns) {
         throw Error(at_file(path), fmt::format("the time does not increase at sample {}", i + 1));
       }
     }
-    // The unit each triad's channels store: one for the three, or an error naming them.
+    // The unit each triad's channels store, as inertest knows units (one a channel does not state, or
+    // states in words inertest does not know, NI-DAQmx's "Volts", is none): one for the three, or an
+    // error naming them.
     std::array<std::string, 2> stored_units;
     for (std::size_t triad = 0; triad < 2; ++triad) {
       std::vector<std::string> units;
       for (std::size_t c = 1 + 3 * triad; c < 4 + 3 * triad; ++c) {
         const ChannelInfo& info = channels->channels()[channels->find(options.columns[c])];
-        units.push_back(info.unit);
+        try {
+          Unit::parse(info.unit);
+          units.push_back(info.unit);
+        } catch (const Error&) {
+          units.push_back("");
+        }
       }
-      if (units[0] != units[1] || units[0] != units[2]) {
-        throw Error(at_file(path), fmt::format("the {} channels store different units ({}): one triad, one output unit",
-                                               triad == 0 ? "accelerometer" : "gyro", fmt::join(units, ", ")));
+      for (const std::string& unit : units) {
+        if (unit.empty()) continue;
+        if (!stored_units[triad].empty() && !same_unit(unit, stored_units[triad])) {
+          throw Error(at_file(path), fmt::format("the {} channels store different units ({}): one triad, one output unit",
+                                                 triad == 0 ? "accelerometer" : "gyro", fmt::join(units, ", ")));
+        }
+        if (stored_units[triad].empty()) stored_units[triad] = unit;
       }
-      stored_units[triad] = units[0];
     }
     return {path,
             {},
@@ -884,6 +901,15 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
         "the rotations and the accelerometer's: it does not describe this record (a column that is not the axis named, "
         "the IMU moved during a static, or a gyro the model cannot fit)",
         result.gyro_residual_rms_rad, result.gyro_residual_rms_rad / constants::kDegree));
+  }
+  // Two reversed gyro axes fit the record exactly as one reversed accelerometer axis does (the
+  // gyro's third one): the gravity directions are mirrored, which two sign changes of the rotation undo.
+  if (std::count_if(w.scale_factor.begin(), w.scale_factor.end(), [](double k) { return k < 0.0; }) == 2) {
+    const auto positive = std::find_if(w.scale_factor.begin(), w.scale_factor.end(), [](double k) { return k > 0.0; });
+    result.warnings.push_back(fmt::format(
+        "two of the gyro's scale factors are negative: the record is the same if instead the accelerometer's {} axis "
+        "is reversed (gravity cannot tell); check the accelerometer's polarity",
+        "xyz"[positive - w.scale_factor.begin()]));
   }
   warn_correlated(gyro, kGyroNames, "gyro", result.warnings);
   if (accelerometer.degrees_of_freedom == 0 || gyro.degrees_of_freedom == 0) {

@@ -1,5 +1,6 @@
 #include "inertest/procedures/imu_calibration.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -238,6 +239,14 @@ TEST(ImuCalibration, AReversedAxisAndAnAnalogGyroAreFoundWithTheirSigns) {
     EXPECT_LT(result.gyro_residual_rms_rad, 1e-3) << name;
     EXPECT_TRUE(result.warnings.empty()) << name;
   }
+  // Two reversed gyro axes: the same record as a reversed accelerometer axis, and the result says so.
+  sim::ImuTumbleOptions two;
+  two.gyro.scale_factor = {6258.0, -6190.0, -6320.0};
+  const ImuCalibrationResult mirrored = calibrate_imu(sim::simulate_imu_tumble(two, 21), {});
+  EXPECT_LT(mirrored.gyro.scale_factor[1], 0.0);
+  EXPECT_TRUE(std::any_of(mirrored.warnings.begin(), mirrored.warnings.end(), [](const std::string& w) {
+    return w.find("the accelerometer's x axis is reversed (gravity cannot tell)") != std::string::npos;
+  }));
   // Gyro columns swapped (y read as x): no calibration describes the record, and the result says so.
   ImuRecord swapped = tumble(22, 20);
   std::swap(swapped.gyro[0], swapped.gyro[1]);
@@ -302,6 +311,17 @@ TEST(ImuCalibration, TheUnitsARecordStoresAreItsOutputUnits) {
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_THAT(refused.err, ::testing::HasSubstr(path + ": the gyro unit given, rad/s, contradicts the unit deg/s the "
                                                          "record stores for its channels"));
+  // A calibration labelled count (made before records' units were read) applies, and says so.
+  const testing::CliRun applied = testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"),
+                                                    path, "--columns", "time,ax,ay,az,gx,gy,gz", "--json"});
+  ASSERT_EQ(applied.exit_code, 0) << applied.err;
+  EXPECT_THAT(nlohmann::json::parse(applied.out).at("warnings").dump(),
+              ::testing::HasSubstr("the calibration's gyro output unit is count, the record's deg/s"));
+  // One unit spelled two ways, or stated on one channel only, is the triad's; two units are an error.
+  write_hdf5(path, sim::simulate_imu_tumble(options, 23), {"s", "m/s^2", "", "", "deg/s", "°/s", "deg/s"});
+  const testing::CliRun spelled = testing::run_cli(command);
+  ASSERT_EQ(spelled.exit_code, 0) << spelled.err;
+  EXPECT_EQ(nlohmann::json::parse(spelled.out).at("accelerometer").at("scale_factor").at("unit"), "m/s^2/(m/s^2)");
   write_hdf5(path, sim::simulate_imu_tumble(options, 23), {"s", "m/s^2", "m/s^2", "m/s^2", "deg/s", "rad/s", "deg/s"});
   EXPECT_THAT(testing::run_cli(command).err,
               ::testing::HasSubstr("the gyro channels store different units (deg/s, rad/s, deg/s)"));

@@ -676,10 +676,12 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
       continue;
     }
     const double value = number_cell(cells[1], path, line_number);
-    // A setting in the unit its row states (as the D_ rows): 293.15 K is 20 degC, 2 min is 120 s; a
-    // unit not of its kind is an error at its cell (it was read as degC, s or degC/min, whatever it said).
+    // A setting in the unit its row states (as the D_ rows; none: the export's): 293.15 K is 20 degC,
+    // 2 min is 120 s; a unit not of its kind is an error at its cell (it was read as degC, s or
+    // degC/min, whatever it said).
     const auto in_unit = [&](const char* unit) {
       const std::string& stated = cells[2].text;
+      if (stated.empty()) return value;  // a file written by hand without units: the export's
       try {
         if (std::string_view(unit) == "degC" && stated == "K") return value + constants::kAbsoluteZeroDegC;  // absolute
         return convert(value, stated, unit);

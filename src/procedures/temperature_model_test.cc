@@ -173,6 +173,10 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
     EXPECT_NEAR(restated.reference_temperature_degC, 20.0, 1e-12);
     EXPECT_EQ(restated.rate_window_s, 120.0);
     EXPECT_EQ(restated.soak_rate_degC_per_min, 30.0);
+    // A unit cell left blank (a file written by hand): the export's unit.
+    const ThermalCompensation blank = read_thermal_compensation(scratch.write(
+        "blank.csv", std::regex_replace(exported, std::regex("rate_window,([0-9.]+),s,"), "rate_window,90,,")));
+    EXPECT_EQ(blank.rate_window_s, 90.0);
     const std::string banana = scratch.write(
         "banana.csv", std::regex_replace(exported, std::regex("rate_window,([0-9.]+),s,"), "rate_window,2,banana,"));
     try {

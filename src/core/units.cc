@@ -292,4 +292,13 @@ double convert(double value, std::string_view from, std::string_view to) {
   return convert(value, Unit::parse(from), Unit::parse(to));
 }
 
+bool same_unit(std::string_view first, std::string_view second) {
+  if (first == second) return true;
+  try {
+    return std::abs(convert(1.0, first, second) - 1.0) <= 1e-12;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
 }  // namespace inertest

@@ -182,9 +182,8 @@ std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t
   const SourceLocation where{record.path(), 0, 0};
   if (!info.unit_problem.empty()) throw Error(where, fmt::format("channel '{}': {}", info.name, info.unit_problem));
   if (info.unit.empty()) return given;
-  std::optional<Unit> stored;
   try {
-    stored = Unit::parse(info.unit);
+    Unit::parse(info.unit);
   } catch (const Error&) {
     if (given) return given;  // the stored unit is no unit inertest knows: the given one is taken as is
     throw Error(where, fmt::format("channel '{}' stores the unit '{}', which inertest does not know: give the unit "
@@ -192,13 +191,7 @@ std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t
                                    info.name, info.unit));
   }
   if (!given) return info.unit;
-  bool agree = false;
-  try {
-    agree = std::abs(convert(1.0, Unit::parse(*given), *stored) - 1.0) <= 1e-12;
-  } catch (const Error&) {
-    // of another dimension: they disagree
-  }
-  if (!agree) {
+  if (!same_unit(*given, info.unit)) {
     throw Error(where, fmt::format("the unit given, {}, contradicts the unit {} stored for channel '{}'", *given,
                                    info.unit, info.name));
   }

@@ -278,16 +278,6 @@ class Hdf5Record final : public ChannelRecord {
     info.unit = units.value_or(unit.value_or(""));
   }
 
-  // The same text, or units that convert 1 to 1 ("deg/s" and "°/s").
-  static bool same_unit(const std::string& first, const std::string& second) {
-    if (first == second) return true;
-    try {
-      return std::abs(convert(1.0, Unit::parse(first), Unit::parse(second)) - 1.0) <= 1e-12;
-    } catch (const Error&) {
-      return false;  // not a unit inertest knows, or of another dimension
-    }
-  }
-
   // The sample rate: the numeric attribute `sample_rate_hz`, or `sample_rate` (Hz), or 1 /
   // `wf_increment` (s; one of 0 or less is no rate). One in another form, or two that differ by
   // more than 1e-9 relative (as resolve_sample_rate compares a given rate), is the channel's

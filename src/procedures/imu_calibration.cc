@@ -566,19 +566,6 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
   return triads;
 }
 
-namespace {
-
-// deg/s and °/s are one unit; another dimension, or a unit inertest does not know, is another.
-bool same_unit(const std::string& a, const std::string& b) {
-  try {
-    return std::abs(convert(1.0, a, b) - 1.0) <= 1e-12;
-  } catch (const Error&) {
-    return false;
-  }
-}
-
-}  // namespace
-
 std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given, bool given_is_default) {
   const std::string& stored = record.stored_units.at(triad);
   if (stored.empty()) return given;

@@ -46,6 +46,10 @@ class Unit {
 double convert(double value, const Unit& from, const Unit& to);
 double convert(double value, std::string_view from, std::string_view to);
 
+// The same unit: the same text, or units that convert 1 to 1 ("deg/s" and "°/s"); false for units
+// of other dimensions and for a unit inertest does not know.
+bool same_unit(std::string_view first, std::string_view second);
+
 // Physical constants used across the procedures, each with its source.
 namespace constants {
 inline constexpr double kPi = 3.14159265358979323846;

@@ -76,7 +76,7 @@ struct FigureRow {
   std::optional<std::string> verdict;
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
-  // Where a row of a table a limit names lies in it: the row's plain members ("smoothing_s = 10"),
+  // Where a row of a table a limit names lies in it: the row's plain numbers ("smoothing_s = 10"),
   // none for a figure that is no such row or a row without them.
   std::optional<std::string> abscissa;
 };

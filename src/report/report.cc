@@ -540,8 +540,20 @@ class ReportWriter {
 
   void index_verdicts() {
     for (const auto& v : verdicts()) {
-      verdict_by_figure_[verdict_key(v.value("procedure", ""), normalised_pointer(v.value("figure", "")))] = &v;
+      verdicts_by_figure_[verdict_key(v.value("procedure", ""), normalised_pointer(v.value("figure", "")))].push_back(&v);
     }
+  }
+
+  // The verdicts of one figure, one per limit the plan set on it (two limits on one figure: the
+  // row showed the last one's, PASS beside a failed specification); null for none.
+  const std::vector<const json*>* verdicts_of(const std::string& procedure, const std::string& pointer) const {
+    const auto found = verdicts_by_figure_.find(verdict_key(procedure, pointer));
+    return found == verdicts_by_figure_.end() ? nullptr : &found->second;
+  }
+
+  static bool all_pass(const std::vector<const json*>& figure_verdicts) {
+    return std::all_of(figure_verdicts.begin(), figure_verdicts.end(),
+                       [](const json* v) { return v->value("pass", false); });
   }
 
   std::string overall_verdict() const {
@@ -726,11 +738,11 @@ class ReportWriter {
             continue;
           }
           const std::string pointer = cell_pointer(row, table.columns[c]);
-          const auto found = verdict_by_figure_.find(verdict_key(name, pointer));
+          const auto* figure_verdicts = verdicts_of(name, pointer);
           std::string classes = cell->is_number() || is_figure_node(*cell) ? "num" : "";
           std::string verdict;
-          if (found != verdict_by_figure_.end()) {
-            const bool pass = found->second->value("pass", false);
+          if (figure_verdicts != nullptr) {
+            const bool pass = all_pass(*figure_verdicts);
             classes += classes.empty() ? "" : " ";
             classes += pass ? "pass" : "fail";
             verdict = fmt::format(" data-verdict=\"{}\"", pass ? "pass" : "fail");
@@ -794,21 +806,22 @@ class ReportWriter {
     }
     for (const auto& row : rows) {
       const auto [value, uncertainty] = format_figure(row.figure, labels_);
-      const auto found = verdict_by_figure_.find(verdict_key(name, row.pointer));
-      const json* verdict = found == verdict_by_figure_.end() ? nullptr : found->second;
-      if (group_heading && !row.headline && verdict == nullptr) continue;
-      if (row.in_table && verdict == nullptr) continue;  // shown in its table (write_row_tables)
+      const auto* figure_verdicts = verdicts_of(name, row.pointer);
+      if (group_heading && !row.headline && figure_verdicts == nullptr) continue;
+      if (row.in_table && figure_verdicts == nullptr) continue;  // shown in its table (write_row_tables)
       out_ += fmt::format(
           "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
-          verdict ? fmt::format(" data-verdict=\"{}\"", verdict->value("pass", false) ? "pass" : "fail") : "");
+          figure_verdicts ? fmt::format(" data-verdict=\"{}\"", all_pass(*figure_verdicts) ? "pass" : "fail") : "");
       const std::string note = significance_note(row.figure, labels_);
       out_ += fmt::format("<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", html(row.name),
                           html(value), uncertainty.empty() ? "—" : "± " + html(uncertainty),
                           html(pretty_unit(row.figure.at("unit").get<std::string>()) + (note.empty() ? "" : ", " + note)));
       if (with_limits) {
-        if (verdict) {
-          out_ += fmt::format("<td>{}</td>{}", html(limit_text(*verdict)),
-                              verdict_cell(verdict->value("pass", false), labels_));
+        if (figure_verdicts) {
+          std::vector<std::string> limits;
+          for (const json* v : *figure_verdicts) limits.push_back(limit_text(*v));
+          out_ += fmt::format("<td>{}</td>{}", html(fmt::format("{}", fmt::join(limits, "; "))),
+                              verdict_cell(all_pass(*figure_verdicts), labels_));
         } else {
           out_ += "<td></td><td></td>";
         }
@@ -1000,7 +1013,7 @@ class ReportWriter {
   const json& results_;
   const ReportOptions& options_;
   Labels labels_;
-  std::map<std::string, const json*> verdict_by_figure_;
+  std::map<std::string, std::vector<const json*>> verdicts_by_figure_;
   std::string out_;
   int figure_number_ = 0;
   int section_ = 0;

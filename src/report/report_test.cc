@@ -98,6 +98,26 @@ scale_factor = { min = 4990, max = 5010 }
   EXPECT_THAT(page, HasSubstr(">Specification Kn ≤ 100 ppm<"));  // the limit drawn on the nonlinearity curve
 }
 
+// Two limits on one figure (by key and by pointer, or a hand check's own and the plan's): its rows
+// show both and FAIL when either fails (they showed the last one's, PASS beside a failed limit).
+TEST(Report, AFigureOfTwoLimitsShowsBothAndFailsWhenEitherFails) {
+  ScratchDirectory scratch;
+  for (const char* limits : {"nonlinearity = { max = 1, unit = \"ppm\" }\n\"/nonlinearity\" = { max = 100, unit = \"ppm\" }\n",
+                             "\"/nonlinearity\" = { max = 100, unit = \"ppm\" }\nnonlinearity = { max = 1, unit = \"ppm\" }\n"}) {
+    const auto results = run_plan(scratch, plan_with_limits(limits));
+    const std::string page = render_report(results, {Language::english, "2024-01-02"});
+    // The compliance table: a row per limit; the summary and the results: a row of the figure.
+    std::size_t figure_rows = 0;
+    for (const auto& row : rows_about(page, "/nonlinearity")) {
+      const bool both = row.find("≤ 1 ppm; ≤ 100 ppm") != std::string::npos || row.find("≤ 100 ppm; ≤ 1 ppm") != std::string::npos;
+      figure_rows += both ? 1 : 0;
+      const bool fails = both || row.find("≤ 1 ppm") != std::string::npos;
+      EXPECT_THAT(row, HasSubstr(fails ? "verdict-cell fail\">FAIL" : "verdict-cell pass\">PASS")) << row;
+    }
+    EXPECT_EQ(figure_rows, 2u);
+  }
+}
+
 // A negative figure judged by its magnitude (a max alone) says so beside the limit.
 TEST(Report, AMagnitudeVerdictShowsTheAbsoluteValueAgainstTheLimit) {
   ScratchDirectory scratch;

@@ -1,4 +1,7 @@
 // inertest hand-checks --check "name=...,value=...,unit=...,min=...,max=..." ...
+#include <set>
+#include <string>
+
 #include <fast_float/fast_float.h>
 #include <nlohmann/json.hpp>
 
@@ -25,6 +28,7 @@ double number_of(const std::string& text, const std::string& spec) {
 // "name=Insulation resistance,value=120,unit=Mohm,min=20": key=value pairs separated by commas.
 HandCheck parse_check(const std::string& spec) {
   HandCheck check;
+  std::set<std::string> given;
   std::size_t begin = 0;
   while (begin <= spec.size()) {
     const std::size_t end = std::min(spec.find(',', begin), spec.size());
@@ -33,6 +37,8 @@ HandCheck parse_check(const std::string& spec) {
     if (equals == std::string::npos) throw Error("hand-checks: expected key=value, found '" + pair + "' in --check \"" + spec + "\"");
     const std::string key = pair.substr(0, equals);
     const std::string value = pair.substr(equals + 1);
+    // A key given twice kept its last value: a second unit= turned 120 Mohm into 120 kohm.
+    if (!given.insert(key).second) throw Error("hand-checks: key '" + key + "' given twice in --check \"" + spec + "\"");
     if (key == "name") {
       check.name = value;
     } else if (key == "value") {

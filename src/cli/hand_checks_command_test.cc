@@ -36,6 +36,10 @@ TEST(HandChecksCommand, BadChecksAreErrors) {
   run = run_cli({"hand-checks", "--check", "name=R,colour=red"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("unknown key 'colour'"));
+  // A key twice kept its last value (120 Mohm passed as 120 kohm): an error.
+  run = run_cli({"hand-checks", "--check", "name=R,value=120,unit=Mohm,min=20,unit=kohm"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("key 'unit' given twice in --check"));
   run = run_cli({"hand-checks", "--check", "name=Appearance,value=PASS"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("value 'PASS': a verdict is written pass or fail"));

@@ -62,7 +62,7 @@ ThresholdResult combine(int method, std::vector<ThresholdBranch> branches, doubl
     }
   }
   result.threshold = {largest, "deg/h", std::nullopt};
-  result.zero_output = {zero, "1", std::nullopt};
+  result.zero_output = {zero, options.output_unit, std::nullopt};
   result.branches = std::move(branches);
   return result;
 }

@@ -23,7 +23,6 @@ struct ThresholdInputOptions {
   std::string time_column;
   std::string column;
   std::string format;
-  std::string output_unit = "1";  // a record that stores a rate unit must store the instrument's own
 };
 
 // The rows of a table with the header `first,second` (methods 1 and 2) as points.
@@ -119,15 +118,14 @@ ProcedureSpec threshold_spec() {
                                "with le/be (e.g. f32be)"),
                  &Options::format)
       .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
-                 &Options::output_unit)
+                 &Options::threshold, &ThresholdOptions::output_unit)
       .field({"threshold", FieldRole::headline, "threshold", "阈值", "eqs. (14)-(17)"}, &ThresholdResult::threshold)
       .field({"method", FieldRole::detail, "method", "方法", "5.10.4"}, &ThresholdResult::method)
       .field_from({"criterion_denominator", FieldRole::hidden, "criterion denominator", "判据分母", "eq. (15)"},
                   [](const ThresholdResult& result) { return to_string(result.criterion_denominator); })
       .field_from({"criterion", FieldRole::detail, "criterion", "判据", "eq. (15)"},
                   [](const ThresholdResult& result) { return criterion_text(result.criterion_denominator); })
-      .field_from({"zero_output", FieldRole::detail, "zero output", "零位输出", "5.10.4"},
-                  [](const ThresholdResult& result) { return result.zero_output.value; })
+      .field({"zero_output", FieldRole::detail, "zero output", "零位输出", "5.10.4"}, &ThresholdResult::zero_output)
       .field_from({"branches", FieldRole::table, "candidate per direction", "各方向候选值", "eqs. (14)-(17)"},
                   branches_json)
       .field_from({"clause", FieldRole::hidden, "clause", "条款", ""},
@@ -161,7 +159,7 @@ ProcedureSpec threshold_spec() {
         source.format = options.format;
         ProcedureCall reading;  // the record readers of a timed input, for the unit the record stores
         set_record_readers(reading, source, 4, options.sample_rate_hz, options.time_column);
-        require_raw_output(reading, file, options.output_unit, "method 3 divides the output by K");
+        require_raw_output(reading, file, options.threshold.output_unit, "method 3 divides the output by K");
         const TimedRecord record = read_timed_record(source, options.sample_rate_hz, options.time_column, 4);
         return threshold_rotating(record.time_s, record.output, options.table_rate_deg_s, options.threshold);
       });

@@ -58,6 +58,7 @@ struct ThresholdOptions {
   // zero-rate points, method 2 at the angles where cos β = 0 (IRA east or west), method 3 the mean
   // output over the record (the input averages to zero over whole revolutions).
   std::optional<double> zero_output;
+  std::string output_unit = "1";    // the instrument's output unit: the zero output's
   std::string rate_unit = "deg/s";  // method 1: unit of the table rates
   // ψ, methods 2 and 3 (their input is Ωe cos ψ, eqs. 16-17): required by them, no default (a
   // latitude of 0 assumed unsaid inflated the threshold by 1/cos ψ, +43 % at 45.75 deg N).

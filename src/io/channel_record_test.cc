@@ -69,6 +69,22 @@ TEST(ChannelRecord, MatV5AndV7WrittenByScipy) {
   }
 }
 
+// Two variables of one name, a complex one first (libFuzzer's find): matio reads the first, whose
+// data (two pointers) was read as the second's 8 samples, past its end. It is an error naming the
+// channel.
+TEST(ChannelRecord, MatTwoVariablesOfOneNameAreAnErrorNotAnOverrun) {
+  const std::string path = testing::source_path("fuzz/corpus/mat_record/two_variables_of_one_name_complex_first");
+  const auto record = open_channel_record(path, ChannelRecordFormat::kMat);
+  ASSERT_EQ(record->channels().size(), 2u);
+  ASSERT_TRUE(record->channels()[1].numeric);
+  try {
+    read_channel(*record, 1);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), ::testing::HasSubstr("channel 'rate': the file holds another variable of this name before it"));
+  }
+}
+
 TEST(ChannelRecord, Hdf5WrittenByH5pyWithUnitsRateAndChunks) {
   const auto record = open_channel_record(lab_file("record.h5"), ChannelRecordFormat::kHdf5);
   const std::size_t gyro = record->find(ColumnSelector::parse("/imu/gyro_x"));

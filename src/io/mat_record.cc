@@ -209,6 +209,13 @@ class MatRecord final : public ChannelRecord {
     for (std::size_t i = 1; i < parts.size() && field != nullptr; ++i) {
       field = Mat_VarGetStructFieldByName(const_cast<matvar_t*>(field), parts[i].c_str(), 0);
     }
+    // matio reads a name's first variable: in a file holding two of one name, that may be another
+    // than the channel listed (a complex one, whose data is two pointers, read as samples overran).
+    if (field != nullptr && (field->isComplex != 0 || field->class_type != class_of_[channel])) {
+      throw Error(where, fmt::format("channel '{}': the file holds another variable of this name before it, which is "
+                                     "the one that can be read (rename one of them)",
+                                     info.name));
+    }
     if (field == nullptr || field->data == nullptr || element_count(*field) != info.length ||
         field->nbytes < info.length * Mat_SizeOfClass(field->class_type) ||
         !convert_variable(*field, static_cast<std::size_t>(info.length), loaded_)) {

@@ -102,40 +102,35 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
       ++end;
     }
     const std::size_t first_used = begin + skip;
-    // The samples of [from, end) but the glitches.
-    const auto for_each_kept = [&](std::size_t from, const auto& visit) {
-      auto glitch = std::lower_bound(glitches.begin(), glitches.end(), from);
-      for (std::size_t i = from; i < end; ++i) {
-        if (glitch != glitches.end() && *glitch == i) {
-          ++glitch;
-        } else {
-          visit(i);
-        }
-      }
-    };
+    // One pass over the segment's samples but the glitches (all of them lie inside it): the table
+    // rate over its two halves, and the means over the samples after the settling time.
     // A piece of a slow ramp stays within the tolerance of its running mean for about 2 tol / (its
     // acceleration), long enough to pass for a test point: its table rate moves by about tol across
     // it, where a plateau's halves agree to its noise / sqrt(n).
-    std::size_t kept = 0;
-    if (end - begin >= minimum_samples) for_each_kept(begin, [&](std::size_t) { ++kept; });
-    std::array<CompensatedSum, 2> halves;
-    std::size_t k = 0;
+    const std::size_t kept = end - begin - glitches.size();
     const std::size_t first_count = (kept + 1) / 2;
-    if (kept >= 2) for_each_kept(begin, [&](std::size_t i) { halves[k++ < first_count ? 0 : 1].add(table_rate[i]); });
-    const bool ramp = kept >= 2 && std::abs(halves[1].value() / static_cast<double>(kept - first_count) -
-                                            halves[0].value() / static_cast<double>(first_count)) >
-                                       0.5 * options.rate_tolerance;
-    std::size_t used = 0;
+    std::array<CompensatedSum, 2> halves;
     CompensatedSum rate_used;
     CompensatedSum output_used;
-    if (kept > 0 && !ramp) {
-      for_each_kept(first_used, [&](std::size_t i) {
+    std::size_t used = 0;
+    if (end - begin >= minimum_samples) {
+      auto glitch = glitches.begin();
+      for (std::size_t i = begin, k = 0; i < end; ++i) {
+        if (glitch != glitches.end() && *glitch == i) {
+          ++glitch;
+          continue;
+        }
+        halves[k++ < first_count ? 0 : 1].add(table_rate[i]);
+        if (i < first_used) continue;
         rate_used.add(table_rate[i]);
         output_used.add(output[i]);
         ++used;
-      });
+      }
     }
-    if (used > 0) {
+    const bool ramp = kept >= 2 && std::abs(halves[1].value() / static_cast<double>(kept - first_count) -
+                                            halves[0].value() / static_cast<double>(first_count)) >
+                                       0.5 * options.rate_tolerance;
+    if (used > 0 && !ramp) {
       RateSegment segment;
       segment.first_sample = begin;
       segment.first_used = first_used;

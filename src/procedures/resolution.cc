@@ -42,6 +42,7 @@ ResolutionResult resolution(std::span<const ResolutionStep> steps, const Resolut
                             forward.size(), reverse.size()));
   }
   ResolutionResult result;
+  result.output_unit = options.output_unit;
   double largest = 0.0;
   for (auto* branch_points : {&forward, &reverse}) {
     const std::string name = branch_points == &forward ? "forward" : "reverse";

@@ -11,10 +11,10 @@ namespace {
 
 // Each direction's candidate and every increment with its eq. (18) test.
 nlohmann::json branches_json(const ResolutionResult& result) {
-  return criterion::branches_json(result.branches, [](const ResolutionPoint& p) {
+  return criterion::branches_json(result.branches, [&](const ResolutionPoint& p) {
     return nlohmann::json{{"increment", Figure{p.increment_deg_h, "deg/h", std::nullopt}},
-                          {"expected_output_increment", p.expected_increment},
-                          {"output_increment", p.output_increment},
+                          {"expected_output_increment", Figure{p.expected_increment, result.output_unit, std::nullopt}},
+                          {"output_increment", Figure{p.output_increment, result.output_unit, std::nullopt}},
                           {"relative_error", p.relative_error},
                           {"satisfies", p.satisfies}};
   });
@@ -38,6 +38,8 @@ ProcedureSpec resolution_spec() {
                      .instrument_gives_if(instrument_is_gyro),
                  &ResolutionOptions::scale_factor)
       .parameter(ParameterSpec("rate_unit", "unit of the rate columns"), &ResolutionOptions::rate_unit)
+      .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
+                 &ResolutionOptions::output_unit)
       .field({"resolution", FieldRole::headline, "resolution", "分辨率", "GJB 2426A-2004 5.11.3 f, eq. (18)"},
              &ResolutionResult::resolution)
       .field_from({"branches", FieldRole::table, "candidate per direction", "各方向候选值", "eq. (18)"},

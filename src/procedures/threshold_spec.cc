@@ -37,12 +37,13 @@ std::vector<Point> read_points(const std::string& file, const char* first, const
   return points;
 }
 
-// Each direction's candidate and every input with its 50 % test.
+// Each direction's candidate and every input with its 50 % test, outputs in the zero output's unit.
 nlohmann::json branches_json(const ThresholdResult& result) {
-  return criterion::branches_json(result.branches, [](const ThresholdPoint& p) {
+  const std::string& unit = result.zero_output.unit;  // the instrument's output unit
+  return criterion::branches_json(result.branches, [&](const ThresholdPoint& p) {
     return nlohmann::json{{"input", Figure{p.input_deg_h, "deg/h", std::nullopt}},
-                          {"expected_output", p.expected_output},
-                          {"output", p.output},
+                          {"expected_output", Figure{p.expected_output, unit, std::nullopt}},
+                          {"output", Figure{p.output, unit, std::nullopt}},
                           {"relative_error", p.relative_error},
                           {"satisfies", p.satisfies}};
   });

@@ -30,13 +30,14 @@ struct ResolutionStep {
 struct ResolutionOptions {
   double scale_factor = 0.0;  // K, output units per deg/s (the fitted line of 5.8.1.4)
   std::string rate_unit = "deg/s";
+  std::string output_unit = "1";  // the instrument's output unit: the output increments'
   void validate() const;  // throws Error for a zero scale factor or a unit that is not a rate
 };
 
 struct ResolutionPoint {
   double increment_deg_h = 0.0;  // ΔΩ_j
-  double expected_increment = 0.0;  // ΔF̂_j
-  double output_increment = 0.0;    // ΔF_j
+  double expected_increment = 0.0;  // ΔF̂_j, output_unit
+  double output_increment = 0.0;    // ΔF_j, output_unit
   double relative_error = 0.0;      // left side of eq. (18)
   bool satisfies = false;
 };
@@ -51,6 +52,7 @@ struct ResolutionBranch {
 struct ResolutionResult {
   Figure resolution;  // deg/h
   std::vector<ResolutionBranch> branches;
+  std::string output_unit;  // of the points' output increments
   std::vector<std::string> warnings;
 };
 

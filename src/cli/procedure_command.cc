@@ -50,7 +50,8 @@ std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& param
   std::string text = parameter.doc;
   if (!parameter.unit.empty()) text += ", " + parameter.unit;
   const auto found = spec.defaults.find(parameter.name);
-  if (found != spec.defaults.end() && !found->second.empty()) {  // an empty list is no default to tell
+  // An empty list or text is no default to tell (the parameter's documentation says what is taken).
+  if (found != spec.defaults.end() && !found->second.empty() && found->second != "") {
     text += " (default: " + (found->second.is_string() ? found->second.get<std::string>() : found->second.dump()) + ")";
   }
   return text;

@@ -125,14 +125,14 @@ ProcedureSpec imu_apply_spec() {
         std::vector<std::string> warnings;
         for (std::size_t triad = 0; triad < 2; ++triad) {
           const std::string& unit = calibration[triad].output_unit;
-          if (unit == ImuCalibrationOptions().gyro_unit && !record.stored_units[triad].empty() &&
+          if (unit == kUnstatedOutputUnit && !record.stored_units[triad].empty() &&
               unit != record.stored_units[triad]) {
             warnings.push_back(fmt::format("the calibration's {} output unit is count, the record's {}: its figures are "
                                            "applied to the samples as they are (imu-calibration now calibrates in the "
                                            "record's unit)",
                                            triad == 0 ? "accelerometer" : "gyro", record.stored_units[triad]));
           } else {
-            imu_output_unit(record, triad, unit, false);
+            imu_output_unit(record, triad, unit);
           }
         }
         ImuApplyResult result = apply_imu_calibration(calibration, record, options);

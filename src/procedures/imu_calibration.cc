@@ -468,8 +468,8 @@ void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions
 
 void ImuCalibrationOptions::validate() const {
   // The output units are any the unit parser knows (counts, volts, m/s^2, ...): an unknown one is its error.
-  check_parameter("accelerometer_unit", [&] { Unit::parse(accelerometer_unit); });
-  check_parameter("gyro_unit", [&] { Unit::parse(gyro_unit); });
+  if (!accelerometer_unit.empty()) check_parameter("accelerometer_unit", [&] { Unit::parse(accelerometer_unit); });
+  if (!gyro_unit.empty()) check_parameter("gyro_unit", [&] { Unit::parse(gyro_unit); });
   check_surface_gravity("gravity_m_s2", gravity_m_s2);
   if (!(static_window_s > 0.0)) throw ParameterError("static_window_s", "the moving-variance window must be positive");
   if (!(static_threshold > 1.0)) {
@@ -566,11 +566,10 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
   return triads;
 }
 
-std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given, bool given_is_default) {
+std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given) {
   const std::string& stored = record.stored_units.at(triad);
-  if (stored.empty()) return given;
-  if (given_is_default) return stored;
-  if (!same_unit(given, stored)) {
+  if (stored.empty()) return given.empty() ? kUnstatedOutputUnit : given;
+  if (!given.empty() && !same_unit(given, stored)) {
     throw Error(at_file(record.source), fmt::format("the {} unit given, {}, contradicts the unit {} the record stores "
                                                     "for its channels",
                                                     triad == 0 ? "accelerometer" : "gyro", given, stored));
@@ -694,6 +693,8 @@ StaticDetection detect_static_intervals(const ImuRecord& record, const ImuCalibr
 }
 
 ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibrationOptions& options) {
+  const std::array<std::string, 2> output_units = {imu_output_unit(record, 0, options.accelerometer_unit),
+                                                   imu_output_unit(record, 1, options.gyro_unit)};
   ImuCalibrationResult result;
   StaticDetection detection = detect_static_intervals(record, options);
   result.static_intervals = std::move(detection.intervals);
@@ -787,7 +788,7 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
                     residual, t, std::sqrt(variance), probability);
   }
   TriadCalibration& a = result.accelerometer;
-  a.output_unit = options.accelerometer_unit;
+  a.output_unit = output_units[0];
   a.input_unit = "m/s^2";
   for (std::size_t j = 0; j < 3; ++j) {
     a.bias[j] = accelerometer.parameters[j];
@@ -801,7 +802,7 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
   // The gyro: its bias from the statics, then T K from the gravity directions across each rotation.
   const std::vector<StaticInterval*> accepted = accepted_of(result.static_intervals);
   TriadCalibration& w = result.gyro;
-  w.output_unit = options.gyro_unit;
+  w.output_unit = output_units[1];
   w.input_unit = "rad/s";
   for (std::size_t j = 0; j < 3; ++j) {
     std::vector<double> means;

@@ -93,9 +93,11 @@ ProcedureSpec imu_calibration_spec() {
       .input(InputSpec("record", "IMU record: time and six outputs").read_from_file("RECORD", "file"))
       .parameter(ParameterSpec("columns", "time, ax, ay, az, gx, gy, gz: header names or 1-based positions"),
                  &Options::columns)
-      .parameter(ParameterSpec("accelerometer_unit", "the record's accelerometer output unit"),
+      .parameter(ParameterSpec("accelerometer_unit",
+                               "the record's accelerometer output unit (default: the unit its channels store, else count)"),
                  &Options::accelerometer_unit)
-      .parameter(ParameterSpec("gyro_unit", "the record's gyro output unit"), &Options::gyro_unit)
+      .parameter(ParameterSpec("gyro_unit", "the record's gyro output unit (default: the unit its channels store, else count)"),
+                 &Options::gyro_unit)
       .parameter(ParameterSpec("gravity_m_s2", "local gravity")
                      .unit_is("m/s^2")
                      .command_line_name_is("gravity")
@@ -143,11 +145,7 @@ ProcedureSpec imu_calibration_spec() {
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
       .compute([](const ProcedureCall& call, const Options& options) {
         const ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
-        Options in_stored_units = options;
-        in_stored_units.accelerometer_unit = imu_output_unit(
-            record, 0, options.accelerometer_unit, options.accelerometer_unit == Options().accelerometer_unit);
-        in_stored_units.gyro_unit = imu_output_unit(record, 1, options.gyro_unit, options.gyro_unit == Options().gyro_unit);
-        Result result = calibrate_imu(record, in_stored_units);
+        Result result = calibrate_imu(record, options);
         if (!options.export_file.empty()) {
           write_file_atomically(call.output_path(options.export_file), json_text(calibration_file_json(result), 2) + "\n");
         }

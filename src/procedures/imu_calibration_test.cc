@@ -305,12 +305,16 @@ TEST(ImuCalibration, TheUnitsARecordStoresAreItsOutputUnits) {
   EXPECT_EQ(gyro.at("unit"), "deg/s/(rad/s)");
   EXPECT_NEAR(gyro.at("value").at(0).get<double>(), 180.0 / std::numbers::pi, 0.05);
   EXPECT_EQ(nlohmann::json::parse(run.out).at("accelerometer").at("scale_factor").at("unit"), "m/s^2/(m/s^2)");
-  std::vector<std::string> contradicting = command;
-  contradicting.insert(contradicting.end(), {"--gyro-unit", "rad/s"});
-  const testing::CliRun refused = testing::run_cli(contradicting);
-  EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_THAT(refused.err, ::testing::HasSubstr(path + ": the gyro unit given, rad/s, contradicts the unit deg/s the "
-                                                         "record stores for its channels"));
+  // count, given, contradicts too: it is the default only of a record that stores no unit.
+  for (const char* given : {"rad/s", "count"}) {
+    std::vector<std::string> contradicting = command;
+    contradicting.insert(contradicting.end(), {"--gyro-unit", given});
+    const testing::CliRun refused = testing::run_cli(contradicting);
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_THAT(refused.err, ::testing::HasSubstr(fmt::format("{}: the gyro unit given, {}, contradicts the unit deg/s "
+                                                              "the record stores for its channels",
+                                                              path, given)));
+  }
   // A calibration labelled count (made before records' units were read) applies, and says so.
   const testing::CliRun applied = testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"),
                                                     path, "--columns", "time,ax,ay,az,gx,gy,gz", "--json"});

@@ -53,10 +53,14 @@ struct ImuRecord {
   std::array<std::string, 2> stored_units;
 };
 
+// The output unit of a triad whose record stores none and whose options give none.
+inline constexpr const char* kUnstatedOutputUnit = "count";
+
 struct ImuCalibrationOptions {
   std::string columns = "time_s,ax,ay,az,gx,gy,gz";  // time, accelerometer x y z, gyro x y z
-  std::string accelerometer_unit = "count";          // the record's accelerometer output unit
-  std::string gyro_unit = "count";                   // the record's gyro output unit
+  // The record's output units; "" (the default): the unit its channels store, else kUnstatedOutputUnit.
+  std::string accelerometer_unit;
+  std::string gyro_unit;
   double gravity_m_s2 = constants::kStandardGravity;  // the site's gravity magnitude
   double static_window_s = 1.0;      // the moving-variance window
   double static_threshold = 6.0;     // the threshold, as a multiple of the quietest windows' variance
@@ -125,11 +129,10 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path);
 // HDF5, TDMS; io/channel_record.h). Errors name the file, line and column (or channel).
 ImuRecord read_imu_record(const std::string& path, const std::string& columns);
 
-// The output unit of the record's triad (0 the accelerometer, 1 the gyro): the unit its channels
-// store, else `given`. A stored unit replaces a `given` that is only a default; another `given` that
-// is not the stored unit is an Error naming both (a deg/s gyro calibrated as count reported 57.3
-// count/(rad/s)).
-std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given, bool given_is_default);
+// The output unit of the record's triad (0 the accelerometer, 1 the gyro): `given`, else the unit its
+// channels store, else kUnstatedOutputUnit. A `given` that is not the stored unit is an Error naming
+// both (a deg/s gyro calibrated as count reported 57.3 count/(rad/s)).
+std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given);
 
 struct StaticDetection {
   std::vector<StaticInterval> intervals;

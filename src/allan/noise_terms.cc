@@ -38,6 +38,13 @@ void check_points(std::span<const double> tau_s, std::span<const double> values,
     if (!(tau_s[i] > 0.0) || !(values[i] > 0.0) || !(edf[i] > 0.0)) {
       throw Error("noise identification needs positive tau, deviations and edf (point " + std::to_string(i + 1) + ")");
     }
+    // The model's terms go as tau^-2 .. tau^2, and the fit runs in units of the shortest tau: an
+    // averaging time whose square a double cannot hold (a sample rate of 1e300 Hz) gave inf there.
+    if (!std::isnormal(tau_s[i] * tau_s[i]) || !std::isnormal(1.0 / (tau_s[i] * tau_s[i]))) {
+      throw Error(fmt::format("noise identification: the averaging time {:g} s (point {}) is beyond the range whose "
+                              "square a double holds (about 1e-154 to 1e154 s): is the sample rate in Hz?",
+                              tau_s[i], i + 1));
+    }
     // The fit range drops the shortest taus first and the slopes pair neighbours: in another order
     // the same curve gave other figures.
     if (i > 0 && !(tau_s[i] > tau_s[i - 1])) {
@@ -477,8 +484,11 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
   options.validate();
   const double t0 = options.sample_interval_s > 0.0 ? options.sample_interval_s
                                                     : *std::min_element(tau_s.begin(), tau_s.end());
+  // The fit runs with t0 as its unit of time (taus of 1, 2, 4 ...), and its coefficients A_p are
+  // turned back into seconds by t0^-p: in seconds, taus far from 1 s (a rate of 1e-100 Hz) gave
+  // columns tau^-2 and tau^2 so unlike that the fit lost 7 % of N.
   PointSet all;
-  all.tau_s.assign(tau_s.begin(), tau_s.end());
+  for (double tau : tau_s) all.tau_s.push_back(tau / t0);
   // The fit runs on the variances divided by the largest: the model is linear in its coefficients,
   // so they and their uncertainties are the scaled fit's times `scale`, and the covariance of the
   // points (of the order of the squared variances) neither overflows nor underflows for records of
@@ -493,7 +503,7 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
   if (tau_s.size() <= kMostCorrelatedPoints) {
     for (std::size_t i = 0; i < tau_s.size(); ++i) {
       all.moments.emplace_back();
-      for (std::size_t j = 0; j <= i; ++j) all.moments[i].push_back(shared_lag_moments(t0, all.spans[i], all.spans[j]));
+      for (std::size_t j = 0; j <= i; ++j) all.moments[i].push_back(shared_lag_moments(1.0, all.spans[i], all.spans[j]));
     }
   }
   NoiseTerms terms;
@@ -607,13 +617,14 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       TermSpec{&NoiseTerms::rate_ramp, 2.0, units_for(input_unit, 2)}};
   for (Eigen::Index j = 0; j < kTerms; ++j) {
     const auto k = static_cast<std::size_t>(j);
-    terms.coefficients[k] = scale * fit.a[k];
+    const double to_seconds = scale * std::pow(t0, static_cast<double>(2 - j));  // A_p = scale * a_p * t0^-p
+    terms.coefficients[k] = to_seconds * fit.a[k];
     const TermSpec& spec = specs[k];
     const auto place = std::find(columns.begin(), columns.end(), j);
     terms.identified[k] = place != columns.end();
     if (terms.identified[k]) {
       const auto c = place - columns.begin();
-      terms.coefficient_uncertainties[k] = scale * std::sqrt(inflation * free_covariance(c, c));
+      terms.coefficient_uncertainties[k] = to_seconds * std::sqrt(inflation * free_covariance(c, c));
       terms.*spec.figure = figure_of(terms.coefficients[k], terms.coefficient_uncertainties[k], spec.c, spec.units);
       terms.significant[k] = terms.coefficients[k] >= kSignificance * terms.coefficient_uncertainties[k];
       if (terms.significant[k]) continue;
@@ -648,9 +659,9 @@ NoiseTerms fit_noise_terms(std::span<const double> tau_s, std::span<const double
       bound = next_bound;
       if (settled) break;
     }
-    terms.upper_bounds[k] = figure_of(scale * bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
+    terms.upper_bounds[k] = figure_of(to_seconds * bound, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
     if (!terms.identified[k]) {
-      terms.coefficient_uncertainties[k] = scale * sigma;
+      terms.coefficient_uncertainties[k] = to_seconds * sigma;
       terms.*spec.figure = figure_of(0.0, std::numeric_limits<double>::quiet_NaN(), spec.c, spec.units);
     }
   }

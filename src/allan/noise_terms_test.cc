@@ -98,6 +98,30 @@ TEST(NoiseTerms, FitScalesWithTheRecordAtAnyMagnitude) {
   }
 }
 
+// The same curve in another unit of time (tau' = s tau, a sample rate given in kHz or mHz): A_p
+// becomes A_p s^-p, so N grows as sqrt(s) and K falls as 1/sqrt(s). In seconds the fit lost 7 % of N
+// at s = 1e100 and crashed beyond 1e154, where tau^2 is no double: that is now an error.
+TEST(NoiseTerms, FitIsTheSameInAnyUnitOfTime) {
+  const Curve curve = exact_curve({0.0, 1.0, 0.0, 1e-4, 0.0}, 0.1, 1e4);
+  const NoiseTerms unit = fit_noise_terms(curve.tau, curve.variance, curve.edf, "deg/h");
+  for (double s : {1e-100, 1e-20, 1e30, 1e100}) {
+    Curve scaled = curve;
+    for (double& tau : scaled.tau) tau *= s;
+    const NoiseTerms terms = fit_noise_terms(scaled.tau, scaled.variance, scaled.edf, "deg/h");
+    EXPECT_EQ(terms.identified, unit.identified) << s;
+    EXPECT_NEAR_RELATIVE(terms.angle_random_walk.value, std::sqrt(s) * unit.angle_random_walk.value, 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(*terms.angle_random_walk.uncertainty, std::sqrt(s) * *unit.angle_random_walk.uncertainty, 1e-9)
+        << s;
+    EXPECT_NEAR_RELATIVE(terms.rate_random_walk.value, unit.rate_random_walk.value / std::sqrt(s), 1e-9) << s;
+    EXPECT_NEAR_RELATIVE(terms.upper_bounds[2]->value, unit.upper_bounds[2]->value, 1e-9) << s;
+  }
+  for (double s : {1e-160, 1e160}) {
+    Curve scaled = curve;
+    for (double& tau : scaled.tau) tau *= s;
+    EXPECT_THROW(fit_noise_terms(scaled.tau, scaled.variance, scaled.edf, "deg/h"), Error) << s;
+  }
+}
+
 // A curve that eq. (30) describes from 1 s on, bent below it (as an anti-alias filter does: the
 // deviation at 0.125..0.5 s falls short of the white-noise line): the automatic range drops the
 // bent taus and says why; a user range is taken as given.

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -99,10 +100,11 @@ void accumulate(Parsed& into, const Parsed& term, int half_power) {
   }
 }
 
-Parsed named(std::string_view name, std::string_view whole) {
+// The unit of one name exactly as written, or nullopt.
+std::optional<Parsed> exactly_named(std::string_view name) {
   const auto& table = simple_units();
   if (auto it = table.find(name); it != table.end()) {
-    return {it->second.factor, dimension_of(it->second.base, it->second.power)};
+    return Parsed{it->second.factor, dimension_of(it->second.base, it->second.power)};
   }
   Parsed p;
   auto add = [&p](Dimension::Base base, int half) { p.dimension.half_powers[base] += half; };
@@ -125,6 +127,56 @@ Parsed named(std::string_view name, std::string_view whole) {
     add(Dimension::kVoltage, 2);
     add(Dimension::kCurrent, -2);
     return p;
+  }
+  // Rates as loggers' headers and data sheets abbreviate them.
+  if (name == "rpm" || name == "dps") {
+    p.factor = name == "rpm" ? 2.0 * kPi / 60.0 : kDegree;
+    add(Dimension::kAngle, 2);
+    add(Dimension::kTime, -2);
+    return p;
+  }
+  return std::nullopt;
+}
+
+// The names a logger or a data sheet spells out, as the table names them.
+std::string_view spelled_out(std::string_view name) {
+  static const std::unordered_map<std::string_view, std::string_view> names = {
+      {"degree", "deg"}, {"degrees", "deg"}, {"radian", "rad"}, {"radians", "rad"}, {"second", "s"},
+      {"seconds", "s"},  {"minute", "min"},  {"minutes", "min"}, {"hour", "h"},     {"hours", "h"},
+      {"volt", "V"},     {"volts", "V"}};
+  const auto it = names.find(name);
+  return it == names.end() ? name : it->second;
+}
+
+std::string lower(std::string_view text) {
+  std::string lowered(text);
+  for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lowered;
+}
+
+// A unit name: as written; spelled out (degrees); in capitals (DEG/S, as HDF5 and TDMS files store
+// them: the one known name of any case, none when two differ only in case); or a name and its whole
+// power run together (s2 in m/s2). An unknown name is an Error naming it: a unit file's header or a
+// channel's unit taken as another, or as none, gave figures 3600 times off.
+Parsed named(std::string_view name, std::string_view whole) {
+  if (const auto exact = exactly_named(spelled_out(name))) return *exact;
+  std::optional<std::string_view> any_case;
+  bool ambiguous = false;
+  const std::string lowered = lower(name);
+  const auto consider = [&](std::string_view known) {
+    if (lower(known) != lowered) return;
+    if (any_case && exactly_named(*any_case)->factor != exactly_named(known)->factor) ambiguous = true;
+    any_case = known;
+  };
+  for (const auto& entry : simple_units()) consider(entry.first);
+  for (std::string_view known : {"g", "mg", "ug", "W", "mW", "ohm", "kohm", "Mohm", "rpm", "dps"}) consider(known);
+  if (any_case && !ambiguous) return *exactly_named(*any_case);
+  if (const std::string_view spelled = spelled_out(lowered); spelled != lowered) return *exactly_named(spelled);
+  const std::size_t digits = name.find_first_of("0123456789");
+  if (digits > 0 && digits + 1 == name.size()) {  // one digit: s2, not a number's digits
+    Parsed powered;
+    accumulate(powered, named(name.substr(0, digits), whole), 2 * std::stoi(std::string(name.substr(digits))));
+    return powered;
   }
   throw Error("unknown unit '" + std::string(name) + "' in '" + std::string(whole) +
               "' (known: rad, deg, arcsec, s, h, Hz, g, V, mV, A, pulse, ppm, %, ...)");

@@ -35,7 +35,12 @@ INSTANTIATE_TEST_SUITE_P(
                       ConversionCase{"Hz", "1/s", 10.0, 10.0}, ConversionCase{"kHz", "Hz", 2.0, 2000.0},
                       ConversionCase{"pulse/s/(deg/s)", "pulse/deg", 4.0, 4.0},
                       ConversionCase{"Mohm", "ohm", 2.0, 2e6}, ConversionCase{"deg/h/g^2", "deg/h/g/g", 1.0, 1.0},
-                      ConversionCase{"arcmin", "arcsec", 1.0, 60.0}, ConversionCase{"rev", "deg", 1.0, 360.0}));
+                      ConversionCase{"arcmin", "arcsec", 1.0, 60.0}, ConversionCase{"rev", "deg", 1.0, 360.0},
+                      // as loggers and data sheets write them (HDF5 units, TDMS unit_string, headers)
+                      ConversionCase{"DEG/S", "deg/h", 1.0, 3600.0}, ConversionCase{"Deg/s", "deg/s", 1.0, 1.0},
+                      ConversionCase{"degrees/second", "deg/s", 1.0, 1.0}, ConversionCase{"deg/hour", "deg/h", 1.0, 1.0},
+                      ConversionCase{"rpm", "deg/s", 1.0, 6.0}, ConversionCase{"dps", "deg/h", 1.0, 3600.0},
+                      ConversionCase{"m/s2", "m/s^2", 1.0, 1.0}, ConversionCase{"Volts", "mV", 1.0, 1000.0}));
 
 TEST(Units, IncompatibleDimensionsAreAnError) {
   EXPECT_THROW(convert(1.0, "deg/h", "deg"), Error);
@@ -72,14 +77,14 @@ TEST(Units, BareTemperaturesAreNotConvertedCompoundOnesAre) {
 }
 
 TEST(Units, UnknownNamesAreAnErrorNotAGuess) {
-  for (const char* text : {"degs/h", "furlong", "deg//h", "", "deg^x", "sqrt(h", "deg/"}) {
+  for (const char* text : {"degs/h", "furlong", "deg//h", "", "deg^x", "sqrt(h", "deg/", "s22", "x2"}) {
     EXPECT_THROW(Unit::parse(text), Error) << text;
   }
   try {
-    Unit::parse("deg/hour");
+    Unit::parse("deg/fortnight");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("unknown unit 'hour'"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("unknown unit 'fortnight'"));
   }
 }
 

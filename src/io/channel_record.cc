@@ -186,8 +186,9 @@ std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t
     Unit::parse(info.unit);
   } catch (const Error&) {
     if (given) return given;  // the stored unit is no unit inertest knows: the given one is taken as is
-    throw Error(where, fmt::format("channel '{}' stores the unit '{}', which inertest does not know: give the unit "
-                                   "of the samples (--input-unit / input_unit)",
+    throw Error(where, fmt::format("channel '{}' stores the unit '{}', which inertest does not know: correct the "
+                                   "file's, or give the unit of the samples where the command takes one (--input-unit "
+                                   "/ input_unit)",
                                    info.name, info.unit));
   }
   if (!given) return info.unit;

@@ -3,6 +3,7 @@
 // string, `= np.array([100.0, 200.0])` an array of two doubles).
 #include <fmt/format.h>
 #include <hdf5.h>
+#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <string>
@@ -162,6 +163,24 @@ TEST(Hdf5Record, AttributesThatContradictEachOtherAreAnError) {
   const auto record = open_channel_record(agreeing, ChannelRecordFormat::kHdf5);
   EXPECT_EQ(resolve_sample_rate(*record, 0, std::nullopt), 100.0);
   EXPECT_EQ(resolve_unit(*record, 0, std::nullopt), "deg/s");
+}
+
+// A unit as a logger writes it (DEG/S) is the unit it names: records of rates read as deg/h
+// (--input-deg-h) are converted from it. One inertest does not know is an error, not deg/h: taken
+// as deg/h, a channel of 2 deg/s stored as DEG/S gave a bias of 2 deg/h instead of 7200.
+TEST(Hdf5Record, ARateRecordIsReadInTheUnitItStoresHoweverSpelt) {
+  const testing::ScratchDirectory dir;
+  const std::string capitals = dir.path() + "/capitals.h5";
+  Hdf5File(capitals).numbers("sample_rate_hz", {1.0}).strings("units", {"DEG/S"});
+  testing::CliRun run = testing::run_cli({"bias", capitals, "--input-deg-h", "--smoothing", "1", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NEAR(nlohmann::json::parse(run.out).at("bias").at("value").get<double>(), 2.5 * 3600.0, 1e-9);
+  const std::string unknown = dir.path() + "/unknown.h5";
+  Hdf5File(unknown).numbers("sample_rate_hz", {1.0}).strings("units", {"furlong/fortnight"});
+  run = testing::run_cli({"bias", unknown, "--input-deg-h", "--smoothing", "1"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, ::testing::HasSubstr(unknown + ": channel 'g' stores the unit 'furlong/fortnight', which inertest "
+                                                      "does not know"));
 }
 
 }  // namespace

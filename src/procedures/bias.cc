@@ -56,13 +56,9 @@ std::vector<double> read_bias_record(const ProcedureCall& call, const std::strin
     return call.read_record(file);
   }
   // Records of rates: a unit the record stores (HDF5, TDMS) converts its samples to deg/h; another
-  // stored unit (V) contradicts deg/h, an Error naming both.
-  std::optional<std::string> stored;
-  try {
-    stored = call.record_unit(file, std::nullopt);
-  } catch (const Error&) {
-    // a stored unit inertest does not know yields to deg/h, below
-  }
+  // stored unit (V) contradicts deg/h, an Error naming both, and so does one inertest does not know
+  // (taken as deg/h, a misspelt deg/s made the bias 3600 times too small).
+  std::optional<std::string> stored = call.record_unit(file, std::nullopt);
   if (!stored || Unit::parse(*stored).dimension() != Unit::parse("deg/h").dimension()) {
     stored = call.record_unit(file, "deg/h");
   }

@@ -169,7 +169,17 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
       names.push_back(table.names[i].empty() ? selectors[i] : table.names[i]);
       spans.emplace_back(table.columns[i]);
     }
-    return analyse_channels(spans, names, channel_options(common, names, selectors, units));
+    // A unit a column's header states ("gx [deg/s]") is its samples' unit, as a channel's stored one.
+    std::vector<AllanOptions> options = channel_options(common, names, selectors, units);
+    const std::vector<std::optional<std::string>> given = given_units(names, selectors, units);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (const std::optional<std::string> stated = unit_stated_in_name(names[i])) {
+        options[i].input_unit = *resolve_stated_unit(SourceLocation{source.path, table.header_line, 0},
+                                                     fmt::format("the header states for column '{}'", names[i]),
+                                                     *stated, given[i]);
+      }
+    }
+    return analyse_channels(spans, names, options);
   }
   // A record of named channels stores each channel apart: each is streamed once, in turn, at the
   // rate and in the unit given or, where none is given, those it stores for the channel.

@@ -7,10 +7,13 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/io/text_table.h"
+#include "inertest/io/time_stamps.h"
 #include "io/channel_readers.h"
 
 namespace inertest {
@@ -191,12 +194,64 @@ std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t
                                    "/ input_unit)",
                                    info.name, info.unit));
   }
-  if (!given) return info.unit;
-  if (!same_unit(*given, info.unit)) {
-    throw Error(where, fmt::format("the unit given, {}, contradicts the unit {} stored for channel '{}'", *given,
-                                   info.unit, info.name));
+  return resolve_stated_unit(where, fmt::format("stored for channel '{}'", info.name), info.unit, given);
+}
+
+std::optional<std::string> resolve_stated_unit(const SourceLocation& where, const std::string& stated_where,
+                                               const std::string& stated, const std::optional<std::string>& given) {
+  if (!given) return stated;
+  if (!same_unit(*given, stated)) {
+    throw Error(where, fmt::format("the unit given, {}, contradicts the unit {} {}", *given, stated, stated_where));
   }
   return given;
+}
+
+std::optional<std::string> unit_stated_in_name(std::string_view name) {
+  while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
+  if (name.size() < 3 || (name.back() != ']' && name.back() != ')')) return std::nullopt;
+  const std::size_t open = name.find_last_of(name.back() == ']' ? '[' : '(');
+  if (open == std::string_view::npos || open == 0) return std::nullopt;  // the quantity's name comes first
+  std::string_view inside = name.substr(open + 1, name.size() - open - 2);
+  while (!inside.empty() && inside.front() == ' ') inside.remove_prefix(1);
+  while (!inside.empty() && inside.back() == ' ') inside.remove_suffix(1);
+  try {
+    if (Unit::parse(inside).dimension() == Dimension{}) return std::nullopt;  // "[1]", "(%)": no quantity's unit
+  } catch (const Error&) {
+    return std::nullopt;  // "(raw)", "[x]": a note, not a unit
+  }
+  return std::string(inside);
+}
+
+std::optional<std::string> resolve_text_unit(const std::string& path, const std::optional<ColumnSelector>& column,
+                                             const std::optional<std::string>& given) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return given;  // a pipe is not read ahead
+  constexpr std::size_t kHead = std::size_t{64} << 10;
+  std::string head(kHead, '\0');
+  std::ifstream file(path, std::ios::binary);
+  file.read(head.data(), static_cast<std::streamsize>(kHead));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  TextTableHeader header;
+  try {
+    header = parse_text_table_header(head, path);
+  } catch (const Error&) {
+    return given;  // text the record's reader refuses with its own message
+  }
+  const std::vector<std::string>& names = header.names;
+  std::string name;
+  if (column && column->index == 0) {
+    name = column->name;
+  } else if (column && column->index <= names.size()) {
+    name = names[column->index - 1];
+  } else if (!column && names.size() == 1) {
+    name = names[0];
+  } else if (const auto time = find_record_time_column(path); !column && names.size() == 2 && time && time->name == names[0]) {
+    name = names[1];
+  }
+  const std::optional<std::string> stated = unit_stated_in_name(name);
+  if (!stated) return given;
+  return resolve_stated_unit(SourceLocation{path, header.line, 0}, fmt::format("the header states for column '{}'", name),
+                             *stated, given);
 }
 
 std::string channel_range_context(const ChannelInfo& channel, std::uint64_t first, std::size_t count) {

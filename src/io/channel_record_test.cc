@@ -4,6 +4,7 @@
 #include "inertest/io/channel_record.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -145,6 +146,39 @@ TEST(ChannelRecord, StoredUnitIsUsedAndAContradictionIsAnError) {
   EXPECT_EQ(resolved_unit({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")},
                           std::nullopt),
             "deg/h");
+}
+
+// A text column whose header states its unit ("gyro_x [deg/s]") holds samples in it, as a channel
+// that stores one: allan read 0.01 deg/s as deg/h, a mean 3600 times too small.
+TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
+  EXPECT_EQ(unit_stated_in_name("gyro_x [deg/s]"), "deg/s");
+  EXPECT_EQ(unit_stated_in_name("rate (deg/h) "), "deg/h");
+  EXPECT_EQ(unit_stated_in_name("ax[ m/s^2 ]"), "m/s^2");
+  for (const char* none : {"gyro_x", "gx[1]", "ratio (%)", "output (raw)", "[deg/s]", "deg/s"}) {
+    EXPECT_EQ(unit_stated_in_name(none), std::nullopt) << none;
+  }
+  const testing::ScratchDirectory scratch;
+  std::string text = "time [s],gyro_x [deg/s],gyro_y\n";
+  for (int i = 0; i < 400; ++i) text += fmt::format("{},{},{}\n", 0.01 * i, i % 2 == 0 ? 0.011 : 0.009, 1.0);
+  const std::string path = scratch.write("gyro.csv", text);
+  EXPECT_EQ(resolve_text_unit(path, ColumnSelector::parse("gyro_x [deg/s]"), std::nullopt), "deg/s");
+  EXPECT_EQ(resolve_text_unit(path, ColumnSelector::parse("2"), std::string("°/s")), "°/s");
+  EXPECT_EQ(resolve_text_unit(path, ColumnSelector::parse("3"), std::nullopt), std::nullopt);
+  testing::CliRun run = testing::run_cli({"allan", path, "--column", "2", "--rate", "100", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out).at("mean").at("unit"), "deg/s");
+  EXPECT_NEAR(nlohmann::json::parse(run.out).at("mean").at("value").get<double>(), 0.01, 1e-12);
+  run = testing::run_cli({"bias", path, "--column", "2", "--rate", "100", "--input-deg-h", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NEAR(nlohmann::json::parse(run.out).at("bias").at("value").get<double>(), 36.0, 1e-9);
+  run = testing::run_cli({"allan", path, "--column", "2", "--rate", "100", "--input-unit", "deg/h"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, ::testing::HasSubstr(path + ":1: the unit given, deg/h, contradicts the unit deg/s the header "
+                                                   "states for column 'gyro_x [deg/s]'"));
+  run = testing::run_cli({"allan", path, "--columns", "2,3", "--rate", "100", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out).at("channels").at("gyro_x [deg/s]").at("mean").at("unit"), "deg/s");
+  EXPECT_EQ(nlohmann::json::parse(run.out).at("channels").at("gyro_y").at("mean").at("unit"), "deg/h");
 }
 
 TEST(ChannelRecord, MissingChannelListsTheChannels) {

@@ -166,6 +166,7 @@ double record_sample_rate(const OutputRecordSource& source, double given) {
 
 std::optional<std::string> record_unit(const OutputRecordSource& source, const std::optional<std::string>& given) {
   const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source);
+  if (!channel_format && is_text(source.format)) return resolve_text_unit(source.path, channel_selector(source.column), given);
   if (!channel_format) return given;
   const std::unique_ptr<ChannelRecord> file = open_channel_record(source.path, *channel_format);
   return resolve_unit(*file, file->find(channel_selector(source.column)), given);

@@ -146,7 +146,9 @@ std::optional<double> stored_sample_rate(const RateRecordSource& source) {
 }
 
 std::optional<std::string> resolved_unit(const RateRecordSource& source, const std::optional<std::string>& given) {
-  const std::optional<ChannelRecordFormat> format = channel_record_format_of(resolve_rate_record_format(source));
+  const RateRecordFormat resolved = resolve_rate_record_format(source);
+  if (resolved == RateRecordFormat::kCsv) return resolve_text_unit(source.path, source.column, given);
+  const std::optional<ChannelRecordFormat> format = channel_record_format_of(resolved);
   if (!format) return given;
   const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *format);
   return resolve_unit(*record, record->find(source.column), given);

@@ -111,4 +111,20 @@ double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std
 std::optional<std::string> resolve_unit(const ChannelRecord& record, std::size_t channel,
                                         const std::optional<std::string>& given);
 
+// A unit a record states (`stated_where`: "stored for channel 'g'") against the one given: the
+// stated one when none is given, the given one when they agree as units, else an Error at `where`
+// naming both.
+std::optional<std::string> resolve_stated_unit(const SourceLocation& where, const std::string& stated_where,
+                                               const std::string& stated, const std::optional<std::string>& given);
+
+// The unit a text column's header name states at its end, in brackets or parentheses ("gyro_x
+// [deg/s]", "rate (deg/h)"): one inertest knows and not a bare ratio (1, ppm, %); else nullopt.
+std::optional<std::string> unit_stated_in_name(std::string_view name);
+
+// resolve_unit for a text record: the unit its header states for the column (by name, by 1-based
+// index, or without one the only column, or the second after a time column), against `given`.
+// A record without a header, or whose header states no unit for the column, gives `given`.
+std::optional<std::string> resolve_text_unit(const std::string& path, const std::optional<ColumnSelector>& column,
+                                             const std::optional<std::string>& given);
+
 }  // namespace inertest

@@ -73,7 +73,7 @@ ScaleFactorTemperatureModelResult fit_scale_factor_temperature(std::span<const T
   for (std::size_t i = 0; i < m; ++i) {
     auto& p = result.points[i];
     y[i] = (p.scale_factor.value / km - 1.0) * 1e6;
-    sigma[i] = p.scale_factor.uncertainty.value_or(0.0) / km * 1e6;
+    sigma[i] = p.scale_factor.uncertainty.value_or(0.0) / std::abs(km) * 1e6;  // u(Ki/Km), of either sign of K
     if (!(sigma[i] > 0.0)) throw Error(fmt::format("the scale factor at {} degC has no uncertainty", p.temperature_degC));
     p.relative_change = {y[i], "ppm", sigma[i]};
     for (std::size_t j = 0; j < n; ++j) design(i, j) = std::pow((p.temperature_degC - tm) / 10.0, static_cast<double>(j));

@@ -165,6 +165,17 @@ TEST(Hdf5Record, AttributesThatContradictEachOtherAreAnError) {
   EXPECT_EQ(resolve_unit(*record, 0, std::nullopt), "deg/s");
 }
 
+// A sample interval stored in single precision (0.01 s as a float: 100.0000022 Hz) agrees with the
+// 100 Hz given; 100.01 Hz does not.
+TEST(Hdf5Record, ARateStoredAsAFloatAgreesWithTheRateItRounds) {
+  const testing::ScratchDirectory dir;
+  const std::string path = dir.path() + "/float.h5";
+  Hdf5File(path).numbers("wf_increment", {static_cast<double>(0.01F)});
+  const auto record = open_channel_record(path, ChannelRecordFormat::kHdf5);
+  EXPECT_NEAR(resolve_sample_rate(*record, 0, 100.0), 100.0, 1e-5);
+  EXPECT_THROW(resolve_sample_rate(*record, 0, 100.01), Error);
+}
+
 // A unit as a logger writes it (DEG/S) is the unit it names: records of rates read as deg/h
 // (--input-deg-h) are converted from it. One inertest does not know is an error, not deg/h: taken
 // as deg/h, a channel of 2 deg/s stored as DEG/S gave a bias of 2 deg/h instead of 7200.

@@ -98,7 +98,7 @@ std::size_t stream_channel(ChannelRecord& record, std::size_t channel,
 std::vector<double> read_channel(ChannelRecord& record, std::size_t channel);
 
 // The sample rate to use: the stored one, or `given` when the record stores none. Throws Error
-// naming the file, the channel and both values when they differ by more than 1e-9 relative, when
+// naming the file, the channel and both values when they differ by more than 1e-7 relative, when
 // neither is known, and naming the file, the channel and the problem when the channel has a
 // sample_rate_problem (given or not).
 double resolve_sample_rate(const ChannelRecord& record, std::size_t channel, std::optional<double> given);

@@ -337,18 +337,7 @@ struct ScaleProperty {
   std::string text = {};
 };
 
-std::string daqmx_file(const std::vector<std::int16_t>& raw, const std::vector<ScaleProperty>& properties) {
-  TdmsBytes meta;
-  meta.u32(1);
-  meta.text("/'g'/'c'");
-  meta.u32(0x1269);
-  meta.u32(0xFFFFFFFF);  // DAQmx raw data type
-  meta.u32(1);
-  meta.u64(raw.size());
-  meta.u32(1);  // one scaler: i16 (DAQmx type 3), buffer 0, byte offset 0, sample format bitmap, scale id 0
-  for (const std::uint32_t v : {3u, 0u, 0u, 0u, 0u}) meta.u32(v);
-  meta.u32(1);  // one raw buffer, 2 bytes wide
-  meta.u32(2);
+void write_properties(TdmsBytes& meta, const std::vector<ScaleProperty>& properties) {
   meta.u32(static_cast<std::uint32_t>(properties.size()));
   for (const ScaleProperty& p : properties) {
     meta.text(p.name);
@@ -361,6 +350,21 @@ std::string daqmx_file(const std::vector<std::int16_t>& raw, const std::vector<S
       meta.f64(p.number);
     }
   }
+}
+
+std::string daqmx_file(const std::vector<std::int16_t>& raw, const std::vector<ScaleProperty>& properties) {
+  TdmsBytes meta;
+  meta.u32(1);
+  meta.text("/'g'/'c'");
+  meta.u32(0x1269);
+  meta.u32(0xFFFFFFFF);  // DAQmx raw data type
+  meta.u32(1);
+  meta.u64(raw.size());
+  meta.u32(1);  // one scaler: i16 (DAQmx type 3), buffer 0, byte offset 0, sample format bitmap, scale id 0
+  for (const std::uint32_t v : {3u, 0u, 0u, 0u, 0u}) meta.u32(v);
+  meta.u32(1);  // one raw buffer, 2 bytes wide
+  meta.u32(2);
+  write_properties(meta, properties);
   std::string data;
   for (const std::int16_t v : raw) data.append(reinterpret_cast<const char*>(&v), 2);
   return lead_in("TDSm", kTocMetaData | kTocNewObjList | kTocRawData | kTocDaqmx, meta.bytes.size() + data.size(),
@@ -400,6 +404,37 @@ std::string object_list(std::uint32_t type, const std::vector<std::uint64_t>& co
 
 std::string tdms_segment(std::uint32_t toc, const std::string& metadata, const std::string& data) {
   return lead_in("TDSm", toc, metadata.size() + data.size(), metadata.size()) + metadata + data;
+}
+
+// A channel of plain (not DAQmx) raw data that NI_Scaling_Status "unscaled" says its NI_Scale[n]
+// properties scale, as npTDMS reads it: its counts were read as the rate (21.6 for 36.0 deg/h).
+// "scaled" data are the values already.
+TEST(ChannelRecord, TdmsUnscaledPlainDataIsScaled) {
+  const testing::ScratchDirectory dir;
+  for (const char* status : {"unscaled", "scaled"}) {
+    TdmsBytes meta;
+    meta.u32(1);
+    meta.text("/'g'/'a'");
+    meta.u32(20);
+    meta.u32(2);  // i16
+    meta.u32(1);
+    meta.u64(3);
+    std::vector<ScaleProperty> properties = scales({linear_scale(0, 0.001, 36.0, kRawDataInputSource)});
+    properties.push_back({"NI_Scaling_Status", 0x20, 0.0, status});
+    write_properties(meta, properties);
+    std::string data;
+    for (const std::int16_t v : {std::int16_t{-100}, std::int16_t{0}, std::int16_t{250}}) {
+      data.append(reinterpret_cast<const char*>(&v), 2);
+    }
+    const std::string path =
+        dir.write(fmt::format("{}.tdms", status), tdms_segment(kTocMetaData | kTocNewObjList | kTocRawData, meta.bytes, data));
+    const std::vector<double> values = read_channel(*open_channel_record(path, ChannelRecordFormat::kTdms), 0);
+    if (std::string(status) == "unscaled") {
+      EXPECT_THAT(values, ::testing::ElementsAre(35.9, 36.0, 36.25));
+    } else {
+      EXPECT_THAT(values, ::testing::ElementsAre(-100.0, 0.0, 250.0));
+    }
+  }
 }
 
 // Interleaved data holds one value of each object a frame: objects of different counts in one

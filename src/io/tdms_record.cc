@@ -373,10 +373,15 @@ class TdmsRecord final : public ChannelRecord {
         } else {
           value = load_number(bytes, piece->type, piece->big_endian);
         }
-        out[done + i] = data.daqmx ? scale(channel, value) : value;
+        out[done + i] = value;
       }
       done += count;
       ++piece;
+    }
+    // The scales' output, where the channel has them (raw data: DAQmx, or NI_Scaling_Status "unscaled").
+    if (const auto found = last_scale_.find(channel_objects_[channel]); found != last_scale_.end()) {
+      const std::vector<std::optional<Scale>>& scales = scales_.at(found->first);
+      for (double& value : out) value = apply(scales, found->second, value);
     }
   }
 
@@ -726,7 +731,7 @@ class TdmsRecord final : public ChannelRecord {
     data.digital = digital;
   }
 
-  // The scales of a DAQmx channel, from its NI_Scale[n] properties. An input source that is neither
+  // The scales of a channel of raw data, from its NI_Scale[n] properties. An input source that is neither
   // the raw data nor one of the channel's scales, or input sources that form a cycle, are an Error
   // naming the channel.
   void read_scales(std::size_t id, const Object& object, const std::string& channel) {
@@ -792,13 +797,6 @@ class TdmsRecord final : public ChannelRecord {
     }
   }
 
-  double scale(std::size_t channel, double raw) const {
-    const std::size_t id = channel_objects_[channel];
-    const auto found = last_scale_.find(id);
-    if (found == last_scale_.end()) return raw;
-    return apply(scales_.at(id), found->second, raw);
-  }
-
   // Scale n of a chain read_scales has checked (no cycle, every input within the scales).
   static double apply(const std::vector<std::optional<Scale>>& scales, std::size_t n, double raw) {
     const Scale& scale = *scales[n];
@@ -817,7 +815,9 @@ class TdmsRecord final : public ChannelRecord {
       ChannelData& data = data_[id];
       ChannelInfo info;
       info.name = parts[0] + "/" + parts[1];
-      if (data.daqmx) read_scales(id, object, info.name);
+      // DAQmx raw data are raw; plain data whose NI_Scaling_Status is "unscaled" are too, as npTDMS
+      // reads them (its scaling.py): their values are the scales' output.
+      if (data.daqmx || text_property(object, "NI_Scaling_Status") == "unscaled") read_scales(id, object, info.name);
       std::uint32_t type = data.type;
       if (type == kVoid && object.index) type = object.index->daqmx ? kVoid : object.index->type;
       info.type = type == kVoid ? "none" : type_name(type, info.numeric);

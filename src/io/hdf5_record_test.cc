@@ -176,6 +176,21 @@ TEST(Hdf5Record, ARateStoredAsAFloatAgreesWithTheRateItRounds) {
   EXPECT_THROW(resolve_sample_rate(*record, 0, 100.01), Error);
 }
 
+// Packed samples (CF scale_factor and add_offset, as netCDF-4 and xarray write integers) are
+// unpacked; packing attributes that are not one number each leave the channel unreadable.
+TEST(Hdf5Record, PackedSamplesAreUnpacked) {
+  const testing::ScratchDirectory dir;
+  const std::string packed = dir.path() + "/packed.h5";
+  Hdf5File(packed).numbers("scale_factor", {0.5}).numbers("add_offset", {36.0});
+  EXPECT_THAT(read_channel(*open_channel_record(packed, ChannelRecordFormat::kHdf5), 0),
+              ::testing::ElementsAre(36.5, 37.0, 37.5, 38.0));
+  const std::string bad = dir.path() + "/bad.h5";
+  Hdf5File(bad).numbers("scale_factor", {0.5, 2.0});
+  const auto record = open_channel_record(bad, ChannelRecordFormat::kHdf5);
+  EXPECT_FALSE(record->channels()[0].numeric);
+  EXPECT_THAT(record->channels()[0].type, ::testing::HasSubstr("packing scale_factor/add_offset unreadable"));
+}
+
 // A unit as a logger writes it (DEG/S) is the unit it names: records of rates read as deg/h
 // (--input-deg-h) are converted from it. One inertest does not know is an error, not deg/h: taken
 // as deg/h, a channel of 2 deg/s stored as DEG/S gave a bias of 2 deg/h instead of 7200.

@@ -94,10 +94,22 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
         r_upper.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(cols, cols));
     const Eigen::MatrixXd permuted = r_inverse * r_inverse.transpose();
     const Eigen::MatrixXd p = qr.colsPermutation();
-    const Eigen::MatrixXd unpermuted = p * permuted * p.transpose();
+    const Eigen::MatrixXd inverse = p * permuted * p.transpose();  // (A^T W A)^-1, scaled coordinates
+    Eigen::MatrixXd scaled_covariance = s2 * inverse;
+    if (options.heteroscedastic) {
+      Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(cols, cols);
+      for (Eigen::Index r = 0; r < rows; ++r) {
+        const Eigen::RowVectorXd row = scaled.row(r);
+        // 1 - h_i, floored: a point the fit must pass through has an unbounded share of the variance.
+        const double free = std::max(1.0 - (row * inverse * row.transpose())(0, 0), 1e-12);
+        const double e = weighted_residuals(r) / free;
+        meat += row.transpose() * row * (e * e);
+      }
+      scaled_covariance = inverse * meat * inverse;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) {
-        result.covariance(i, j) = s2 * unpermuted(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
+        result.covariance(i, j) = scaled_covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) /
                                   (scale(static_cast<Eigen::Index>(i)) * scale(static_cast<Eigen::Index>(j)));
       }
     }

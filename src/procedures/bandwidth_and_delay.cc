@@ -94,6 +94,11 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   }
   LeastSquaresOptions fit_options;
   fit_options.parameter_names = {"K^2", "T^2"};
+  // The noise of Gi² differs between frequencies (a fixed output noise over an amplitude that falls
+  // with frequency, on both sides of eq. 37): one residual variance for all understated u(Bw) 1.6
+  // times (48 % of 2000 trials within 1 sigma, 65 % with HC3; the test BandwidthAndDelay.
+  // UncertaintiesCoverTheTruthWhenTheNoiseGrowsWithFrequency).
+  fit_options.heteroscedastic = true;
   const LeastSquaresResult fit = solve_least_squares(design, gain_squared, fit_options);
   const double k_squared = fit.parameters[0];
   const double t_squared = fit.parameters[1];
@@ -133,9 +138,17 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   const double delay = omega_y.value() / omega_omega.value();
   CompensatedSum phase_rss;
   for (std::size_t i = 0; i < n; ++i) phase_rss.add((y[i] - omega[i] * delay) * (y[i] - omega[i] * delay));
-  // Residual variance of the one-parameter fit (n − 1 degrees of freedom), plus T's uncertainty
-  // carried through atan(ωi·T) (the two taken as independent).
-  const double sigma_delay_fit = std::sqrt(phase_rss.value() / static_cast<double>(n - 1) / omega_omega.value());
+  // HC3 variance of the one-parameter fit, each phase by its own residual (a phase's noise grows as
+  // 1/Gi, largest at the high frequencies that weigh most in Td: one residual variance for all held
+  // the truth in 45 % of trials within 1 sigma, HC3 in 69 %), plus T's uncertainty carried through
+  // atan(ωi·T) (the two taken as independent). Leverage h_i = ωi² / Σ ωj².
+  CompensatedSum delay_meat;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double free = std::max(1.0 - omega[i] * omega[i] / omega_omega.value(), 1e-12);
+    const double e = (y[i] - omega[i] * delay) / free;
+    delay_meat.add(omega[i] * omega[i] * e * e);
+  }
+  const double sigma_delay_fit = std::sqrt(delay_meat.value()) / omega_omega.value();
   const double sigma_delay_t = std::abs(d_omega_y_dt.value() / omega_omega.value()) * sigma_t;
 
   BandwidthResult result;

@@ -32,12 +32,18 @@ struct LeastSquaresOptions {
   double rank_tolerance = 1e-10;
   // Throw Error when the design is rank deficient (otherwise report it in the result).
   bool require_full_rank = true;
+  // The covariance from each observation's own residual, for observations whose variances differ in
+  // a way the weights do not give: HC3, (A^T W A)^-1 A^T W diag(e_i^2 / (1 - h_i)^2) W A (A^T W A)^-1,
+  // h_i the leverage (MacKinnon and White 1985; Long and Ervin 2000 for small samples). Otherwise
+  // one residual variance for all.
+  bool heteroscedastic = false;
 };
 
 struct LeastSquaresResult {
   std::vector<double> parameters;
   // Covariance of the parameters, row-major n x n: s^2 (A^T W A)^-1 with s^2 the residual variance
-  // RSS / (m - n) (weights taken as relative). Zero-filled when m == n.
+  // RSS / (m - n) (weights taken as relative), or HC3 (LeastSquaresOptions::heteroscedastic).
+  // Zero-filled when m == n.
   Matrix covariance;
   std::vector<double> residuals;  // y - A x
   double residual_rms = 0.0;      // sqrt(sum r^2 / m)

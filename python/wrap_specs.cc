@@ -79,15 +79,16 @@ nlohmann::json parameter_value(const ParameterSpec& parameter, const py::handle&
 }
 
 // A number, or the mean of an array of samples (compensated, as a record's mean).
-double input_value(const InputSpec& input, const py::handle& value) {
-  if (is_number(value)) return py::float_(py::reinterpret_borrow<py::object>(value));
+InputValue input_value(const InputSpec& input, const py::handle& value) {
+  if (is_number(value)) return {py::float_(py::reinterpret_borrow<py::object>(value)), std::nullopt};
   if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) {
     throw Error(fmt::format("{} must be a number or an array of samples", input.name));
   }
   const DoubleArray samples = real_array(value);
   const std::span<const double> span = as_span(samples, input.name.c_str());
   if (span.empty()) throw Error(fmt::format("{} has no samples", input.name));
-  return mean(span);
+  const MeanWithError mean = mean_with_error(span);
+  return {mean.mean, mean.standard_error};
 }
 
 // A list of paths (numbered 1, 2, ...) or of (number, path) pairs; at least the input's minimum.

@@ -61,9 +61,13 @@ def test_polarity_from_numbers_and_arrays_is_the_cli_json():
     result = inertest.polarity(positive=-3, negative=3.0)
     assert result.to_dict() == expected
     assert result.polarity == "negative"
-    # An array of samples counts by its mean, as a record file does.
-    samples = inertest.polarity(positive=numpy.array([-2.0, -4.0]), negative=numpy.array([3.0]))
-    assert samples.to_dict() == expected
+    # An array of samples counts by its mean, with its standard error (s / sqrt(n) = 1), as a record
+    # file does; one sample has none.
+    samples = inertest.polarity(positive=numpy.array([-2.0, -4.0]), negative=numpy.array([3.0])).to_dict()
+    assert samples["output_positive_rate"].pop("uncertainty") == pytest.approx(1.0, rel=1e-15)
+    assert samples == expected
+    with pytest.raises(inertest.Error, match="within 3 standard errors"):
+        inertest.polarity(positive=numpy.array([0.0, 2.2]), negative=numpy.array([1.0, 1.0]))
     assert "Polarity" in result.report()
 
 

@@ -146,7 +146,7 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     if (file.has_value() == value.has_value()) {
       step.fail(fmt::format("needs exactly one of '{}_file' and '{}_output'", input.name, input.name));
     }
-    if (value) call.inputs[input.name] = *value;
+    if (value) call.inputs[input.name] = {*value, std::nullopt};
     if (file) files[input.name] = *file;
   }
   // [instrument] defaults where the step gives none (and their condition holds), then what is missing;
@@ -201,7 +201,10 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     ProcedureCall run_call = call;
     run_call.progress = running.progress;
     run_call.output_directory = running.output_directory;
-    for (const auto& [name, file] : files) run_call.inputs[name] = mean(call.read_record(file));
+    for (const auto& [name, file] : files) {
+      const MeanWithError mean = mean_with_error(call.read_record(file));
+      run_call.inputs[name] = {mean.mean, mean.standard_error};
+    }
     // As the command: a complaint about the data of the step's one file names that file.
     return with_call_file_context(run_call, [&] { return procedure_json(spec, spec.run(run_call).fields); });
   };

@@ -57,20 +57,22 @@ std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& param
   return text;
 }
 
-// The value of one input from its one source: the mean of the record file, or the value given.
-double input_value(const ProcedureSpec& spec, const InputSpec& input, const InputArguments& given,
+// The value of one input from its one source: the mean of the record file (with its standard
+// error), or the value given.
+InputValue input_value(const ProcedureSpec& spec, const InputSpec& input, const InputArguments& given,
                    const OutputRecordSource& base) {
   if (!given.file.empty() && given.value) {
     throw Error(fmt::format("{}: give a {} file or a {} output, not both", spec.kind, input.name, input.name));
   }
-  if (given.value) return *given.value;
+  if (given.value) return {*given.value, std::nullopt};
   if (given.file.empty()) {
     throw Error(fmt::format("{}: missing {} (--{}-file or --{}-output)", spec.kind, input.doc, kebab_case(input.name),
                             kebab_case(input.name)));
   }
   OutputRecordSource source = base;
   source.path = given.file;
-  return with_file_context(given.file, [&] { return mean(read_output_record(source)); });
+  const MeanWithError mean = with_file_context(given.file, [&] { return mean_with_error(read_output_record(source)); });
+  return {mean.mean, mean.standard_error};
 }
 
 // Whether a file or runs input is on the command line (a value input always is).

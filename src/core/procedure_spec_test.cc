@@ -116,7 +116,7 @@ TEST(ProcedureSpec, TextPrintsEveryShownFieldTheSameWay) {
 TEST(ProcedureSpec, PolarityFieldsFromTheSpec) {
   const ProcedureSpec& spec = *find_procedure_spec("polarity");
   ProcedureCall call;
-  call.inputs = {{"positive", 12.0}, {"negative", 8.0}};
+  call.inputs = {{"positive", {12.0, std::nullopt}}, {"negative", {8.0, std::nullopt}}};
   call.parameters = {{"output_unit", "V"}, {"expected", "positive"}};
   const nlohmann::json json = procedure_json(spec, spec.run(call).fields);
   EXPECT_EQ(json.at("polarity"), "positive");

@@ -14,6 +14,14 @@ double mean(std::span<const double> values) {
   return compensated_sum(values) / static_cast<double>(values.size());
 }
 
+MeanWithError mean_with_error(std::span<const double> values) {
+  MeanWithError result{mean(values), std::nullopt};
+  if (values.size() >= 2) {
+    result.standard_error = sample_standard_deviation(values) / std::sqrt(static_cast<double>(values.size()));
+  }
+  return result;
+}
+
 double sample_standard_deviation(std::span<const double> values) {
   if (values.size() < 2) {
     throw Error("a standard deviation needs at least 2 values, got " + std::to_string(values.size()));

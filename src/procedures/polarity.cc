@@ -15,7 +15,8 @@ void PolarityOptions::validate() const {
   }
 }
 
-PolarityResult polarity(double output_positive_rate, double output_negative_rate, const PolarityOptions& options) {
+PolarityResult polarity(double output_positive_rate, double output_negative_rate, const PolarityOptions& options,
+                        std::optional<double> positive_standard_error, std::optional<double> negative_standard_error) {
   options.validate();
   if (!std::isfinite(output_positive_rate) || !std::isfinite(output_negative_rate)) {
     throw Error("polarity: an output is not a finite number");
@@ -25,10 +26,19 @@ PolarityResult polarity(double output_positive_rate, double output_negative_rate
                             "respond to the input",
                             output_positive_rate));
   }
+  // sign(F(+) − F(−)) is a measurement only where the difference stands out of the records' noise.
+  const double difference = output_positive_rate - output_negative_rate;
+  const double standard_error = std::hypot(positive_standard_error.value_or(0.0), negative_standard_error.value_or(0.0));
+  if (std::abs(difference) <= 3.0 * standard_error) {
+    const std::string unit = options.output_unit == "1" ? "" : " " + options.output_unit;
+    throw Error(fmt::format("polarity: F(+) - F(-) = {:.6g}{} is within 3 standard errors ({:.3g}{}) of zero: the "
+                            "records' means differ by their noise, and do not show the output responding to the input",
+                            difference, unit, standard_error, unit));
+  }
   PolarityResult result;
-  result.polarity = output_positive_rate > output_negative_rate ? 1 : -1;  // sign of F(+) − F(−)
-  result.output_positive_rate = {output_positive_rate, options.output_unit, std::nullopt};
-  result.output_negative_rate = {output_negative_rate, options.output_unit, std::nullopt};
+  result.polarity = difference > 0.0 ? 1 : -1;  // sign of F(+) − F(−)
+  result.output_positive_rate = {output_positive_rate, options.output_unit, positive_standard_error};
+  result.output_negative_rate = {output_negative_rate, options.output_unit, negative_standard_error};
   result.signs_opposite = output_positive_rate * output_negative_rate < 0.0;
   if (!result.signs_opposite) {
     result.warnings.push_back(fmt::format("the output is {} at the positive rate and {} at the negative rate: the bias "

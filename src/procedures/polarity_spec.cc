@@ -41,7 +41,10 @@ ProcedureSpec polarity_spec() {
       .unit_of("output_positive_rate", "{output_unit}")
       .unit_of("output_negative_rate", "{output_unit}")
       .compute([](const ProcedureCall& call, const PolarityOptions& options) {
-        return inertest::polarity(call.inputs.at("positive"), call.inputs.at("negative"), options);
+        const InputValue& positive = call.inputs.at("positive");
+        const InputValue& negative = call.inputs.at("negative");
+        return inertest::polarity(positive.value, negative.value, options, positive.standard_error,
+                                  negative.standard_error);
       });
 }
 

@@ -33,6 +33,23 @@ TEST(PolarityTest, BadInputIsAnError) {
   EXPECT_THROW(polarity(1.0, -1.0, {"1", 2}), Error);
 }
 
+// Means of records carry their standard errors: a difference within 3 of them is noise, not a
+// polarity (two records of one mean, 1e6 with a sample noise of 1 over 1000 samples, passed as
+// positive).
+TEST(PolarityTest, ADifferenceWithinTheRecordsNoiseIsAnError) {
+  const double standard_error = 1.0 / std::sqrt(1000.0);
+  try {
+    polarity(1e6 + 0.069, 1e6, {"pulse/s", 1}, standard_error, standard_error);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), ::testing::HasSubstr("F(+) - F(-) = 0.069 pulse/s is within 3 standard errors (0.0447 "
+                                                  "pulse/s) of zero"));
+  }
+  const PolarityResult result = polarity(1e6 + 0.2, 1e6, {"pulse/s", 1}, standard_error, standard_error);
+  EXPECT_EQ(result.polarity, 1);
+  EXPECT_EQ(result.output_positive_rate.uncertainty, standard_error);
+}
+
 TEST(HandChecksTest, FiguresAndPassFlags) {
   std::vector<HandCheck> checks(3);
   checks[0] = {"Appearance", std::nullopt, true, "1", std::nullopt, std::nullopt};

@@ -375,9 +375,16 @@ struct RunInput {
 // Parameter values by name (defaults already applied), input values, input files and runs by name.
 // files and runs are set before the check and hold only the inputs given (an alternative not given
 // is absent).
+// A value input: the value given, or the mean of a record with its standard error (the samples'
+// standard deviation over sqrt(n): a lower bound when they are correlated; none for one sample).
+struct InputValue {
+  double value = 0.0;
+  std::optional<double> standard_error;
+};
+
 struct ProcedureCall {
   nlohmann::json parameters = nlohmann::json::object();
-  std::map<std::string, double> inputs;
+  std::map<std::string, InputValue> inputs;
   std::map<std::string, std::string> files;
   std::map<std::string, std::vector<RunInput>> runs;
   // An instrument-output record as the command line (--column/--format) or the plan (column/format)

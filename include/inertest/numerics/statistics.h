@@ -2,12 +2,20 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace inertest {
 
 double mean(std::span<const double> values);
+
+// The mean of a record and its standard error, s / sqrt(n) (none for fewer than two samples).
+struct MeanWithError {
+  double mean = 0.0;
+  std::optional<double> standard_error;
+};
+MeanWithError mean_with_error(std::span<const double> values);
 
 // Sample standard deviation with n - 1 in the denominator (two-pass: mean removed first, so that a
 // large common offset does not cancel the spread). Throws Error for fewer than two values.

@@ -33,7 +33,12 @@ struct PolarityResult {
 };
 
 // Throws Error when F(+) = F(−) (the output does not respond) or a value is not finite.
-PolarityResult polarity(double output_positive_rate, double output_negative_rate, const PolarityOptions& options = {});
+// The outputs' standard errors, where they are means of records, are the figures' uncertainties; a
+// difference within 3 of its standard errors of zero is an Error (the means differ by noise: a gyro
+// that does not respond passed as positive).
+PolarityResult polarity(double output_positive_rate, double output_negative_rate, const PolarityOptions& options = {},
+                        std::optional<double> positive_standard_error = std::nullopt,
+                        std::optional<double> negative_standard_error = std::nullopt);
 
 // "positive", "negative" or "zero": the sign of an output as GJB 2426A-2004 5.7 records it.
 const char* output_sign_name(double output);

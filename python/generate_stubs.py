@@ -45,6 +45,8 @@ def readable_type(text, parameter):
         return "ArrayLike" if parameter and dtype == "float64" else ARRAY_TYPES.get(dtype, f"numpy.typing.NDArray[numpy.{dtype}]")
 
     text = re.sub(r"numpy\.ndarray\[numpy\.(\w+)\]", array, text)
+    # pybind11's std::array<T, N>, List[float[5]], is no type a checker reads: a list of N.
+    text = re.sub(r"List\[(\w+)\[\d+\]\]", r"List[\1]", text)
     return re.sub(r"= <[^>]*>", "= ...", text)
 
 

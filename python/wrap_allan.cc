@@ -190,7 +190,9 @@ void wrap_allan(py::module_& module) {
       "    clause: str\n"
       "    channels: Record  # one AllanResult-shaped Record per channel, by name\n");
   const char* options_doc =
-      "sample_rate_hz: the record's sample rate; input_unit: unit of the samples after `scale` (deg/h);\n"
+      "sample_rate_hz: the record's sample rate; scale: a factor the samples are multiplied by (not the\n"
+      "scale factor K, which allan(scale_factor=) and the CLI's --scale-factor divide by: give 1/K here);\n"
+      "input_unit: unit of the samples after `scale` (deg/h);\n"
       "taus: 'octave', 'decade', 'all', 'N/decade', a comma list of tau in s, or a list or numpy array of tau\n"
       "in s (each a whole number of sample intervals to 1e-6, else an error; taus beyond the record are left\n"
       "out; the noise terms are fitted on the taus an octave or more apart); estimators: 'all' or a comma\n"
@@ -262,7 +264,9 @@ void wrap_allan(py::module_& module) {
       "fit_range: (tau_min, tau_max) in s, None: chosen automatically; sample_count and sample_interval_s of\n"
       "the record (0: unknown; the interval is then the shortest tau). Returns a Record: Figures with 1-sigma\n"
       "uncertainties (significant False and upper_bound within 2 sigma of zero), or identified False and\n"
-      "upper_bound; fit holds reduced_chi_squared, verdict, fit_range.");
+      "upper_bound; fit holds reduced_chi_squared, verdict, fit_range. One fit on the edf given: allan_variance's\n"
+      "noise fits twice, on the taus an octave or more apart, the second time on the edf of the noise its first\n"
+      "fit says dominates at each tau, so its result.noise differs from one call on result.oadev's edf.");
   module.def(
       "read_noise_slopes",
       [](const DoubleArray& tau_s, const DoubleArray& deviation, const DoubleArray& edf, const std::string& input_unit) {

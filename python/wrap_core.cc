@@ -1,5 +1,6 @@
 // core: inertest.Error (a ValueError), Figure, Record and Result, unit conversion, the version.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -80,6 +81,8 @@ namespace {
 // Python Figure: "identified": false with "upper_bound" (a noise term the fit holds at zero, its
 // value NaN), "significant": false with "upper_bound" (a term within 2 sigma of zero), "reason"
 // (why a figure was not measured).
+constexpr std::array<const char*, 4> kFigureAnnotations = {"identified", "significant", "upper_bound", "reason"};
+
 bool is_figure_annotation(const std::string& key, const nlohmann::json& value) {
   if (key == "identified" || key == "significant") return value.is_boolean();
   if (key == "upper_bound") return value.is_number() || value.is_null();
@@ -211,7 +214,12 @@ void wrap_figure(py::module_& module) {
                      "A reported figure: value, unit and, where known, its 1-sigma uncertainty in the same unit. A\n"
                      "noise term within 2 sigma of zero also has significant (False) and upper_bound (in unit); one\n"
                      "the fit holds at zero has value NaN, identified (False) and upper_bound (None when unknown); a\n"
-                     "figure the data could not give has value NaN and, where said, a reason.",
+                     "figure the data could not give has value NaN and, where said, a reason.\n"
+                     "Members:\n"
+                     "    identified: bool  # a noise term only (absent elsewhere): False when the fit holds it at zero\n"
+                     "    significant: bool  # a noise term only: False within 2 sigma of zero\n"
+                     "    upper_bound: Optional[float]  # with identified or significant False, in unit\n"
+                     "    reason: str  # a figure the data could not give, where said\n",
                      py::dynamic_attr())
       .def(py::init([](double value, std::string unit, std::optional<double> uncertainty) {
              Unit::parse(unit);
@@ -221,10 +229,34 @@ void wrap_figure(py::module_& module) {
       .def_readwrite("value", &Figure::value, "The value, in `unit`.")
       .def_readwrite("unit", &Figure::unit, "The unit, a string that inertest.convert understands.")
       .def_readwrite("uncertainty", &Figure::uncertainty, "1-sigma uncertainty in `unit`, or None.")
-      .def("to", &Figure::in, "unit"_a, "The same figure (uncertainty too) in another unit of the same dimension.")
       .def(
-          "to_dict", [](const Figure& figure) { return to_plain_python(nlohmann::json(figure)); },
-          "The figure's JSON: {'value': v, 'unit': u} plus 'uncertainty' when known.")
+          "to",
+          [](const py::object& self, const std::string& unit) {
+            const auto& figure = self.cast<const Figure&>();
+            py::object converted = py::cast(figure.in(unit));
+            for (const char* key : kFigureAnnotations) {
+              if (!py::hasattr(self, key)) continue;
+              py::object value = self.attr(key);
+              if (std::string_view(key) == "upper_bound" && !value.is_none()) {
+                value = py::float_(convert(value.cast<double>(), figure.unit, unit));
+              }
+              converted.attr(key) = value;
+            }
+            return converted;
+          },
+          "unit"_a,
+          "The same figure in another unit of the same dimension: its uncertainty and upper_bound too, its other "
+          "annotations as they are.")
+      .def(
+          "to_dict",
+          [](const py::object& self) {
+            py::dict json = to_plain_python(nlohmann::json(self.cast<const Figure&>()));
+            for (const char* key : kFigureAnnotations) {
+              if (py::hasattr(self, key)) json[key] = self.attr(key);
+            }
+            return json;
+          },
+          "The figure's JSON: {'value': v, 'unit': u} plus 'uncertainty' when known and its annotations.")
       .def("__float__", [](const Figure& figure) { return figure.value; })
       .def("__eq__",
            [](const Figure& a, const py::object& other) -> py::object {

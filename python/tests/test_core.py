@@ -21,6 +21,17 @@ def test_figure_holds_value_unit_uncertainty_and_converts():
     assert float(figure) == 1.0
 
 
+def test_a_figures_annotations_survive_its_conversion_and_its_dict():
+    # A noise term the fit did not identify: its upper bound is all it says (to() and to_dict() lost it).
+    arw = np.random.default_rng(4).normal(size=20000)
+    term = inertest.allan_variance(arw, sample_rate_hz=100.0).noise.rate_ramp
+    assert term.identified is False and term.upper_bound > 0.0
+    in_deg_s = term.to("deg/s/s")
+    assert in_deg_s.identified is False
+    assert in_deg_s.upper_bound == pytest.approx(term.upper_bound / 3600.0**2, rel=1e-14)
+    assert term.to_dict() == {"value": None, "unit": term.unit, "identified": False, "upper_bound": term.upper_bound}
+
+
 def test_figure_equals_only_an_equal_figure():
     figure = inertest.Figure(1.0, "deg/h", 0.5)
     assert figure == inertest.Figure(1.0, "deg/h", 0.5)

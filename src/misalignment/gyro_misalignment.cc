@@ -47,18 +47,16 @@ std::vector<PositionPair> pair_directions(std::span<const GyroMisalignmentRow> r
     if (row.rate_dps == 0.0) {
       throw Error(where, "gyro misalignment: rate_dps is zero; every row is one direction (+ω or −ω) of the table");
     }
+    // A position read again (repeated readings) is another equation: its k-th row at +ω pairs with
+    // its k-th at −ω, in the order given.
     const double rate = std::abs(row.rate_dps);
+    const bool plus = row.rate_dps > 0.0;
     auto pair = std::find_if(pairs.begin(), pairs.end(), [&](const PositionPair& p) {
-      return p.alpha_deg == row.alpha_deg && p.beta_deg == row.beta_deg && p.rate_dps == rate;
+      return p.alpha_deg == row.alpha_deg && p.beta_deg == row.beta_deg && p.rate_dps == rate &&
+             (plus ? p.plus : p.minus) == nullptr;
     });
     if (pair == pairs.end()) pair = pairs.insert(pairs.end(), PositionPair{row.alpha_deg, row.beta_deg, rate});
-    const GyroMisalignmentRow*& slot = row.rate_dps > 0.0 ? pair->plus : pair->minus;
-    if (slot != nullptr) {
-      throw Error(where, fmt::format("gyro misalignment: duplicate row for alpha {} deg, beta {} deg at {} deg/s "
-                                     "(first given at line {})",
-                                     row.alpha_deg, row.beta_deg, row.rate_dps, slot->line));
-    }
-    slot = &row;
+    (plus ? pair->plus : pair->minus) = &row;
   }
   for (const PositionPair& pair : pairs) {
     if (pair.plus != nullptr && pair.minus != nullptr) continue;

@@ -298,15 +298,30 @@ TEST(GyroMisalignment, ZeroScaleFactorIsAnError) {
   EXPECT_THROW(five_position_misalignment({}, 0.0, 20.0), Error);
 }
 
-TEST(GyroMisalignment, ZeroRateAndDuplicateRowsAreErrors) {
+TEST(GyroMisalignment, ZeroRateAndAnUnpairedRepeatAreErrors) {
   std::vector<GyroMisalignmentRow> rows = {{0, 0, 0.0, 1.0, 7}};
   GyroMisalignmentOptions options;
   options.scale_factor = 1.0;
   EXPECT_THAT([&] { gyro_misalignment(rows, options); },
               ::testing::ThrowsMessage<Error>(::testing::HasSubstr("rate_dps is zero")));
-  rows = {{0, 0, 10.0, 1.0, 3}, {0, 0, 10.0, 1.5, 9}};
+  // A position read twice at +ω and once at −ω: its second reading has no partner.
+  rows = {{0, 0, 10.0, 1.0, 3}, {0, 0, -10.0, 0.5, 5}, {0, 0, 10.0, 1.5, 9}};
   EXPECT_THAT([&] { gyro_misalignment(rows, options); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("first given at line 3")));
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("has no row at -10 deg/s")));
+}
+
+// Repeated readings of each position (a lab's practice; they were refused as duplicate rows) are
+// more equations: the same angles from exact data, with the degrees of freedom of every reading.
+TEST(GyroMisalignment, RepeatedReadingsAreMoreEquations) {
+  const TrueAngles truth{-7.5 * kArcsec, 2.4 * kArcsec, -53.8 * kArcsec, -162.0 * kArcsec, 56.3 * kArcsec};
+  const std::vector<std::array<double, 2>> positions(kPaperPositions.begin(), kPaperPositions.end());
+  std::vector<GyroMisalignmentRow> rows = synthetic_rows(truth, positions, {20}, kPaperScaleFactor);
+  const std::vector<GyroMisalignmentRow> once = rows;
+  rows.insert(rows.end(), once.begin(), once.end());
+  const GyroMisalignmentResult result = gyro_misalignment(rows, paper_options());
+  expect_angles(result.combined.angles, truth, 1e-9);
+  EXPECT_EQ(result.combined.equation_count, 2 * positions.size());
+  EXPECT_EQ(result.combined.degrees_of_freedom, 2 * positions.size() - 5);
 }
 
 TEST(GyroMisalignment, JsonHasTheFiguresAndByRate) {

@@ -101,8 +101,9 @@ ProcedureSpec gyro_misalignment_spec();
 
 // Separates the angles at every rate (rows grouped by |rate_dps|) and over all rates together.
 // Uncertainties (1 sigma, from the residuals) are given where there are more equations than
-// unknowns. Throws Error (located at the row's file and line where known) for: a zero rate, a
-// position with only one direction at a rate, a duplicate row, and a set of positions at a rate
+// unknowns. A position read again is another equation (its k-th row at +ω with its k-th at −ω).
+// Throws Error (located at the row's file and line where known) for: a zero rate, a position with
+// a row at one direction and none to pair it with at the other, and a set of positions at a rate
 // that cannot separate the angles (the message names the angles).
 GyroMisalignmentResult gyro_misalignment(std::span<const GyroMisalignmentRow> rows,
                                          const GyroMisalignmentOptions& options);

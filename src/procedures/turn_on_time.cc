@@ -1,6 +1,7 @@
 #include "inertest/procedures/turn_on_time.h"
 
 #include <algorithm>
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -77,6 +78,15 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
   const char* what = options.warm_up ? "warm-up time" : "turn-on time";
   if (runs.empty()) throw Error(fmt::format("{}: no power-on runs", what));
   const double earth_deg_s = options.earth_rate ? earth_rate_on_axis(*options.earth_rate) / constants::kDegree : 0.0;
+  // The Earth rate is removed at rate only (below): asked for with every run at rest it would do
+  // nothing, and a run that then never settles would not say why.
+  const auto is_at_rest = [](const PowerOnRun& run) { return run.input_rate_deg_s == 0.0; };
+  if (options.earth_rate && std::all_of(runs.begin(), runs.end(), is_at_rest)) {
+    throw Error(fmt::format("{}: the Earth rate is removed from runs at rate only (GJB 2426A 5.5.4: at rest the IRA "
+                            "points east or west, where it has none), and every run is at rest: leave out "
+                            "remove_earth_rate (at rest in another direction, the zero output given holds it)",
+                            what));
+  }
   TurnOnTimeResult result;
   double longest = -1.0;
   for (const auto& run : runs) {

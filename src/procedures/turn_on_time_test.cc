@@ -76,6 +76,9 @@ TEST(TurnOnTimeTest, EarthRateRemovedFromTheRateTestOnly) {
   const PowerOnRun rest = decaying_run(0.0, 0.01, 10.0, 1.0, 0.0, 0.0, 1.0, 200.0);
   const TurnOnTimeResult both = turn_on_time(std::vector<PowerOnRun>{rest, at_rate}, options);
   EXPECT_NEAR(both.runs[0].time.value, first_sample_within(0.01, 10.0, 1.0 / 3600.0, 1.0), 1e-9);
+  // Asked for with every run at rest it would do nothing: an error, not a silent "never settles".
+  EXPECT_THAT([&] { turn_on_time(std::vector<PowerOnRun>{rest}, options); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("every run is at rest: leave out remove_earth_rate")));
 }
 
 TEST(TurnOnTimeTest, SmoothingAveragesWindowsFromPowerOn) {

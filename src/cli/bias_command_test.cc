@@ -208,6 +208,17 @@ TEST(BiasCommandTest, AGapInTheStampsIsAnErrorWhereTheRateTimesTheSamples) {
   EXPECT_EQ(bias.exit_code, 2);
   EXPECT_THAT(bias.err, ::testing::HasSubstr("gap.csv:1: the time column 'time_s' spans 299.9 s from the first sample to the last, "
                                   "but its 2000 samples at the interval of its first rows (0.1 s) span 199.9 s"));
+  // Without --rate the time column gives it (10 Hz), and the same gap is found.
+  const auto from_stamps = run_cli({"bias", gap, "--scale-factor", "3600", "--column", "output"});
+  EXPECT_EQ(from_stamps.exit_code, 2);
+  EXPECT_THAT(from_stamps.err, ::testing::HasSubstr("gap.csv:1: the time column 'time_s' spans 299.9 s"));
+  std::string even = "time_s,output\n";
+  for (int i = 0; i < 3000; ++i) even += fmt::format("{:.1f},{}\n", i / 10.0, 3600.0 + (i % 7));
+  const std::string regular = dir.write("regular.csv", even);
+  const auto given = run_cli({"bias", regular, "--rate", "10", "--scale-factor", "3600", "--column", "output", "--json"});
+  const auto stamped = run_cli({"bias", regular, "--scale-factor", "3600", "--column", "output", "--json"});
+  ASSERT_EQ(stamped.exit_code, 0) << stamped.err;
+  EXPECT_EQ(nlohmann::json::parse(stamped.out), nlohmann::json::parse(given.out));
   const std::string minus = dir.write("minus.csv", "output\n-3600\n-3601\n");
   const auto polarity = run_cli({"polarity", "--positive-file", gap, "--negative-file", minus, "--column", "output"});
   EXPECT_EQ(polarity.exit_code, 0) << polarity.err;

@@ -156,7 +156,14 @@ double record_sample_rate(const OutputRecordSource& source, double given) {
   const std::optional<double> rate = given != 0.0 ? std::optional<double>(given) : std::nullopt;
   const std::optional<ChannelRecordFormat> channel_format = channel_format_of(source);
   if (!channel_format) {
-    if (!rate) throw ParameterError("sample_rate_hz", "sample_rate_hz is needed: the record stores no sample rate");
+    // A text record's time column whose name states its unit (time_s) gives its rate, as a stored one.
+    const std::optional<RecordTimeColumn> time =
+        is_text(source.format) ? find_record_time_column(source.path) : std::nullopt;
+    if (!rate && time && time->unit_stated) return 1.0 / time->sample_interval_s;
+    if (!rate) {
+      throw ParameterError("sample_rate_hz", "sample_rate_hz is needed: the record stores no sample rate (a text record "
+                                             "gives it by a time column whose name states its unit, e.g. time_s)");
+    }
     if (is_text(source.format)) check_sample_rate_against_time_column(source.path, *rate);
     return *rate;
   }

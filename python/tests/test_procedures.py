@@ -49,12 +49,14 @@ def test_arrays_of_unequal_length_are_an_error():
 
 def test_bias_of_a_constant_record():
     # B0 = F / K (eq. 19): a constant output of 0.01 per sample with K = 1 output per deg/s is 36 deg/h,
-    # and a constant record has no bias stability (eq. 20).
+    # and a constant record (a stuck channel) measures no bias stability (eq. 20): its rows are not
+    # measured, with the reason.
     output = np.full(4000, 0.01)
     result = inertest.bias(output, sample_rate_hz=10.0, scale_factor=1.0, smoothing_s=[1.0, 10.0])
     assert result.bias.value == pytest.approx(36.0, rel=1e-12)
     assert result.bias.unit == "deg/h"
-    assert [entry.value for entry in result.bias_stability] == pytest.approx([0.0, 0.0], abs=1e-9)
+    assert [entry.value for entry in result.bias_stability] == [None, None]
+    assert all("stuck channel" in entry.reason for entry in result.bias_stability)
 
 
 def test_bias_takes_a_scale_factor_or_a_record_in_deg_h_as_the_cli_does():

@@ -106,12 +106,16 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
   if (options.remove_earth_rate) {
     result.earth_rate_removed = Figure{to_deg_h(earth_rate_on_axis(*options.remove_earth_rate)), "deg/h", std::nullopt};
   }
-  if (is_constant(output)) {
-    result.warnings.push_back(fmt::format(
-        "the record is constant: all {} samples equal {:.10g} {} (a stuck channel?); its bias stability and random "
-        "walk of 0 are not measurements",
-        output.size(), output.front(), options.input_in_deg_h ? "deg/h" : options.output_unit));
-  }
+  // A constant record (a stuck channel) has no spread to measure: its stability and random walk are
+  // left out, not 0 (a dead gyro passed every limit on them).
+  const std::string constant =
+      is_constant(output) ? fmt::format("the record is constant: all {} samples equal {:.10g}{} (a stuck channel?)",
+                                        output.size(), output.front(),
+                                        options.input_in_deg_h        ? " deg/h"
+                                        : options.output_unit == "1" ? ""
+                                                                      : " " + options.output_unit)
+                          : "";
+  if (!constant.empty()) result.warnings.push_back(constant + ": no bias stability or random walk is measured");
   // Every figure the record supports; a smoothing time it does not (longer than half the record, not
   // a whole number of samples) and a random walk coefficient it cannot give (a record under 2 s,
   // samples more than 1 s apart) are warnings, not an end to the bias.
@@ -125,6 +129,10 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
       result.smoothing_left_out.push_back({place, s, e.message()});
       continue;
     }
+    if (!constant.empty()) {
+      result.smoothing_left_out.push_back({place, s, constant});
+      continue;
+    }
     if (!std::isfinite(stability.stability * magnitude)) throw_overflow("bias stability");
     std::vector<double> smoothed;
     smoothed.reserve(stability.means.size());
@@ -133,7 +141,7 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
     result.bias_stability.push_back(
         {s, stability.windows, Figure{stability.stability * magnitude, "deg/h", std::nullopt}, std::move(smoothed)});
   }
-  if (options.random_walk) {
+  if (options.random_walk && constant.empty()) {
     result.normalised_stability_curve = normalised_stability_curve(output, options.sample_rate_hz);
     for (auto& point : result.normalised_stability_curve) point.stability *= magnitude;
     try {

@@ -203,21 +203,26 @@ TEST(BiasTest, EarthRateRemovedOnlyWhenAsked) {
 }
 
 TEST(BiasTest, JsonHasTheContractKeys) {
-  const std::vector<double> output(8, 1.0);
+  const std::vector<double> output = {1.0, 3.0, 1.0, 3.0, 1.0, 3.0, 1.0, 3.0};  // means of 1 s: all 2
   const nlohmann::json json = json_of(bias(output, unit_options(4.0, {1.0}, true)));
   EXPECT_EQ(json.at("bias").at("unit"), "deg/h");
   EXPECT_EQ(json.at("bias_stability").at(0),
-            (nlohmann::json{{"smoothing_s", 1.0}, {"value", 0.0}, {"unit", "deg/h"}}));
+            (nlohmann::json{{"smoothing_s", 1.0}, {"value", 0.0}, {"unit", "deg/h"}}));  // 2 per 1 s window
   EXPECT_EQ(json.at("random_walk_coefficient").at("unit"), "deg/sqrt(h)");
 }
 
 TEST(BiasTest, AConstantRecordIsWarnedAbout) {
-  // A stuck channel gives a stability of exactly 0; the result must not present it as a measurement.
+  // A stuck channel gives a stability of exactly 0: not a measurement, so its rows and its random
+  // walk are left out (a limit on them is "not measured"; a dead gyro passed them).
   const std::vector<double> stuck(8, 1.0);
   const BiasResult result = bias(stuck, unit_options(4.0, {1.0}, true));
-  EXPECT_EQ(result.bias_stability[0].value.value, 0.0);
+  EXPECT_TRUE(result.bias_stability.empty());
+  ASSERT_EQ(result.smoothing_left_out.size(), 1u);
+  EXPECT_THAT(result.smoothing_left_out[0].reason, ::testing::HasSubstr("all 8 samples equal 1 (a stuck channel?)"));
+  EXPECT_FALSE(result.random_walk_coefficient.has_value());
+  EXPECT_TRUE(json_of(result).at("bias_stability").at(0).at("value").is_null());
   ASSERT_EQ(result.warnings.size(), 1u);
-  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("all 8 samples equal 1 1 (a stuck channel?)"));
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("all 8 samples equal 1 (a stuck channel?): no bias stability"));
   EXPECT_EQ(json_of(result).at("warnings"), nlohmann::json(result.warnings));
   EXPECT_THAT(text_of(result), ::testing::HasSubstr("warning: the record is constant"));
   // One differing sample is a record, not a stuck channel.

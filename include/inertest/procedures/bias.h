@@ -83,7 +83,8 @@ struct BiasResult {
 };
 
 // Throws Error for invalid options or fewer than two samples. Smoothing times and a random walk
-// coefficient the record cannot support are warnings (see above).
+// coefficient the record cannot support are warnings (see above), and so are all of them on a
+// constant record (a stuck channel: a spread of 0 is no measurement, and passed every limit).
 BiasResult bias(std::span<const double> output, const BiasOptions& options);
 
 // The procedure's spec (src/procedures/bias_spec.cc): CLI, plan step, JSON and text.

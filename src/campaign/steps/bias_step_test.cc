@@ -197,6 +197,27 @@ TEST(BiasStepTest, ALimitOnAFigureLeftOutIsNotMeasured) {
   EXPECT_FALSE(verdict.at("measured").get<bool>());
 }
 
+// A dead gyro (a constant output) measures no bias stability or random walk: limits on them FAIL as
+// not measured (its spreads of 0 passed them, and the campaign with them).
+TEST(BiasStepTest, AConstantRecordFailsItsStabilityLimitsAsNotMeasured) {
+  ScratchDirectory scratch;
+  scratch.write("stuck.txt", constant_record(0.0, 3600));
+  const std::string plan = scratch.write(
+      "plan.toml", std::string(kHeader) + "[[procedure]]\nkind = \"bias\"\nfile = \"stuck.txt\"\nsmoothing_s = [1, 10]\n"
+                                          "[procedure.limits]\nbias = { max = 0.05, unit = \"deg/h\" }\n"
+                                          "\"/bias_stability/1\" = { max = 0.05, unit = \"deg/h\" }\n"
+                                          "random_walk_coefficient = { max = 0.005, unit = \"deg/sqrt(h)\" }\n");
+  const CampaignSummary summary = run_campaign(plan, scratch.path() + "/out");
+  const auto& verdicts = summary.results.at("verdicts");
+  ASSERT_EQ(verdicts.size(), 3u);
+  EXPECT_TRUE(verdicts[0].at("pass").get<bool>());  // the bias, 0, is a measurement
+  for (const std::size_t i : {1u, 2u}) {
+    EXPECT_FALSE(verdicts[i].at("pass").get<bool>()) << i;
+    EXPECT_FALSE(verdicts[i].at("measured").get<bool>()) << i;
+  }
+  EXPECT_EQ(summary.results.at("verdict"), "FAIL");
+}
+
 TEST(BiasStepTest, WindowLongerThanTheRecordIsAWarning) {
   ScratchDirectory scratch;
   scratch.write("rest.txt", constant_record(1.0, 8));

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -575,15 +576,38 @@ std::optional<std::pair<std::string, SourceLocation>> file_the_plan_reads(const 
 // export before anything runs: `--out .` with an export named as a record replaced the record, and
 // a step that reads what an earlier step exports read the file of the run before (a plan's data
 // are the files as they are when it starts).
-void require_exports_replace_no_data(const Plan& plan, const std::filesystem::path& out) {
+void require_exports_replace_no_data(const Plan& plan, const std::filesystem::path& out, const nlohmann::json& earlier) {
   std::vector<std::pair<std::string, SourceLocation>> writes(plan.context.outputs.claims().begin(),
                                                              plan.context.outputs.claims().end());
   for (const char* own : {"results.json", "report.html"}) writes.emplace_back(own, SourceLocation{plan.path, 0, 0});
+  // What an earlier run of this plan wrote there (its list; without one, its results and report).
+  std::set<std::filesystem::path> ours;
+  if (std::filesystem::is_regular_file(out / "results.json")) ours = {"results.json", "report.html"};
+  if (!earlier.is_null()) {
+    for (const auto& entry : earlier.at("files")) {
+      if (entry.is_object() && entry.contains("path") && entry.at("path").is_string()) {
+        ours.insert(std::filesystem::path(entry.at("path").get<std::string>()).lexically_normal());
+      }
+    }
+  }
   for (const auto& [path, where] : writes) {
+    const std::filesystem::path name = std::filesystem::path(path).lexically_normal();
+    // The run's own bookkeeping: an export staged there was removed with it.
+    if (name.begin()->string().starts_with(".inertest-")) {
+      throw Error(where, "'" + path + "' is inside the run's own files (.inertest-exports, .inertest-written): give the "
+                             "export another name");
+    }
     if (const auto read = file_the_plan_reads(plan, out / path)) {
       throw Error(where, "the run would write '" + path + "' over '" + read->first + "', which the plan reads (at " +
                              read->second.to_string() + "): give the export another name, or the run another --out; "
                              "a step cannot read what another exports in the same run");
+    }
+    std::error_code error;  // (a directory there is the move's error, naming it)
+    if (std::filesystem::exists(out / name, error) && !std::filesystem::is_directory(out / name, error) &&
+        !ours.contains(name)) {
+      throw Error(where, "the run would write '" + path + "' over '" + (out / name).string() +
+                             "', which no earlier run of this plan wrote: give the export another name, or the run "
+                             "another --out (or move that file away)");
     }
   }
 }
@@ -707,7 +731,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   const std::filesystem::path out = std::filesystem::path(out_dir).lexically_normal();
   require_output_directory(out);
   const nlohmann::json earlier = earlier_run_of_this_plan(plan, out);
-  require_exports_replace_no_data(plan, out);
+  require_exports_replace_no_data(plan, out, earlier);
   const std::filesystem::path made = first_missing(out);
   std::filesystem::create_directories(out);
   const std::filesystem::path staging = out / ".inertest-exports";

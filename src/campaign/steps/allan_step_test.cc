@@ -397,13 +397,36 @@ TEST(AllanStep, ARunReplacesItsOwnCampaignAndNoOther) {
                                                         std::filesystem::weakly_canonical(copy).string() + ")")));
   EXPECT_EQ(testing::read_file(out + "/results.json"), results);
   EXPECT_TRUE(std::filesystem::exists(out + "/filter.json"));
-  // Its results moved away, the directory takes another campaign, and removes nothing of the last.
+  // Its results moved away, the directory takes another campaign, but not over the last one's export
+  // (it was replaced), and removes nothing of the last.
   std::filesystem::rename(out + "/results.json", dir.path() + "/kept.json");
+  EXPECT_THAT([&] { run_campaign(other, out); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("the run would write 'filter.json' over '" + out +
+                                                        "/filter.json', which no earlier run of this plan wrote")));
+  std::filesystem::rename(out + "/filter.json", dir.path() + "/kept_filter.json");
   EXPECT_TRUE(run_campaign(other, out).removed_files.empty());
   EXPECT_TRUE(std::filesystem::exists(out + "/filter.json"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/noise.json"));
   dir.write("elsewhere/results.json", "[1, 2]");  // not inertest's: not replaced either
   EXPECT_THAT(testing::run_cli({"run", other, "--out", dir.path() + "/elsewhere"}).err,
               HasSubstr("holds the results of another campaign (not an inertest results file;"));
+}
+
+// An export over a file of the output directory that no run of the plan wrote (a raw record kept
+// there) is refused before anything runs, as is one inside the run's own bookkeeping (it was staged
+// there and removed with the staging directory, exit 0).
+TEST(AllanStep, AnExportOverAFileNoRunWroteIsRefused) {
+  testing::ScratchDirectory dir;
+  const std::string out = dir.path() + "/out";
+  dir.write("out/rate_00.csv", "raw record\n");
+  EXPECT_THAT([&] { run_campaign(white_noise_plan(dir, "plan.toml", "export = [\"json\", \"rate_00.csv\"]"), out); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("the run would write 'rate_00.csv' over '" + out +
+                                                        "/rate_00.csv', which no earlier run of this plan wrote")));
+  EXPECT_EQ(testing::read_file(out + "/rate_00.csv"), "raw record\n");
+  EXPECT_FALSE(std::filesystem::exists(out + "/results.json"));
+  EXPECT_THAT(
+      [&] { run_campaign(white_noise_plan(dir, "plan.toml", "export = [\"json\", \".inertest-exports/x.json\"]"), out); },
+      ::testing::ThrowsMessage<Error>(HasSubstr("'.inertest-exports/x.json' is inside the run's own files")));
 }
 
 // A file where an export's directory is to be made: an error before anything moves, the earlier

@@ -478,7 +478,7 @@ std::optional<nlohmann::json> check_limit(const Limit& limit, const std::string&
                                 node->value("reason", std::string("the procedure gave no value")));
   }
   // A figure the analysis could not identify ({"value": null, "identified": false, "upper_bound"})
-  // is judged by its upper bound: it passes a maximum the bound meets, and never a minimum.
+  // is judged by its upper bound: it passes a maximum the bound meets, and a minimum only at or below 0.
   const bool identified = element || plain || node->value("identified", true);
   const Figure figure = element  ? *element
                         : plain  ? Figure{yes_no ? (node->get<bool>() ? 1.0 : 0.0) : node->get<double>(), "", std::nullopt}
@@ -494,8 +494,10 @@ std::optional<nlohmann::json> check_limit(const Limit& limit, const std::string&
   }
   const bool magnitude = limit.max && !limit.min;
   const double judged = magnitude ? std::abs(value) : value;
+  // Not identified: the figure (a noise term, never negative) lies in [0, bound], inside a range whose
+  // minimum is at most 0 and whose maximum the bound meets.
   const bool pass = identified ? (!limit.min || judged >= *limit.min) && (!limit.max || judged <= *limit.max)
-                               : !limit.min && limit.max && value <= *limit.max;
+                               : (!limit.min || *limit.min <= 0.0) && (!limit.max || value <= *limit.max);
   nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", value},
                             {"unit", unit},           {"pass", pass}};
   if (!identified) verdict["identified"] = false;  // value: the upper bound

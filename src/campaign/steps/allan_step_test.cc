@@ -165,7 +165,8 @@ TEST(AllanStep, FitRangeKey) {
 }
 
 // A spec limit on a noise term the fit could not identify (R of white noise) is judged by its
-// upper bound: a maximum above the bound passes, one below it fails, a minimum always fails.
+// upper bound: the term (never negative) lies in [0, bound], so a maximum above the bound passes,
+// one below it fails, and a minimum passes only at or below 0 (a range of 0 to 0.01 failed).
 TEST(AllanStep, LimitOnAnUnidentifiedTermUsesItsUpperBound) {
   testing::ScratchDirectory dir;
   const auto verdict_for = [&](const std::string& limit) {
@@ -181,7 +182,10 @@ TEST(AllanStep, LimitOnAnUnidentifiedTermUsesItsUpperBound) {
   EXPECT_EQ(loose["identified"], false);
   EXPECT_DOUBLE_EQ(loose["value"].get<double>(), bound);
   EXPECT_FALSE(verdict_for("{ max = " + std::to_string(bound / 2.0) + " }").first["pass"].get<bool>());
-  EXPECT_FALSE(verdict_for("{ min = 0 }").first["pass"].get<bool>());
+  EXPECT_TRUE(verdict_for("{ min = 0 }").first["pass"].get<bool>());
+  EXPECT_TRUE(verdict_for("{ min = 0, max = 1e3 }").first["pass"].get<bool>());
+  EXPECT_FALSE(verdict_for("{ min = 1e-12 }").first["pass"].get<bool>());
+  EXPECT_FALSE(verdict_for("{ min = 0, max = " + std::to_string(bound / 2.0) + " }").first["pass"].get<bool>());
 }
 
 // columns (issue 19): every channel of a record in one step, each with its unit; the result is the

@@ -306,7 +306,6 @@ Plan load_plan(const std::string& path) {
   // results, then refused them) or one with blanks around it ("FOG-001 ", an instrument of its own
   // that prints as FOG-001) is a plan error.
   if (const std::optional<std::string> problem = instrument_id_problem(in.id)) instrument->fail_at("id", *problem);
-  if (in.id.front() == ' ' || in.id.back() == ' ') instrument->fail_at("id", "'" + in.id + "' has blanks around it");
   in.type = instrument->string_or("type", "gyro");
   if (in.type != "gyro" && in.type != "accelerometer") instrument->fail_at("type", "must be \"gyro\" or \"accelerometer\"");
   in.output_unit = instrument->string_or("output_unit", "1");

@@ -1,8 +1,41 @@
 #include "inertest/core/instrument_id.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <fmt/format.h>
 
 namespace inertest {
+namespace {
+
+// The code point of the UTF-8 sequence at `at` (its length in `size`); U+FFFD for a malformed one.
+char32_t code_point_at(std::string_view text, std::size_t at, std::size_t& size) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[at + i]); };
+  const unsigned char lead = byte(0);
+  size = lead < 0x80 ? 1 : lead < 0xE0 ? 2 : lead < 0xF0 ? 3 : 4;
+  if (lead < 0x80) return lead;
+  if (at + size > text.size()) {
+    size = 1;
+    return 0xFFFD;
+  }
+  char32_t point = lead & (lead < 0xE0 ? 0x1F : lead < 0xF0 ? 0x0F : 0x07);
+  for (std::size_t i = 1; i < size; ++i) point = (point << 6) | (byte(i) & 0x3F);
+  return point;
+}
+
+// Blanks that print as nothing or as a space: an id with one around it is another instrument that
+// prints as the same ("FOG-001 ", "FOG-001" + U+00A0).
+bool is_blank(char32_t c) {
+  return c == ' ' || c == 0x00A0 || c == 0x1680 || (c >= 0x2000 && c <= 0x200A) || c == 0x202F || c == 0x205F ||
+         c == 0x3000;
+}
+
+}  // namespace
+
+bool is_invisible(char32_t c) {
+  // zero-width space, non-joiner, joiner; word joiner; byte order mark (zero-width no-break space)
+  return (c >= 0x200B && c <= 0x200D) || c == 0x2060 || c == 0xFEFF;
+}
 
 std::optional<std::string> instrument_id_problem(std::string_view id) {
   if (id.empty()) return "is empty";
@@ -11,7 +44,17 @@ std::optional<std::string> instrument_id_problem(std::string_view id) {
     return "contains a control character";
   }
   // "." and ".." would name the directory of the history pages, not a page of their own.
-  if (id.find_first_not_of('.') == std::string_view::npos) return "'" + std::string(id) + "' is only dots";
+  if (id.find_first_not_of('.') == std::string_view::npos) return fmt::format("'{}' is only dots", id);
+  std::size_t size = 0;
+  bool blank_first = false;
+  bool blank_last = false;
+  for (std::size_t at = 0; at < id.size(); at += size) {
+    const char32_t c = code_point_at(id, at, size);
+    if (is_invisible(c)) return fmt::format("'{}' holds an invisible character (a zero-width space or joiner)", id);
+    if (at == 0) blank_first = is_blank(c);
+    blank_last = is_blank(c);
+  }
+  if (blank_first || blank_last) return fmt::format("'{}' has blanks around it", id);
   return std::nullopt;
 }
 

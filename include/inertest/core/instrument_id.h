@@ -9,7 +9,13 @@
 namespace inertest {
 
 // Why `id` cannot identify an instrument ("is empty", "is longer than 256 bytes", "contains a
-// control character", "'..' is only dots"), or nothing when it can.
+// control character", "'..' is only dots", "holds an invisible character", "has blanks around it":
+// a space, a no-break or another Unicode space first or last), or nothing when it can. Each would
+// be an instrument of its own that prints as another.
 std::optional<std::string> instrument_id_problem(std::string_view id);
+
+// A character that prints as nothing: a zero-width space, non-joiner or joiner, a word joiner, or a
+// byte order mark.
+bool is_invisible(char32_t c);
 
 }  // namespace inertest

@@ -221,11 +221,25 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
     std::string abscissa;
     for (const auto& [member, value] : node->items()) {
       if (member == "value" || member == "uncertainty" || !value.is_number()) continue;
-      abscissa += (abscissa.empty() ? "" : ", ") + member + " = " + value.dump();
+      // As a double (10.0, as inertest writes it): 10 and 10.0 are one place (they were two quantities).
+      abscissa += (abscissa.empty() ? "" : ", ") + member + " = " + nlohmann::json(value.get<double>()).dump();
     }
     if (abscissa.empty()) continue;
     for (std::size_t i = row_figures; i < rows.size(); ++i) rows[i].abscissa = abscissa;
   }
+}
+
+// A results.json as compared for identity: less the moment it was processed, every number a double
+// (108 and 108.0 are one value).
+nlohmann::json comparable_content(nlohmann::json results) {
+  results.erase("processed_at");
+  const auto as_doubles = [](auto& self, nlohmann::json& node) -> void {
+    if (node.is_number_integer()) node = node.get<double>();
+    if (!node.is_structured()) return;
+    for (auto& child : node) self(self, child);
+  };
+  as_doubles(as_doubles, results);
+  return results;
 }
 
 CampaignRecord read_campaign(const nlohmann::json& results, const std::string& source) {
@@ -691,6 +705,17 @@ class DatabaseArchive final : public Archive {
   // the fault injection).
   AddOutcome insert(const CampaignRecord& record, long& figures_written) {
     AddOutcome outcome{record.entry.id, record.entry.instrument, false};
+    // The same content with its numbers spelt otherwise (108 for 108.0, as jq rewrites a file) hashes
+    // to another id: compared by value with the instrument's campaigns of that day, it is the one
+    // archived (it was stored twice, and repeatability counted the test twice).
+    const nlohmann::json content = comparable_content(nlohmann::json::parse(record.results_text));
+    for (const Row& row : db_->query("SELECT id, results FROM campaign WHERE instrument = $1 AND tested_on = $2",
+                                     {record.entry.instrument, record.entry.tested_on})) {
+      if (comparable_content(nlohmann::json::parse(row.text(1))) == content) {
+        outcome.id = row.text(0);
+        return outcome;
+      }
+    }
     const auto inserted = db_->query(
         "INSERT INTO campaign (id, instrument, title, tested_on, processed_at, operator, station, verdict,"
         " inertest_version, results) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)"

@@ -291,7 +291,10 @@ TEST_P(ArchiveBackend, ARowOfATableIsOneQuantityAtOnePlaceInIt) {
     return results;
   };
   archive->add(with_stability("2026-03-01", 10.0, 0.012), "a");
-  archive->add(with_stability("2026-03-02", 10.0, 0.013), "b");
+  // A place written as a whole number (10 for 10.0, a file rewritten by jq) is the same place.
+  nlohmann::json whole = with_stability("2026-03-02", 10.0, 0.013);
+  whole["procedures"][1]["result"]["bias_stability"][1]["smoothing_s"] = 10;
+  archive->add(whole, "b");
   // Not measured on a third day: its flag and reason are results, not where the row lies.
   nlohmann::json unmeasured = with_stability("2026-03-02", 10.0, 0.0);
   unmeasured["procedures"][1]["result"]["bias_stability"][1] = {
@@ -338,6 +341,18 @@ TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
   EXPECT_EQ(archive->history("FOG-0417", "scale_factor/scale_factor").points.size(), 1u);
   // Reopened (the migration runs again and finds nothing to do): the same content.
   EXPECT_EQ(open()->list(std::nullopt).size(), 1u);
+  // Its numbers spelt otherwise (a whole number without ".0", as jq writes it): the same campaign,
+  // not a second test of that day (it was stored twice).
+  nlohmann::json respelt = campaign("FOG-0417", "2026-02-01", 36000.2);
+  respelt["procedures"][0]["result"]["respelt"] = 108;
+  nlohmann::json with_point_zero = respelt;
+  with_point_zero["procedures"][0]["result"]["respelt"] = 108.0;
+  const auto first = archive->add(with_point_zero, "b.json");
+  const auto spelt = archive->add(respelt, "b_int.json");
+  EXPECT_TRUE(first.added);
+  EXPECT_FALSE(spelt.added);
+  EXPECT_EQ(spelt.id, first.id);
+  EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
 }
 
 TEST_P(ArchiveBackend, HostileResultsAreRefusedAndChangeNothing) {

@@ -515,14 +515,24 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
 // that says where it lies in its table (column 8, the abscissa; null where unknown: a campaign the
 // migration could not read again) lies at one place.
 void require_one_quantity(const std::vector<Row>& rows, const std::string& figure) {
-  const Dimension first = Unit::parse(rows.front().text(4)).dimension();
+  // Of one dimension is not enough: degC and K do not convert as bare temperatures (an absolute one
+  // needs an offset a difference does not), and history, fleet and the report failed on them.
+  const std::string first = rows.front().text(4);
+  const auto converts = [&first](const std::string& unit) {
+    try {
+      convert(1.0, unit, first);
+      return true;
+    } catch (const Error&) {
+      return false;
+    }
+  };
   std::map<std::string, std::set<std::string>> instruments_by_unit;
   std::map<std::string, std::set<std::string>> tests_by_abscissa;
   bool mixed_units = false;
   for (const auto& row : rows) {
     instruments_by_unit[row.text(4)].insert(row.text(5));
     if (!row.is_null(8)) tests_by_abscissa[row.text(8)].insert(row.text(5) + " " + row.text(0));
-    mixed_units = mixed_units || Unit::parse(row.text(4)).dimension() != first;
+    mixed_units = mixed_units || !converts(row.text(4));
   }
   const auto listed = [](const std::map<std::string, std::set<std::string>>& groups) {
     std::vector<std::string> texts;

@@ -681,6 +681,16 @@ TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
   const auto fleet_command = testing::run_cli({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--db", location_});
   EXPECT_EQ(fleet_command.exit_code, 2);
   EXPECT_THAT(fleet_command.err, HasSubstr("different quantities under one name"));
+  // One dimension is not enough: bare temperatures in degC and K do not convert (history, fleet and
+  // the report failed on "cannot convert the temperature").
+  nlohmann::json celsius = campaign("FOG-T1", "2026-01-03", 36000.0);
+  celsius["procedures"][0]["result"]["worst_temperature"] = {{"value", 60.0}, {"unit", "degC"}};
+  nlohmann::json kelvin = campaign("FOG-T2", "2026-01-04", 36000.0);
+  kelvin["procedures"][0]["result"]["worst_temperature"] = {{"value", 333.15}, {"unit", "K"}};
+  archive->add(celsius, "t1");
+  archive->add(kelvin, "t2");
+  EXPECT_THAT([&] { archive->fleet("scale_factor/worst_temperature", std::nullopt); },
+              ::testing::ThrowsMessage<archive::NotOneQuantity>(HasSubstr("K (FOG-T2); degC (FOG-T1)")));
 }
 
 // inertest archive report: the fleet page and one history page per instrument; by default the

@@ -167,6 +167,11 @@ void collect_values(const nlohmann::json& value, const nlohmann::json* uncertain
   row.figure = path;
   if (value.is_number()) row.value = value.get<double>();
   row.unit = unit;
+  // A 1-sigma uncertainty is a number of 0 or more (-5 was shown as "± -5", "0.001" dropped unsaid).
+  if (uncertainty != nullptr && !uncertainty->is_null() &&
+      !(uncertainty->is_number() && uncertainty->get<double>() >= 0.0)) {
+    malformed(source, "figure '" + procedure + "/" + path + "': \"uncertainty\" is not a number of 0 or more");
+  }
   if (uncertainty != nullptr && uncertainty->is_number()) row.uncertainty = uncertainty->get<double>();
   out.push_back(std::move(row));
 }
@@ -189,6 +194,17 @@ void collect_figures(const nlohmann::json& node, const std::string& procedure, c
   }
 }
 
+// The node a verdict's figure names in a result ("scale_factor", "/bias_stability/1"), or null: none
+// there, or no JSON pointer into it (the campaign wrote the verdict).
+const nlohmann::json* figure_at(const nlohmann::json& result, const std::string& figure) {
+  try {
+    const nlohmann::json::json_pointer pointer("/" + figure);
+    return result.contains(pointer) ? &result.at(pointer) : nullptr;
+  } catch (const nlohmann::json::exception&) {
+    return nullptr;
+  }
+}
+
 // The figures a limit names inside a list (a row of a table, e.g. "/bias_stability/1", bias
 // stability at the second smoothing time): collect_figures leaves lists out (their rows are curves
 // and tables, hundreds of points), but a figure the plan puts a limit on is archived wherever it is,
@@ -206,13 +222,7 @@ void collect_limited_figures(const nlohmann::json& result, const std::string& pr
                     collected)) {
       continue;
     }
-    const nlohmann::json* node = nullptr;
-    try {
-      const nlohmann::json::json_pointer pointer("/" + key.second);
-      if (result.contains(pointer)) node = &result.at(pointer);
-    } catch (const nlohmann::json::exception&) {
-      // not a JSON pointer into this result (the campaign wrote the verdict; nothing to archive)
-    }
+    const nlohmann::json* node = figure_at(result, key.second);
     if (node == nullptr || !node->is_object()) continue;
     const std::size_t row_figures = rows.size();
     collect_figures(*node, procedure, key.second, source, rows);
@@ -336,6 +346,26 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
       if (verdict.contains("max")) row.upper_limit = convert(verdict.at("max").get<double>(), limit_unit, row.unit);
     } catch (const Error& e) {
       malformed(source, "limit on '" + row.procedure + "/" + row.figure + "': " + e.message());
+    }
+    // As a plan refuses it: the fleet's capability of min 36001.8, max 35998.2 was Cp -854.8.
+    if (row.lower_limit && row.upper_limit && *row.lower_limit > *row.upper_limit) {
+      malformed(source, fmt::format("limit on '{}/{}': min {} is above max {}", row.procedure, row.figure,
+                                    *row.lower_limit, *row.upper_limit));
+    }
+  }
+  // A limit names a figure: one without its unit would not be archived, and its history would lose
+  // that test without a word.
+  for (const auto& [key, verdict] : verdicts) {
+    const bool archived = std::any_of(record.figures.begin(), record.figures.end(), [&key](const FigureRow& row) {
+      return row.procedure == key.first && row.figure == key.second;
+    });
+    if (archived) continue;
+    for (const auto& procedure : results.at("procedures")) {
+      if (!procedure.is_object() || procedure.value("name", "") != key.first) continue;
+      const nlohmann::json* node = procedure.contains("result") ? figure_at(procedure.at("result"), key.second) : nullptr;
+      if (node != nullptr && node->is_object() && node->contains("value") && !node->contains("unit")) {
+        malformed(source, "figure '" + key.first + "/" + key.second + "': a limit names it, but it has no \"unit\"");
+      }
     }
   }
 

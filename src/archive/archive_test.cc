@@ -372,6 +372,14 @@ TEST_P(ArchiveBackend, HostileResultsAreRefusedAndChangeNothing) {
   bad_verdict["verdict"] = "MAYBE";
   nlohmann::json slash_name = campaign("FOG-1", "2026-02-01", 1.0);
   slash_name["procedures"][0]["name"] = "a/b";
+  nlohmann::json negative_uncertainty = campaign("FOG-1", "2026-02-01", 1.0, -5.0);
+  nlohmann::json text_uncertainty = campaign("FOG-1", "2026-02-01", 1.0);
+  text_uncertainty["procedures"][0]["result"]["scale_factor"]["uncertainty"] = "0.001";
+  nlohmann::json swapped_limits = campaign("FOG-1", "2026-02-01", 1.0);
+  swapped_limits["verdicts"][0]["min"] = 36001.0;
+  swapped_limits["verdicts"][0]["max"] = 35999.0;
+  nlohmann::json no_unit = campaign("FOG-1", "2026-02-01", 1.0);
+  no_unit["procedures"][0]["result"]["scale_factor"].erase("unit");
 
   EXPECT_EQ(error_of_add(*archive, nlohmann::json::array()),
             "bad/results.json: not an inertest results file: expected a JSON object");
@@ -386,6 +394,14 @@ TEST_P(ArchiveBackend, HostileResultsAreRefusedAndChangeNothing) {
   EXPECT_THAT(error_of_add(*archive, bad_date), HasSubstr("the test date 'yesterday' is not YYYY-MM-DD"));
   EXPECT_THAT(error_of_add(*archive, bad_verdict), HasSubstr("\"verdict\" must be PASS, FAIL or NONE, not 'MAYBE'"));
   EXPECT_THAT(error_of_add(*archive, slash_name), HasSubstr("procedure name 'a/b' is empty or contains '/'"));
+  for (const auto* hostile : {&negative_uncertainty, &text_uncertainty}) {
+    EXPECT_THAT(error_of_add(*archive, *hostile),
+                HasSubstr("figure 'scale_factor/scale_factor': \"uncertainty\" is not a number of 0 or more"));
+  }
+  EXPECT_THAT(error_of_add(*archive, swapped_limits),
+              HasSubstr("limit on 'scale_factor/scale_factor': min 36001 is above max 35999"));
+  EXPECT_THAT(error_of_add(*archive, no_unit),
+              HasSubstr("figure 'scale_factor/scale_factor': a limit names it, but it has no \"unit\""));
 
   ASSERT_EQ(archive->list(std::nullopt).size(), 1u);
   EXPECT_EQ(archive->list(std::nullopt)[0].instrument, "FOG-0417");

@@ -21,9 +21,10 @@ std::string snake_case_key(const std::string& name) {
   std::string key;
   bool separator = false;
   for (unsigned char c : name) {
-    if (std::isalnum(c) != 0) {
+    // Letters of any script are kept (UTF-8 bytes as they are): a GJB lab names its checks 绝缘电阻.
+    if (std::isalnum(c) != 0 || c >= 0x80) {
       if (separator && !key.empty()) key += '_';
-      key += static_cast<char>(std::tolower(c));
+      key += static_cast<char>(c >= 0x80 ? c : std::tolower(c));
       separator = false;
     } else {
       separator = true;

@@ -64,6 +64,8 @@ TEST(HandChecksTest, FiguresAndPassFlags) {
   EXPECT_TRUE(json.at("check_pass").at("insulation_resistance_case_to_power").get<bool>());
   EXPECT_FALSE(json.at("check_pass").at("power_15_v_supply").get<bool>());
   EXPECT_EQ(json.at("checks").at(0).at("value"), "pass");
+  // A check named in Chinese keeps its name (it was "no usable name").
+  EXPECT_EQ(snake_case_key("绝缘电阻 (壳体)"), "绝缘电阻_壳体");
   // A max alone bounds the magnitude, as the plan's limit the campaign judges it with does; with a
   // min beside it, the signed value.
   const std::vector<HandCheck> offsets = {{"Offset", -0.8, std::nullopt, "V", std::nullopt, 0.5},

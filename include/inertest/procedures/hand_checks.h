@@ -41,8 +41,9 @@ struct HandChecksResult {
   std::string report() const;
 };
 
-// snake_case key of a check's name: lower-case letters and digits, runs of anything else become
-// one '_' ("Power, +15 V supply" -> "power_15_v_supply").
+// snake_case key of a check's name: lower-case letters and digits, letters of other scripts as
+// they are, runs of anything else become one '_' ("Power, +15 V supply" -> "power_15_v_supply",
+// "绝缘电阻 (壳体)" -> "绝缘电阻_壳体").
 std::string snake_case_key(const std::string& name);
 
 // Throws Error for no checks, an empty name, two names with the same key, a check with both or

@@ -39,7 +39,7 @@ CommandAction setup(CLI::App& archive) {
     }
     for (const auto& p : history.points) {
       report += fmt::format("  {}  {}{}  {}\n", p.tested_on, p.value ? fmt::format("{:.10g}", *p.value) : "not measured",
-                            p.uncertainty ? fmt::format(" ± {:.3g}", *p.uncertainty) : std::string(), p.campaign);
+                            p.value && p.uncertainty ? fmt::format(" ± {:.3g}", *p.uncertainty) : std::string(), p.campaign);
     }
     print_result(history.to_json(), report, arguments->json);
     return 0;

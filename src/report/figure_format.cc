@@ -65,7 +65,7 @@ std::string significance_note(const json& figure, const Labels& labels) {
 
 std::string figure_text(const json& figure, const Labels& labels) {
   const auto [value, uncertainty] = format_figure(figure, labels);
-  const std::string unit = pretty_unit(figure.value("unit", ""));
+  const std::string unit = is_unmeasured_figure(figure) ? "" : pretty_unit(figure.value("unit", ""));  // not "not measured °/h"
   const std::string note = significance_note(figure, labels);
   return value + (uncertainty.empty() ? "" : " ± " + uncertainty) + (unit.empty() ? "" : " " + unit) +
          (note.empty() ? "" : ", " + note);

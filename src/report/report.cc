@@ -258,7 +258,7 @@ constexpr std::size_t kMaxTableRows = 40;
 constexpr const char* kNamingMembers[] = {"name", "label", "position", "supply", "sensor"};
 
 bool is_figure_node(const json& node) {
-  return is_figure(node) || is_unidentified_figure(node) || is_array_figure(node);
+  return is_figure(node) || is_unidentified_figure(node) || is_unmeasured_figure(node) || is_array_figure(node);
 }
 
 // An array that is a table of its own inside a row: its elements are objects (figures or rows).
@@ -279,7 +279,8 @@ void add_columns(const json& node, const std::string& prefix, int depth, std::ve
   }
   for (const auto& [key, value] : node.items()) {
     if (prefix.empty() && is_figure_node(node) &&
-        (key == "value" || key == "unit" || key == "uncertainty" || key == "identified" || key == "upper_bound")) {
+        (key == "value" || key == "unit" || key == "uncertainty" || key == "identified" || key == "upper_bound" ||
+         key == "measured")) {
       continue;
     }
     const std::string column = prefix + escape_pointer_token(key);
@@ -392,7 +393,7 @@ std::string numbers_text(const json& node) {
 std::string cell_text(const json* cell, const Labels& labels) {
   if (cell == nullptr) return "";
   if (cell->is_null()) return "—";
-  if (is_figure(*cell) || is_unidentified_figure(*cell)) return figure_text(*cell, labels);
+  if (is_figure(*cell) || is_unidentified_figure(*cell) || is_unmeasured_figure(*cell)) return figure_text(*cell, labels);
   if (is_array_figure(*cell)) {
     const std::string unit = pretty_unit(cell->at("unit").get<std::string>());
     const auto* u = member(*cell, "uncertainty");
@@ -420,7 +421,7 @@ void collect_table_figures(const std::vector<RowTable>& tables, std::vector<Figu
     for (const RowTable::Row& row : table.rows) {
       for (std::size_t c = 0; c < table.columns.size(); ++c) {
         const json* cell = row.cells[c];
-        if (cell == nullptr || !(is_figure(*cell) || is_unidentified_figure(*cell))) continue;
+        if (cell == nullptr || !(is_figure(*cell) || is_unidentified_figure(*cell) || is_unmeasured_figure(*cell))) continue;
         const std::string name =
             table.columns[c].empty()
                 ? table.title + (row.name.starts_with('#') ? " " + row.name : " (" + row.name + ")")
@@ -509,9 +510,11 @@ class ReportWriter {
     if (!verdicts().empty()) {
       text += "\nSpecification limits\n";
       for (const json& v : verdicts()) {
-        text += fmt::format("  {:<5} {} / {} = {} {} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
+        const auto* value = member(v, "value");
+        const bool measured = value != nullptr && value->is_number();  // "not measured", not "not measured °/h"
+        text += fmt::format("  {:<5} {} / {} = {}{} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
                             v.value("procedure", ""), v.value("figure", ""), verdict_value_text(v, labels_),
-                            pretty_unit(v.value("unit", "")), limit_text(v));
+                            measured ? " " + pretty_unit(v.value("unit", "")) : "", limit_text(v));
       }
     }
     return text + fmt::format("\nVerdict: {}\n", overall_verdict());

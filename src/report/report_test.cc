@@ -305,6 +305,32 @@ radius_m = 1.0
   EXPECT_NE(page.find("Drift coefficients · DI<"), std::string::npos);
 }
 
+// A limit on a row of a table the data could not give (a smoothing time longer than the record)
+// is in the summary as FAIL, under the row's name, and the row reads "not measured": the summary
+// left it out while the verdict was FAIL, and the table printed the row's JSON in a cell.
+TEST(Report, ANotMeasuredRowUnderALimitIsSummarisedAndTabulated) {
+  ScratchDirectory scratch;
+  scratch.write("rate.csv", white_noise_record(2000));
+  const std::string plan = R"([instrument]
+id = "FOG-NM"
+output_unit = "pulse/s"
+sample_rate_hz = 10
+
+[[procedure]]
+kind = "bias"
+file = "rate.csv"
+input = "deg/h"
+smoothing_s = [1, 10, 2000]
+[procedure.limits]
+"/bias_stability/2" = { max = 0.05, unit = "deg/h" }
+)";
+  const std::string page = render_report(run_plan(scratch, plan), {Language::english, "2024-01-02"});
+  const std::string summary = page.substr(0, page.find("Compliance with the specification</h2>"));
+  EXPECT_THAT(summary, ::testing::ContainsRegex("Bias stability \\(2000 s\\)</td>.*not measured.*FAIL"));
+  EXPECT_THAT(page, Not(HasSubstr("{&quot;")));
+  EXPECT_THAT(page, Not(HasSubstr("not measured °/h")));
+}
+
 TEST(Report, ChecklistsAndTheDemoTruthCheckAreTabulated) {
   const nlohmann::json results = {
       {"inertest_version", "1.0.0"},

@@ -5,6 +5,7 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <mutex>
 #include <optional>
@@ -192,7 +193,13 @@ struct Server::Impl {
     if (!options.allow_add) throw Refusal{403, "the server is read-only (start it with --allow-add)"};
     const std::string authorization = request.get_header_value("Authorization");
     if (authorization.empty()) throw Refusal{401, "the token is missing (Authorization: Bearer TOKEN)"};
-    if (!same_secret(authorization, "Bearer " + token)) throw Refusal{403, "the token is wrong"};
+    // The scheme's name in any case (RFC 7235 2.1: "bearer" is Bearer), then the token itself.
+    const std::size_t space = authorization.find(' ');
+    std::string scheme = authorization.substr(0, space);
+    std::transform(scheme.begin(), scheme.end(), scheme.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (scheme != "bearer" || space == std::string::npos || !same_secret(authorization.substr(space + 1), token)) {
+      throw Refusal{403, "the token is wrong"};
+    }
     if (!body) throw Refusal{413, reason(413)};
     nlohmann::json results;
     try {
@@ -247,8 +254,19 @@ struct Server::Impl {
       // A body over --max-body is not kept: cpp-httplib skips one whose length says so, and one sent
       // in chunks is dropped once it passes the limit.
       const std::string length = request.get_header_value("Content-Length");
+      // A form upload (curl -F) is no results.json: its reader is another (an internal error, 500).
+      if (request.get_header_value("Content-Type").starts_with("multipart/form-data")) {
+        route([](const httplib::Request&, httplib::Response&) -> nlohmann::json {
+          throw Refusal{415, "the body must be a results.json itself (curl --data-binary @results.json), not a form "
+                             "upload"};
+        })(request, response);
+        return;
+      }
       std::optional<std::string> body;
-      if (length.empty() || std::strtoull(length.c_str(), nullptr, 10) <= options.max_body_bytes) {
+      // Neither a length nor chunks: no body (waiting for one held a worker for the read timeout).
+      if (length.empty() && request.get_header_value("Transfer-Encoding").find("chunked") == std::string::npos) {
+        body.emplace();
+      } else if (length.empty() || std::strtoull(length.c_str(), nullptr, 10) <= options.max_body_bytes) {
         body.emplace();
         read([&](const char* data, std::size_t size) {
           if (body && body->size() + size <= options.max_body_bytes) {

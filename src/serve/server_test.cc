@@ -258,6 +258,12 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   const std::string good = testing::scale_factor_campaign("FOG-9", "2026-04-01", 36000.0).dump();
   EXPECT_EQ(post(port(), "/api/campaigns", good).status, 401);
   EXPECT_EQ(post(port(), "/api/campaigns", good, "Authorization: Bearer 0123\r\n").status, 403);
+  // A form upload (curl -F) is no results.json: 415, not an internal error; no body at all is
+  // answered at once (it waited for the read timeout).
+  EXPECT_EQ(post(port(), "/api/campaigns", "--x\r\n\r\n--x--\r\n", token, "multipart/form-data; boundary=x").status, 415);
+  const auto bodiless = http_exchange(port(), "POST /api/campaigns HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" +
+                                                  token + "\r\n");
+  EXPECT_EQ(bodiless.status, 400) << bodiless.body;
   { const auto big = post(port(), "/api/campaigns", std::string(70 * 1024, ' ') + good, token); EXPECT_EQ(big.status, 413) << big.body; }
   EXPECT_EQ(post(port(), "/api/campaigns", "{\"instrument\": ", token).status, 400);
   EXPECT_EQ(post(port(), "/api/campaigns", "[1, 2, 3]", token).status, 400);
@@ -266,7 +272,10 @@ TEST_F(ServeApi, AddingNeedsTheTokenAndAValidBodyWithinTheLimit) {
   EXPECT_EQ(post(port(), "/api/campaigns", not_a_number.dump(), token).status, 400);
   EXPECT_EQ(file_bytes(db_), before);
 
-  const auto added = post(port(), "/api/campaigns", good, token);
+  // The scheme's name in any case (RFC 7235): "bearer" is Bearer.
+  std::string lower_case = token;
+  lower_case.replace(lower_case.find("Bearer"), 6, "bearer");
+  const auto added = post(port(), "/api/campaigns", good, lower_case);
   ASSERT_EQ(added.status, 200) << added.body;
   EXPECT_EQ(added.json()["added"][0]["instrument"], "FOG-9");
   EXPECT_TRUE(added.json()["added"][0]["added"].get<bool>());

@@ -480,8 +480,15 @@ std::optional<std::int64_t> stored_schema_version(Database& db) {
   std::vector<Row> rows;
   try {
     rows = db.query("SELECT MAX(version) FROM schema_version");
-  } catch (const DatabaseError&) {
-    return std::nullopt;  // no such table (outside a transaction: nothing to roll back)
+  } catch (const DatabaseError& e) {
+    // No such table (outside a transaction: nothing to roll back): SQLite's "no such table",
+    // PostgreSQL's "relation ... does not exist". Anything else (a corrupt file: "database disk
+    // image is malformed") is the error: read as no archive, the file was written to make one.
+    const std::string& message = e.message();
+    if (message.find("no such table") != std::string::npos || message.find("does not exist") != std::string::npos) {
+      return std::nullopt;
+    }
+    throw;
   }
   return rows.empty() || rows.front().is_null(0) ? 0 : rows.front().integer(0);
 }

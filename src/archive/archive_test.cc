@@ -1050,6 +1050,26 @@ TEST(ArchiveOpening, AForeignDatabaseIsRefusedAndLeftAsItWas) {
   EXPECT_EQ(testing::run_cli({"archive", "list", "--db", empty}).exit_code, 0);
 }
 
+// A damaged archive file is SQLite's error, said as it is: it was read as holding no archive, and
+// the schema then created in the damaged file ("table campaign already exists").
+TEST(ArchiveOpening, ACorruptArchiveIsSaidToBeSo) {
+  testing::ScratchDirectory scratch;
+  const std::string db = scratch.path() + "/archive.sqlite";
+  for (const char* date : {"2026-02-01", "2026-02-02", "2026-02-03"}) {
+    const std::string file = scratch.write(fmt::format("{}.json", date), campaign("FOG-1", date, 36000.0).dump());
+    ASSERT_EQ(testing::run_cli({"archive", "add", file, "--db", db}).exit_code, 0);
+  }
+  {
+    std::fstream file(db, std::ios::binary | std::ios::in | std::ios::out);
+    file.seekp(4096);
+    const std::string garbage(8192, '\xff');
+    file.write(garbage.data(), static_cast<std::streamsize>(garbage.size()));
+  }
+  const auto run = testing::run_cli({"archive", "list", "--db", db});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr(db + ": archive: database disk image is malformed"));
+}
+
 // A password in the URL is not printed, given as user:password@ or as a password= parameter.
 TEST(ArchiveOpening, ThePasswordOfAUrlIsRedacted) {
   EXPECT_EQ(redact_postgresql_url("postgresql://lab:s3cret@db.lab:5432/archive"), "postgresql://lab:***@db.lab:5432/archive");

@@ -122,8 +122,12 @@ std::optional<Parsed> exactly_named(std::string_view name) {
     add(Dimension::kCurrent, 2);
     return p;
   }
-  if (name == "ohm" || name == "kohm" || name == "Mohm" || name == "MOhm" || name == "Ω" || name == "MΩ") {
-    p.factor = (name == "ohm" || name == "Ω") ? 1.0 : (name == "kohm" ? 1e3 : 1e6);
+  if (name == "ohm" || name == "kohm" || name == "Mohm" || name == "MOhm" || name == "Ω" || name == "MΩ" ||
+      name == "mohm" || name == "mOhm" || name == "mΩ") {  // mohm: a bond's milliohms (GJB 5.3)
+    p.factor = (name == "ohm" || name == "Ω")                     ? 1.0
+               : name == "kohm"                                  ? 1e3
+               : (name == "mohm" || name == "mOhm" || name == "mΩ") ? 1e-3
+                                                                  : 1e6;
     add(Dimension::kVoltage, 2);
     add(Dimension::kCurrent, -2);
     return p;
@@ -138,14 +142,15 @@ std::optional<Parsed> exactly_named(std::string_view name) {
   return std::nullopt;
 }
 
-// The names a logger or a data sheet spells out, as the table names them.
-std::string_view spelled_out(std::string_view name) {
+// Words for units, read in any case (Deg, DEGREES, Hours): each names one unit, as the table does.
+std::optional<std::string_view> word_for_unit(std::string_view lowered) {
   static const std::unordered_map<std::string_view, std::string_view> names = {
-      {"degree", "deg"}, {"degrees", "deg"}, {"radian", "rad"}, {"radians", "rad"}, {"second", "s"},
-      {"seconds", "s"},  {"minute", "min"},  {"minutes", "min"}, {"hour", "h"},     {"hours", "h"},
-      {"volt", "V"},     {"volts", "V"}};
-  const auto it = names.find(name);
-  return it == names.end() ? name : it->second;
+      {"deg", "deg"},   {"degree", "deg"}, {"degrees", "deg"}, {"rad", "rad"},     {"radian", "rad"},
+      {"radians", "rad"}, {"sec", "s"},    {"second", "s"},    {"seconds", "s"},   {"minute", "min"},
+      {"minutes", "min"}, {"hr", "hr"},    {"hour", "h"},      {"hours", "h"},     {"volt", "V"},
+      {"volts", "V"},     {"rpm", "rpm"},  {"dps", "dps"},     {"arcsec", "arcsec"}};
+  const auto it = names.find(lowered);
+  return it == names.end() ? std::nullopt : std::optional<std::string_view>(it->second);
 }
 
 std::string lower(std::string_view text) {
@@ -154,24 +159,38 @@ std::string lower(std::string_view text) {
   return lowered;
 }
 
-// A unit name: as written; spelled out (degrees); in capitals (DEG/S, as HDF5 and TDMS files store
-// them: the one known name of any case, none when two differ only in case); or a name and its whole
-// power run together (s2 in m/s2). An unknown name is an Error naming it: a unit file's header or a
-// channel's unit taken as another, or as none, gave figures 3600 times off.
+// Written all in capitals, with two letters or more (DEG/S, MV, as old loggers and some HDF5 and
+// TDMS files store units): only such a unit is read in another case. Mixed or lower case is meant
+// (mOhm is no megohm), and one capital letter may be another unit (S, G, k).
+bool all_capitals(std::string_view whole) {
+  std::size_t letters = 0;
+  for (const char c : whole) {
+    if (std::islower(static_cast<unsigned char>(c)) != 0) return false;
+    letters += std::isupper(static_cast<unsigned char>(c)) != 0 ? 1 : 0;
+  }
+  return letters >= 2;
+}
+
+// A unit name: as written; a word for a unit in any case (Deg, degrees, Hours); in capitals (all_capitals: the
+// one known name of that spelling in any case, none where two of different sizes share it, MOHM);
+// or a name and its whole power run together (s2 in m/s2). An unknown name is an Error naming it: a
+// file's header or a channel's unit taken as another, or as none, gave figures 3600 times off.
 Parsed named(std::string_view name, std::string_view whole) {
-  if (const auto exact = exactly_named(spelled_out(name))) return *exact;
-  std::optional<std::string_view> any_case;
-  bool ambiguous = false;
+  if (const auto exact = exactly_named(name)) return *exact;
   const std::string lowered = lower(name);
-  const auto consider = [&](std::string_view known) {
-    if (lower(known) != lowered) return;
-    if (any_case && exactly_named(*any_case)->factor != exactly_named(known)->factor) ambiguous = true;
-    any_case = known;
-  };
-  for (const auto& entry : simple_units()) consider(entry.first);
-  for (std::string_view known : {"g", "mg", "ug", "W", "mW", "ohm", "kohm", "Mohm", "rpm", "dps"}) consider(known);
-  if (any_case && !ambiguous) return *exactly_named(*any_case);
-  if (const std::string_view spelled = spelled_out(lowered); spelled != lowered) return *exactly_named(spelled);
+  if (const std::optional<std::string_view> word = word_for_unit(lowered)) return *exactly_named(*word);
+  if (all_capitals(whole)) {
+    std::optional<std::string_view> any_case;
+    bool ambiguous = false;
+    const auto consider = [&](std::string_view known) {
+      if (lower(known) != lowered) return;
+      if (any_case && exactly_named(*any_case)->factor != exactly_named(known)->factor) ambiguous = true;
+      any_case = known;
+    };
+    for (const auto& entry : simple_units()) consider(entry.first);
+    for (std::string_view known : {"g", "mg", "ug", "W", "mW", "ohm", "kohm", "Mohm", "mohm", "rpm", "dps"}) consider(known);
+    if (any_case && !ambiguous) return *exactly_named(*any_case);
+  }
   const std::size_t digits = name.find_first_of("0123456789");
   if (digits > 0 && digits + 1 == name.size()) {  // one digit: s2, not a number's digits
     Parsed powered;
@@ -328,8 +347,11 @@ double convert(double value, const Unit& from, const Unit& to) {
   // is a difference and converts by its factor.
   Dimension bare_temperature;
   bare_temperature.half_powers[Dimension::kTemperature] = 2;
+  // One temperature scale however spelt (°C, DEGC; K, KELVIN): only a change of scale is refused.
   const auto celsius_as_degC = [](std::string symbol) {
-    if (symbol == "°C") symbol = "degC";
+    const std::string lowered = lower(symbol);
+    if (symbol == "°C" || lowered == "degc" || lowered == "celsius") return std::string("degC");
+    if (lowered == "k" || lowered == "kelvin") return std::string("K");
     return symbol;
   };
   if (from.dimension() == bare_temperature && celsius_as_degC(from.symbol()) != celsius_as_degC(to.symbol())) {

@@ -40,7 +40,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ConversionCase{"DEG/S", "deg/h", 1.0, 3600.0}, ConversionCase{"Deg/s", "deg/s", 1.0, 1.0},
                       ConversionCase{"degrees/second", "deg/s", 1.0, 1.0}, ConversionCase{"deg/hour", "deg/h", 1.0, 1.0},
                       ConversionCase{"rpm", "deg/s", 1.0, 6.0}, ConversionCase{"dps", "deg/h", 1.0, 3600.0},
-                      ConversionCase{"m/s2", "m/s^2", 1.0, 1.0}, ConversionCase{"Volts", "mV", 1.0, 1000.0}));
+                      ConversionCase{"m/s2", "m/s^2", 1.0, 1.0}, ConversionCase{"Volts", "mV", 1.0, 1000.0},
+                      // a bond's milliohms are no megohms (case folding had read mOhm as Mohm, 1e9 off)
+                      ConversionCase{"mOhm", "ohm", 5.0, 5e-3}, ConversionCase{"KHZ", "Hz", 1.0, 1000.0},
+                      ConversionCase{"DEGC", "degC", 20.0, 20.0}));
 
 TEST(Units, IncompatibleDimensionsAreAnError) {
   EXPECT_THROW(convert(1.0, "deg/h", "deg"), Error);
@@ -77,7 +80,10 @@ TEST(Units, BareTemperaturesAreNotConvertedCompoundOnesAre) {
 }
 
 TEST(Units, UnknownNamesAreAnErrorNotAGuess) {
-  for (const char* text : {"degs/h", "furlong", "deg//h", "", "deg^x", "sqrt(h", "deg/", "s22", "x2"}) {
+  // Capitals are read in another case only all in capitals with two letters or more, and not where
+  // two units share the spelling (MOHM: milli- or megohm); one capital may be another unit (S, G, k).
+  for (const char* text : {"degs/h", "furlong", "deg//h", "", "deg^x", "sqrt(h", "deg/", "s22", "x2", "MOHM", "G",
+                           "k", "S", "mS", "Gs"}) {
     EXPECT_THROW(Unit::parse(text), Error) << text;
   }
   try {

@@ -76,6 +76,17 @@ std::vector<AllanOptions> channel_options(const AllanOptions& common, const std:
 
 namespace {
 
+// The unit of a channel of raw output (allan_variance_of_channels_in_file's raw_output) that states
+// `stated`: a rate or an acceleration is no raw output for K to divide (its deg/s were divided by K
+// again and labelled deg/s), another unit (pulse/s) is the output K turns into common.input_unit.
+std::string raw_output_unit(const SourceLocation& where, const std::string& stated_where, const std::string& stated,
+                            const AllanOptions& common) {
+  if (sensor_kind_of(stated) == SensorKind::kOther) return common.input_unit;
+  throw Error(where, fmt::format("the unit {} {} is a rate or an acceleration, not a raw output: scale_factor divides a "
+                                 "raw output by K (leave it out, or give input_unit)",
+                                 stated, stated_where));
+}
+
 // allan_variance_of_channels on columns it may overwrite (std::span<double>: each analysed in
 // place, allan_variance_in_place) or not (std::span<const double>).
 template <typename Sample>
@@ -144,7 +155,8 @@ AllanChannels allan_variance_of_channels(const std::vector<std::span<const doubl
 
 AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_source,
                                                  const std::vector<ColumnSelector>& columns, std::string_view units,
-                                                 const AllanOptions& common, const ProgressCallback& progress) {
+                                                 const AllanOptions& common, bool raw_output,
+                                                 const ProgressCallback& progress) {
   if (columns.empty()) throw Error("no channel to analyse: give --columns");
   RateRecordSource source = given_source;
   source.format = resolve_rate_record_format(given_source);
@@ -172,11 +184,12 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
     // A unit a column's header states ("gx [deg/s]") is its samples' unit, as a channel's stored one.
     std::vector<AllanOptions> options = channel_options(common, names, selectors, units);
     const std::vector<std::optional<std::string>> given = given_units(names, selectors, units);
+    const SourceLocation header{source.path, table.header_line, 0};
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (const std::optional<std::string> stated = unit_stated_in_name(names[i])) {
-        options[i].input_unit = *resolve_stated_unit(SourceLocation{source.path, table.header_line, 0},
-                                                     fmt::format("the header states for column '{}'", names[i]),
-                                                     *stated, given[i]);
+        const std::string stated_where = fmt::format("the header states for column '{}'", names[i]);
+        options[i].input_unit = raw_output ? raw_output_unit(header, stated_where, *stated, common)
+                                           : *resolve_stated_unit(header, stated_where, *stated, given[i]);
       }
     }
     return analyse_channels(spans, names, options);
@@ -198,7 +211,12 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
     options.assign(names.size(), common);
     for (std::size_t i = 0; i < names.size(); ++i) {
       options[i].sample_rate_hz = resolve_sample_rate(*record, indices[i], rate);
-      options[i].input_unit = resolve_unit(*record, indices[i], given[i]).value_or(common.input_unit);
+      const std::optional<std::string> stored = resolve_unit(*record, indices[i], raw_output ? std::nullopt : given[i]);
+      options[i].input_unit =
+          !stored ? common.input_unit
+          : raw_output ? raw_output_unit(SourceLocation{source.path, 0, 0}, fmt::format("stored for channel '{}'", names[i]),
+                                         *stored, common)
+                       : *stored;
     }
   }
   AllanChannels result;

@@ -5,23 +5,10 @@
 #include <cstdint>
 #include <fmt/format.h>
 
+#include "inertest/core/utf8.h"
+
 namespace inertest {
 namespace {
-
-// The code point of the UTF-8 sequence at `at` (its length in `size`); U+FFFD for a malformed one.
-char32_t code_point_at(std::string_view text, std::size_t at, std::size_t& size) {
-  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[at + i]); };
-  const unsigned char lead = byte(0);
-  size = lead < 0x80 ? 1 : lead < 0xE0 ? 2 : lead < 0xF0 ? 3 : 4;
-  if (lead < 0x80) return lead;
-  if (at + size > text.size()) {
-    size = 1;
-    return 0xFFFD;
-  }
-  char32_t point = lead & (lead < 0xE0 ? 0x1F : lead < 0xF0 ? 0x0F : 0x07);
-  for (std::size_t i = 1; i < size; ++i) point = (point << 6) | (byte(i) & 0x3F);
-  return point;
-}
 
 // Blanks that print as nothing or as a space: an id with one around it is another instrument that
 // prints as the same ("FOG-001 ", "FOG-001" + U+00A0).

@@ -179,6 +179,17 @@ TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out).at("channels").at("gyro_x [deg/s]").at("mean").at("unit"), "deg/s");
   EXPECT_EQ(nlohmann::json::parse(run.out).at("channels").at("gyro_y").at("mean").at("unit"), "deg/h");
+  // With a scale factor the channels are raw output: a stated rate is none (it was divided by K and
+  // labelled deg/s), a channel stating nothing is taken to deg/h.
+  run = testing::run_cli({"allan", path, "--columns", "2,3", "--rate", "100", "--scale-factor", "36"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, ::testing::HasSubstr(path + ":1: the unit deg/s the header states for column 'gyro_x [deg/s]' "
+                                                   "is a rate or an acceleration, not a raw output"));
+  run = testing::run_cli({"allan", path, "--columns", "3", "--rate", "100", "--scale-factor", "36", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out).at("channels").at("gyro_y").at("mean").at("unit"), "deg/h");
+  EXPECT_NEAR(nlohmann::json::parse(run.out).at("channels").at("gyro_y").at("mean").at("value").get<double>(), 100.0,
+              1e-9);
 }
 
 TEST(ChannelRecord, MissingChannelListsTheChannels) {

@@ -5,8 +5,8 @@
 // sample rate from a numeric attribute `sample_rate_hz` (or `sample_rate`), or `wf_increment` (s):
 // one number or one string each (a scalar or an array of one). Such an attribute in another form
 // leaves the channel's rate or unit unusable (ChannelInfo::sample_rate_problem, unit_problem).
-// Packed samples (the CF convention's `scale_factor` and `add_offset`, as netCDF-4 and xarray write
-// integers) are unpacked: value = stored * scale_factor + add_offset.
+// Packed integer samples (the CF convention's `scale_factor` and `add_offset`, as netCDF-4 and
+// xarray write them) are unpacked: value = stored * scale_factor + add_offset.
 #include <fmt/format.h>
 #include <hdf5.h>
 
@@ -265,13 +265,14 @@ class Hdf5Record final : public ChannelRecord {
     }
     read_unit(dataset, info);
     read_sample_rate(dataset, info);
-    packings_.push_back(read_packing(dataset, info));
+    packings_.push_back(H5Tget_class(type.get()) == H5T_INTEGER ? read_packing(dataset, info) : Packing{});
     H5Eclear2(H5E_DEFAULT);
     channels_.push_back(std::move(info));
   }
 
-  // The CF packing attributes `scale_factor` and `add_offset` (one number each); one in another form
-  // leaves the samples unreadable, not read packed (they held 0.001 deg/h counts: a mean of 0.22 for 36).
+  // The CF packing attributes `scale_factor` and `add_offset` (one number each) of an integer dataset;
+  // one in another form leaves the samples unreadable, not read packed (they held 0.001 deg/h counts:
+  // a mean of 0.22 for 36). A float dataset is not packed: its `scale_factor` may be the gyro's K.
   struct Packing {
     double scale = 1.0;
     double offset = 0.0;

@@ -21,13 +21,15 @@ namespace {
 constexpr hid_t kAllOfTheSpace = 0;
 constexpr std::size_t kVariableLength = static_cast<std::size_t>(-1);
 
-// A file with one dataset "g" of four f64 samples, its attributes added one by one.
+// A file with one dataset "g" of the samples 1, 2, 3, 4 (f64, or stored as `stored_as`), its
+// attributes added one by one.
 class Hdf5File {
  public:
-  explicit Hdf5File(const std::string& path) : file_(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)) {
+  explicit Hdf5File(const std::string& path, hid_t stored_as = H5T_NATIVE_DOUBLE)
+      : file_(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)) {
     const hsize_t count = 4;
     const hid_t space = H5Screate_simple(1, &count, nullptr);
-    dataset_ = H5Dcreate2(file_, "g", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    dataset_ = H5Dcreate2(file_, "g", stored_as, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     const std::vector<double> samples = {1.0, 2.0, 3.0, 4.0};
     H5Dwrite(dataset_, H5T_NATIVE_DOUBLE, kAllOfTheSpace, kAllOfTheSpace, H5P_DEFAULT, samples.data());
     H5Sclose(space);
@@ -181,11 +183,16 @@ TEST(Hdf5Record, ARateStoredAsAFloatAgreesWithTheRateItRounds) {
 TEST(Hdf5Record, PackedSamplesAreUnpacked) {
   const testing::ScratchDirectory dir;
   const std::string packed = dir.path() + "/packed.h5";
-  Hdf5File(packed).numbers("scale_factor", {0.5}).numbers("add_offset", {36.0});
+  Hdf5File(packed, H5T_NATIVE_INT16).numbers("scale_factor", {0.5}).numbers("add_offset", {36.0});
   EXPECT_THAT(read_channel(*open_channel_record(packed, ChannelRecordFormat::kHdf5), 0),
               ::testing::ElementsAre(36.5, 37.0, 37.5, 38.0));
+  // Floats are not packed: a scale_factor there may be the gyro's K, and is left alone.
+  const std::string floats = dir.path() + "/floats.h5";
+  Hdf5File(floats).numbers("scale_factor", {0.5}).strings("add_offset", {"none"});
+  EXPECT_THAT(read_channel(*open_channel_record(floats, ChannelRecordFormat::kHdf5), 0),
+              ::testing::ElementsAre(1.0, 2.0, 3.0, 4.0));
   const std::string bad = dir.path() + "/bad.h5";
-  Hdf5File(bad).numbers("scale_factor", {0.5, 2.0});
+  Hdf5File(bad, H5T_NATIVE_INT16).numbers("scale_factor", {0.5, 2.0});
   const auto record = open_channel_record(bad, ChannelRecordFormat::kHdf5);
   EXPECT_FALSE(record->channels()[0].numeric);
   EXPECT_THAT(record->channels()[0].type, ::testing::HasSubstr("packing scale_factor/add_offset unreadable"));

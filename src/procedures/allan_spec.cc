@@ -228,7 +228,7 @@ AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
     std::vector<ColumnSelector> selectors;
     for (const std::string& column : *parameters.columns) selectors.push_back(ColumnSelector::parse(column));
     result.channels = allan_variance_of_channels_in_file(source, selectors, parameters.input_unit.value_or(""), options,
-                                                         call.progress);
+                                                         parameters.scale_factor.has_value(), call.progress);
     result.several = true;
   }
   if (!parameters.export_to.empty()) {

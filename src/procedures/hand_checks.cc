@@ -8,6 +8,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/core/utf8.h"
 
 namespace inertest {
 namespace {
@@ -20,15 +21,19 @@ const std::set<std::string> kReservedKeys = {"procedure", "clause", "checks", "c
 std::string snake_case_key(const std::string& name) {
   std::string key;
   bool separator = false;
-  for (unsigned char c : name) {
-    // Letters of any script are kept (UTF-8 bytes as they are): a GJB lab names its checks 绝缘电阻.
-    if (std::isalnum(c) != 0 || c >= 0x80) {
-      if (separator && !key.empty()) key += '_';
-      key += static_cast<char>(c >= 0x80 ? c : std::tolower(c));
-      separator = false;
-    } else {
+  std::size_t size = 0;
+  for (std::size_t at = 0; at < name.size(); at += size) {
+    const char32_t c = code_point_at(name, at, size);
+    // Letters of any script are kept as they are (a GJB lab names its checks 绝缘电阻); punctuation
+    // and blanks beyond ASCII separate, as ASCII's do (（壳体） is _壳体, a no-break space a space).
+    const bool letter = c < 0x80 ? std::isalnum(static_cast<int>(c)) != 0 : !is_unicode_punctuation_or_blank(c);
+    if (!letter) {
       separator = true;
+      continue;
     }
+    if (separator && !key.empty()) key += '_';
+    key += c < 0x80 ? std::string(1, static_cast<char>(std::tolower(static_cast<int>(c)))) : name.substr(at, size);
+    separator = false;
   }
   return key;
 }

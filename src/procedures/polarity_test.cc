@@ -66,6 +66,9 @@ TEST(HandChecksTest, FiguresAndPassFlags) {
   EXPECT_EQ(json.at("checks").at(0).at("value"), "pass");
   // A check named in Chinese keeps its name (it was "no usable name").
   EXPECT_EQ(snake_case_key("绝缘电阻 (壳体)"), "绝缘电阻_壳体");
+  EXPECT_EQ(snake_case_key("绝缘电阻（壳体）"), "绝缘电阻_壳体");  // full-width parentheses separate too
+  EXPECT_EQ(snake_case_key("a\u00a0b"), snake_case_key("a b"));  // a no-break space is a space
+  EXPECT_EQ(snake_case_key("——"), "");  // dashes alone are no name
   // A max alone bounds the magnitude, as the plan's limit the campaign judges it with does; with a
   // min beside it, the signed value.
   const std::vector<HandCheck> offsets = {{"Offset", -0.8, std::nullopt, "V", std::nullopt, 0.5},

@@ -50,9 +50,14 @@ AllanChannels allan_variance_of_channels(const std::vector<std::span<const doubl
 // From a file, each byte read once: text is parsed once, in parallel chunks, into all the columns
 // asked for (read_text_table); a record of named channels (.mat, HDF5, TDMS) streams each channel
 // once (allan_variance_of_file). Raw binary records hold one channel: asking for several is an
-// Error. `units` as in channel_options; errors name the file, line and column (or channel).
+// Error. `units` as in channel_options; a unit a channel stores or its header states is its unit
+// where none is given. With `raw_output` (allan's scale_factor: common.scale turns an output into
+// common.input_unit) a channel that states a rate or an acceleration is an Error (it is no raw
+// output), and one that states another unit (pulse/s) is taken in common.input_unit. Errors name
+// the file, line and column (or channel).
 AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& source,
                                                  const std::vector<ColumnSelector>& columns, std::string_view units,
-                                                 const AllanOptions& common, const ProgressCallback& progress = {});
+                                                 const AllanOptions& common, bool raw_output,
+                                                 const ProgressCallback& progress = {});
 
 }  // namespace inertest

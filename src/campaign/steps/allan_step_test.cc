@@ -220,7 +220,7 @@ taus = "decade"
   options.taus = "decade";
   const AllanChannels expected = allan_variance_of_channels_in_file(
       RateRecordSource{dir.path() + "/imu.csv", RateRecordFormat::kAuto, std::nullopt},
-      {ColumnSelector::parse("gx"), ColumnSelector::parse("ax")}, "deg/s,ax=m/s^2", options);
+      {ColumnSelector::parse("gx"), ColumnSelector::parse("ax")}, "deg/s,ax=m/s^2", options, false);
   EXPECT_EQ(result, expected.to_json());
   EXPECT_EQ(result["channels"]["ax"]["noise"]["velocity_random_walk"]["unit"], "m/s/sqrt(h)");
   const std::string both = dir.write("both.toml", R"(

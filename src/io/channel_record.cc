@@ -247,8 +247,6 @@ std::optional<std::string> resolve_text_unit(const std::string& path, const std:
     name = names[column->index - 1];
   } else if (!column && names.size() == 1) {
     name = names[0];
-  } else if (const auto time = find_record_time_column(path); !column && names.size() == 2 && time && time->name == names[0]) {
-    name = names[1];
   }
   const std::optional<std::string> stated = unit_stated_in_name(name);
   if (!stated) return given;

@@ -100,8 +100,10 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
       Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(cols, cols);
       for (Eigen::Index r = 0; r < rows; ++r) {
         const Eigen::RowVectorXd row = scaled.row(r);
-        // 1 - h_i, floored: a point the fit must pass through has an unbounded share of the variance.
-        const double free = std::max(1.0 - (row * inverse * row.transpose())(0, 0), 1e-12);
+        // A point the fit passes through by construction (leverage 1) leaves a residual of rounding
+        // alone, which 1 - h would blow up: it tells nothing of the scatter.
+        const double free = 1.0 - (row * inverse * row.transpose())(0, 0);
+        if (free < 1e-8) continue;
         const double e = weighted_residuals(r) / free;
         meat += row.transpose() * row * (e * e);
       }

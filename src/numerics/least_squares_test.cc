@@ -116,6 +116,21 @@ TEST(LeastSquares, WeightsActAsRepeatedObservations) {
   EXPECT_NEAR_RELATIVE(w.parameters[1], r.parameters[1], 1e-13);
 }
 
+// HC3 by hand for the mean of 1, 2, 4, 7 (design a column of ones, leverage 1/4 each): residuals
+// -2.5, -1.5, 0.5, 3.5, so the variance is sum e^2 / (1 - 1/4)^2 / 4^2 = 21 / 0.5625 / 16, against
+// the classical s^2 / n = 7 / 4.
+TEST(LeastSquares, HeteroscedasticCovarianceByHand) {
+  Matrix design(4, 1);
+  for (std::size_t i = 0; i < 4; ++i) design(i, 0) = 1.0;
+  const std::vector<double> y = {1.0, 2.0, 4.0, 7.0};
+  EXPECT_NEAR(solve_least_squares(design, y).covariance(0, 0), 7.0 / 4.0, 1e-12);
+  LeastSquaresOptions options;
+  options.heteroscedastic = true;
+  const LeastSquaresResult fit = solve_least_squares(design, y, options);
+  EXPECT_NEAR(fit.parameters[0], 3.5, 1e-12);
+  EXPECT_NEAR(fit.covariance(0, 0), 21.0 / 0.5625 / 16.0, 1e-12);
+}
+
 TEST(Statistics, StandardDeviationSurvivesLargeOffset) {
   // 1, 2, 3, 4 has sample standard deviation sqrt(5/3); add 1e12 to every value.
   const std::vector<double> values = {1e12 + 1, 1e12 + 2, 1e12 + 3, 1e12 + 4};

@@ -144,7 +144,8 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   // atan(ωi·T) (the two taken as independent). Leverage h_i = ωi² / Σ ωj².
   CompensatedSum delay_meat;
   for (std::size_t i = 0; i < n; ++i) {
-    const double free = std::max(1.0 - omega[i] * omega[i] / omega_omega.value(), 1e-12);
+    const double free = 1.0 - omega[i] * omega[i] / omega_omega.value();
+    if (free < 1e-8) continue;  // the only frequency: its residual is 0 by construction
     const double e = (y[i] - omega[i] * delay) / free;
     delay_meat.add(omega[i] * omega[i] * e * e);
   }

@@ -1,7 +1,6 @@
 #include "inertest/procedures/turn_on_time.h"
 
 #include <algorithm>
-#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 

@@ -122,7 +122,7 @@ std::optional<std::string> resolve_stated_unit(const SourceLocation& where, cons
 std::optional<std::string> unit_stated_in_name(std::string_view name);
 
 // resolve_unit for a text record: the unit its header states for the column (by name, by 1-based
-// index, or without one the only column, or the second after a time column), against `given`.
+// index, or without one the only column), against `given`.
 // A record without a header, or whose header states no unit for the column, gives `given`.
 std::optional<std::string> resolve_text_unit(const std::string& path, const std::optional<ColumnSelector>& column,
                                              const std::optional<std::string>& given);

@@ -355,7 +355,8 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
   }
   // A limit names a figure: one without its unit would not be archived, and its history would lose
   // that test without a word.
-  for (const auto& [key, verdict] : verdicts) {
+  for (const auto& entry : verdicts) {
+    const auto& key = entry.first;  // not a structured binding: the lambda below captures it (clang)
     const bool archived = std::any_of(record.figures.begin(), record.figures.end(), [&key](const FigureRow& row) {
       return row.procedure == key.first && row.figure == key.second;
     });

@@ -171,10 +171,11 @@ bool all_capitals(std::string_view whole) {
   return letters >= 2;
 }
 
-// A unit name: as written; a word for a unit in any case (Deg, degrees, Hours); in capitals (all_capitals: the
-// one known name of that spelling in any case, none where two of different sizes share it, MOHM);
-// or a name and its whole power run together (s2 in m/s2). An unknown name is an Error naming it: a
-// file's header or a channel's unit taken as another, or as none, gave figures 3600 times off.
+// A unit name: as written; a word for a unit in any case (Deg, degrees, Hours); in capitals
+// (all_capitals: the one known name of that spelling in any case, none where two of different sizes
+// share it, MOHM); or a name and its whole power run together (s2 in m/s2). An unknown name is an
+// Error naming it: a file's header or a channel's unit taken as another, or as none, gave figures
+// 3600 times off.
 Parsed named(std::string_view name, std::string_view whole) {
   if (const auto exact = exactly_named(name)) return *exact;
   const std::string lowered = lower(name);
@@ -347,12 +348,9 @@ double convert(double value, const Unit& from, const Unit& to) {
   // is a difference and converts by its factor.
   Dimension bare_temperature;
   bare_temperature.half_powers[Dimension::kTemperature] = 2;
-  // One temperature scale however spelt (°C, DEGC; K, KELVIN): only a change of scale is refused.
-  const auto celsius_as_degC = [](std::string symbol) {
-    const std::string lowered = lower(symbol);
-    if (symbol == "°C" || lowered == "degc" || lowered == "celsius") return std::string("degC");
-    if (lowered == "k" || lowered == "kelvin") return std::string("K");
-    return symbol;
+  // One temperature scale however spelt (°C, DEGC): only a change of scale is refused.
+  const auto celsius_as_degC = [](const std::string& symbol) {
+    return symbol == "°C" || lower(symbol) == "degc" ? std::string("degC") : symbol;
   };
   if (from.dimension() == bare_temperature && celsius_as_degC(from.symbol()) != celsius_as_degC(to.symbol())) {
     throw Error("cannot convert the temperature '" + from.symbol() + "' to '" + to.symbol() +

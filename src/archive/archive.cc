@@ -556,21 +556,13 @@ void require_one_quantity(const std::vector<Row>& rows, const std::string& figur
   // Of one dimension is not enough: degC and K do not convert as bare temperatures (an absolute one
   // needs an offset a difference does not), and history, fleet and the report failed on them.
   const std::string first = rows.front().text(4);
-  const auto converts = [&first](const std::string& unit) {
-    try {
-      convert(1.0, unit, first);
-      return true;
-    } catch (const Error&) {
-      return false;
-    }
-  };
   std::map<std::string, std::set<std::string>> instruments_by_unit;
   std::map<std::string, std::set<std::string>> tests_by_abscissa;
   bool mixed_units = false;
   for (const auto& row : rows) {
     instruments_by_unit[row.text(4)].insert(row.text(5));
     if (!row.is_null(8)) tests_by_abscissa[row.text(8)].insert(row.text(5) + " " + row.text(0));
-    mixed_units = mixed_units || !converts(row.text(4));
+    mixed_units = mixed_units || !converts(row.text(4), first);
   }
   const auto listed = [](const std::map<std::string, std::set<std::string>>& groups) {
     std::vector<std::string> texts;
@@ -755,7 +747,8 @@ class DatabaseArchive final : public Archive {
     AddOutcome outcome{record.entry.id, record.entry.instrument, false};
     // The same content with its numbers spelt otherwise (108 for 108.0, as jq rewrites a file) hashes
     // to another id: compared by value with the instrument's campaigns of that day, it is the one
-    // archived (it was stored twice, and repeatability counted the test twice).
+    // archived (it was stored twice, and repeatability counted the test twice). The id stays the hash
+    // of the text as written, so that the ids of archives already made stay theirs.
     const nlohmann::json content = comparable_content(nlohmann::json::parse(record.results_text));
     for (const Row& row : db_->query("SELECT id, results FROM campaign WHERE instrument = $1 AND tested_on = $2",
                                      {record.entry.instrument, record.entry.tested_on})) {

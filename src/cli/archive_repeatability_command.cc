@@ -25,15 +25,6 @@ std::string write_result(const ProcedureSpec& spec, const Result& result, nlohma
   return procedure_text(spec, fields);
 }
 
-bool is_rate(const std::string& unit) {
-  try {
-    convert(1.0, unit, "deg/h");
-    return true;
-  } catch (const Error&) {
-    return false;
-  }
-}
-
 // A scale factor is output per input (GJB 2426A 5.8.1, IEEE Std 1293 K1): named scale_factor (its
 // output may be dimensionless: 1/(deg/s)), or of a unit that times an angular rate or an
 // acceleration is an output's (pulse/s, V, mA, count), with no angle or length left (an IMU's
@@ -100,7 +91,7 @@ CommandAction setup(CLI::App& archive) {
     nlohmann::json json = {{"instrument", history.instrument}, {"figure", history.figure}, {"campaigns", campaigns},
                            {"not_measured", not_measured}};
     std::string report;
-    if (is_rate(history.unit)) {
+    if (converts(history.unit, "deg/h")) {
       for (const double v : measured) values.push_back(convert(v, history.unit, "deg/h"));
       json["clause"] = "GJB 2426A-2004 5.12.3, eq. (21)";
       report = write_result(*find_procedure_spec("bias_repeatability"), bias_repeatability(values), json);

@@ -364,6 +364,17 @@ double convert(double value, std::string_view from, std::string_view to) {
   return convert(value, Unit::parse(from), Unit::parse(to));
 }
 
+bool converts(std::string_view from, std::string_view to) {
+  try {
+    convert(1.0, from, to);
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+std::string unit_suffix(const std::string& unit) { return unit.empty() || unit == "1" ? "" : " " + unit; }
+
 bool same_unit(std::string_view first, std::string_view second) {
   if (first == second) return true;
   try {

@@ -7,7 +7,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 
 #include "inertest/core/error.h"
@@ -226,19 +225,9 @@ std::optional<std::string> unit_stated_in_name(std::string_view name) {
 
 std::optional<std::string> resolve_text_unit(const std::string& path, const std::optional<ColumnSelector>& column,
                                              const std::optional<std::string>& given) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return given;  // a pipe is not read ahead
-  constexpr std::size_t kHead = std::size_t{64} << 10;
-  std::string head(kHead, '\0');
-  std::ifstream file(path, std::ios::binary);
-  file.read(head.data(), static_cast<std::streamsize>(kHead));
-  head.resize(static_cast<std::size_t>(file.gcount()));
-  TextTableHeader header;
-  try {
-    header = parse_text_table_header(head, path);
-  } catch (const Error&) {
-    return given;  // text the record's reader refuses with its own message
-  }
+  const std::optional<RecordHead> head = read_record_head(path);
+  if (!head) return given;  // a pipe, or text the record's reader refuses with its own message
+  const TextTableHeader& header = head->header;
   const std::vector<std::string>& names = header.names;
   std::string name;
   if (column && column->index == 0) {

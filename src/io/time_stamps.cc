@@ -218,22 +218,31 @@ std::vector<double> take_time_column_s(TextTable& table, std::size_t column) {
   return time;
 }
 
-std::optional<RecordTimeColumn> find_record_time_column(const std::string& path) {
+std::optional<RecordHead> read_record_head(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;  // a pipe is not read ahead
   constexpr std::size_t kHead = std::size_t{256} << 10;
-  std::string head(kHead, '\0');
+  RecordHead head;
+  head.text.assign(kHead, '\0');
   std::ifstream file(path, std::ios::binary);
-  file.read(head.data(), static_cast<std::streamsize>(kHead));
-  head.resize(static_cast<std::size_t>(file.gcount()));
-  const bool whole = head.size() < kHead;
-  if (!whole) head.resize(head.rfind('\n') == std::string::npos ? 0 : head.rfind('\n') + 1);
-  TextTableHeader header;
+  file.read(head.text.data(), static_cast<std::streamsize>(kHead));
+  head.text.resize(static_cast<std::size_t>(file.gcount()));
+  head.whole = head.text.size() < kHead;
+  if (!head.whole) head.text.resize(head.text.rfind('\n') == std::string::npos ? 0 : head.text.rfind('\n') + 1);
   try {
-    header = parse_text_table_header(head, path);
+    head.header = parse_text_table_header(head.text, path);
   } catch (const Error&) {
     return std::nullopt;  // text the record's reader refuses with its own message, or a binary record
   }
+  return head;
+}
+
+std::optional<RecordTimeColumn> find_record_time_column(const std::string& path) {
+  const std::optional<RecordHead> read = read_record_head(path);
+  if (!read) return std::nullopt;
+  const std::string& head = read->text;
+  const TextTableHeader& header = read->header;
+  const bool whole = read->whole;
   for (const std::string& name : header.names) {
     bool unit_stated = false;
     const std::optional<double> seconds = seconds_per_unit_of_time_name(name, unit_stated);

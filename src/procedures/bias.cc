@@ -111,9 +111,7 @@ BiasResult bias(std::span<const double> output, const BiasOptions& options) {
   const std::string constant =
       is_constant(output) ? fmt::format("the record is constant: all {} samples equal {:.10g}{} (a stuck channel?)",
                                         output.size(), output.front(),
-                                        options.input_in_deg_h        ? " deg/h"
-                                        : options.output_unit == "1" ? ""
-                                                                      : " " + options.output_unit)
+                                        unit_suffix(options.input_in_deg_h ? "deg/h" : options.output_unit))
                           : "";
   if (!constant.empty()) result.warnings.push_back(constant + ": no bias stability or random walk is measured");
   // Every figure the record supports; a smoothing time it does not (longer than half the record, not

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/units.h"
 
 namespace inertest {
 
@@ -30,7 +31,7 @@ PolarityResult polarity(double output_positive_rate, double output_negative_rate
   const double difference = output_positive_rate - output_negative_rate;
   const double standard_error = std::hypot(positive_standard_error.value_or(0.0), negative_standard_error.value_or(0.0));
   if (std::abs(difference) <= 3.0 * standard_error) {
-    const std::string unit = options.output_unit == "1" ? "" : " " + options.output_unit;
+    const std::string unit = unit_suffix(options.output_unit);
     throw Error(fmt::format("polarity: F(+) - F(-) = {:.6g}{} is within 3 standard errors ({:.3g}{}) of zero: the "
                             "records' means differ by their noise, and do not show the output responding to the input",
                             difference, unit, standard_error, unit));

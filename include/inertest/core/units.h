@@ -50,6 +50,13 @@ double convert(double value, std::string_view from, std::string_view to);
 // of other dimensions and for a unit inertest does not know.
 bool same_unit(std::string_view first, std::string_view second);
 
+// Whether a value in `from` converts to `to` (convert would not throw): false for units of other
+// dimensions, for two bare temperature scales (degC, K) and for a unit inertest does not know.
+bool converts(std::string_view from, std::string_view to);
+
+// A unit as it follows a number in a message: " deg/h", and nothing for "1" (a plain number) or "".
+std::string unit_suffix(const std::string& unit);
+
 // Physical constants used across the procedures, each with its source.
 namespace constants {
 inline constexpr double kPi = 3.14159265358979323846;

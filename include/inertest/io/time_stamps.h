@@ -98,7 +98,17 @@ struct RecordTimeColumn {
   double first_s = 0.0;         // the first stamp, in s
   double last_s = 0.0;          // the last stamp of the whole record, in s (read from the file's end)
 };
-// Reads the first 256 KiB of the file, and the last 64 KiB for last_s (a rate record of 10^9 lines
+// The first 256 KiB of a text record, cut after its last whole line, and its header as
+// parse_text_table_header reads it; nullopt for what is not a regular file (a pipe is not read
+// ahead) or not text the header parser takes.
+struct RecordHead {
+  std::string text;
+  bool whole = false;  // the record is no longer than that
+  TextTableHeader header;
+};
+std::optional<RecordHead> read_record_head(const std::string& path);
+
+// Reads the first 256 KiB of the file (read_record_head), and the last 64 KiB for last_s (a rate record of 10^9 lines
 // is not read twice): the first such column with at least 3 increasing numbers in the head; nullopt
 // for no such column, or for what is not a regular text file.
 std::optional<RecordTimeColumn> find_record_time_column(const std::string& path);

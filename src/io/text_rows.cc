@@ -181,6 +181,10 @@ std::optional<Line> next_content_line(LineCursor& cursor, char comment) {
   return std::nullopt;
 }
 
+char excel_separator(std::string_view line) {
+  return line.size() == 5 && line.substr(0, 4) == "sep=" ? line[4] : '\0';
+}
+
 std::string Field::value() const {
   if (!escaped) return std::string(text);
   std::string out;
@@ -549,6 +553,7 @@ std::vector<TextCellRow> split_text_cells(std::string_view text, const std::stri
   io_detail::LineCursor cursor(without_byte_order_mark(text));
   char delimiter = '\0';
   while (const std::optional<io_detail::Line> line = io_detail::next_content_line(cursor, '#')) {
+    if (rows.empty() && delimiter == '\0' && (delimiter = io_detail::excel_separator(line->text)) != '\0') continue;
     if (delimiter == '\0') delimiter = io_detail::detect_delimiter(line->text);
     rows.push_back({line->number, split_text_line(line->text, delimiter, source, line->number)});
   }

@@ -61,6 +61,10 @@ struct Field {
   std::string value() const;
 };
 
+// The delimiter Excel's first line "sep=;" names for the lines after it (any one character, a tab
+// included), or '\0' for any other line.
+char excel_separator(std::string_view line);
+
 // Splits a line into fields. delimiter ' ' means runs of blanks. A field may be quoted as RFC 4180
 // says: "a,b" holds the delimiter, "" is a quote; blanks around the quotes are ignored. Throws Error
 // at `source`:`line_number` (the column is the quote's) for a quote that does not close on its

@@ -128,12 +128,19 @@ TextTableOptions single_column_header(const Line& first, const LineCursor& curso
   return whole_line;
 }
 
-// The first line that is neither blank nor a comment decides delimiter and header: its layout,
-// with `cursor` past it and `first` set to it. Throws Error for a text of no such line.
+// The first line that is neither blank nor a comment decides delimiter and header (after Excel's
+// "sep=;" line, which names the delimiter): its layout, with `cursor` past it and `first` set to it. Throws Error for a text of no such line.
 RowLayout first_line_layout(const std::string& source, const TextTableOptions& options, LineCursor& cursor,
                             std::optional<Line>& first) {
   first = io_detail::next_content_line(cursor, options.comment);
   if (!first) io_detail::fail_no_content(source);
+  if (const char separator = io_detail::excel_separator(first->text); separator != '\0') {
+    TextTableOptions named = options;
+    if (named.delimiter == '\0') named.delimiter = separator;
+    first = io_detail::next_content_line(cursor, options.comment);
+    if (!first) io_detail::fail_no_content(source);
+    return io_detail::read_row_layout(*first, source, named);
+  }
   return io_detail::read_row_layout(*first, source, single_column_header(*first, cursor, options, source));
 }
 

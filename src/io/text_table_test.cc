@@ -186,6 +186,24 @@ TEST(TextTable, AHeaderWithBlanksOverOneFieldRowsIsOneColumn) {
   EXPECT_THAT(error_of("time rate\n0 5\n1\n"), HasSubstr("rec.csv:3:"));
 }
 
+// Excel's "sep=;" first line names the delimiter and is no header: a ';' record with a decimal
+// comma in a cell is read as ';', so the cell is named as a decimal comma at its line.
+TEST(TextTable, ExcelSeparatorLineNamesTheDelimiter) {
+  const TextTable table = parse("sep=;\nrate;output\n1;2.5\n3;4\n");
+  EXPECT_EQ(table.names, (std::vector<std::string>{"rate", "output"}));
+  EXPECT_EQ(table.header_line, 2u);
+  EXPECT_EQ(table.columns[1], (std::vector<double>{2.5, 4.0}));
+  const TextTable tabbed = parse("sep=\t\n1\t2\n");
+  EXPECT_EQ(tabbed.columns[1], (std::vector<double>{2.0}));
+  EXPECT_THAT(error_of("sep=;\n1;2,5\n"), HasSubstr("rec.csv:2:3: '2,5' looks like a decimal comma"));
+  EXPECT_THAT(error_of("sep=;\n# only a comment\n"), HasSubstr("no data"));
+  const std::vector<TextCellRow> cells = split_text_cells("sep=;\nfreq;file\n1;a,b.csv\n", "runs.csv");
+  ASSERT_EQ(cells.size(), 2u);
+  EXPECT_EQ(cells[1].line, 3u);
+  ASSERT_EQ(cells[1].cells.size(), 2u);
+  EXPECT_EQ(cells[1].cells[1].text, "a,b.csv");
+}
+
 TEST(TextTable, SplitTextLineUnquotesFields) {
   const std::vector<TextField> fields = split_text_line(" 10 ,\"run 1, \"\"cold\"\".csv\" ,x", ',', "l.csv", 2);
   ASSERT_EQ(fields.size(), 3u);

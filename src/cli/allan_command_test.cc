@@ -235,11 +235,20 @@ TEST(AllanCommand, ARateTheTimeColumnContradictsIsAnError) {
   const auto one = run_cli({"allan", record, "--rate", "1000", "--column", "gx"});
   EXPECT_EQ(one.exit_code, 2);
   EXPECT_THAT(one.err, HasSubstr("contradicts the record's time column 'time_s'"));
-  const auto none = run_cli({"allan", record, "--column", "gx"});
+  // Without --rate, the column named with its unit gives the rate, as bias takes it; a column
+  // whose name does not state seconds does not, and the error says what it shows.
+  const auto given = run_cli({"allan", record, "--rate", "100", "--column", "gx", "--json"});
+  const auto stamped = run_cli({"allan", record, "--column", "gx", "--json"});
+  ASSERT_EQ(stamped.exit_code, 0) << stamped.err;
+  EXPECT_EQ(nlohmann::json::parse(stamped.out)["oadev"], nlohmann::json::parse(given.out)["oadev"]);
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(stamped.out)["sample_rate_hz"].get<double>(), 100.0);
+  std::string unstated = imu_record();
+  unstated.replace(0, unstated.find(','), "time");
+  const std::string ticks = dir.write("ticks.csv", unstated);
+  const auto none = run_cli({"allan", ticks, "--column", "gx"});
   EXPECT_EQ(none.exit_code, 2);
-  EXPECT_THAT(none.err, HasSubstr("imu.csv: the record stores no sample rate: give sample_rate_hz (--rate); its time "
-                                  "column 'time_s' steps 0.01 s (100 Hz)"));
-  EXPECT_EQ(run_cli({"allan", record, "--rate", "100", "--column", "gx"}).exit_code, 0);
+  EXPECT_THAT(none.err, HasSubstr("ticks.csv: the record stores no sample rate: give sample_rate_hz (--rate); its "
+                                  "time column 'time' steps 0.01 s (100 Hz) if in s"));
 }
 
 TEST(AllanCommand, ExportWritesTheFilterParametersOrNothing) {

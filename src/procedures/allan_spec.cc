@@ -59,7 +59,8 @@ struct AllanParameters {
 
   // The options of the analysis; the sample rate is the one given (check() holds it against a text
   // record's time column) or, failing that, the one the record stores (HDF5 sample_rate_hz, TDMS
-  // wf_increment...), else an Error naming the file and what a time column shows.
+  // wf_increment, a text record's time column named with its unit, as bias reads it), else an Error
+  // naming the file and what a time column shows.
   AllanOptions options(const RateRecordSource& source) const {
     AllanOptions options;
     const RateRecordFormat stored_as = resolve_rate_record_format(source);
@@ -70,8 +71,10 @@ struct AllanParameters {
       // several channels of a record that stores each one's rate: each its own (allan_channels.cc)
     } else if (const std::optional<double> stored = stored_sample_rate(source)) {
       options.sample_rate_hz = *stored;
+    } else if (const std::optional<RecordTimeColumn> time = text ? find_record_time_column(source.path) : std::nullopt;
+               time && time->unit_stated) {
+      options.sample_rate_hz = 1.0 / time->sample_interval_s;  // a time column named with its unit (time_s)
     } else {
-      const std::optional<RecordTimeColumn> time = text ? find_record_time_column(source.path) : std::nullopt;
       throw Error(SourceLocation{source.path, 0, 0},
                   "the record stores no sample rate: give sample_rate_hz (--rate)" +
                       (time ? fmt::format("; its time column '{}' steps {:.6g} s ({:.6g} Hz){}", time->name,
@@ -168,8 +171,8 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
   AllanOptions options = parameters.options(source);
   if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;  // each channel's own, read with the channels
   options.validate();
-  if (parameters.sample_rate_hz && resolve_rate_record_format(source) == RateRecordFormat::kCsv) {
-    check_sample_rate_against_time_column(source.path, *parameters.sample_rate_hz);
+  if (resolve_rate_record_format(source) == RateRecordFormat::kCsv) {
+    check_sample_rate_against_time_column(source.path, options.sample_rate_hz);  // and its gaps
   }
 }
 

@@ -1,28 +1,11 @@
 #include "inertest/core/instrument_id.h"
 
 #include <algorithm>
-#include <array>
-#include <cstdint>
 #include <fmt/format.h>
 
 #include "inertest/core/utf8.h"
 
 namespace inertest {
-namespace {
-
-// Blanks that print as nothing or as a space: an id with one around it is another instrument that
-// prints as the same ("FOG-001 ", "FOG-001" + U+00A0).
-bool is_blank(char32_t c) {
-  return c == ' ' || c == 0x00A0 || c == 0x1680 || (c >= 0x2000 && c <= 0x200A) || c == 0x202F || c == 0x205F ||
-         c == 0x3000;
-}
-
-}  // namespace
-
-bool is_invisible(char32_t c) {
-  // zero-width space, non-joiner, joiner; word joiner; byte order mark (zero-width no-break space)
-  return (c >= 0x200B && c <= 0x200D) || c == 0x2060 || c == 0xFEFF;
-}
 
 std::optional<std::string> instrument_id_problem(std::string_view id) {
   if (id.empty()) return "is empty";
@@ -38,8 +21,9 @@ std::optional<std::string> instrument_id_problem(std::string_view id) {
   for (std::size_t at = 0; at < id.size(); at += size) {
     const char32_t c = code_point_at(id, at, size);
     if (is_invisible(c)) return fmt::format("'{}' holds an invisible character (a zero-width space or joiner)", id);
-    if (at == 0) blank_first = is_blank(c);
-    blank_last = is_blank(c);
+    // A blank around the id: another instrument that prints as the same ("FOG-001 ", "FOG-001" + U+00A0).
+    if (at == 0) blank_first = is_unicode_blank(c);
+    blank_last = is_unicode_blank(c);
   }
   if (blank_first || blank_last) return fmt::format("'{}' has blanks around it", id);
   return std::nullopt;

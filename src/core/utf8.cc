@@ -22,4 +22,14 @@ bool is_unicode_punctuation_or_blank(char32_t c) {
          (c >= 0xFF5B && c <= 0xFF65) || c == 0xFEFF;
 }
 
+bool is_unicode_blank(char32_t c) {
+  return c == ' ' || c == 0x00A0 || c == 0x1680 || (c >= 0x2000 && c <= 0x200A) || c == 0x202F || c == 0x205F ||
+         c == 0x3000;
+}
+
+bool is_invisible(char32_t c) {
+  // zero-width space, non-joiner, joiner; word joiner; byte order mark (zero-width no-break space)
+  return (c >= 0x200B && c <= 0x200D) || c == 0x2060 || c == 0xFEFF;
+}
+
 }  // namespace inertest

@@ -26,6 +26,10 @@ bool is_unmeasured_figure(const json& node) {
          !measured->get<bool>() && unit != nullptr && unit->is_string();
 }
 
+bool is_scalar_figure(const json& node) {
+  return is_figure(node) || is_unidentified_figure(node) || is_unmeasured_figure(node);
+}
+
 bool is_array_figure(const json& node) {
   const auto* value = member(node, "value");
   const auto* unit = member(node, "unit");

@@ -18,13 +18,17 @@ bool is_unidentified_figure(const nlohmann::json& node);
 // "measured": false, "reason"} (e.g. a smoothing time longer than half the record).
 bool is_unmeasured_figure(const nlohmann::json& node);
 
+// A figure of one value, as format_figure takes it: is_figure, is_unidentified_figure or
+// is_unmeasured_figure.
+bool is_scalar_figure(const nlohmann::json& node);
+
 // A figure of a triad (issue 18): {"value": [x, y, z] or a 3x3, "unit", "uncertainty": the same shape}.
 bool is_array_figure(const nlohmann::json& node);
 
 // Value and uncertainty to the uncertainty's second significant digit (GUM 7.2.6), else 6 digits
 // (the uncertainty "" when the figure has none); an unidentified figure as "not identified (< upper
 // bound)"; an unmeasured one as "not measured"; a text or yes/no figure as its text. The figure is
-// is_figure, is_unidentified_figure or is_unmeasured_figure.
+// is_scalar_figure.
 std::pair<std::string, std::string> format_figure(const nlohmann::json& figure, const Labels& labels);
 
 // For a figure measured but within 2 sigma of zero ({"significant": false, "upper_bound"}, e.g. a

@@ -182,7 +182,7 @@ constexpr int kMaxNesting = 32;
 
 void collect_figures(const json& node, const std::string& pointer, const std::string& name, const Labels& labels,
                      int depth, bool headline, std::vector<FigureRow>& rows) {
-  if (is_figure(node) || is_unidentified_figure(node) || is_unmeasured_figure(node)) {
+  if (is_scalar_figure(node)) {
     rows.push_back({pointer, name, node, depth, headline && depth <= 2});
     return;
   }
@@ -258,7 +258,7 @@ constexpr std::size_t kMaxTableRows = 40;
 constexpr const char* kNamingMembers[] = {"name", "label", "position", "supply", "sensor"};
 
 bool is_figure_node(const json& node) {
-  return is_figure(node) || is_unidentified_figure(node) || is_unmeasured_figure(node) || is_array_figure(node);
+  return is_scalar_figure(node) || is_array_figure(node);
 }
 
 // An array that is a table of its own inside a row: its elements are objects (figures or rows).
@@ -393,7 +393,7 @@ std::string numbers_text(const json& node) {
 std::string cell_text(const json* cell, const Labels& labels) {
   if (cell == nullptr) return "";
   if (cell->is_null()) return "—";
-  if (is_figure(*cell) || is_unidentified_figure(*cell) || is_unmeasured_figure(*cell)) return figure_text(*cell, labels);
+  if (is_scalar_figure(*cell)) return figure_text(*cell, labels);
   if (is_array_figure(*cell)) {
     const std::string unit = pretty_unit(cell->at("unit").get<std::string>());
     const auto* u = member(*cell, "uncertainty");
@@ -421,7 +421,7 @@ void collect_table_figures(const std::vector<RowTable>& tables, std::vector<Figu
     for (const RowTable::Row& row : table.rows) {
       for (std::size_t c = 0; c < table.columns.size(); ++c) {
         const json* cell = row.cells[c];
-        if (cell == nullptr || !(is_figure(*cell) || is_unidentified_figure(*cell) || is_unmeasured_figure(*cell))) continue;
+        if (cell == nullptr || !is_scalar_figure(*cell)) continue;
         const std::string name =
             table.columns[c].empty()
                 ? table.title + (row.name.starts_with('#') ? " " + row.name : " (" + row.name + ")")

@@ -14,8 +14,4 @@ namespace inertest {
 // be an instrument of its own that prints as another.
 std::optional<std::string> instrument_id_problem(std::string_view id);
 
-// A character that prints as nothing: a zero-width space, non-joiner or joiner, a word joiner, or a
-// byte order mark.
-bool is_invisible(char32_t c);
-
 }  // namespace inertest

@@ -15,4 +15,12 @@ char32_t code_point_at(std::string_view text, std::size_t at, std::size_t& size)
 // punctuation (（）：，).
 bool is_unicode_punctuation_or_blank(char32_t c);
 
+// A blank that prints as a space: a space, a no-break space, or another Unicode space (U+1680,
+// U+2000-U+200A, U+202F, U+205F, U+3000).
+bool is_unicode_blank(char32_t c);
+
+// A character that prints as nothing: a zero-width space, non-joiner or joiner, a word joiner, or a
+// byte order mark.
+bool is_invisible(char32_t c);
+
 }  // namespace inertest

@@ -198,15 +198,11 @@ TEST(ProcedureStep, RequiredParameterFromTheStepOrTheInstrument) {
 }
 
 TEST(ProcedureStep, InstrumentDefaultOnlyWhereItsConditionHolds) {
-  // The nominal scale factor is per deg/s: input_axis_misalignment's K is per rate_unit.
+  // The nominal scale factor is per deg/s, as input_axis_misalignment's K is whatever rate_unit is.
   const std::string body = "nominal_scale_factor = 36000\n[[procedure]]\nkind = \"input_axis_misalignment\"\n"
                            "file = \"plan.toml\"\nrate = 1\n";
-  expect_plan_error(body + "rate_unit = \"rad/s\"\n",
-                    "missing 'scale_factor' (give it here or as [instrument] nominal_scale_factor with rate_unit = "
-                    "\"deg/s\")");
   ScratchDirectory scratch;
-  const std::string plan = scratch.write("plan.toml", std::string(kHeader) + body);
-  EXPECT_NO_THROW(validate_plan(plan));
+  EXPECT_NO_THROW(validate_plan(scratch.write("plan.toml", std::string(kHeader) + body + "rate_unit = \"rad/s\"\n")));
   // Records in deg/h take no K: the instrument's nominal one is not given to them, and one the step
   // gives is an error at its key.
   const std::string bias = "nominal_scale_factor = 36000\nsample_rate_hz = 100\n[[procedure]]\nkind = \"bias\"\n"

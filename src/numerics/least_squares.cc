@@ -1,8 +1,10 @@
 #include "inertest/numerics/least_squares.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "inertest/core/error.h"
 #include "inertest/numerics/compensated_sum.h"
@@ -119,7 +121,46 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
   return result;
 }
 
-LineFit fit_line(std::span<const double> x, std::span<const double> y) {
+namespace {
+
+// The variance a + b x² (a, b >= 0) of the points of a line fit, from z_j = e_j² / (1 - h_j),
+// each unbiased for its point's variance V_j and scattered as V_j χ²₁: least squares weighted by
+// 1/V_j², iterated from equal weights (a gamma GLM's scoring), so that the few largest |x| do not
+// decide b alone. Where b would be negative the variance is one for all, `pooled` (RSS / (m - 2));
+// where a would be, b x² alone.
+std::pair<double, double> variance_growing_with_x(std::span<const double> x, std::span<const double> z, double pooled) {
+  std::vector<double> weights(x.size(), 1.0);
+  double a = pooled;
+  double b = 0.0;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    CompensatedSum w0, w2, w4, z0, z2;
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double x2 = x[j] * x[j];
+      w0.add(weights[j]);
+      w2.add(weights[j] * x2);
+      w4.add(weights[j] * x2 * x2);
+      z0.add(weights[j] * z[j]);
+      z2.add(weights[j] * z[j] * x2);
+    }
+    const double determinant = w0.value() * w4.value() - w2.value() * w2.value();
+    b = determinant > 0.0 ? (w0.value() * z2.value() - w2.value() * z0.value()) / determinant : 0.0;
+    if (!(b > 0.0)) return {pooled, 0.0};
+    a = (z0.value() - b * w2.value()) / w0.value();
+    if (a < 0.0) {
+      a = 0.0;
+      b = z2.value() / w4.value();
+    }
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double variance = a + b * x[j] * x[j];
+      weights[j] = variance > 0.0 ? 1.0 / (variance * variance) : 0.0;
+    }
+  }
+  return {a, b};
+}
+
+}  // namespace
+
+LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic) {
   if (x.size() != y.size()) throw Error("line fit: x and y differ in length");
   if (x.size() < 2) throw Error("line fit: needs at least 2 points, got " + std::to_string(x.size()));
   const auto m = static_cast<double>(x.size());
@@ -141,11 +182,35 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y) {
     rss.add(r * r);
   }
   fit.residual_rms = std::sqrt(rss.value() / m);
-  if (x.size() > 2) {
-    const double s2 = rss.value() / (m - 2.0);
-    fit.slope_standard_error = std::sqrt(s2 / sxx.value());
-    fit.intercept_standard_error = std::sqrt(s2 * (1.0 / m + x_mean * x_mean / sxx.value()));
+  if (x.size() <= 2) return fit;
+  const double pooled = rss.value() / (m - 2.0);
+  fit.variance_at_zero = pooled;
+  if (!heteroscedastic) {
+    fit.slope_standard_error = std::sqrt(pooled / sxx.value());
+    fit.intercept_standard_error = std::sqrt(pooled * (1.0 / m + x_mean * x_mean / sxx.value()));
+    return fit;
   }
+  // The variance of each point a + b x² (a, b >= 0), fitted to the squared residuals scaled by
+  // 1/(1 - h_j), which are unbiased for it; then slope = sum w_j y_j, intercept = sum c_j y_j.
+  std::vector<double> scaled_squares(x.size());
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const double r = y[j] - (fit.slope * x[j] + fit.intercept);
+    const double leverage = 1.0 / m + (x[j] - x_mean) * (x[j] - x_mean) / sxx.value();
+    scaled_squares[j] = r * r / std::max(1.0 - leverage, 1e-8);
+  }
+  const auto [a, b] = variance_growing_with_x(x, scaled_squares, pooled);
+  fit.variance_at_zero = a;
+  CompensatedSum slope_variance;
+  CompensatedSum intercept_variance;
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    const double w = (x[j] - x_mean) / sxx.value();
+    const double c = 1.0 / m - x_mean * w;
+    const double variance = a + b * x[j] * x[j];
+    slope_variance.add(w * w * variance);
+    intercept_variance.add(c * c * variance);
+  }
+  fit.slope_standard_error = std::sqrt(slope_variance.value());
+  fit.intercept_standard_error = std::sqrt(intercept_variance.value());
   return fit;
 }
 

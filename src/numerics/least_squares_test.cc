@@ -70,6 +70,23 @@ TEST(LeastSquares, AgreesWithLineFitIncludingCovariance) {
   EXPECT_EQ(result.rank, 2u);
 }
 
+// The variance a + b x² fitted to e_j² / (1 - h_j) (8 rounds of least squares weighted by 1/V²),
+// then the slope's and the intercept's errors through it: numpy's lstsq of the same steps gives
+// a = 0.0176047, b = 1.20886e-3 and the values below. Points whose scatter grows with x, so both a
+// and b are positive.
+TEST(FitLine, HeteroscedasticStandardErrorsByHand) {
+  const std::vector<double> x = {-50, -20, -5, 0.5, 5, 20, 50, 100};
+  const std::vector<double> y = {-101, -39.5, -10.2, 1.1, 9.9, 40.6, 98.2, 203.5};
+  const LineFit fit = fit_line(x, y, true);
+  EXPECT_NEAR_RELATIVE(fit.slope, fit_line(x, y).slope, 1e-15);
+  EXPECT_NEAR_RELATIVE(fit.slope_standard_error, 0.02266258783144189, 1e-10);
+  EXPECT_NEAR_RELATIVE(fit.intercept_standard_error, 0.4173781219040717, 1e-10);
+  // Scatter that does not grow with x: b = 0, and the errors are the pooled ones.
+  const std::vector<double> flat_x = {0, 1, 2, 3};
+  const std::vector<double> flat_y = {0, 2, 1, 3};
+  EXPECT_NEAR_RELATIVE(fit_line(flat_x, flat_y, true).slope_standard_error, std::sqrt(0.18), 1e-12);
+}
+
 TEST(LeastSquares, RankDeficiencyNamesTheParameter) {
   // Third column = first + second: "c" cannot be told from the others.
   Matrix a(4, 3);

@@ -57,5 +57,27 @@ TEST(BiasTemperatureSensitivityTest, BadInputIsAnError) {
   }
 }
 
+// Runs listed cold to hot made the coldest one the room-temperature run, Bt 2.2 times too small; a
+// run in kelvin beside runs in degC divided Bt by up to 9. Both are errors saying what to give.
+TEST(BiasTemperatureSensitivityTest, AFirstRunOutsideRoomTemperatureOrKelvinIsAnError) {
+  const std::vector<TemperatureRunBias> cold_first = {{-40.0, 2.2}, {20.0, 1.0}, {60.0, 0.0}};
+  try {
+    bias_temperature_sensitivity(cold_first);
+    ADD_FAILURE() << "the -40 degC run was taken as the room-temperature run";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), ::testing::HasSubstr("the first run, taken as the room-temperature run (5.12.4.3 a), is at "
+                                                  "-40 degC, outside the standard atmosphere's 15-35 degC (4.1.1.1)"));
+  }
+  EXPECT_NO_THROW(bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{15.0, 1.0}, {60.0, 0.0}}));
+  EXPECT_NO_THROW(bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{35.0, 1.0}, {-40.0, 0.0}}));
+  try {
+    bias_temperature_sensitivity(std::vector<TemperatureRunBias>{{25.0, 1.0}, {333.15, 2.0}});
+    ADD_FAILURE() << "a run in kelvin was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "bias temperature sensitivity: run 2: 333.15 degC is above 200 degC; is it in kelvin? "
+                           "temperatures are in degC");
+  }
+}
+
 }  // namespace
 }  // namespace inertest

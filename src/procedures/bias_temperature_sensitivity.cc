@@ -7,6 +7,12 @@
 #include "inertest/core/units.h"
 
 namespace inertest {
+namespace {
+
+constexpr double kStandardAtmosphereDegC[2] = {15.0, 35.0};  // GJB 2426A-2004 4.1.1.1 a)
+constexpr double kHottestTestDegC = 200.0;
+
+}  // namespace
 
 BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const TemperatureRunBias> runs,
                                                               const BiasTemperatureOptions& options) {
@@ -23,6 +29,13 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
       throw Error(fmt::format("bias temperature sensitivity: run {}: {} degC is below absolute zero", i + 1,
                               runs[i].temperature_degC));
     }
+    // No gyro is tested above 200 degC: such a value is a temperature in kelvin (298.15 for 25), which
+    // divided Bt by up to 9 when it stood beside runs in degC.
+    if (runs[i].temperature_degC > kHottestTestDegC) {
+      throw Error(fmt::format("bias temperature sensitivity: run {}: {} degC is above {} degC; is it in kelvin? "
+                              "temperatures are in degC",
+                              i + 1, runs[i].temperature_degC, kHottestTestDegC));
+    }
   }
   std::size_t room = 0;
   if (options.room_temperature_degC) {
@@ -38,6 +51,13 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
                               "is needed",
                               found, *options.room_temperature_degC));
     }
+  } else if (const double first = runs.front().temperature_degC;
+             first < kStandardAtmosphereDegC[0] || first > kStandardAtmosphereDegC[1]) {
+    // Runs listed cold to hot made the coldest one Tm, and Bt 2.2 times too small, without a word.
+    throw Error(fmt::format("bias temperature sensitivity: the first run, taken as the room-temperature run "
+                            "(5.12.4.3 a), is at {} degC, outside the standard atmosphere's {}-{} degC (4.1.1.1): "
+                            "give the room temperature (room_temperature_degC)",
+                            first, kStandardAtmosphereDegC[0], kStandardAtmosphereDegC[1]));
   }
   BiasTemperatureSensitivityResult result;
   result.runs.assign(runs.begin(), runs.end());

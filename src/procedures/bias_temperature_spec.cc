@@ -20,10 +20,10 @@ struct Options {
 ProcedureSpec bias_temperature_spec() {
   ProcedureDefinition<Options, BiasTemperatureSensitivityResult> definition(
       "bias_temperature", "Bias temperature sensitivity", "GJB 2426A-2004 5.12.4, eq. (22)",
-      "max |B0i - B0m| / |Ti - Tm| over the runs, B0m the bias at room temperature\n"
-      "Tm (the first --run, or the run at --room-temperature). Each --run is TEMPERATURE_DEGC:FILE, FILE\n"
-      "one run's output record (one column, or --column; or binary with --format); bias = mean output / K\n"
-      "in deg/h (eq. 19).");
+      "max |B0i - B0m| / |Ti - Tm| over the runs, B0m the bias at room temperature Tm (the run at\n"
+      "--room-temperature, or the first --run, which must lie in 15-35 degC, 4.1.1.1). Each --run is\n"
+      "TEMPERATURE_DEGC:FILE, FILE one run's output record (one column, or --column; or binary with\n"
+      "--format); bias = mean output / K in deg/h (eq. 19).");
   definition.json_procedure_is("bias_temperature_sensitivity")
       .chinese_title("零偏温度灵敏度")
       .report_method(

@@ -20,7 +20,7 @@ double angle_from_components(double sum_of_squares) {
   const double sine = std::sqrt(sum_of_squares);
   if (sine > 1.0) {
     throw Error(fmt::format("input-axis misalignment: sqrt(sum of delta^2) = {:.6g} > 1; check the scale factor, the "
-                            "rate and the outputs (K must be output per input rate)",
+                            "rate and the outputs (K must be output per deg/s)",
                             sine));
   }
   return std::asin(sine);  // eqs. (49)-(50)
@@ -30,7 +30,7 @@ double angle_from_components(double sum_of_squares) {
 
 void InputAxisMisalignmentOptions::validate() const {
   if (!std::isfinite(scale_factor) || scale_factor == 0.0) {
-    throw Error("input-axis misalignment: the scale factor K must be nonzero (output unit per rate unit)");
+    throw Error("input-axis misalignment: the scale factor K must be nonzero (output unit per deg/s)");
   }
   if (!std::isfinite(rate) || rate <= 0.0) throw Error("input-axis misalignment: the table rate must be positive");
   if (Unit::parse(rate_unit).dimension() != Unit::parse("rad/s").dimension()) {
@@ -47,14 +47,16 @@ InputAxisMisalignmentResult input_axis_misalignment(std::span<const Misalignment
                             "remove the mounting error",
                             positions.size()));
   }
+  const double rate_deg_s = convert(options.rate, options.rate_unit, "deg/s");
   std::vector<double> delta;
   for (std::size_t j = 0; j < positions.size(); ++j) {
     const auto& p = positions[j];
     if (!std::isfinite(p.output_positive) || !std::isfinite(p.output_negative)) {
       throw Error(fmt::format("input-axis misalignment: position {}: output is not finite", j + 1));
     }
-    // Eqs. (47)-(48) with K in output per input: δ = (F+ − F−)/(2·K·Ω), dimensionless (rad).
-    delta.push_back((p.output_positive - p.output_negative) / (2.0 * options.scale_factor * options.rate));
+    // Eqs. (47)-(48) with K in output per input: δ = (F+ − F−)/(2·K·Ω), dimensionless (rad), K per
+    // deg/s as threshold and resolution take it, Ω in deg/s whatever unit it is given in.
+    delta.push_back((p.output_positive - p.output_negative) / (2.0 * options.scale_factor * rate_deg_s));
   }
 
   InputAxisMisalignmentResult result;

@@ -21,21 +21,21 @@ ProcedureSpec input_axis_misalignment_spec() {
              "table axis. POSITIONS has the header 'position,output_positive,output_negative': positions 1, 2\n"
              "(ox, then oy along the table axis) and optionally 3, 4 (the same turned 180 deg about IRA), each\n"
              "with the mean output over whole turns at +rate and -rate.\n"
-             "delta_j = (F(j+) - F(j-))/(2 K rate), K in output per rate unit; two positions:\n"
+             "delta_j = (F(j+) - F(j-))/(2 K rate), K in output per deg/s (the rate converted); two positions:\n"
              "alpha = asin(sqrt(delta1^2 + delta2^2)); four: the mounting error cancels,\n"
              "alpha = asin(sqrt(((delta1 - delta3)/2)^2 + ((delta2 - delta4)/2)^2)).")
       .chinese_title("输入轴失准角")
       .input(InputSpec("positions", "the mean outputs at +rate and -rate per position (position,output_positive,output_negative)")
                  .read_from_file("POSITIONS", "file"))
-      .parameter(ParameterSpec("scale_factor", "K, output unit per rate unit")
+      .parameter(ParameterSpec("scale_factor", "K")
+                     .unit_is("output units per deg/s")
                      .required_on_command_line()
                      .instrument_gives("nominal_scale_factor")
-                     .instrument_gives_when("rate_unit", "deg/s")
                      .instrument_gives_if(instrument_is_gyro),
                  &InputAxisMisalignmentOptions::scale_factor)
       .parameter(ParameterSpec("rate", "table rate magnitude, rate unit").required_on_command_line(),
                  &InputAxisMisalignmentOptions::rate)
-      .parameter(ParameterSpec("rate_unit", "unit of the rate and of K's denominator"),
+      .parameter(ParameterSpec("rate_unit", "unit of the rate"),
                  &InputAxisMisalignmentOptions::rate_unit)
       .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
                  &InputAxisMisalignmentOptions::output_unit)

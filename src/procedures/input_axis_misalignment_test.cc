@@ -45,6 +45,20 @@ TEST(InputAxisMisalignment, TwoPositionsHandComputed) {
   EXPECT_NEAR(result.misalignment.value, 46.1219, 1e-3);
 }
 
+// K is per deg/s whatever unit the rate is given in, as threshold and resolution take it: with K
+// read per rate unit, the same gyro gave 0.0311 arcsec at 360000 deg/h and 6407 at 1.745 rad/s.
+TEST(InputAxisMisalignment, TheRateInAnyUnitWithKPerDegPerSecond) {
+  const std::vector<MisalignmentPosition> positions = {position(1e-4), position(-2e-4)};
+  const double alpha = std::asin(std::sqrt(5e-8)) / kArcsecond;
+  auto o = options();
+  o.rate = kRate * 3600.0;
+  o.rate_unit = "deg/h";
+  EXPECT_NEAR_RELATIVE(input_axis_misalignment(positions, o).misalignment.value, alpha, 1e-9);
+  o.rate = kRate * kDegree;
+  o.rate_unit = "rad/s";
+  EXPECT_NEAR_RELATIVE(input_axis_misalignment(positions, o).misalignment.value, alpha, 1e-9);
+}
+
 TEST(InputAxisMisalignment, FourPositionsCancelTheMountingError) {
   // IA components δx = 1e-4, δy = −2e-4, fixture tilt ε = 3e-5: δ1 = δx + ε, δ2 = δy + ε,
   // δ3 = −δx + ε, δ4 = −δy + ε.

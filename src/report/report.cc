@@ -816,8 +816,11 @@ class ReportWriter {
           "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
           figure_verdicts ? fmt::format(" data-verdict=\"{}\"", all_pass(*figure_verdicts) ? "pass" : "fail") : "");
       const std::string note = significance_note(row.figure, labels_);
-      out_ += fmt::format("<td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", html(row.name),
-                          html(value), uncertainty.empty() ? "—" : "± " + html(uncertainty),
+      // A text figure (a criterion, a convention) wraps like text: kept on one line as a number, it
+      // pushed the unit, the limit and the verdict off the printed page.
+      out_ += fmt::format("<td>{}</td><td{}>{}</td><td class=\"num\">{}</td><td>{}</td>", html(row.name),
+                          row.figure.at("value").is_string() ? "" : " class=\"num\"", html(value),
+                          uncertainty.empty() ? "—" : "± " + html(uncertainty),
                           html(pretty_unit(row.figure.at("unit").get<std::string>()) + (note.empty() ? "" : ", " + note)));
       if (with_limits) {
         if (figure_verdicts) {

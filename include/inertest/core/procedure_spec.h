@@ -125,7 +125,7 @@ struct ParameterSpec {
     return instrument_gives(std::move(key), only);
   }
   // The [instrument] default applies only while the parameter `name` has `value` (e.g. the nominal
-  // scale factor, per deg/s, only with rate_unit = "deg/s").
+  // scale factor only for records of the output, input = "output", not for records in deg/h).
   ParameterSpec& instrument_gives_when(std::string parameter, std::string value) {
     instrument_condition = {std::move(parameter), std::move(value)};
     return *this;

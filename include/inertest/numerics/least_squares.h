@@ -61,14 +61,23 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
                                        const LeastSquaresOptions& options = {});
 
 // Straight-line fit y = slope * x + intercept (GJB 2426A eqs. 4-6), computed on centred sums,
-// which equals eqs. (5)-(6) algebraically but does not cancel when |x| is large.
+// which equals eqs. (5)-(6) algebraically but does not cancel when |x| is large. The standard
+// errors are from one residual variance RSS / (m - 2), or with `heteroscedastic` from a variance
+// a + b x² per point (a, b >= 0: a constant noise and one proportional to x, as a rate table's rate
+// error), fitted to e_j² / (1 - h_j), h_j = 1/m + (x_j - x̄)²/Sxx, by least squares weighted as a
+// gamma GLM's. Two parameters from all the points: HC3's one residual per point made the slope's
+// error rest on the few largest |x|, and a chi-squared over several such fits (K(T)) failed 5 times
+// too often.
 struct LineFit {
   double slope = 0.0;
   double intercept = 0.0;
   double slope_standard_error = 0.0;      // 0 when only two points
   double intercept_standard_error = 0.0;
   double residual_rms = 0.0;
+  // The points' variance at x = 0: RSS / (m - 2), or a of a + b x² with `heteroscedastic`; 0 when
+  // only two points.
+  double variance_at_zero = 0.0;
 };
-LineFit fit_line(std::span<const double> x, std::span<const double> y);
+LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic = false);
 
 }  // namespace inertest

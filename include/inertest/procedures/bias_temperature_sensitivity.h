@@ -5,7 +5,7 @@
 // B0m is the bias at room temperature Tm, B0i the bias at each test temperature Ti, each by
 // eq. (19) in deg/h. The room-temperature run is the one at room_temperature_degC when given
 // (exactly one run must be at that temperature), else the first run: 5.12.4.3 a) measures room
-// temperature first.
+// temperature first, so that run must lie in the standard atmosphere's 15-35 degC (4.1.1.1 a).
 #pragma once
 
 #include <optional>
@@ -36,8 +36,9 @@ struct BiasTemperatureSensitivityResult {
   std::vector<double> sensitivities;    // |B0i − B0m| / |Ti − Tm| per run (0 for the room run)
 };
 
-// Throws Error for fewer than 2 runs, no run (or more than one) at the room temperature, another
-// run at the room temperature (division by zero in eq. 22), or a non-finite value.
+// Throws Error for fewer than 2 runs, no run (or more than one) at the room temperature given, a
+// first run outside 15-35 degC without one, another run at the room temperature (division by zero
+// in eq. 22), a temperature below absolute zero or above 200 degC (kelvin), or a non-finite value.
 BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const TemperatureRunBias> runs,
                                                               const BiasTemperatureOptions& options = {});
 

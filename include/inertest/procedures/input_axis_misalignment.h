@@ -4,8 +4,9 @@
 // ox along the table axis, position 2 (turned 90° about IRA) puts oy there. At each position the
 // table turns at +Ω and −Ω, over whole turns. For position j,
 //   δj = (F(j+) − F(j−)) / (2·K·Ω)                                   (eqs. 47-48)
-// with K the scale factor in output per input rate, so δj is the (small) angle of IA out of the
-// plane normal to the table axis. The printed (F+ − F−)·K/(2Ω) holds only for K in input per output;
+// with K the scale factor in output per input rate (per deg/s, as threshold and resolution take
+// it, Ω converted to deg/s from its unit), so δj is the (small) angle of IA out of the plane normal
+// to the table axis. The printed (F+ − F−)·K/(2Ω) holds only for K in input per output;
 // see the reference notes. Two positions: α = asin(√(δ1² + δ2²)) (eq. 49).
 //
 // Positions 3 and 4 (5.15.3: the gyro turned about 180° about IRA from positions 1 and 2, "to
@@ -33,7 +34,7 @@ struct MisalignmentPosition {
 };
 
 struct InputAxisMisalignmentOptions {
-  double scale_factor = 0.0;  // K, output unit per rate unit (from 5.8.1), nonzero
+  double scale_factor = 0.0;  // K, output unit per deg/s (from 5.8.1), nonzero, whatever rate_unit is
   double rate = 0.0;          // Ω, > 0, rate unit
   std::string rate_unit = "deg/s";
   std::string output_unit = "1";

@@ -1,6 +1,7 @@
 // Applying an IMU triad calibration (issue 18), declared once (issue 22): `inertest imu-apply CALIB
 // RECORD`, the plan kind "imu_apply", its JSON, text, report and Python function come from this
 // file. The model is that of procedures/imu_calibration.h (Tedaldi, Pretto and Menegatti, ICRA 2014).
+#include <optional>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -35,8 +36,9 @@ struct ImuApplyOptions {
 struct ImuApplyResult {
   std::size_t samples = 0;
   std::size_t static_intervals = 0;
-  Figure gravity_residual_rms;  // | calibrated specific force | - g over the statics
-  Figure rest_rate_rms;         // | calibrated rate | over the statics
+  // Over the statics; none without one (their 0 passed every limit on a record never checked).
+  std::optional<Figure> gravity_residual_rms;  // | calibrated specific force | - g
+  std::optional<Figure> rest_rate_rms;         // | calibrated rate |
   std::vector<std::string> warnings;
 };
 
@@ -56,11 +58,12 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
     gravity_squares += std::pow(std::hypot(a[0], a[1], a[2]) - options.gravity_m_s2, 2);
     rate_squares += w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
   }
-  const double statics = static_cast<double>(std::max<std::size_t>(result.static_intervals, 1));
-  result.gravity_residual_rms = {std::sqrt(gravity_squares / statics), "m/s^2", std::nullopt};
-  result.rest_rate_rms = {std::sqrt(rate_squares / statics), "rad/s", std::nullopt};
   if (result.static_intervals == 0) {
     result.warnings.emplace_back("no static interval in the record: the calibration is applied but not checked");
+  } else {
+    const auto statics = static_cast<double>(result.static_intervals);
+    result.gravity_residual_rms = Figure{std::sqrt(gravity_squares / statics), "m/s^2", std::nullopt};
+    result.rest_rate_rms = Figure{std::sqrt(rate_squares / statics), "rad/s", std::nullopt};
   }
   // Written last, once everything that can fail has run: a failed run leaves no file (nor a partial one).
   if (!options.output_file.empty()) {

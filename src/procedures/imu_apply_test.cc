@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include "inertest/sim/imu_tumble.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -75,6 +77,30 @@ TEST(ImuApply, TheOutputKeepsEveryTimeStamp) {
     at = end + 1;
   }
   EXPECT_EQ(row, stamps.size());
+}
+
+// A record that is never still checks nothing: the check's figures are absent (a limit on them
+// fails), not 0 (which passed every limit).
+TEST(ImuApply, ARecordWithoutStaticsGivesNoCheckFigures) {
+  const testing::ScratchDirectory scratch;
+  sim::ImuTumbleOptions moving;  // rotation after rotation, never held still
+  moving.first_still_s = 0.0;
+  moving.still_s = 0.0;
+  moving.sample_rate_hz = 25.0;
+  const ImuRecord made = sim::simulate_imu_tumble(moving, 5);
+  std::string record = "time_s,ax,ay,az,gx,gy,gz\n";
+  for (std::size_t i = 0; i < made.time_s.size(); ++i) {
+    record += fmt::format("{:.2f},{},{},{},{},{},{}\n", made.time_s[i], made.accelerometer[0][i], made.accelerometer[1][i],
+                          made.accelerometer[2][i], made.gyro[0][i], made.gyro[1][i], made.gyro[2][i]);
+  }
+  const testing::CliRun run = testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"),
+                                                scratch.write("moving.csv", record), "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json result = nlohmann::json::parse(run.out);
+  EXPECT_EQ(result.at("static_intervals"), 0);
+  EXPECT_FALSE(result.contains("gravity_residual_rms"));
+  EXPECT_FALSE(result.contains("rest_rate_rms"));
+  EXPECT_THAT(result.at("warnings").dump(), ::testing::HasSubstr("no static interval in the record"));
 }
 
 // In a plan a relative --output goes beside results.json (staged with the campaign's other files: a

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include <boost/math/distributions/students_t.hpp>
+#include <tuple>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -147,6 +148,8 @@ const std::vector<std::string> kAccelerometerNames = {"bias x", "bias y", "bias 
 const std::vector<std::string> kGyroNames = {"scale x", "scale y", "scale z", "misalignment xy", "misalignment xz",
                                              "misalignment yx", "misalignment yz", "misalignment zx", "misalignment zy"};
 constexpr std::array<std::pair<int, int>, 3> kAccelerometerOffDiagonal = {{{0, 1}, {0, 2}, {1, 2}}};
+// Below this many degrees of freedom a fit's 1-sigma holds the truth in 65 % of cases or fewer.
+constexpr std::size_t kFewDegreesOfFreedom = 10;
 constexpr std::array<std::pair<int, int>, 6> kGyroOffDiagonal = {{{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}}};
 
 // T K of a triad from k (p[first..first+2]) and the off-diagonals of M that follow.
@@ -495,13 +498,19 @@ Vector3 TriadCalibration::apply(const Vector3& output) const {
 }
 
 nlohmann::json triad_json(const TriadCalibration& triad) {
-  return {{"bias", {{"value", triad.bias}, {"unit", triad.output_unit}, {"uncertainty", triad.bias_uncertainty}}},
-          {"scale_factor",
-           {{"value", triad.scale_factor},
-            {"unit", fmt::format("{}/({})", triad.output_unit, triad.input_unit)},
-            {"uncertainty", triad.scale_factor_uncertainty}}},
-          {"misalignment",
-           {{"value", triad.misalignment}, {"unit", "rad"}, {"uncertainty", triad.misalignment_uncertainty}}}};
+  nlohmann::json json = {
+      {"bias", {{"value", triad.bias}, {"unit", triad.output_unit}, {"uncertainty", triad.bias_uncertainty}}},
+      {"scale_factor",
+       {{"value", triad.scale_factor},
+        {"unit", fmt::format("{}/({})", triad.output_unit, triad.input_unit)},
+        {"uncertainty", triad.scale_factor_uncertainty}}},
+      {"misalignment",
+       {{"value", triad.misalignment}, {"unit", "rad"}, {"uncertainty", triad.misalignment_uncertainty}}}};
+  // An exact fit's zeros are no uncertainty: a certificate stated ±0 at the fewest orientations.
+  if (!triad.uncertainty_known) {
+    for (auto& [key, figure] : json.items()) figure.erase("uncertainty");
+  }
+  return json;
 }
 
 nlohmann::json calibration_file_json(const ImuCalibrationResult& result) {
@@ -523,11 +532,14 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
       calibration.input_unit = t == 0 ? "m/s^2" : "rad/s";
       calibration.output_unit = triad.at("bias").at("unit").get<std::string>();
       calibration.bias = triad.at("bias").at("value").get<Vector3>();
-      calibration.bias_uncertainty = triad.at("bias").at("uncertainty").get<Vector3>();
       calibration.scale_factor = triad.at("scale_factor").at("value").get<Vector3>();
-      calibration.scale_factor_uncertainty = triad.at("scale_factor").at("uncertainty").get<Vector3>();
       calibration.misalignment = triad.at("misalignment").at("value").get<Matrix3>();
-      calibration.misalignment_uncertainty = triad.at("misalignment").at("uncertainty").get<Matrix3>();
+      calibration.uncertainty_known = triad.at("bias").contains("uncertainty");
+      if (calibration.uncertainty_known) {
+        calibration.bias_uncertainty = triad.at("bias").at("uncertainty").get<Vector3>();
+        calibration.scale_factor_uncertainty = triad.at("scale_factor").at("uncertainty").get<Vector3>();
+        calibration.misalignment_uncertainty = triad.at("misalignment").at("uncertainty").get<Matrix3>();
+      }
       // The scale factor and the misalignment in the units the file states, converted to those the model
       // applies (output unit per m/s^2 or rad/s; rad), as temperature-apply converts its coefficients.
       const std::string triad_name = t == 0 ? "accelerometer" : "gyro";
@@ -900,9 +912,21 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
         "xyz"[positive - w.scale_factor.begin()]));
   }
   warn_correlated(gyro, kGyroNames, "gyro", result.warnings);
-  if (accelerometer.degrees_of_freedom == 0 || gyro.degrees_of_freedom == 0) {
-    result.warnings.emplace_back("as many observations as parameters: the fit is exact and gives no uncertainty (hold "
-                                 "more orientations)");
+  for (const auto& [fit, triad, name] : {std::tuple{&accelerometer, &a, "accelerometer"}, std::tuple{&gyro, &w, "gyro"}}) {
+    if (fit->degrees_of_freedom == 0) {
+      triad->uncertainty_known = false;
+      result.warnings.push_back(fmt::format("the {} fit has as many observations as parameters: it is exact and gives "
+                                            "no uncertainty (hold more orientations)",
+                                            name));
+    } else if (fit->degrees_of_freedom < kFewDegreesOfFreedom) {
+      // A sigma estimated from few residuals: the truth lies within it as often as |t_nu| < 1.
+      const auto degrees = static_cast<double>(fit->degrees_of_freedom);
+      const double within = 1.0 - 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(degrees), 1.0));
+      result.warnings.push_back(fmt::format(
+          "the {} fit has {} degree{} of freedom: its 1-sigma uncertainties, estimated from so few residuals, hold "
+          "the truth in about {:.0f} % of calibrations, not 68 % (Student's t); hold more orientations",
+          name, fit->degrees_of_freedom, fit->degrees_of_freedom == 1 ? "" : "s", 100.0 * within));
+    }
   }
   return result;
 }

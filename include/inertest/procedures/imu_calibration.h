@@ -72,7 +72,8 @@ struct ImuCalibrationOptions {
   void validate() const;
 };
 
-// A triad's calibration; every figure with its 1-sigma uncertainty.
+// A triad's calibration; every figure with its 1-sigma uncertainty, unless a fit of as many
+// observations as parameters gives none (uncertainty_known false; the JSON has no "uncertainty").
 struct TriadCalibration {
   Vector3 bias{};                  // output unit
   Vector3 bias_uncertainty{};
@@ -80,6 +81,7 @@ struct TriadCalibration {
   Vector3 scale_factor_uncertainty{};
   Matrix3 misalignment{};          // rad, M = T - I (see the header comment)
   Matrix3 misalignment_uncertainty{};
+  bool uncertainty_known = true;
   std::string output_unit;
   std::string input_unit;          // "m/s^2" or "rad/s"
 

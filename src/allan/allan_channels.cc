@@ -186,7 +186,7 @@ AllanChannels allan_variance_of_channels_in_file(const RateRecordSource& given_s
     const std::vector<std::optional<std::string>> given = given_units(names, selectors, units);
     const SourceLocation header{source.path, table.header_line, 0};
     for (std::size_t i = 0; i < names.size(); ++i) {
-      if (const std::optional<std::string> stated = unit_stated_in_name(names[i])) {
+      if (const std::optional<std::string> stated = unit_stated_in_name(names[i], header)) {
         const std::string stated_where = fmt::format("the header states for column '{}'", names[i]);
         options[i].input_unit = raw_output ? raw_output_unit(header, stated_where, *stated, common)
                                            : *resolve_stated_unit(header, stated_where, *stated, given[i]);

@@ -240,6 +240,15 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
   for (const CentrifugeRun& run : runs) {
     // Eq. (11)'s amplitudes are the output's harmonics over whole revolutions (the paper's test
     // samples the output over them): less than one is a fit the revolution does not support.
+    // Under a tenth of a turn is no harmonic fit: angles in radians (a turn is 6.28 "deg") gave
+    // coefficients a million times off with this warning alone.
+    if (run.harmonic_fit && run.harmonic_fit->part_of_a_revolution && run.harmonic_fit->revolutions < 0.1) {
+      throw Error(fmt::format("run at {} and beta = {}: the samples cover {:.3g} of a revolution ({:.3g} deg of "
+                              "gamma): eq. (11)'s harmonics need the turn; are the angles in radians? gamma_deg is in "
+                              "degrees",
+                              g_label(run.accel_g), beta_label(run.beta_rad), run.harmonic_fit->revolutions,
+                              360.0 * run.harmonic_fit->revolutions));
+    }
     if (run.harmonic_fit && run.harmonic_fit->part_of_a_revolution) {
       result.warnings.push_back(fmt::format(
           "run at {} and beta = {}: the samples cover {:.3g} of a revolution: its harmonics are fitted over less "

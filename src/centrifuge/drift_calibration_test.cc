@@ -229,6 +229,16 @@ TEST(CentrifugeDriftCalibration, PartOfARevolutionIsWarnedAbout) {
   EXPECT_THAT(result.warnings[0], HasSubstr("the samples cover 0.5 of a revolution"));
   const auto irregular = simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, true);
   EXPECT_TRUE(calibrate_drift_coefficients(analyse_sample_runs(irregular), options).warnings.empty());
+  // Angles in radians read as degrees: a turn spans 6.28 deg, an error that says so.
+  auto radians = simulate(options.site, {10.0, 20.0}, {0.0, 90.0, 180.0, 270.0}, false);
+  for (double& gamma : radians[1].gamma_rad) gamma *= constants::kDegree;
+  try {
+    calibrate_drift_coefficients(analyse_sample_runs(radians), options);
+    ADD_FAILURE() << "a run over 6 deg was fitted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("run at 10 g and beta = 90 deg: the samples cover 0.0175 of a revolution (6.28 "
+                                       "deg of gamma): eq. (11)'s harmonics need the turn; are the angles in radians?"));
+  }
 }
 
 // The coefficients are per standard g at any site: a gyro whose drift is D per standard g

@@ -207,7 +207,19 @@ std::optional<std::string> resolve_stated_unit(const SourceLocation& where, cons
   return given;
 }
 
-std::optional<std::string> unit_stated_in_name(std::string_view name) {
+namespace {
+
+// Bracketed text that reads as a rate's or an angle's unit ("deg s-1", "°/sec"), not a note ("raw").
+bool looks_like_a_unit(std::string_view text) {
+  for (const char* mark : {"/", "^", "deg", "rad", "dps", "dph", "s-1", "h-1", "\u00b0"}) {
+    if (text.find(mark) != std::string_view::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::optional<std::string> unit_stated_in_name(std::string_view name, const SourceLocation& where) {
   while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
   if (name.size() < 3 || (name.back() != ']' && name.back() != ')')) return std::nullopt;
   const std::size_t open = name.find_last_of(name.back() == ']' ? '[' : '(');
@@ -218,7 +230,12 @@ std::optional<std::string> unit_stated_in_name(std::string_view name) {
   try {
     if (Unit::parse(inside).dimension() == Dimension{}) return std::nullopt;  // "[1]", "(%)": no quantity's unit
   } catch (const Error&) {
-    return std::nullopt;  // "(raw)", "[x]": a note, not a unit
+    // "(raw)", "[x]": a note, not a unit; "[deg s-1]" is a unit inertest does not read, and read as
+    // none the samples were taken in deg/h, 3600 times off.
+    if (!looks_like_a_unit(inside)) return std::nullopt;
+    throw Error(where, fmt::format("column '{}': '{}' reads as a unit inertest does not know; write it as deg/s, "
+                                   "deg/h, rad/s...",
+                                   name, inside));
   }
   return std::string(inside);
 }
@@ -237,7 +254,7 @@ std::optional<std::string> resolve_text_unit(const std::string& path, const std:
   } else if (!column && names.size() == 1) {
     name = names[0];
   }
-  const std::optional<std::string> stated = unit_stated_in_name(name);
+  const std::optional<std::string> stated = unit_stated_in_name(name, SourceLocation{path, header.line, 0});
   if (!stated) return given;
   return resolve_stated_unit(SourceLocation{path, header.line, 0}, fmt::format("the header states for column '{}'", name),
                              *stated, given);

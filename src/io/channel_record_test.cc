@@ -151,11 +151,20 @@ TEST(ChannelRecord, StoredUnitIsUsedAndAContradictionIsAnError) {
 // A text column whose header states its unit ("gyro_x [deg/s]") holds samples in it, as a channel
 // that stores one: allan read 0.01 deg/s as deg/h, a mean 3600 times too small.
 TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
-  EXPECT_EQ(unit_stated_in_name("gyro_x [deg/s]"), "deg/s");
-  EXPECT_EQ(unit_stated_in_name("rate (deg/h) "), "deg/h");
-  EXPECT_EQ(unit_stated_in_name("ax[ m/s^2 ]"), "m/s^2");
-  for (const char* none : {"gyro_x", "gx[1]", "ratio (%)", "output (raw)", "[deg/s]", "deg/s"}) {
-    EXPECT_EQ(unit_stated_in_name(none), std::nullopt) << none;
+  const SourceLocation header{"r.csv", 1, 0};
+  EXPECT_EQ(unit_stated_in_name("gyro_x [deg/s]", header), "deg/s");
+  EXPECT_EQ(unit_stated_in_name("rate (deg/h) ", header), "deg/h");
+  EXPECT_EQ(unit_stated_in_name("ax[ m/s^2 ]", header), "m/s^2");
+  for (const char* none : {"gyro_x", "gx[1]", "ratio (%)", "output (raw)", "[deg/s]", "deg/s", "rate [foo]"}) {
+    EXPECT_EQ(unit_stated_in_name(none, header), std::nullopt) << none;
+  }
+  // A unit inertest does not read is no note: read as none, the samples were taken in deg/h.
+  try {
+    unit_stated_in_name("rate [deg s-1]", header);
+    ADD_FAILURE() << "[deg s-1] was read as no unit";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "r.csv:1: column 'rate [deg s-1]': 'deg s-1' reads as a unit inertest does not "
+                                     "know; write it as deg/s, deg/h, rad/s...");
   }
   const testing::ScratchDirectory scratch;
   std::string text = "time [s],gyro_x [deg/s],gyro_y\n";

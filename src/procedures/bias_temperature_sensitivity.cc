@@ -4,13 +4,13 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/test_temperature.h"
 #include "inertest/core/units.h"
 
 namespace inertest {
 namespace {
 
 constexpr double kStandardAtmosphereDegC[2] = {15.0, 35.0};  // GJB 2426A-2004 4.1.1.1 a)
-constexpr double kHottestTestDegC = 200.0;
 
 }  // namespace
 

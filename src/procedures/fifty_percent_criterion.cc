@@ -14,7 +14,10 @@ Outcome search(std::vector<Point> points, Denominator denominator, const std::st
   std::stable_sort(points.begin(), points.end(),
                    [](const Point& a, const Point& b) { return std::abs(a.input) > std::abs(b.input); });
   for (auto& p : points) {
-    const double reference = denominator == Denominator::kMeasured ? p.measured : p.expected;
+    // A measured output of exactly 0 (a dead band, whole pulse counts) is no denominator: that point
+    // is judged against the expected output, |(F_exp − 0)/F_exp| = 1, and misses the criterion as it
+    // does by any reading (an infinite error stopped the run with a message about overflow).
+    const double reference = denominator == Denominator::kMeasured && p.measured != 0.0 ? p.measured : p.expected;
     p.relative_error = reference != 0.0 ? std::abs((p.expected - p.measured) / reference)
                                         : std::numeric_limits<double>::infinity();
     p.satisfies = p.relative_error <= kLimit;  // eq. (15) / (18)

@@ -11,6 +11,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/json_text.h"
+#include "inertest/core/test_temperature.h"
 #include "inertest/core/units.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
@@ -459,6 +460,14 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
                             base.size(), options.interval_s, options.folds, options.maximum_order));
   }
   TemperatureModelResult result;
+  // D_0 is the bias at T_ref: outside the temperatures the record holds, it is an extrapolation.
+  const auto [coldest, hottest] = std::minmax_element(record.temperature_degC[chosen_sensor].begin(),
+                                                      record.temperature_degC[chosen_sensor].end());
+  if (options.reference_temperature_degC < *coldest || options.reference_temperature_degC > *hottest) {
+    result.warnings.push_back(fmt::format("the reference temperature {} degC lies outside the record's {:.4g} to {:.4g} "
+                                          "degC: D_0 and the coefficients about it are extrapolated",
+                                          options.reference_temperature_degC, *coldest, *hottest));
+  }
   std::optional<SensorModel> chosen;
   std::vector<thermal::Interval> chosen_intervals;
   for (std::size_t s = 0; s < sensors; ++s) {
@@ -717,7 +726,7 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
 namespace {
 
 // The offset that takes a temperature column to degC by the unit its name states after a '_' or in
-// brackets ("coil_K", "chamber [K]": -273.15; "coil_degC", "T [°C]", a sensor's name "T_1" or
+// brackets ("coil_K", "chamber [K]", "coil (kelvin)": -273.15; "coil_degC", "T [°C]", a sensor's name "T_1" or
 // "coil_top": 0). A temperature in kelvin read as degC put T_ref at 20 K and D_0 100 times off.
 double offset_to_degC(const std::string& name) {
   const std::size_t cut = name.find_last_of("_[(");
@@ -725,7 +734,7 @@ double offset_to_degC(const std::string& name) {
   std::string unit = name.substr(cut + 1);
   while (!unit.empty() && (unit.back() == ']' || unit.back() == ')' || unit.back() == ' ')) unit.pop_back();
   while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-  return unit == "K" ? constants::kAbsoluteZeroDegC : 0.0;
+  return unit == "K" || unit == "kelvin" || unit == "Kelvin" ? constants::kAbsoluteZeroDegC : 0.0;
 }
 
 }  // namespace
@@ -748,6 +757,13 @@ ThermalRecord read_thermal_record(const std::string& path, const std::string& ti
     for (std::size_t i = 0; i < temperatures.size(); ++i) {
       if (temperatures[i] < constants::kAbsoluteZeroDegC) {
         throw Error(locate_cell(table, i, s + 2), fmt::format("{} degC is below absolute zero", temperatures[i]));
+      }
+      // A column in kelvin not named so (its D_0 came out 33 deg/h for 1, with no word).
+      if (temperatures[i] > kHottestTestDegC) {
+        throw Error(locate_cell(table, i, s + 2),
+                    fmt::format("{} degC is above {} degC: is the column in kelvin? name it with its unit ({}_K, "
+                                "\"{} [K]\")",
+                                temperatures[i], kHottestTestDegC, table.names[s + 2], table.names[s + 2]));
       }
     }
     record.sensor_names.push_back(table.names[s + 2].empty() ? temperature_columns[s] : table.names[s + 2]);

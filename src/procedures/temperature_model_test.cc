@@ -210,6 +210,24 @@ TEST(TemperatureModel, ATemperatureColumnInKelvinIsReadSo) {
   };
   const nlohmann::json in_celsius = model("c.csv", celsius, "coil");
   const nlohmann::json in_kelvin = model("k.csv", kelvin, "coil [K]");
+  std::string spelt = kelvin;
+  spelt.replace(spelt.find("coil [K]"), 8, "coil (kelvin)");
+  EXPECT_EQ(model("spelt.csv", spelt, "coil (kelvin)").at("bias_coefficients"), in_kelvin.at("bias_coefficients"));
+  // Kelvin in a column not named so is no degC: an error at the first cell above 200 degC.
+  std::string unnamed = kelvin;
+  unnamed.replace(unnamed.find("coil [K]"), 8, "coil");
+  const testing::CliRun run = testing::run_cli({"temperature-model", scratch.write("unnamed.csv", unnamed),
+                                                "--temperature-column", "coil", "--scale-factor", "36000"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, ::testing::HasSubstr("unnamed.csv:2:"));
+  EXPECT_THAT(run.err, ::testing::HasSubstr("degC is above 200 degC: is the column in kelvin? name it with its unit "
+                                            "(coil_K, \"coil [K]\")"));
+  // T_ref outside the record's temperatures is said to be an extrapolation.
+  const testing::CliRun hot = testing::run_cli({"temperature-model", scratch.write("hot.csv", celsius), "--temperature-column",
+                                                "coil", "--scale-factor", "36000", "--reference-temperature", "150", "--json"});
+  ASSERT_EQ(hot.exit_code, 0) << hot.err;
+  EXPECT_THAT(nlohmann::json::parse(hot.out).at("warnings").dump(),
+              ::testing::HasSubstr("the reference temperature 150 degC lies outside the record's"));
   for (const auto& [name, figure] : in_celsius.at("bias_coefficients").items()) {
     EXPECT_NEAR(in_kelvin.at("bias_coefficients").at(name).at("value").get<double>(), figure.at("value").get<double>(),
                 1e-6 * std::abs(figure.at("value").get<double>()) + 1e-12)

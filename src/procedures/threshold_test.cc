@@ -79,6 +79,14 @@ TEST(ThresholdTest, MeasuredDenominatorIsEquationFifteenAsPrinted) {
   EXPECT_EQ(result.warnings.size(), 2u);  // neither branch found a failing input
   options.criterion_denominator = CriterionDenominator::kExpected;
   EXPECT_DOUBLE_EQ(threshold_rate_table(points, options).branches[0].candidate_deg_h, 4.0);
+  // A dead band: input 1 gives exactly the zero output. It misses the criterion (its error against
+  // the expected output is 1), as by the expected denominator; it was an infinite error, an abort.
+  const std::vector<RateTablePoint> dead = {{4, 4.0}, {2, 2.1}, {1, 0.0}, {-4, -4.0}, {-2, -2.1}, {-1, 0.0}};
+  options.criterion_denominator = CriterionDenominator::kMeasured;
+  const ThresholdResult with_dead_band = threshold_rate_table(dead, options);
+  EXPECT_DOUBLE_EQ(with_dead_band.branches[0].candidate_deg_h, 2.0);
+  EXPECT_TRUE(with_dead_band.branches[0].bounded);
+  EXPECT_DOUBLE_EQ(with_dead_band.branches[0].points[2].relative_error, 1.0);
 }
 
 TEST(ThresholdTest, CriterionDenominatorParses) {

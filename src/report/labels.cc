@@ -145,7 +145,7 @@ constexpr Translation kTable[] = {
     {"delta_theta_y1", "Δθy1 (fixture face)", "Δθy1（夹具面）"},
     {"delta_theta_y2", "Δθy2 (input axis)", "Δθy2（输入轴）"},
     {"delta_theta_z2", "Δθz2 (input axis)", "Δθz2（输入轴）"},
-    {"coefficients", "Drift coefficients", "漂移系数"},
+    {"coefficients", "Coefficients", "系数"},  // the Allan fit's A_p; the centrifuge names its own
     {"D_F", "DF", "DF"},
     {"D_I", "DI", "DI"},
     {"D_O", "DO", "DO"},

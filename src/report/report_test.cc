@@ -427,7 +427,7 @@ TEST(Report, DeclaredFiguresAreListedWhateverTheirDepth) {
     EXPECT_THAT(figure_row(page, "centrifuge", pointer), HasSubstr("Influence of each error alone")) << pointer;
   }
   const std::string coefficient = figure_row(page, "allan_long_static", "/noise/fit/coefficients/0");
-  EXPECT_THAT(coefficient, HasSubstr("(power -2)"));
+  EXPECT_THAT(coefficient, HasSubstr("Noise terms · Fit · Coefficients (power -2)"));  // A_p, no drift coefficient
   EXPECT_THAT(coefficient, ::testing::ContainsRegex("<td class=\"num\">± [0-9.]+</td>"));
   // The PSD's periodic components of an IMU channel, six levels down.
   EXPECT_THAT(figure_row(page, "imu_noise", "/channels/gz/psd/peaks/0/frequency"), HasSubstr("± 0.000020"));

@@ -118,8 +118,10 @@ std::optional<std::string> resolve_stated_unit(const SourceLocation& where, cons
                                                const std::string& stated, const std::optional<std::string>& given);
 
 // The unit a text column's header name states at its end, in brackets or parentheses ("gyro_x
-// [deg/s]", "rate (deg/h)"): one inertest knows and not a bare ratio (1, ppm, %); else nullopt.
-std::optional<std::string> unit_stated_in_name(std::string_view name);
+// [deg/s]", "rate (deg/h)"): one inertest knows and not a bare ratio (1, ppm, %); nullopt for none
+// or a note ("(raw)"); an Error at `where` for text that reads as a unit inertest does not know
+// ("[deg s-1]").
+std::optional<std::string> unit_stated_in_name(std::string_view name, const SourceLocation& where);
 
 // resolve_unit for a text record: the unit its header states for the column (by name, by 1-based
 // index, or without one the only column), against `given`.

@@ -44,13 +44,27 @@ void check_points(std::span<const FrequencyResponsePoint> points, const Bandwidt
 }
 
 // Phases taken one frequency after the other with no jump larger than π, so a lag that grows past
-// 180° at high frequency stays a lag (a sine fit only knows the phase modulo 2π).
+// 180° at high frequency stays a lag (a sine fit only knows the phase modulo 2π). Phases given
+// beyond ±π are unwrapped already and kept: wrapped again, a step of 230° between two frequencies
+// became one of −130° and the delay 0.86 ms for 1.5.
 std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> points) {
   std::vector<double> phases;
+  const bool given_unwrapped = std::any_of(points.begin(), points.end(), [](const FrequencyResponsePoint& p) {
+    return std::abs(p.phase_rad) > kPi * (1.0 + 1e-9);
+  });
   for (const auto& p : points) {
-    phases.push_back(phases.empty() ? p.phase_rad : phases.back() + wrap_to_pi(p.phase_rad - phases.back()));
+    phases.push_back(phases.empty() || given_unwrapped ? p.phase_rad
+                                                       : phases.back() + wrap_to_pi(p.phase_rad - phases.back()));
   }
   return phases;
+}
+
+// The largest change of phase between neighbouring frequencies, in rad: near π, phases known modulo
+// 2π no longer tell which way the step went.
+double largest_phase_step(const std::vector<double>& phases) {
+  double largest = 0.0;
+  for (std::size_t i = 1; i < phases.size(); ++i) largest = std::max(largest, std::abs(phases[i] - phases[i - 1]));
+  return largest;
 }
 
 // Polarity (reference README §3, "Polarity"): a gyro of negative scale factor (output falling as the
@@ -188,6 +202,14 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
     result.warnings.push_back(fmt::format("the phases depart from eq. (42)'s lag and delay by {:.3g} deg rms (over {} "
                                           "deg): the output delay is no figure of this response",
                                           result.phase_fit_residual_rms.value, kPhaseResidualWarningDeg));
+  }
+  // Wrapped phases whose neighbours differ by more than 120 deg may hide a step beyond 180 deg, which
+  // unwrapping takes the other way round.
+  if (constexpr double kAmbiguousStep = 2.0 * kPi / 3.0; largest_phase_step(phase) > kAmbiguousStep) {
+    result.warnings.push_back(fmt::format("the phase changes by up to {:.0f} deg between neighbouring frequencies: a "
+                                          "step near 180 deg may have been unwrapped the wrong way; test more "
+                                          "frequencies, or give the phases unwrapped (beyond +-180 deg)",
+                                          largest_phase_step(phase) / constants::kDegree));
   }
   if (points.back().frequency_hz < 2.0 * bandwidth) {
     result.warnings.push_back(fmt::format("the highest frequency ({} Hz) is below twice the bandwidth ({:.6g} Hz); "

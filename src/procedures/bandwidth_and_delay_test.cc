@@ -109,6 +109,21 @@ TEST(BandwidthAndDelay, PhaseLagsPastHalfATurnAreUnwrapped) {
   EXPECT_NEAR_RELATIVE(result.bandwidth.value, 400.0, 1e-9);
 }
 
+// Bw 500 Hz, Td 1.5 ms over 10 frequencies from 10 to 1000 Hz (5.13.3 a): the lag grows by 230 deg
+// between the last two. Given unwrapped, the phases are kept (wrapped again, Td came out 0.86 ms);
+// given wrapped, the step is taken the short way and a warning says so.
+TEST(BandwidthAndDelay, PhasesGivenUnwrappedAreKept) {
+  const Lag lag{1.0, 500.0, 1.5e-3};
+  auto points = response(lag, log_spaced(10.0, 1000.0, 10));
+  const auto unwrapped = bandwidth_and_delay(points);
+  EXPECT_NEAR_RELATIVE(unwrapped.delay.value, 1.5e-3, 1e-9);
+  EXPECT_THAT(nlohmann::json(unwrapped.warnings).dump(), HasSubstr("the phase changes by up to 230 deg"));
+  for (auto& p : points) p.phase_rad = std::remainder(p.phase_rad, 2 * kPi);
+  const auto wrapped = bandwidth_and_delay(points);
+  EXPECT_GT(std::abs(wrapped.delay.value - 1.5e-3), 1e-4);
+  EXPECT_THAT(nlohmann::json(wrapped.warnings).dump(), HasSubstr("may have been unwrapped the wrong way"));
+}
+
 TEST(BandwidthAndDelay, NegativePolarityIsRemovedBeforeTheDelayFit) {
   // A gyro of negative scale factor (the misalignment paper's K = -2.9222 V/(deg/s)): every phase
   // is the lag's plus 180 deg, given wrapped to (-180, 180]. The delay stays 0.2 ms.

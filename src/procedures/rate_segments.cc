@@ -78,6 +78,7 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
   // 0.15 %). Against the segment's first sample, noise within the tolerance cut each plateau
   // wherever it swung the other way (24 test points became 56).
   constexpr std::size_t kPersistence = 3;
+  constexpr double kRatesOfTolerance = 3.0;
   const std::size_t count = table_rate.size();
   std::vector<RateSegment> segments;
   std::size_t begin = 0;
@@ -146,6 +147,18 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
     throw Error(fmt::format("rate segments: no constant-rate segment of at least {} s ({} samples) in a record of {} "
                             "samples (is the rate tolerance below the table-rate column's noise?)",
                             options.minimum_segment_s, minimum_samples, table_rate.size()));
+  }
+  // A test rate within a few tolerances of zero says that a smaller one may have been taken for a
+  // static run: rates of +-0.001 deg/s at the tolerance 0.001 joined the static runs, moved F̄s by
+  // half the output at 0.001 deg/s, F0 by 1000 sigma, and left two test points out, silently.
+  for (const RateSegment& segment : segments) {
+    if (segment.rate != 0.0 && std::abs(segment.rate) < kRatesOfTolerance * options.rate_tolerance) {
+      throw Error(fmt::format("rate segments: the test rate {:.6g} lies within {} rate tolerances ({:g}) of zero: a "
+                              "smaller test rate may have been taken for a static run; give a rate tolerance below "
+                              "a third of the smallest test rate (samples {} to {})",
+                              segment.rate, kRatesOfTolerance, options.rate_tolerance, segment.first_sample + 1,
+                              segment.end_sample));
+    }
   }
   return segments;
 }

@@ -172,6 +172,26 @@ TEST(RateSegments, ShortSegmentsAreSkipped) {
   EXPECT_EQ(segments[1].rate, 10.0);
 }
 
+// Test rates of +-0.001 deg/s at the tolerance 0.001 joined the static runs (F̄s moved by half
+// their output, F0 by 1000 sigma) and two test points vanished: the next rate, 0.002, within 3
+// tolerances of zero, says so; a tolerance below a third of the smallest rate keeps them all.
+TEST(RateSegments, ATestRateWithinAFewTolerancesOfZeroIsAnError) {
+  Record record;
+  add_segment(record, 0.0, 3.0);
+  for (double rate : {-0.001, -0.002, -10.0, 0.001, 0.002, 10.0}) add_segment(record, rate, 3.0);
+  add_segment(record, 0.0, 3.0);
+  try {
+    segment_by_rate(record.rate, record.output, options());
+    FAIL() << "the +-0.001 deg/s plateaus were taken for static runs";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr("rate segments: the test rate -0.002 lies within 3 rate tolerances (0.001) of "
+                                       "zero: a smaller test rate may have been taken for a static run"));
+  }
+  auto fine = options();
+  fine.rate_tolerance = 2e-4;
+  EXPECT_EQ(segment_by_rate(record.rate, record.output, fine).size(), 8u);
+}
+
 TEST(RateSegments, RecordWithoutStaticRunsGivesTheScaleFactorError) {
   Record record;
   add_segment(record, 10.0, 3.0);

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -12,6 +13,99 @@
 namespace inertest {
 
 double LeastSquaresResult::standard_error(std::size_t i) const { return std::sqrt(covariance(i, i)); }
+
+namespace {
+
+// The lag-1 autocorrelation of a series about zero, or nothing for a series of zeros.
+std::optional<double> lag_one_correlation(const Eigen::VectorXd& e) {
+  CompensatedSum lagged, squares;
+  for (Eigen::Index t = 0; t < e.size(); ++t) {
+    squares.add(e(t) * e(t));
+    if (t > 0) lagged.add(e(t) * e(t - 1));
+  }
+  if (!(squares.value() > 0.0)) return std::nullopt;
+  return lagged.value() / squares.value();
+}
+
+// Newey-West's Bartlett-kernel estimate of Var(Σ v_t) as overlapping batch means,
+// m/(L(m - L + 1)) Σ_j V_j V_jᵀ, V_j the sum of L rows of v from j, with Andrews' (1991) AR(1)
+// plug-in L = 1.1447 (α m)^(1/3), α = 4ρ²/((1 - ρ)²(1 + ρ)²), at most m/4.
+Eigen::MatrixXd long_run_variance(const Eigen::MatrixXd& v, double rho) {
+  const Eigen::Index m = v.rows();
+  const double alpha = 4.0 * rho * rho / std::pow((1.0 - rho) * (1.0 + rho), 2);
+  const auto length = std::clamp<Eigen::Index>(
+      static_cast<Eigen::Index>(std::ceil(1.1447 * std::cbrt(alpha * static_cast<double>(m)))), 1,
+      std::max<Eigen::Index>(1, m / 4));
+  Eigen::MatrixXd prefix = Eigen::MatrixXd::Zero(m + 1, v.cols());
+  for (Eigen::Index t = 0; t < m; ++t) prefix.row(t + 1) = prefix.row(t) + v.row(t);
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(v.cols(), v.cols());
+  for (Eigen::Index j = 0; j + length <= m; ++j) {
+    const Eigen::RowVectorXd batch = prefix.row(j + length) - prefix.row(j);
+    sum += batch.transpose() * batch;
+  }
+  return sum * (static_cast<double>(m) / (static_cast<double>(length) * static_cast<double>(m - length + 1)));
+}
+
+// Var(A^T e) for observations in time order whose errors are correlated, or nothing when the
+// residuals' lag-1 autocorrelation rho is not above 2/sqrt(m) (white at 2 sigma). Andrews and
+// Monahan's (1992) prewhitening: the scores u_t = a_t e_t less rho u_(t-1), whose long-run variance
+// Newey-West's kernel then takes with little bias, recoloured by 1/(1 - rho)². With the errors taken
+// as white, the temperature model's ±1σ held D_T in 16 % of trials under drift of a 60 s
+// correlation time; Newey-West alone, without the prewhitening, held a slope in 56 % under AR(1)
+// errors of 0.8.
+std::optional<Eigen::MatrixXd> correlated_scores_variance(const Eigen::MatrixXd& a, const Eigen::VectorXd& e) {
+  const Eigen::Index m = a.rows();
+  if (m < 8) return std::nullopt;
+  const std::optional<double> correlation = lag_one_correlation(e);
+  if (!correlation || !(*correlation > 2.0 / std::sqrt(static_cast<double>(m)))) return std::nullopt;
+  const double rho = std::min(*correlation, 0.99);
+  Eigen::MatrixXd whitened(m - 1, a.cols());
+  Eigen::VectorXd whitened_residuals(m - 1);
+  for (Eigen::Index t = 1; t < m; ++t) {
+    whitened.row(t - 1) = a.row(t) * e(t) - rho * a.row(t - 1) * e(t - 1);
+    whitened_residuals(t - 1) = e(t) - rho * e(t - 1);
+  }
+  const double remaining = std::clamp(lag_one_correlation(whitened_residuals).value_or(0.0), 0.0, 0.9);
+  return long_run_variance(whitened, remaining) * (static_cast<double>(m) / static_cast<double>(m - 1)) /
+         ((1.0 - rho) * (1.0 - rho));
+}
+
+// The variance a + b x² (a, b >= 0) of the points of a line fit, from z_j = e_j² / (1 - h_j),
+// each unbiased for its point's variance V_j and scattered as V_j χ²₁: least squares weighted by
+// 1/V_j², iterated from equal weights (a gamma GLM's scoring), so that the few largest |x| do not
+// decide b alone. Where b would be negative the variance is one for all, `pooled` (RSS / (m - 2));
+// where a would be, b x² alone.
+std::pair<double, double> variance_growing_with_x(std::span<const double> x, std::span<const double> z, double pooled) {
+  std::vector<double> weights(x.size(), 1.0);
+  double a = pooled;
+  double b = 0.0;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    CompensatedSum w0, w2, w4, z0, z2;
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double x2 = x[j] * x[j];
+      w0.add(weights[j]);
+      w2.add(weights[j] * x2);
+      w4.add(weights[j] * x2 * x2);
+      z0.add(weights[j] * z[j]);
+      z2.add(weights[j] * z[j] * x2);
+    }
+    const double determinant = w0.value() * w4.value() - w2.value() * w2.value();
+    b = determinant > 0.0 ? (w0.value() * z2.value() - w2.value() * z0.value()) / determinant : 0.0;
+    if (!(b > 0.0)) return {pooled, 0.0};
+    a = (z0.value() - b * w2.value()) / w0.value();
+    if (a < 0.0) {
+      a = 0.0;
+      b = z2.value() / w4.value();
+    }
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double variance = a + b * x[j] * x[j];
+      weights[j] = variance > 0.0 ? 1.0 / (variance * variance) : 0.0;
+    }
+  }
+  return {a, b};
+}
+
+}  // namespace
 
 LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const double> observations,
                                        const LeastSquaresOptions& options) {
@@ -110,6 +204,12 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
         meat += row.transpose() * row * (e * e);
       }
       scaled_covariance = inverse * meat * inverse;
+    } else if (options.serially_correlated) {
+      if (const std::optional<Eigen::MatrixXd> meat = correlated_scores_variance(scaled, weighted_residuals)) {
+        // Never below the white-noise covariance: the test for correlation only ever widens it.
+        const Eigen::MatrixXd correlated = inverse * *meat * inverse;
+        if (correlated.trace() > scaled_covariance.trace()) scaled_covariance = correlated;
+      }
     }
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) {
@@ -121,44 +221,6 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
   return result;
 }
 
-namespace {
-
-// The variance a + b x² (a, b >= 0) of the points of a line fit, from z_j = e_j² / (1 - h_j),
-// each unbiased for its point's variance V_j and scattered as V_j χ²₁: least squares weighted by
-// 1/V_j², iterated from equal weights (a gamma GLM's scoring), so that the few largest |x| do not
-// decide b alone. Where b would be negative the variance is one for all, `pooled` (RSS / (m - 2));
-// where a would be, b x² alone.
-std::pair<double, double> variance_growing_with_x(std::span<const double> x, std::span<const double> z, double pooled) {
-  std::vector<double> weights(x.size(), 1.0);
-  double a = pooled;
-  double b = 0.0;
-  for (int iteration = 0; iteration < 8; ++iteration) {
-    CompensatedSum w0, w2, w4, z0, z2;
-    for (std::size_t j = 0; j < x.size(); ++j) {
-      const double x2 = x[j] * x[j];
-      w0.add(weights[j]);
-      w2.add(weights[j] * x2);
-      w4.add(weights[j] * x2 * x2);
-      z0.add(weights[j] * z[j]);
-      z2.add(weights[j] * z[j] * x2);
-    }
-    const double determinant = w0.value() * w4.value() - w2.value() * w2.value();
-    b = determinant > 0.0 ? (w0.value() * z2.value() - w2.value() * z0.value()) / determinant : 0.0;
-    if (!(b > 0.0)) return {pooled, 0.0};
-    a = (z0.value() - b * w2.value()) / w0.value();
-    if (a < 0.0) {
-      a = 0.0;
-      b = z2.value() / w4.value();
-    }
-    for (std::size_t j = 0; j < x.size(); ++j) {
-      const double variance = a + b * x[j] * x[j];
-      weights[j] = variance > 0.0 ? 1.0 / (variance * variance) : 0.0;
-    }
-  }
-  return {a, b};
-}
-
-}  // namespace
 
 LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic) {
   if (x.size() != y.size()) throw Error("line fit: x and y differ in length");

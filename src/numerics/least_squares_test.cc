@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "inertest/core/error.h"
 #include "inertest/numerics/statistics.h"
@@ -85,6 +86,41 @@ TEST(FitLine, HeteroscedasticStandardErrorsByHand) {
   const std::vector<double> flat_x = {0, 1, 2, 3};
   const std::vector<double> flat_y = {0, 2, 1, 3};
   EXPECT_NEAR_RELATIVE(fit_line(flat_x, flat_y, true).slope_standard_error, std::sqrt(0.18), 1e-12);
+}
+
+// A slope over time under AR(1) errors of correlation 0.8 from sample to sample (a drift of a few
+// samples' memory), 1000 trials of 400 samples: the white-noise covariance holds the truth within
+// 1 sigma in about 35 % of trials; serially_correlated in about two thirds. On white errors it
+// stays the white one (the test for correlation passes it in 2.5 % of trials, and only widens it).
+TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
+  constexpr std::size_t kSamples = 400;
+  Matrix design(kSamples, 2);
+  for (std::size_t t = 0; t < kSamples; ++t) {
+    design(t, 0) = static_cast<double>(t) / kSamples;
+    design(t, 1) = 1.0;
+  }
+  std::mt19937_64 random(1987);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const auto coverage = [&](double rho, bool correlated) {
+    LeastSquaresOptions options;
+    options.serially_correlated = correlated;
+    int within = 0;
+    constexpr int kTrials = 1000;
+    for (int trial = 0; trial < kTrials; ++trial) {
+      std::vector<double> y(kSamples);
+      double e = normal(random);
+      for (std::size_t t = 0; t < kSamples; ++t) {
+        e = rho * e + std::sqrt(1.0 - rho * rho) * normal(random);
+        y[t] = 2.0 * design(t, 0) + 1.0 + e;
+      }
+      const LeastSquaresResult fit = solve_least_squares(design, y, options);
+      within += std::abs(fit.parameters[0] - 2.0) <= fit.standard_error(0) ? 1 : 0;
+    }
+    return within / double(kTrials);
+  };
+  EXPECT_LT(coverage(0.8, false), 0.45);
+  EXPECT_NEAR(coverage(0.8, true), 0.683, 0.06);
+  EXPECT_NEAR(coverage(0.0, true), 0.683, 0.04);
 }
 
 TEST(LeastSquares, RankDeficiencyNamesTheParameter) {

@@ -281,6 +281,7 @@ SensorModel fit_sensor(std::span<const thermal::Interval> intervals, std::size_t
                  })->order;
   LeastSquaresOptions strict;
   strict.parameter_names = design.names();
+  strict.serially_correlated = true;  // a gyro's drift carries over from one interval to the next
   model.fit = solve_least_squares(design.matrix(intervals, sensor), biases(intervals), strict);
   model.design = design;
   return model;
@@ -558,6 +559,7 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
     linear.order = 1;
     LeastSquaresOptions strict;
     strict.parameter_names = linear.names();
+    strict.serially_correlated = true;
     const LeastSquaresResult fit =
         solve_least_squares(linear.matrix(chosen_intervals, chosen_sensor), biases(chosen_intervals), strict);
     const Matrix map = linear.physical_map(reference);

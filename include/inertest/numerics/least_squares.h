@@ -37,6 +37,11 @@ struct LeastSquaresOptions {
   // h_i the leverage (MacKinnon and White 1985; Long and Ervin 2000 for small samples). Otherwise
   // one residual variance for all.
   bool heteroscedastic = false;
+  // Observations in time order whose errors may be correlated (a gyro's drift from interval to
+  // interval): where the residuals' lag-1 autocorrelation is above 2/sqrt(m), the covariance of
+  // Newey and West (1987) with Andrews' (1991) bandwidth, if larger than the white one. The
+  // white-noise covariance s² (AᵀWA)⁻¹ otherwise.
+  bool serially_correlated = false;
 };
 
 struct LeastSquaresResult {

@@ -581,6 +581,14 @@ void require_one_quantity(const std::vector<Row>& rows, const std::string& figur
   }
 }
 
+// Where the rows of a figure lie in their table (one place: require_one_quantity), if they say.
+std::optional<std::string> place_of(const std::vector<Row>& rows) {
+  for (const auto& row : rows) {
+    if (!row.is_null(8)) return row.text(8);
+  }
+  return std::nullopt;
+}
+
 // Points converted into unit (the first point's), value and uncertainty alike.
 FigurePoint point_from_row(const Row& row, const std::string& unit) {
   FigurePoint point;
@@ -697,7 +705,7 @@ class DatabaseArchive final : public Archive {
       throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
     }
     require_one_quantity(rows, figure);
-    FigureHistory history{instrument, figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
+    FigureHistory history{instrument, figure, rows.front().text(4), {}, place_of(rows), std::nullopt, std::nullopt, false};
     for (const auto& row : rows) history.points.push_back(point_from_row(row, history.unit));
     take_limits(rows, history.unit, history.lower_limit, history.upper_limit, history.limit_on_magnitude);
     return history;
@@ -715,7 +723,7 @@ class DatabaseArchive final : public Archive {
       throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
     }
     require_one_quantity(rows, figure);
-    FleetFigure fleet{figure, rows.front().text(4), {}, std::nullopt, std::nullopt, false};
+    FleetFigure fleet{figure, rows.front().text(4), {}, place_of(rows), std::nullopt, std::nullopt, false};
     for (const auto& row : rows) fleet.points.push_back(point_from_row(row, fleet.unit));
     take_limits(rows, fleet.unit, fleet.lower_limit, fleet.upper_limit, fleet.limit_on_magnitude);
     return fleet;
@@ -797,10 +805,12 @@ nlohmann::json FigureHistory::to_json() const {
                     {"campaign", p.campaign}});
   }
   const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
-  return {{"instrument", instrument},         {"figure", figure},
-          {"unit", unit},                     {"points", std::move(list)},
-          {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)},
-          {"limit_on_magnitude", limit_on_magnitude}};
+  nlohmann::json json = {{"instrument", instrument},         {"figure", figure},
+                         {"unit", unit},                     {"points", std::move(list)},
+                         {"lower_limit", optional(lower_limit)}, {"upper_limit", optional(upper_limit)},
+                         {"limit_on_magnitude", limit_on_magnitude}};
+  if (place) json["place"] = *place;
+  return json;
 }
 
 void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }

@@ -198,6 +198,9 @@ TEST_P(ArchiveBackend, AFigureALimitNamesInAListIsArchivedWithItsLimit) {
   EXPECT_NEAR(*stability.upper_limit, 0.02, 1e-15);  // the plan's limit, in the figure's unit
   EXPECT_TRUE(stability.limit_on_magnitude);  // a max alone: |value| <= 0.02
   EXPECT_EQ(stability.lower_limit, -*stability.upper_limit);
+  EXPECT_EQ(stability.place, "smoothing_s = 100.0");  // where the row lies: the pages name it by it
+  EXPECT_EQ(stability.to_json().at("place"), "smoothing_s = 100.0");
+  EXPECT_FALSE(archive->history("FOG-0417", "scale_factor/scale_factor").place);
   EXPECT_EQ(archive->figures(true),
             (std::vector<std::string>{"bias_static/bias_stability/1", "scale_factor/scale_factor"}));
   const auto all = archive->figures(false);

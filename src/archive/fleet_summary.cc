@@ -56,6 +56,7 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
                          {"instruments", instruments},
                          {"control_chart", nullptr},
                          {"capability", {{"cp", nullptr}, {"cpk", nullptr}}}};
+  if (fleet.place) json["place"] = *fleet.place;
   if (values.size() < 2) return json;  // one measured instrument: no moving range
   const ControlChart chart = individuals_control_chart(values);
   nlohmann::json flagged = nlohmann::json::array();

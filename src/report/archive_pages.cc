@@ -64,12 +64,26 @@ class Page {
   }
   // The figure's last key in the report's words, e.g. "Scale factor".
   // "scale_factor/nonlinearity": the label of the figure in that procedure's declaration, else the table's.
-  std::string figure_label(const std::string& figure) const {
+  // A row of a table ("bias/bias_stability/1") is its table's with its place ("smoothing_s = 10"),
+  // else its number from 1: the pages called it "1".
+  std::string figure_label(const nlohmann::json& history) const {
+    const std::string figure = history.at("figure").get<std::string>();
     const std::size_t slash = figure.rfind('/');
-    return slash == std::string::npos ? labels_(figure) : labels_.field_of(figure.substr(0, slash), figure.substr(slash + 1));
+    if (slash == std::string::npos) return labels_(figure);
+    const std::string key = figure.substr(slash + 1);
+    const std::size_t before = figure.rfind('/', slash - 1);
+    if (before != std::string::npos && !key.empty() && key.find_first_not_of("0123456789") == std::string::npos) {
+      const std::string table = labels_.field_of(figure.substr(0, before), figure.substr(before + 1, slash - before - 1));
+      const auto* place = history.contains("place") ? &history.at("place") : nullptr;
+      return table + (place != nullptr && place->is_string() ? " (" + place->get<std::string>() + ")"
+                                                            : fmt::format(" #{}", std::stoul(key) + 1));
+    }
+    return labels_.field_of(figure.substr(0, slash), key);
   }
   // A figure PROCEDURE/FIGURE as a heading: "Scale factor (scale_factor/scale_factor)".
-  std::string figure_title(const std::string& figure) const { return figure_label(figure) + " (" + figure + ")"; }
+  std::string figure_title(const nlohmann::json& history) const {
+    return figure_label(history) + " (" + history.at("figure").get<std::string>() + ")";
+  }
   const Labels& labels() const { return labels_; }
 
   void open(const std::string& kicker, const std::string& title) {
@@ -150,9 +164,9 @@ std::string render_history_page(const json& history, const ReportOptions& option
       series.y_high.push_back(value + u);
     }
     Panel panel;
-    panel.title = page.figure_title(figure.at("figure").get<std::string>());
+    panel.title = page.figure_title(figure);
     panel.x = make_axis(page.word("days") + " (" + first + ")", "");
-    panel.y = make_axis(page.figure_label(figure.at("figure").get<std::string>()),
+    panel.y = make_axis(page.figure_label(figure),
                         figure.at("unit").get<std::string>());
     const std::vector<double> plotted = series.y;
     panel.series.push_back(std::move(series));
@@ -237,9 +251,9 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options, c
       }
     }
     Panel panel;
-    panel.title = page.figure_title(f.at("figure").get<std::string>());
+    panel.title = page.figure_title(f);
     panel.x = make_axis(page.word("instrument_number"), "");
-    panel.y = make_axis(page.figure_label(f.at("figure").get<std::string>()),
+    panel.y = make_axis(page.figure_label(f),
                         f.at("unit").get<std::string>());
     const std::vector<double> plotted = values.y;
     panel.series.push_back(std::move(values));

@@ -58,6 +58,22 @@ TEST(ArchivePages, HistoryShowsEveryPointWithItsUncertaintyAndTheLimits) {
   EXPECT_THAT(zh, HasSubstr("指标上限"));
 }
 
+// A row of a table is named by its table and its place ("smoothing_s = 10"), else its number: the
+// pages headed the bias stability at 10 s and at 100 s "1" and "2".
+TEST(ArchivePages, ARowOfATableIsNamedByItsTableAndPlace) {
+  nlohmann::json pages = history();
+  nlohmann::json row = pages["figures"][0];
+  row["figure"] = "bias_static/bias_stability/1";
+  row["unit"] = "deg/h";
+  row["place"] = "smoothing_s = 10.0";
+  pages["figures"] = {row};
+  EXPECT_THAT(render_history_page(pages, {Language::english, ""}),
+              HasSubstr("Bias stability (smoothing_s = 10.0) (bias_static/bias_stability/1)"));
+  pages["figures"][0].erase("place");
+  EXPECT_THAT(render_history_page(pages, {Language::english, ""}),
+              HasSubstr("Bias stability #2 (bias_static/bias_stability/1)"));
+}
+
 TEST(ArchivePages, FleetShowsTheChartTheFlaggedPointAndTheCapability) {
   const std::string page = render_fleet_page(fleet(), {Language::english, ""}, nlohmann::json::array());
   EXPECT_THAT(page, HasSubstr("<svg"));

@@ -11,6 +11,7 @@
 #include <optional>
 #include <random>
 #include <regex>
+#include <utility>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -20,6 +21,7 @@
 #include "inertest/core/json_text.h"
 #include "inertest/report/archive_pages.h"
 #include "inertest/report/report.h"
+#include "inertest/report/svg_plot.h"
 #include "serve/pages.h"
 
 namespace inertest::serve {
@@ -162,14 +164,20 @@ struct Server::Impl {
     std::vector<std::string> figures;
     for (const auto& f : data.at("figures")) figures.push_back(f.at("figure").get<std::string>());
     std::string figure;
+    std::string missing;  // a figure asked for that the instrument has not: its page says so, whole
     if (request.has_param("figure")) {
       figure = checked(request.get_param_value("figure"), figure_pattern, "the figure");
       nlohmann::json chosen = nlohmann::json::array();
       for (const auto& f : data.at("figures")) {
         if (f.at("figure") == figure) chosen.push_back(f);
       }
-      if (chosen.empty()) throw Refusal{404, "instrument '" + instrument + "' has no history of figure '" + figure + "'"};
-      data["figures"] = std::move(chosen);
+      // The instrument switcher keeps the figure shown: another instrument without it landed on a
+      // bare JSON 404. Its whole page, saying so, is where a reader wanted to go.
+      if (chosen.empty()) {
+        missing = std::exchange(figure, "");
+      } else {
+        data["figures"] = std::move(chosen);
+      }
     }
     std::vector<std::string> instruments;
     const nlohmann::json listed = archive::instrument_list_json(store->list(std::nullopt));
@@ -177,8 +185,19 @@ struct Server::Impl {
       instruments.push_back(i.at("instrument").get<std::string>());
     }
     const report::Language language = language_of(request);
-    return with_interactive_plots(with_history_switcher(report::render_history_page(data, page_options(request)),
-                                                        instruments, instrument, figures, figure, language));
+    std::string page = with_history_switcher(report::render_history_page(data, page_options(request)), instruments,
+                                             instrument, figures, figure, language);
+    if (!missing.empty()) {
+      const std::string text = language == report::Language::chinese
+                                   ? fmt::format("{} 没有指标 {} 的历史记录；以下为其全部指标。", instrument, missing)
+                                   : fmt::format("{} has no history of figure {}; all its figures follow.", instrument,
+                                                 missing);
+      const std::string note =
+          fmt::format("<p class=\"note\" id=\"figure-missing\">{}</p>\n", report::escape_xml(text));
+      const std::size_t nav_end = page.find("</nav>\n");
+      page.insert(nav_end == std::string::npos ? 0 : nav_end + 7, note);
+    }
+    return with_interactive_plots(std::move(page));
   }
 
   // The report's options for a page: its language, today, and the plots' data for their script.

@@ -193,6 +193,12 @@ TEST_F(ServeApi, FiguresOfStepsNamedInWords) {
   ASSERT_EQ(fleet.status, 200) << fleet.body;
   EXPECT_EQ(fleet.json(), cli_json({"archive", "fleet", "--figure", figure}));
   EXPECT_EQ(get(port(), "/instruments/FOG-4?figure=Scale%20factor%20at%2020%20degC/scale_factor").status, 200);
+  // The instrument switcher keeps the figure shown; an instrument without it shows its whole page,
+  // saying so (it was a bare JSON 404).
+  const auto other = get(port(), "/instruments/FOG-4?figure=bias/bias");
+  EXPECT_EQ(other.status, 200);
+  EXPECT_THAT(other.body, ::testing::HasSubstr("FOG-4 has no history of figure bias/bias; all its figures follow."));
+  EXPECT_THAT(other.body, ::testing::HasSubstr("Scale factor at 20 degC/scale_factor"));
 }
 
 // Each hostile request gets a 4xx with {"error": ...}; the server goes on serving and the
@@ -431,7 +437,10 @@ TEST_F(ServeApi, PagesCarryThePlotsDataAndScript) {
   ASSERT_EQ(one.status, 200);
   EXPECT_GT(count(all.body, "<section class=\"procedure\">"), 1u);
   EXPECT_EQ(count(one.body, "<section class=\"procedure\">"), 1u);
-  EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=bias_static/bias").status, 404);
+  // An instrument without the figure: its whole page, saying so (the switcher keeps the figure).
+  const auto without = get(port(), "/instruments/FOG-2?figure=bias_static/bias");
+  EXPECT_EQ(without.status, 200);
+  EXPECT_NE(without.body.find("id=\"figure-missing\""), std::string::npos);
   EXPECT_EQ(get(port(), "/instruments/FOG-2?figure=..%2Fx").status, 400);
   EXPECT_EQ(get(port(), "/favicon.ico").status, 204);
   EXPECT_EQ(get(port(), "/").body.find("add-form"), std::string::npos);  // read-only: no form to add

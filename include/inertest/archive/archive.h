@@ -65,15 +65,17 @@ struct FigureHistory {
   std::string figure;  // PROCEDURE/FIGURE
   std::string unit;
   std::vector<FigurePoint> points;
+  // Where a row of a table lies in it ("smoothing_s = 10" for "bias/bias_stability/1"), else none.
+  std::optional<std::string> place;
   // The specification limits the campaigns' plans set on it (the latest test's), in unit. A plan's
   // max alone bounds the magnitude (|value| <= max, as the campaign judged it): lower_limit is then
   // -max and limit_on_magnitude is set.
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
   bool limit_on_magnitude = false;
-  // {"instrument", "figure", "unit", "points": [{"tested_on", "value", "uncertainty", "campaign"}],
-  // "lower_limit", "upper_limit", "limit_on_magnitude"}; "value" is null where the figure was not
-  // measured, "uncertainty" and the limits where none is known.
+  // {"instrument", "figure", "unit", "place", "points": [{"tested_on", "value", "uncertainty",
+  // "campaign"}], "lower_limit", "upper_limit", "limit_on_magnitude"}; "value" is null where the
+  // figure was not measured, "uncertainty", "place" and the limits where none is known.
   nlohmann::json to_json() const;
 };
 
@@ -85,6 +87,7 @@ struct FleetFigure {
   std::string figure;
   std::string unit;
   std::vector<FigurePoint> points;
+  std::optional<std::string> place;  // as FigureHistory's
   std::optional<double> lower_limit;
   std::optional<double> upper_limit;
   bool limit_on_magnitude = false;

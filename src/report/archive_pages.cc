@@ -12,7 +12,9 @@
 #include "inertest/core/error.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/report/svg_plot.h"
+#include "report/figure_format.h"
 #include "report/labels.h"
+#include "report/result_access.h"
 #include "report/report_style.h"
 
 namespace inertest::report {
@@ -110,11 +112,31 @@ class Page {
   std::string out_;
 };
 
-std::string number(const json& value) { return value.is_number() ? fmt::format("{:.10g}", value.get<double>()) : "—"; }
+// A number as a table shows it: 6 significant digits ("{:.10g}" printed 20.55712319 for the campaign
+// report's 20.56 ± 0.13, and pushed the fleet's Cp and Cpk off the page); a limit as the plan set it.
+std::string number(const json& value, const char* format = "{:.6g}") {
+  return value.is_number() ? fmt::format(fmt::runtime(format), value.get<double>()) : "—";
+}
+std::string limit(const json& value) { return number(value, "{:.10g}"); }
 
-// A figure's value and unit in a table; null: the test did not measure it.
-std::string value_cell(const json& value, const std::string& unit, const Page& page) {
-  return value.is_number() ? number(value) + " " + escape_xml(unit) : escape_xml(page.word("not_measured"));
+// A point as the campaign report gives a figure: "36000.25 ± 0.50 pulse/s/(°/s)".
+std::string point_text(const json& point, const std::string& unit, const Page& page) {
+  if (!point.at("value").is_number()) return escape_xml(page.word("not_measured"));
+  json figure = {{"value", point.at("value")}, {"unit", unit}};
+  if (point.at("uncertainty").is_number()) figure["uncertainty"] = point.at("uncertainty");
+  return escape_xml(figure_text(figure, page.labels()));
+}
+
+// A point's value and uncertainty as the campaign report gives them (to the uncertainty's second
+// significant digit, GUM 7.2.6) with its readable unit; null: the test did not measure it.
+std::pair<std::string, std::string> point_cells(const json& point, const std::string& unit, const Page& page) {
+  if (!point.at("value").is_number()) return {escape_xml(page.word("not_measured")), "—"};
+  json figure = {{"value", point.at("value")}, {"unit", unit}};
+  if (point.at("uncertainty").is_number()) figure["uncertainty"] = point.at("uncertainty");
+  const auto [value, uncertainty] = format_figure(figure, page.labels());
+  const std::string shown_unit = pretty_unit(unit);
+  return {escape_xml(value + (shown_unit.empty() ? "" : " " + shown_unit)),
+          uncertainty.empty() ? "—" : escape_xml(uncertainty + (shown_unit.empty() ? "" : " " + shown_unit))};
 }
 
 // Days from 1970-01-01 of a YYYY-MM-DD date (the archive checked the form).
@@ -179,10 +201,9 @@ std::string render_history_page(const json& history, const ReportOptions& option
                               escape_xml(page.word("tested_on")), escape_xml(page.labels()("ui.value")),
                               escape_xml(page.labels()("ui.uncertainty")), escape_xml(page.word("campaign")));
     for (const auto& p : points) {
-      page.out() += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td></tr>\n",
-                                escape_xml(p.at("tested_on").get<std::string>()),
-                                value_cell(p.at("value"), figure.at("unit").get<std::string>(), page),
-                                number(p.at("uncertainty")),
+      const auto [value, uncertainty] = point_cells(p, figure.at("unit").get<std::string>(), page);
+      page.out() += fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td><code>{}</code></td></tr>\n",
+                                escape_xml(p.at("tested_on").get<std::string>()), value, uncertainty,
                                 escape_xml(p.at("campaign").get<std::string>()));
     }
     page.out() += "</table>\n</section>\n";
@@ -207,15 +228,15 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options, c
     page.out() += fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
         "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
-        escape_xml(f.at("figure").get<std::string>()), escape_xml(f.at("unit").get<std::string>()),
+        escape_xml(f.at("figure").get<std::string>()), escape_xml(pretty_unit(f.at("unit").get<std::string>())),
         std::count_if(f.at("instruments").begin(), f.at("instruments").end(),
                       [](const json& i) { return i.at("value").is_number(); }),
         number(chart.is_null() ? none : chart.at("center")),
         number(chart.is_null() ? none : chart.at("sigma")),
-        number(f.at("lower_limit")) + (f.value("limit_on_magnitude", false) ? " " + escape_xml(page.word("magnitude")) : ""),
-        number(f.at("upper_limit")),
+        limit(f.at("lower_limit")) + (f.value("limit_on_magnitude", false) ? " " + escape_xml(page.word("magnitude")) : ""),
+        limit(f.at("upper_limit")),
         number(chart.is_null() ? none : chart.at("lcl")), number(chart.is_null() ? none : chart.at("ucl")),
-        number(f.at("capability").at("cp")), number(f.at("capability").at("cpk")),
+        number(f.at("capability").at("cp"), "{:.3g}"), number(f.at("capability").at("cpk"), "{:.3g}"),
         chart.is_null() ? 0 : chart.at("out_of_control").size());
   }
   page.out() += "</table>\n</section>\n";
@@ -283,7 +304,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options, c
       page.out() += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", ++index,
                                 escape_xml(i.at("instrument").get<std::string>()),
                                 escape_xml(i.at("tested_on").get<std::string>()),
-                                value_cell(i.at("value"), f.at("unit").get<std::string>(), page),
+                                point_text(i, f.at("unit").get<std::string>(), page),
                                 i.at("tests").get<std::size_t>(),
                                 escape_xml(rule));
     }

@@ -48,9 +48,10 @@ TEST(ArchivePages, HistoryShowsEveryPointWithItsUncertaintyAndTheLimits) {
   const std::string page = render_history_page(history(), {Language::english, "2026-03-01"});
   EXPECT_THAT(page, HasSubstr("<h1>FOG-0417</h1>"));
   EXPECT_THAT(page, HasSubstr("<svg"));
-  EXPECT_THAT(page, HasSubstr("36000.25 pulse/s/(deg/s)"));
-  EXPECT_THAT(page, HasSubstr("<td>0.5</td>"));  // the 1-sigma uncertainty
-  EXPECT_THAT(page, HasSubstr("<td>—</td>"));    // none known
+  // As the campaign report gives them: to the uncertainty's second digit, in readable units.
+  EXPECT_THAT(page, HasSubstr("<td class=\"num\">36000.25 pulse/s/(°/s)</td><td class=\"num\">0.50 pulse/s/(°/s)</td>"));
+  // None known: 6 digits, as the report gives such a figure.
+  EXPECT_THAT(page, HasSubstr("<td class=\"num\">36000.8 pulse/s/(°/s)</td><td class=\"num\">—</td>"));
   EXPECT_THAT(page, HasSubstr("upper specification limit"));
   EXPECT_THAT(page, HasSubstr("days since first test (2026-02-01)"));
   const std::string zh = render_history_page(history(), {Language::chinese, ""});
@@ -93,9 +94,9 @@ TEST(ArchivePages, AFigureNotMeasuredIsSaidAndNotPlotted) {
   nlohmann::json data = history();
   data["figures"][0]["points"][1]["value"] = nullptr;
   const std::string page = render_history_page(data, {Language::english, ""});
-  EXPECT_THAT(page, HasSubstr("<td>2026-02-08</td><td>not measured</td>"));
+  EXPECT_THAT(page, HasSubstr("<td>2026-02-08</td><td class=\"num\">not measured</td>"));
   EXPECT_THAT(page, HasSubstr("<svg"));
-  EXPECT_THAT(render_history_page(data, {Language::chinese, ""}), HasSubstr("<td>未测得</td>"));
+  EXPECT_THAT(render_history_page(data, {Language::chinese, ""}), HasSubstr("<td class=\"num\">未测得</td>"));
   data["figures"][0]["points"][0]["value"] = nullptr;
   EXPECT_THAT(render_history_page(data, {Language::english, ""}), Not(HasSubstr("<svg")));
 
@@ -104,8 +105,8 @@ TEST(ArchivePages, AFigureNotMeasuredIsSaidAndNotPlotted) {
   unmeasured[0]["control_chart"] = nullptr;
   const std::string fleet_page = render_fleet_page(unmeasured, {Language::english, ""}, nlohmann::json::array());
   EXPECT_THAT(fleet_page, HasSubstr("<tr><td>1</td><td>FOG-1</td><td>2026-02-01</td><td>not measured</td>"));
-  EXPECT_THAT(fleet_page, HasSubstr("<tr><td>2</td><td>FOG-&lt;2&gt;</td><td>2026-02-02</td><td>0.09 deg/h</td>"));
-  EXPECT_THAT(fleet_page, HasSubstr("<td>bias/bias</td><td>deg/h</td><td>1</td>"));  // n: the measured ones
+  EXPECT_THAT(fleet_page, HasSubstr("<tr><td>2</td><td>FOG-&lt;2&gt;</td><td>2026-02-02</td><td>0.09 °/h</td>"));
+  EXPECT_THAT(fleet_page, HasSubstr("<td>bias/bias</td><td>°/h</td><td>1</td>"));  // n: the measured ones
 }
 
 // A limit on the magnitude (|value| <= 0.05: the archive gives lower_limit -0.05) draws its -0.05

@@ -137,6 +137,15 @@ TurnOnTimeResult turn_on_time(std::span<const PowerOnRun> runs, const TurnOnTime
     }
     const double time = series.time_s[first];
     result.runs.push_back({run.name, run.input_rate_deg_s, Figure{time, "s", std::nullopt}});
+    // Noise alone crosses the band now and then: a time in the record's last tenth is more likely
+    // its last crossing than the gyro's settling (3593 s of a 3600 s run that settled at 210 s).
+    if (series.time_s.back() - time < 0.1 * (series.time_s.back() - series.time_s.front())) {
+      result.warnings.push_back(fmt::format(
+          "run '{}' enters the band for good only at {:.6g} s, {:.3g} s before its record ends: a time so late may be "
+          "the last crossing of the band by the output's noise{}",
+          run.name, time, series.time_s.back() - time,
+          options.smoothing_s > 0.0 ? " (a longer smoothing_s averages more of it)" : "; smoothing_s averages it"));
+    }
     if (time > longest) {
       longest = time;
       result.longest_run = run.name;

@@ -73,6 +73,7 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
                     }
                     return runs;
                   })
+      .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &TurnOnTimeResult::warnings)
       .checked_by([](const ProcedureCall& call, const TurnOnTimeOptions& options) {
         options.validate();
         for (const RunInput& run : call.runs.at("runs")) {

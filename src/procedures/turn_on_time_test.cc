@@ -55,6 +55,25 @@ TEST(TurnOnTimeTest, AtRestAndAtRateLargestOverRuns) {
   EXPECT_EQ(turn_on_time_spec().fields_of(&result).at("turn_on_time").at("unit"), "s");
 }
 
+// A run that settles in the record's last tenth is said: at the noise of single samples that is
+// as likely the last crossing of the band as the settling (3593 s of 3600 for a gyro settled at
+// 210 s). One that settles early is not.
+TEST(TurnOnTimeTest, ATimeInTheRecordsLastTenthIsWarnedAbout) {
+  TurnOnTimeOptions options;
+  options.scale_factor = 100.0;
+  options.rest_band_deg_h = 0.5;
+  const PowerOnRun early = decaying_run(0.0, 0.01, 20.0, 100.0, 0.0, 0.0, 10.0, 300.0);
+  EXPECT_TRUE(turn_on_time(std::vector<PowerOnRun>{early}, options).warnings.empty());
+  PowerOnRun late = early;
+  late.output[late.output.size() - 20] = 1.0;  // one sample out of the band 2 s before the end
+  const TurnOnTimeResult result = turn_on_time(std::vector<PowerOnRun>{late}, options);
+  EXPECT_NEAR(result.time.value, 298.2, 1e-9);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("run 'run' enters the band for good only at 298.2 s, 1.8 s before "
+                                                       "its record ends"));
+  EXPECT_THAT(result.warnings[0], ::testing::HasSubstr("smoothing_s averages it"));
+}
+
 TEST(TurnOnTimeTest, EarthRateRemovedFromTheRateTestOnly) {
   // GJB 2426A 5.5.4. At 1 deg/s with the IRA up at 45 deg N, Ωe sin 45° rides on the output:
   // unremoved it exceeds a relative band of 1e-3 (3.6 deg/h).

@@ -7,11 +7,11 @@
 //   input = T K (output - b),
 // with b the bias (output unit), K = diag(1 / scale_factor) (scale_factor in output unit per input
 // unit) and T the non-orthogonality. Convention of the reported `misalignment` M (rad): T = I + M,
-// so M's diagonal is 0 and M[i][j] is the small angle by which sensing axis i leans toward frame
-// axis j. The accelerometer's T is upper-triangular (the frame's x axis is the accelerometer's x
-// axis and its y axis lies in the accelerometer's x-y plane: M[0][1], M[0][2], M[1][2] free); the
-// gyro's T is full (its six off-diagonals free, which also holds the gyro triad's rotation with
-// respect to the accelerometer frame).
+// so M's diagonal is 0 and M[i][j] takes out the small angle θ by which sensing axis i leans toward
+// frame axis j: that axis reads θ of axis j's input, and M[i][j] = −θ. The accelerometer's T is
+// upper-triangular (M[0][1], M[0][2], M[1][2] free): the frame's z axis is the accelerometer's z
+// axis, and the accelerometer's y axis lies in the frame's y-z plane. The gyro's T is full (its six
+// off-diagonals free, which also holds the gyro triad's rotation with respect to that frame).
 //
 // Steps: static intervals from the moving variances of both triads against thresholds that a
 // multiple of the record's own quietest variances sets; the accelerometer's nine parameters by

@@ -55,6 +55,9 @@ struct TurnOnTimeResult {
   Figure time;  // the largest over the runs, s
   std::string longest_run;
   std::vector<PowerOnRunResult> runs;
+  // A run that enters the band for good only in the last tenth of its record: its time may be
+  // that of the noise of single samples (smoothing_s averages it).
+  std::vector<std::string> warnings;
 };
 
 // Throws Error for no runs, a run with fewer than 2 samples, times that do not increase, a missing

@@ -299,8 +299,9 @@ void wrap_procedures(py::module_& module) {
   module.def("input_axis_misalignment", &input_axis_misalignment_of, "output_positive"_a, "output_negative"_a,
              py::kw_only(), "scale_factor"_a, "rate"_a, "rate_unit"_a = "deg/s", "output_unit"_a = "1",
              "Input-axis misalignment (GJB 2426A-2004 5.15, eqs. (47)-(50)) from the mean outputs at +rate and\n"
-             "-rate in 2 or 4 positions: delta = (F+ - F-)/(2 K rate) with K output per rate (the dimension fix\n"
-             "of eqs. 47-48); with four positions the mounting error is separated (see the C++ header).");
+             "-rate in 2 or 4 positions: delta = (F+ - F-)/(2 K rate) with K output per deg/s whatever rate_unit\n"
+             "is (the dimension fix of eqs. 47-48); with four positions the mounting error is separated (see the\n"
+             "C++ header).");
 }
 
 }  // namespace inertest::python

@@ -310,6 +310,15 @@ DriftCalibrationResult calibrate_drift_coefficients(std::span<const CentrifugeRu
   }
   LeastSquaresOptions solve_options;
   solve_options.parameter_names = names;
+  // Eq. (14) unweighted, as the paper solves it; its covariance from each amplitude's own variance:
+  // over whole turns a mean k0 of N samples has σ²/N, a cosine or sine amplitude 2σ²/N (eq. 11's
+  // DFT bins doubled). One variance for all overstated D_F's 1-sigma by 36 % (81 % coverage) and
+  // understated the cross terms' (63-66 %).
+  for (std::size_t r = 0; r < m; ++r) {
+    const CentrifugeRun& run = runs[r / kHarmonicCount];
+    const double samples = run.harmonic_fit ? static_cast<double>(run.harmonic_fit->sample_count) : 1.0;
+    solve_options.relative_variances.push_back((r % kHarmonicCount == kK0 ? 1.0 : 2.0) / samples);
+  }
   const LeastSquaresResult fit = solve_least_squares(augmented, corrected, solve_options);
   if (fit.degrees_of_freedom == 0) {
     result.warnings.push_back("as many amplitudes as parameters: no redundancy, uncertainties unknown");

@@ -209,9 +209,10 @@ std::optional<std::string> resolve_stated_unit(const SourceLocation& where, cons
 
 namespace {
 
-// Bracketed text that reads as a rate's or an angle's unit ("deg s-1", "°/sec"), not a note ("raw").
-bool looks_like_a_unit(std::string_view text) {
-  for (const char* mark : {"/", "^", "deg", "rad", "dps", "dph", "s-1", "h-1", "\u00b0"}) {
+// Bracketed text that names an angle ("deg s-1", "°/sec", "rad per s"): a rate's unit, not a note
+// ("raw", "pulses/s", "dph": read as no unit, as before).
+bool names_an_angle(std::string_view text) {
+  for (const char* mark : {"deg", "rad", "\u00b0"}) {
     if (text.find(mark) != std::string_view::npos) return true;
   }
   return false;
@@ -232,7 +233,7 @@ std::optional<std::string> unit_stated_in_name(std::string_view name, const Sour
   } catch (const Error&) {
     // "(raw)", "[x]": a note, not a unit; "[deg s-1]" is a unit inertest does not read, and read as
     // none the samples were taken in deg/h, 3600 times off.
-    if (!looks_like_a_unit(inside)) return std::nullopt;
+    if (!names_an_angle(inside)) return std::nullopt;
     throw Error(where, fmt::format("column '{}': '{}' reads as a unit inertest does not know; write it as deg/s, "
                                    "deg/h, rad/s...",
                                    name, inside));
@@ -254,7 +255,13 @@ std::optional<std::string> resolve_text_unit(const std::string& path, const std:
   } else if (!column && names.size() == 1) {
     name = names[0];
   }
-  const std::optional<std::string> stated = unit_stated_in_name(name, SourceLocation{path, header.line, 0});
+  std::optional<std::string> stated;
+  try {
+    stated = unit_stated_in_name(name, SourceLocation{path, header.line, 0});
+  } catch (const Error&) {
+    if (given) return given;  // the unit given says what the header's does not
+    throw;
+  }
   if (!stated) return given;
   return resolve_stated_unit(SourceLocation{path, header.line, 0}, fmt::format("the header states for column '{}'", name),
                              *stated, given);

@@ -155,7 +155,8 @@ TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
   EXPECT_EQ(unit_stated_in_name("gyro_x [deg/s]", header), "deg/s");
   EXPECT_EQ(unit_stated_in_name("rate (deg/h) ", header), "deg/h");
   EXPECT_EQ(unit_stated_in_name("ax[ m/s^2 ]", header), "m/s^2");
-  for (const char* none : {"gyro_x", "gx[1]", "ratio (%)", "output (raw)", "[deg/s]", "deg/s", "rate [foo]"}) {
+  for (const char* none : {"gyro_x", "gx[1]", "ratio (%)", "output (raw)", "[deg/s]", "deg/s", "rate [foo]",
+                           "gyro (dph)", "fog (pulses/s)", "fog [cnt/s]"}) {
     EXPECT_EQ(unit_stated_in_name(none, header), std::nullopt) << none;
   }
   // A unit inertest does not read is no note: read as none, the samples were taken in deg/h.
@@ -173,6 +174,15 @@ TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
   EXPECT_EQ(resolve_text_unit(path, ColumnSelector::parse("gyro_x [deg/s]"), std::nullopt), "deg/s");
   EXPECT_EQ(resolve_text_unit(path, ColumnSelector::parse("2"), std::string("°/s")), "°/s");
   EXPECT_EQ(resolve_text_unit(path, ColumnSelector::parse("3"), std::nullopt), std::nullopt);
+  // A header's angle unit inertest does not read is an error unless a unit is given, which stands.
+  std::string unread = "time [s],rate [deg s-1]\n";
+  for (int i = 0; i < 400; ++i) unread += fmt::format("{},{}\n", 0.01 * i, i % 2 == 0 ? 0.011 : 0.009);
+  const std::string unread_path = scratch.write("unread.csv", unread);
+  EXPECT_THROW(resolve_text_unit(unread_path, ColumnSelector::parse("2"), std::nullopt), Error);
+  EXPECT_EQ(resolve_text_unit(unread_path, ColumnSelector::parse("2"), std::string("deg/s")), "deg/s");
+  EXPECT_EQ(testing::run_cli({"allan", unread_path, "--columns", "2", "--input-unit", "deg/s", "--rate", "100"}).exit_code,
+            0);
+  EXPECT_EQ(testing::run_cli({"allan", unread_path, "--columns", "2", "--rate", "100"}).exit_code, 2);
   testing::CliRun run = testing::run_cli({"allan", path, "--column", "2", "--rate", "100", "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out).at("mean").at("unit"), "deg/s");

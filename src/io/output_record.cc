@@ -159,7 +159,7 @@ double record_sample_rate(const OutputRecordSource& source, double given) {
     // A text record's time column whose name states its unit (time_s) gives its rate, as a stored one.
     const std::optional<RecordTimeColumn> time =
         is_text(source.format) ? find_record_time_column(source.path) : std::nullopt;
-    if (!rate && time && time->unit_stated) return 1.0 / time->sample_interval_s;
+    if (!rate && time && time->unit_stated) return time->sample_rate_hz();
     if (!rate) {
       throw ParameterError("sample_rate_hz", "sample_rate_hz is needed: the record stores no sample rate (a text record "
                                              "gives it by a time column whose name states its unit, e.g. time_s)");

@@ -237,6 +237,10 @@ std::optional<RecordHead> read_record_head(const std::string& path) {
   return head;
 }
 
+double RecordTimeColumn::sample_rate_hz() const {
+  return std::stod(fmt::format("{:.12g}", 1.0 / sample_interval_s));
+}
+
 std::optional<RecordTimeColumn> find_record_time_column(const std::string& path) {
   const std::optional<RecordHead> read = read_record_head(path);
   if (!read) return std::nullopt;

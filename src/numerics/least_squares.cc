@@ -122,6 +122,9 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
   if (!options.weights.empty() && options.weights.size() != m) {
     throw Error("least squares: weights must have one entry per observation");
   }
+  if (!options.relative_variances.empty() && (options.relative_variances.size() != m || !options.weights.empty())) {
+    throw Error("least squares: relative variances need one entry per observation, and no weights");
+  }
 
   const auto rows = static_cast<Eigen::Index>(m);
   const auto cols = static_cast<Eigen::Index>(n);
@@ -204,6 +207,16 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
         meat += row.transpose() * row * (e * e);
       }
       scaled_covariance = inverse * meat * inverse;
+    } else if (!options.relative_variances.empty()) {
+      Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(cols, cols);
+      CompensatedSum expected;  // E[RSS] / c = Σ (1 - h_i) v_i
+      for (Eigen::Index r = 0; r < rows; ++r) {
+        const Eigen::RowVectorXd row = scaled.row(r);
+        const double v = options.relative_variances[static_cast<std::size_t>(r)];
+        expected.add((1.0 - (row * inverse * row.transpose())(0, 0)) * v);
+        meat += row.transpose() * row * v;
+      }
+      scaled_covariance = inverse * meat * inverse * (rss.value() / expected.value());
     } else if (options.serially_correlated) {
       if (const std::optional<Eigen::MatrixXd> meat = correlated_scores_variance(scaled, weighted_residuals)) {
         // Never below the white-noise covariance: the test for correlation only ever widens it.
@@ -222,7 +235,8 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
 }
 
 
-LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic) {
+LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic,
+                 const std::optional<PointVariance>& given) {
   if (x.size() != y.size()) throw Error("line fit: x and y differ in length");
   if (x.size() < 2) throw Error("line fit: needs at least 2 points, got " + std::to_string(x.size()));
   const auto m = static_cast<double>(x.size());
@@ -244,30 +258,31 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y, bool hete
     rss.add(r * r);
   }
   fit.residual_rms = std::sqrt(rss.value() / m);
-  if (x.size() <= 2) return fit;
-  const double pooled = rss.value() / (m - 2.0);
-  fit.variance_at_zero = pooled;
-  if (!heteroscedastic) {
-    fit.slope_standard_error = std::sqrt(pooled / sxx.value());
-    fit.intercept_standard_error = std::sqrt(pooled * (1.0 / m + x_mean * x_mean / sxx.value()));
+  if (given) {
+    fit.point_variance = *given;
+  } else if (x.size() <= 2) {
     return fit;
+  } else if (const double pooled = rss.value() / (m - 2.0); !heteroscedastic) {
+    fit.point_variance = {pooled, 0.0};
+  } else {
+    // The variance of each point a + b x² (a, b >= 0), fitted to the squared residuals scaled by
+    // 1/(1 - h_j), which are unbiased for it.
+    std::vector<double> scaled_squares(x.size());
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double r = y[j] - (fit.slope * x[j] + fit.intercept);
+      const double leverage = 1.0 / m + (x[j] - x_mean) * (x[j] - x_mean) / sxx.value();
+      scaled_squares[j] = r * r / std::max(1.0 - leverage, 1e-8);
+    }
+    const auto [a, b] = variance_growing_with_x(x, scaled_squares, pooled);
+    fit.point_variance = {a, b};
   }
-  // The variance of each point a + b x² (a, b >= 0), fitted to the squared residuals scaled by
-  // 1/(1 - h_j), which are unbiased for it; then slope = sum w_j y_j, intercept = sum c_j y_j.
-  std::vector<double> scaled_squares(x.size());
-  for (std::size_t j = 0; j < x.size(); ++j) {
-    const double r = y[j] - (fit.slope * x[j] + fit.intercept);
-    const double leverage = 1.0 / m + (x[j] - x_mean) * (x[j] - x_mean) / sxx.value();
-    scaled_squares[j] = r * r / std::max(1.0 - leverage, 1e-8);
-  }
-  const auto [a, b] = variance_growing_with_x(x, scaled_squares, pooled);
-  fit.variance_at_zero = a;
+  // slope = sum w_j y_j, intercept = sum c_j y_j, each point of its variance.
   CompensatedSum slope_variance;
   CompensatedSum intercept_variance;
   for (std::size_t j = 0; j < x.size(); ++j) {
     const double w = (x[j] - x_mean) / sxx.value();
     const double c = 1.0 / m - x_mean * w;
-    const double variance = a + b * x[j] * x[j];
+    const double variance = fit.point_variance.at_zero + fit.point_variance.per_x2 * x[j] * x[j];
     slope_variance.add(w * w * variance);
     intercept_variance.add(c * c * variance);
   }

@@ -123,6 +123,26 @@ TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
   EXPECT_NEAR(coverage(0.0, true), 0.683, 0.04);
 }
 
+// Relative variances keep the unweighted estimate and give its covariance through them, the common
+// factor c = RSS / Σ (1 - h_i) v_i: numpy's sandwich of the same line gives the values below.
+TEST(LeastSquares, RelativeVariancesGiveTheUnweightedFitsCovariance) {
+  const std::vector<double> x = {0, 1, 2, 3, 4};
+  const std::vector<double> y = {0.1, 1.3, 1.8, 3.4, 3.7};
+  Matrix design(5, 2);
+  for (std::size_t i = 0; i < 5; ++i) {
+    design(i, 0) = x[i];
+    design(i, 1) = 1.0;
+  }
+  LeastSquaresOptions options;
+  options.relative_variances = {1, 2, 1, 2, 1};
+  const LeastSquaresResult fit = solve_least_squares(design, y, options);
+  EXPECT_NEAR_RELATIVE(fit.parameters[0], solve_least_squares(design, y).parameters[0], 1e-14);
+  EXPECT_NEAR_RELATIVE(fit.covariance(0, 0), 0.008809090909090905, 1e-12);
+  EXPECT_NEAR_RELATIVE(fit.covariance(1, 1), 0.055790909090909065, 1e-12);
+  options.weights = {1, 1, 1, 1, 1};
+  EXPECT_THROW(solve_least_squares(design, y, options), Error);
+}
+
 TEST(LeastSquares, RankDeficiencyNamesTheParameter) {
   // Third column = first + second: "c" cannot be told from the others.
   Matrix a(4, 3);

@@ -73,7 +73,7 @@ struct AllanParameters {
       options.sample_rate_hz = *stored;
     } else if (const std::optional<RecordTimeColumn> time = text ? find_record_time_column(source.path) : std::nullopt;
                time && time->unit_stated) {
-      options.sample_rate_hz = 1.0 / time->sample_interval_s;  // a time column named with its unit (time_s)
+      options.sample_rate_hz = time->sample_rate_hz();  // a time column named with its unit (time_s)
     } else {
       throw Error(SourceLocation{source.path, 0, 0},
                   "the record stores no sample rate: give sample_rate_hz (--rate)" +

@@ -43,18 +43,22 @@ void check_points(std::span<const FrequencyResponsePoint> points, const Bandwidt
   }
 }
 
-// Phases taken one frequency after the other with no jump larger than π, so a lag that grows past
-// 180° at high frequency stays a lag (a sine fit only knows the phase modulo 2π). Phases given
-// beyond ±π are unwrapped already and kept: wrapped again, a step of 230° between two frequencies
-// became one of −130° and the delay 0.86 ms for 1.5.
-std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> points) {
+// Phases spanning more than a turn are unwrapped already and kept: taken again one frequency after
+// the other, a step of 230° between two frequencies became one of −130° and the delay 0.86 ms for
+// 1.5. Others lie in one turn (±180°, or 0 to −360° as some analysers give them) and are taken one
+// frequency after the other with no jump larger than π, so a lag that grows past 180° at high
+// frequency stays a lag (a sine fit only knows the phase modulo 2π). `wrapped` says which.
+std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> points, bool& wrapped) {
+  const auto [lowest, highest] = std::minmax_element(
+      points.begin(), points.end(), [](const auto& a, const auto& b) { return a.phase_rad < b.phase_rad; });
+  wrapped = highest->phase_rad - lowest->phase_rad <= 2.0 * kPi;
   std::vector<double> phases;
-  const bool given_unwrapped = std::any_of(points.begin(), points.end(), [](const FrequencyResponsePoint& p) {
-    return std::abs(p.phase_rad) > kPi * (1.0 + 1e-9);
-  });
   for (const auto& p : points) {
-    phases.push_back(phases.empty() || given_unwrapped ? p.phase_rad
-                                                       : phases.back() + wrap_to_pi(p.phase_rad - phases.back()));
+    if (!wrapped) {
+      phases.push_back(p.phase_rad);
+    } else {  // the first in (−π, π] (357° of the 0 to 360° convention is −3°), the others from it
+      phases.push_back(phases.empty() ? wrap_to_pi(p.phase_rad) : phases.back() + wrap_to_pi(p.phase_rad - phases.back()));
+    }
   }
   return phases;
 }
@@ -137,7 +141,8 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   const double sigma_k = std::sqrt(std::max(0.0, variance_k2)) / (2.0 * k);
 
   // Eqs. (44)-(46): Td = Σ ωi·yi / Σ ωi², yi = −Pi − atan(ωi·T), on the phases with the polarity's π removed.
-  std::vector<double> phase = unwrapped_phases(points);
+  bool wrapped = true;
+  std::vector<double> phase = unwrapped_phases(points, wrapped);
   const int polarity = remove_polarity(phase);
   CompensatedSum omega_y;
   CompensatedSum omega_omega;
@@ -205,10 +210,10 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   }
   // Wrapped phases whose neighbours differ by more than 120 deg may hide a step beyond 180 deg, which
   // unwrapping takes the other way round.
-  if (constexpr double kAmbiguousStep = 2.0 * kPi / 3.0; largest_phase_step(phase) > kAmbiguousStep) {
+  if (constexpr double kAmbiguousStep = 2.0 * kPi / 3.0; wrapped && largest_phase_step(phase) > kAmbiguousStep) {
     result.warnings.push_back(fmt::format("the phase changes by up to {:.0f} deg between neighbouring frequencies: a "
                                           "step near 180 deg may have been unwrapped the wrong way; test more "
-                                          "frequencies, or give the phases unwrapped (beyond +-180 deg)",
+                                          "frequencies, or give the phases unwrapped (spanning more than a turn)",
                                           largest_phase_step(phase) / constants::kDegree));
   }
   if (points.back().frequency_hz < 2.0 * bandwidth) {

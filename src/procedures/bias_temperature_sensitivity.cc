@@ -56,7 +56,7 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
     // Runs listed cold to hot made the coldest one Tm, and Bt 2.2 times too small, without a word.
     throw Error(fmt::format("bias temperature sensitivity: the first run, taken as the room-temperature run "
                             "(5.12.4.3 a), is at {} degC, outside the standard atmosphere's {}-{} degC (4.1.1.1): "
-                            "give the room temperature (room_temperature_degC)",
+                            "give the room temperature (--room-temperature; room_temperature_degC in a plan)",
                             first, kStandardAtmosphereDegC[0], kStandardAtmosphereDegC[1]));
   }
   BiasTemperatureSensitivityResult result;

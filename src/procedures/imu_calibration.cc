@@ -148,7 +148,7 @@ const std::vector<std::string> kAccelerometerNames = {"bias x", "bias y", "bias 
 const std::vector<std::string> kGyroNames = {"scale x", "scale y", "scale z", "misalignment xy", "misalignment xz",
                                              "misalignment yx", "misalignment yz", "misalignment zx", "misalignment zy"};
 constexpr std::array<std::pair<int, int>, 3> kAccelerometerOffDiagonal = {{{0, 1}, {0, 2}, {1, 2}}};
-// Below this many degrees of freedom a fit's 1-sigma holds the truth in 65 % of cases or fewer.
+// Below this many degrees of freedom a fit's 1-sigma holds the truth in 66 % of cases or fewer.
 constexpr std::size_t kFewDegreesOfFreedom = 10;
 constexpr std::array<std::pair<int, int>, 6> kGyroOffDiagonal = {{{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}}};
 

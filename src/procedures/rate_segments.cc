@@ -78,7 +78,7 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
   // 0.15 %). Against the segment's first sample, noise within the tolerance cut each plateau
   // wherever it swung the other way (24 test points became 56).
   constexpr std::size_t kPersistence = 3;
-  constexpr double kRatesOfTolerance = 3.0;
+  constexpr double kRatesOfTolerance = 2.5;
   const std::size_t count = table_rate.size();
   std::vector<RateSegment> segments;
   std::size_t begin = 0;
@@ -155,9 +155,9 @@ std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std
     if (segment.rate != 0.0 && std::abs(segment.rate) < kRatesOfTolerance * options.rate_tolerance) {
       throw Error(fmt::format("rate segments: the test rate {:.6g} lies within {} rate tolerances ({:g}) of zero: a "
                               "smaller test rate may have been taken for a static run; give a rate tolerance below "
-                              "a third of the smallest test rate (samples {} to {})",
-                              segment.rate, kRatesOfTolerance, options.rate_tolerance, segment.first_sample + 1,
-                              segment.end_sample));
+                              "the smallest test rate / {} (samples {} to {})",
+                              segment.rate, kRatesOfTolerance, options.rate_tolerance, kRatesOfTolerance,
+                              segment.first_sample + 1, segment.end_sample));
     }
   }
   return segments;

@@ -173,8 +173,8 @@ TEST(RateSegments, ShortSegmentsAreSkipped) {
 }
 
 // Test rates of +-0.001 deg/s at the tolerance 0.001 joined the static runs (F̄s moved by half
-// their output, F0 by 1000 sigma) and two test points vanished: the next rate, 0.002, within 3
-// tolerances of zero, says so; a tolerance below a third of the smallest rate keeps them all.
+// their output, F0 by 1000 sigma) and two test points vanished: the next rate, 0.002, within 2.5
+// tolerances of zero, says so; a tolerance below the smallest rate / 2.5 keeps them all.
 TEST(RateSegments, ATestRateWithinAFewTolerancesOfZeroIsAnError) {
   Record record;
   add_segment(record, 0.0, 3.0);
@@ -184,12 +184,20 @@ TEST(RateSegments, ATestRateWithinAFewTolerancesOfZeroIsAnError) {
     segment_by_rate(record.rate, record.output, options());
     FAIL() << "the +-0.001 deg/s plateaus were taken for static runs";
   } catch (const Error& e) {
-    EXPECT_THAT(e.message(), HasSubstr("rate segments: the test rate -0.002 lies within 3 rate tolerances (0.001) of "
+    EXPECT_THAT(e.message(), HasSubstr("rate segments: the test rate -0.002 lies within 2.5 rate tolerances (0.001) of "
                                        "zero: a smaller test rate may have been taken for a static run"));
   }
   auto fine = options();
   fine.rate_tolerance = 2e-4;
   EXPECT_EQ(segment_by_rate(record.rate, record.output, fine).size(), 8u);
+  // A small rate well clear of the tolerance is a test point: 0.004 at 0.0015.
+  Record clear;
+  add_segment(clear, 0.0, 3.0);
+  for (double rate : {-0.004, -10.0, 0.004, 10.0}) add_segment(clear, rate, 3.0);
+  add_segment(clear, 0.0, 3.0);
+  auto wide = options();
+  wide.rate_tolerance = 1.5e-3;
+  EXPECT_EQ(segment_by_rate(clear.rate, clear.output, wide).size(), 6u);
 }
 
 TEST(RateSegments, RecordWithoutStaticRunsGivesTheScaleFactorError) {

@@ -97,6 +97,10 @@ struct RecordTimeColumn {
   std::size_t rows = 0;         // the rows it was found from
   double first_s = 0.0;         // the first stamp, in s
   double last_s = 0.0;          // the last stamp of the whole record, in s (read from the file's end)
+
+  // The rate its stamps give, to 12 significant digits: stamps of 0.01 s are 100 Hz, not the
+  // 100.00000000000001 of 1 / 0.01.
+  double sample_rate_hz() const;
 };
 // The first 256 KiB of a text record, cut after its last whole line, and its header as
 // parse_text_table_header reads it; nullopt for what is not a regular file (a pipe is not read

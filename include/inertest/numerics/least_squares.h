@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -42,6 +43,10 @@ struct LeastSquaresOptions {
   // Newey and West (1987) with Andrews' (1991) bandwidth, if larger than the white one. The
   // white-noise covariance s² (AᵀWA)⁻¹ otherwise.
   bool serially_correlated = false;
+  // The observations' variances up to one common factor c, for a fit the estimator keeps unweighted
+  // (a published method's equations): the covariance (AᵀA)⁻¹ Aᵀ diag(c·v) A (AᵀA)⁻¹, c = RSS /
+  // Σ (1 - h_i) v_i (the residuals' expectation). Empty: one variance for all. Not with weights.
+  std::vector<double> relative_variances;
 };
 
 struct LeastSquaresResult {
@@ -72,17 +77,20 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
 // error), fitted to e_j² / (1 - h_j), h_j = 1/m + (x_j - x̄)²/Sxx, by least squares weighted as a
 // gamma GLM's. Two parameters from all the points: HC3's one residual per point made the slope's
 // error rest on the few largest |x|, and a chi-squared over several such fits (K(T)) failed 5 times
-// too often.
+// too often. A variance `given` (another fit's, of more points of the same noise) is used as is.
+struct PointVariance {
+  double at_zero = 0.0;  // a: RSS / (m - 2) when one variance for all
+  double per_x2 = 0.0;   // b
+};
 struct LineFit {
   double slope = 0.0;
   double intercept = 0.0;
-  double slope_standard_error = 0.0;      // 0 when only two points
+  double slope_standard_error = 0.0;      // 0 when only two points (and no variance given)
   double intercept_standard_error = 0.0;
   double residual_rms = 0.0;
-  // The points' variance at x = 0: RSS / (m - 2), or a of a + b x² with `heteroscedastic`; 0 when
-  // only two points.
-  double variance_at_zero = 0.0;
+  PointVariance point_variance;           // the variance the errors were taken from
 };
-LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic = false);
+LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic = false,
+                 const std::optional<PointVariance>& given = std::nullopt);
 
 }  // namespace inertest

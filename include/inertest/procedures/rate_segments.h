@@ -55,7 +55,7 @@ struct RateSegment {
 };
 
 // Cuts a record into constant-rate segments in test order. Throws Error when the columns differ
-// in length, a value is not finite, no segment is long enough, or a test rate lies within 3 rate
+// in length, a value is not finite, no segment is long enough, or a test rate lies within 2.5 rate
 // tolerances of zero (a smaller one may have joined a static run).
 std::vector<RateSegment> segment_by_rate(std::span<const double> table_rate, std::span<const double> output,
                                          const RateSegmentOptions& options);

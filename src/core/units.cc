@@ -133,8 +133,8 @@ std::optional<Parsed> exactly_named(std::string_view name) {
     return p;
   }
   // Rates as loggers' headers and data sheets abbreviate them.
-  if (name == "rpm" || name == "dps") {
-    p.factor = name == "rpm" ? 2.0 * kPi / 60.0 : kDegree;
+  if (name == "rpm" || name == "dps" || name == "dph") {
+    p.factor = name == "rpm" ? 2.0 * kPi / 60.0 : name == "dps" ? kDegree : kDegree / 3600.0;
     add(Dimension::kAngle, 2);
     add(Dimension::kTime, -2);
     return p;
@@ -148,7 +148,8 @@ std::optional<std::string_view> word_for_unit(std::string_view lowered) {
       {"deg", "deg"},   {"degree", "deg"}, {"degrees", "deg"}, {"rad", "rad"},     {"radian", "rad"},
       {"radians", "rad"}, {"sec", "s"},    {"second", "s"},    {"seconds", "s"},   {"minute", "min"},
       {"minutes", "min"}, {"hr", "hr"},    {"hour", "h"},      {"hours", "h"},     {"volt", "V"},
-      {"volts", "V"},     {"rpm", "rpm"},  {"dps", "dps"},     {"arcsec", "arcsec"}};
+      {"volts", "V"},     {"rpm", "rpm"},  {"dps", "dps"},     {"dph", "dph"},     {"arcsec", "arcsec"},
+      {"pulses", "pulse"}, {"counts", "count"}, {"cnt", "count"}, {"lsb", "LSB"}};
   const auto it = names.find(lowered);
   return it == names.end() ? std::nullopt : std::optional<std::string_view>(it->second);
 }
@@ -189,7 +190,9 @@ Parsed named(std::string_view name, std::string_view whole) {
       any_case = known;
     };
     for (const auto& entry : simple_units()) consider(entry.first);
-    for (std::string_view known : {"g", "mg", "ug", "W", "mW", "ohm", "kohm", "Mohm", "mohm", "rpm", "dps"}) consider(known);
+    for (std::string_view known : {"g", "mg", "ug", "W", "mW", "ohm", "kohm", "Mohm", "mohm", "rpm", "dps", "dph"}) {
+      consider(known);
+    }
     if (any_case && !ambiguous) return *exactly_named(*any_case);
   }
   const std::size_t digits = name.find_first_of("0123456789");

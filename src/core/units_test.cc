@@ -40,6 +40,9 @@ INSTANTIATE_TEST_SUITE_P(
                       ConversionCase{"DEG/S", "deg/h", 1.0, 3600.0}, ConversionCase{"Deg/s", "deg/s", 1.0, 1.0},
                       ConversionCase{"degrees/second", "deg/s", 1.0, 1.0}, ConversionCase{"deg/hour", "deg/h", 1.0, 1.0},
                       ConversionCase{"rpm", "deg/s", 1.0, 6.0}, ConversionCase{"dps", "deg/h", 1.0, 3600.0},
+                      ConversionCase{"dph", "deg/s", 3600.0, 1.0}, ConversionCase{"DPH", "deg/h", 1.0, 1.0},
+                      ConversionCase{"pulses/s", "pulse/s", 2.0, 2.0}, ConversionCase{"counts", "count", 1.0, 1.0},
+                      ConversionCase{"cnt/s", "count/s", 1.0, 1.0}, ConversionCase{"lsb", "LSB", 1.0, 1.0},
                       ConversionCase{"m/s2", "m/s^2", 1.0, 1.0}, ConversionCase{"Volts", "mV", 1.0, 1000.0},
                       // a bond's milliohms are no megohms (case folding had read mOhm as Mohm, 1e9 off)
                       ConversionCase{"mOhm", "ohm", 5.0, 5e-3}, ConversionCase{"KHZ", "Hz", 1.0, 1000.0},

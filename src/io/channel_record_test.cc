@@ -155,8 +155,10 @@ TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
   EXPECT_EQ(unit_stated_in_name("gyro_x [deg/s]", header), "deg/s");
   EXPECT_EQ(unit_stated_in_name("rate (deg/h) ", header), "deg/h");
   EXPECT_EQ(unit_stated_in_name("ax[ m/s^2 ]", header), "m/s^2");
+  EXPECT_EQ(unit_stated_in_name("gyro (dph)", header), "dph");           // deg/h, as labs abbreviate it
+  EXPECT_EQ(unit_stated_in_name("fog (pulses/s)", header), "pulses/s");  // a raw output's unit
   for (const char* none : {"gyro_x", "gx[1]", "ratio (%)", "output (raw)", "[deg/s]", "deg/s", "rate [foo]",
-                           "gyro (dph)", "fog (pulses/s)", "fog [cnt/s]"}) {
+                           "fog (inc/s)"}) {
     EXPECT_EQ(unit_stated_in_name(none, header), std::nullopt) << none;
   }
   // A unit inertest does not read is no note: read as none, the samples were taken in deg/h.

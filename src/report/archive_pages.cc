@@ -12,6 +12,7 @@
 #include "inertest/core/error.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/report/svg_plot.h"
+#include "inertest/version.h"
 #include "report/figure_format.h"
 #include "report/labels.h"
 #include "report/result_access.h"
@@ -100,7 +101,8 @@ class Page {
   bool embed_plot_data() const { return options_.embed_plot_data; }
 
   std::string close() {
-    out_ += fmt::format("<footer>{}{}</footer>\n</body>\n</html>\n", escape_xml(labels_("ui.generated")),
+    out_ += fmt::format("<footer>{}{}</footer>\n</body>\n</html>\n",
+                        escape_xml(fmt::format(fmt::runtime(labels_("ui.generated")), version())),
                         options_.run_date.empty() ? "" : " · " + escape_xml(options_.run_date));
     return std::move(out_);
   }

@@ -487,8 +487,8 @@ class ReportWriter {
     const json& procedures = results_.at("procedures");
     for (std::size_t i = 0; i < procedures.size(); ++i) write_procedure(procedures[i], i);
     write_truth_check();
-    out_ += fmt::format("<footer>{} {}{}</footer>\n</body>\n</html>\n", html(labels_("ui.generated")),
-                        html(results_.value("inertest_version", "")),
+    out_ += fmt::format("<footer>{}{}</footer>\n</body>\n</html>\n",
+                        html(fmt::format(fmt::runtime(labels_("ui.generated")), results_.value("inertest_version", ""))),
                         options_.run_date.empty() ? "" : " · " + html(options_.run_date));
     return std::move(out_);
   }
@@ -1008,6 +1008,7 @@ class ReportWriter {
     for (auto& plot : procedure_plots(kind, context)) {
       if (plot.plot.panels.empty()) continue;
       plot.plot.embed_data = options_.embed_plot_data;
+      plot.plot.description = plot.caption;
       ++figure_number_;
       out_ += fmt::format("<figure{}>\n{}<figcaption>{} {}. {}</figcaption>\n</figure>\n",
                           plot.field.empty() ? "" : fmt::format(" data-curve=\"{}\"", html(plot.field)),

@@ -586,10 +586,16 @@ std::string render_svg(const Plot& plot) {
   double height = 0.0;
   for (const auto& panel : plot.panels) height += panel.height;
   SvgWriter svg;
+  // role="img" with a <title>: a screen reader names the plot (it had no name).
+  std::string name = plot.description;
+  for (std::size_t i = 0; plot.description.empty() && i < plot.panels.size(); ++i) {
+    if (!plot.panels[i].title.empty()) name += (name.empty() ? "" : "; ") + plot.panels[i].title;
+  }
   svg.line(
       fmt::format("<svg class=\"plot\" viewBox=\"0 0 {} {}\" width=\"{}\" height=\"{}\" role=\"img\" "
                   "font-family=\"{}\" fill=\"#222222\">",
                   pixel(plot.width), pixel(height), pixel(plot.width), pixel(height), kFontFamily));
+  if (!name.empty()) svg.line("<title>" + escape_xml(name) + "</title>");
   double top = 0.0;
   std::size_t palette_index = 0;
   for (const auto& panel : plot.panels) {

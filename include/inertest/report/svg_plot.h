@@ -157,6 +157,8 @@ struct Plot {
   // <script type="application/json" class="plot-data"> element, which the web view's script
   // (inertest serve) redraws the plot from when zoomed. The drawing itself is the same either way.
   bool embed_data = false;
+  // Its name for a screen reader (the <svg>'s <title>): the report's caption, else the panels' titles.
+  std::string description;
 };
 
 // The plot area of a panel whose frame (margins included) is the box: what the axes map onto.

@@ -13,8 +13,7 @@ namespace {
 struct TemperaturePlotSpec {
   const char* table;            // the result's array of runs
   const char* quantity;         // the member plotted against temperature
-  const char* reference;        // the result's figure at the reference temperature (a line)
-  const char* reference_label;  // its label
+  const char* reference;        // the result's figure at the reference temperature (a line, under its label)
   const char* kind;             // the plan kind, whose label heads the caption
   const char* clause;           // the clause and equation the plot illustrates
 };
@@ -49,7 +48,7 @@ std::vector<ReportPlot> temperature_plots(const PlotContext& context, const Temp
       make_series("", pick(temperature.values, order), pick(quantity.values, order), LineStyle::solid, Marker::circle));
   if (const auto* reference = member(context.result, spec.reference); reference != nullptr && number_of(*reference)) {
     main.references.push_back({ReferenceLine::Direction::horizontal, *number_of(*reference),
-                               context.labels(spec.reference_label), "#555555"});
+                               context.labels(spec.reference), "#555555"});
   }
   ReportPlot plot;
   plot.field = spec.table;
@@ -77,13 +76,13 @@ void register_temperature_plots();
 
 void register_temperature_plots() {
   register_plots("bias_temperature", [](const PlotContext& context) {
-    return temperature_plots(context, {"runs", "bias", "room_temperature_bias", "ui.room_temperature",
-                                       "bias_temperature", "GJB 2426A-2004 5.12.4, eq. (22)"});
+    return temperature_plots(context, {"runs", "bias", "room_temperature_bias", "bias_temperature",
+                                       "GJB 2426A-2004 5.12.4, eq. (22)"});
   });
   register_plots("scale_factor_temperature", [](const PlotContext& context) {
     return temperature_plots(context,
-                             {"test_temperatures", "scale_factor", "reference_scale_factor", "ui.reference_temperature",
-                              "scale_factor_temperature", "GJB 2426A-2004 5.8.5, eq. (13)"});
+                             {"test_temperatures", "scale_factor", "reference_scale_factor", "scale_factor_temperature",
+                              "GJB 2426A-2004 5.8.5, eq. (13)"});
   });
 }
 

@@ -59,9 +59,21 @@ double harmonic_basis(std::size_t harmonic, double gamma_rad) {
   }
 }
 
+namespace {
+
+constexpr double kLongestArmM = 50.0;
+
+}  // namespace
+
 void CentrifugeSite::validate() const {
   if (!(std::isfinite(radius_m) && radius_m > 0.0)) {
     throw Error(fmt::format("centrifuge: the radius must be positive, got {} m", radius_m));
+  }
+  // A precision centrifuge's arm is metres long: 1000 is a radius in mm (D_I came out -1.48 for 1.54).
+  if (radius_m > kLongestArmM) {
+    throw Error(fmt::format("centrifuge: a radius of {} m is longer than any centrifuge's arm ({} m): is it in mm? "
+                            "the radius is in m",
+                            radius_m, kLongestArmM));
   }
   if (!(std::isfinite(gravity_m_s2) && gravity_m_s2 > 0.0)) {
     throw Error(fmt::format("centrifuge: the local gravity must be positive, got {} m/s^2", gravity_m_s2));

@@ -188,11 +188,20 @@ std::vector<CentrifugeRun> analyse_sample_runs(std::span<const CentrifugeSampleR
   return analysed;
 }
 
+// Over 0.1 rad (5.7 deg) or 0.1 rad/s no centrifuge's error is small, as eq. (5)'s first order takes it.
+constexpr double kLargestError = 0.1;
+
 void DriftCalibrationOptions::validate() const {
   site.validate();
   const auto errors = given_errors(*this);
   for (std::size_t e = 0; e < kErrorCount; ++e) {
     if (errors[e] && !std::isfinite(*errors[e])) throw Error(fmt::format("centrifuge: {} is not finite", kErrorNames[e]));
+    // The errors are small angles (rad) and a small rate difference (rad/s): 20 for 2e-5 is one in
+    // arcsec or in another unit, and gave D_I = 3.1e6 silently.
+    if (errors[e] && std::abs(*errors[e]) > kLargestError) {
+      throw Error(fmt::format("centrifuge: {} = {} {} is not a small error (over {}): the errors are in rad and rad/s",
+                              kErrorNames[e], *errors[e], kErrorUnits[e], kLargestError));
+    }
   }
   if (estimate_errors && !compensation) {
     throw Error("centrifuge: estimating the centrifuge errors needs compensation (it is off)");

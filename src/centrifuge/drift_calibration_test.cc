@@ -451,6 +451,21 @@ TEST(CentrifugeDriftCalibration, InvalidInputsAreErrors) {
   options = paper_options();
   options.site.radius_m = 0.0;
   EXPECT_THROW(calibrate_drift_coefficients(runs, options), Error);
+  // A radius in mm and errors not in rad gave coefficients far off, silently.
+  const auto message = [&](const DriftCalibrationOptions& o) {
+    try {
+      calibrate_drift_coefficients(runs, o);
+    } catch (const Error& e) {
+      return e.message();
+    }
+    return std::string("no error");
+  };
+  options = paper_options();
+  options.site.radius_m = 1000.0;
+  EXPECT_THAT(message(options), HasSubstr("a radius of 1000 m is longer than any centrifuge's arm (50 m): is it in mm?"));
+  options = paper_options();
+  options.k1_rad = -20.0;
+  EXPECT_THAT(message(options), HasSubstr("k1 = -20 rad is not a small error (over 0.1): the errors are in rad and rad/s"));
   runs[2].accel_g = -1.0;
   EXPECT_THROW(calibrate_drift_coefficients(runs, paper_options()), Error);
   EXPECT_THROW(calibrate_drift_coefficients(std::vector<CentrifugeRun>{}, paper_options()), Error);

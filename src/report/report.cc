@@ -803,15 +803,20 @@ class ReportWriter {
   void write_figure_rows(const json& procedure, bool with_limits, std::size_t columns, bool group_heading) {
     const std::string name = procedure.value("name", "");
     const auto rows = figures_of(procedure);
-    if (group_heading) {
+    const auto shown = [&](const FigureRow& row) {
+      const bool limited = verdicts_of(name, row.pointer) != nullptr;
+      return (!group_heading || row.headline || limited) && (!row.in_table || limited);  // else in its table
+    };
+    // A procedure of no headline figure and no limit (a calibration of triads) has no group: its
+    // heading stood over no row.
+    if (group_heading && std::any_of(rows.begin(), rows.end(), shown)) {
       out_ += fmt::format("<tr class=\"group\"><th colspan=\"{}\">{}</th></tr>\n", columns,
                           html(procedure_title(procedure)));
     }
     for (const auto& row : rows) {
+      if (!shown(row)) continue;
       const auto [value, uncertainty] = format_figure(row.figure, labels_);
       const auto* figure_verdicts = verdicts_of(name, row.pointer);
-      if (group_heading && !row.headline && figure_verdicts == nullptr) continue;
-      if (row.in_table && figure_verdicts == nullptr) continue;  // shown in its table (write_row_tables)
       out_ += fmt::format(
           "<tr data-procedure=\"{}\" data-figure=\"{}\"{}>", html(name), html(row.pointer),
           figure_verdicts ? fmt::format(" data-verdict=\"{}\"", all_pass(*figure_verdicts) ? "pass" : "fail") : "");

@@ -437,6 +437,16 @@ TEST(Report, DeclaredFiguresAreListedWhateverTheirDepth) {
   EXPECT_THAT(coefficient, ::testing::ContainsRegex("<td class=\"num\">± [0-9.]+</td>"));
   // The PSD's periodic components of an IMU channel, six levels down.
   EXPECT_THAT(figure_row(page, "imu_noise", "/channels/gz/psd/peaks/0/frequency"), HasSubstr("± 0.000020"));
+  // Every group of the summary heads a row (the IMU calibration's heading stood over none).
+  const std::string summary = page.substr(page.find("<section class=\"summary\""),
+                                          page.find("</section>", page.find("<section class=\"summary\"")) -
+                                              page.find("<section class=\"summary\""));
+  for (std::size_t at = summary.find("<tr class=\"group\">"); at != std::string::npos;
+       at = summary.find("<tr class=\"group\">", at + 1)) {
+    const std::size_t next = summary.find("<tr", summary.find("</tr>", at));
+    ASSERT_NE(next, std::string::npos) << summary.substr(at, 200);
+    EXPECT_NE(summary.compare(next, 18, "<tr class=\"group\">"), 0) << summary.substr(at, 200);
+  }
   // A text wraps as text: set as a number on one line, threshold's criterion pushed the unit, the
   // limit and the verdict off the printed page.
   EXPECT_THAT(figure_row(page, "threshold", "/criterion"), HasSubstr("<td>Criterion</td><td>|(F_expected"));

@@ -1,6 +1,7 @@
 #include "inertest/numerics/statistics.h"
 
 #include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <string>
 
@@ -57,6 +58,10 @@ std::vector<double> window_means(std::span<const double> values, std::size_t win
 bool is_constant(std::span<const double> values) {
   if (values.size() < 2) return false;
   return std::all_of(values.begin() + 1, values.end(), [first = values.front()](double v) { return v == first; });
+}
+
+double one_sigma_coverage(double degrees_of_freedom) {
+  return 1.0 - 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(degrees_of_freedom), 1.0));
 }
 
 }  // namespace inertest

@@ -23,6 +23,7 @@
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
 #include "inertest/numerics/least_squares.h"
+#include "inertest/numerics/statistics.h"
 #include "procedures/imu_calibration_internal.h"
 
 namespace inertest {
@@ -920,8 +921,7 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
                                             name));
     } else if (fit->degrees_of_freedom < kFewDegreesOfFreedom) {
       // A sigma estimated from few residuals: the truth lies within it as often as |t_nu| < 1.
-      const auto degrees = static_cast<double>(fit->degrees_of_freedom);
-      const double within = 1.0 - 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(degrees), 1.0));
+      const double within = one_sigma_coverage(static_cast<double>(fit->degrees_of_freedom));
       result.warnings.push_back(fmt::format(
           "the {} fit has {} degree{} of freedom: its 1-sigma uncertainties, estimated from so few residuals, hold "
           "the truth in about {:.0f} % of calibrations, not 68 % (Student's t); hold more orientations",

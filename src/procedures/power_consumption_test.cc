@@ -57,9 +57,23 @@ TEST(PowerConsumption, HandCase) {
   EXPECT_NEAR(total.at("value").get<double>(), 4.8791, 1e-12);
   EXPECT_NEAR(total.at("uncertainty").get<double>(), std::sqrt(0.0291 * 0.0291 + 0.15 * 0.15), 1e-12);
   EXPECT_EQ(total.at("unit"), "W");
-  // Equal readings make an uncertainty of 0 that the meters' resolution makes, and it says so.
-  ASSERT_EQ(fields.at("warnings").size(), 1u);
-  EXPECT_THAT(fields.at("warnings")[0].get<std::string>(), HasSubstr("'-15V' are all equal"));
+  // Two readings give a 1-sigma that holds the mean in half the tests (Student's t, 1 degree of
+  // freedom), and it says so; equal readings make an uncertainty of 0 that the meters' resolution
+  // makes, and it says so.
+  ASSERT_EQ(fields.at("warnings").size(), 3u);
+  EXPECT_THAT(fields.at("warnings")[0].get<std::string>(),
+              HasSubstr("supply '+5V' has 2 readings: the 1-sigma of its power, estimated from so few, holds the true "
+                        "mean in about 50 % of tests"));
+  EXPECT_THAT(fields.at("warnings")[2].get<std::string>(), HasSubstr("'-15V' are all equal"));
+}
+
+// +5 V and -5 V readings under one name are two rails: said (their mean voltage of 0 is no rail's).
+TEST(PowerConsumption, ReadingsOfBothSignsUnderOneNameAreWarnedAbout) {
+  const testing::ScratchDirectory scratch;
+  const nlohmann::json fields =
+      run_on(scratch.write("rails.csv", "supply,voltage,current\n5V,5.01,0.4\n5V,-5.0,-0.4\n5V,5.0,0.41\n"));
+  EXPECT_THAT(fields.at("warnings").dump(), HasSubstr("supply '5V' reads both positive and negative voltages (-5 V to "
+                                                      "5.01 V): two rails under one name?"));
 }
 
 // Excel's "CSV UTF-8" starts with a byte order mark: the header's first name read as

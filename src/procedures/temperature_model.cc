@@ -611,7 +611,15 @@ TemperatureApplyResult apply_thermal_compensation(const ThermalRecord& record, c
   const double count = static_cast<double>(residual.size());
   const double sd = sample_standard_deviation(residual);
   result.residual_rms = {sd, "deg/h", sd / std::sqrt(2.0 * (count - 1.0))};
-  result.residual_mean = {mean(residual), "deg/h", sd / std::sqrt(count)};
+  // The mean's 1-sigma allows a drift correlated from interval to interval, as the model's fit
+  // does (sd / sqrt(n) takes the intervals as independent). The model's own uncertainty is not in
+  // it: the export holds each coefficient's, not their covariance.
+  Matrix ones(residual.size(), 1);
+  for (std::size_t i = 0; i < residual.size(); ++i) ones(i, 0) = 1.0;
+  LeastSquaresOptions correlated;
+  correlated.serially_correlated = true;
+  const LeastSquaresResult level = solve_least_squares(ones, residual, correlated);
+  result.residual_mean = {mean(residual), "deg/h", level.standard_error(0)};
   return result;
 }
 

@@ -67,7 +67,7 @@ TEST(ArchivePages, ARowOfATableIsNamedByItsTableAndPlace) {
   row["figure"] = "bias_static/bias_stability/1";
   row["unit"] = "deg/h";
   row["place"] = "smoothing_s = 10.0";
-  pages["figures"] = {row};
+  pages["figures"] = nlohmann::json::array({row});  // {row} alone is row itself to clang
   EXPECT_THAT(render_history_page(pages, {Language::english, ""}),
               HasSubstr("Bias stability (smoothing_s = 10.0) (bias_static/bias_stability/1)"));
   pages["figures"][0].erase("place");

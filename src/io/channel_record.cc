@@ -1,5 +1,6 @@
 #include "inertest/io/channel_record.h"
 
+#include <cctype>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -209,11 +210,14 @@ std::optional<std::string> resolve_stated_unit(const SourceLocation& where, cons
 
 namespace {
 
-// Bracketed text that names an angle ("deg s-1", "°/sec", "rad per s"): a rate's unit, not a note
-// ("raw", "pulses/s", "dph": read as no unit, as before).
+// Bracketed text that names an angle or an angular rate in any case ("Deg s-1", "°/sec", "mdps",
+// "度/秒"): a unit inertest does not read, not a note ("raw", "inc/s"), which read as none took the
+// samples in deg/h.
 bool names_an_angle(std::string_view text) {
-  for (const char* mark : {"deg", "rad", "\u00b0"}) {
-    if (text.find(mark) != std::string_view::npos) return true;
+  std::string lowered(text);
+  for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* mark : {"deg", "rad", "dps", "dph", "rpm", "\u00b0", "\u00ba", "\u5ea6"}) {  // °, º, 度
+    if (lowered.find(mark) != std::string::npos) return true;
   }
   return false;
 }

@@ -162,6 +162,10 @@ TEST(ChannelRecord, AUnitATextHeaderStatesIsTheColumnsUnit) {
     EXPECT_EQ(unit_stated_in_name(none, header), std::nullopt) << none;
   }
   // A unit inertest does not read is no note: read as none, the samples were taken in deg/h.
+  for (const char* unread : {"gyro (mdps)", "gyro (Deg s-1)", "gyro (DEG S-1)", "gyro (度/秒)", "gyro (º/s)",
+                             "gyro (Degrees per second)"}) {
+    EXPECT_THROW(unit_stated_in_name(unread, header), Error) << unread;
+  }
   try {
     unit_stated_in_name("rate [deg s-1]", header);
     ADD_FAILURE() << "[deg s-1] was read as no unit";

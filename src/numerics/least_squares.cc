@@ -70,41 +70,6 @@ std::optional<Eigen::MatrixXd> correlated_scores_variance(const Eigen::MatrixXd&
          ((1.0 - rho) * (1.0 - rho));
 }
 
-// The variance a + b x² (a, b >= 0) of the points of a line fit, from z_j = e_j² / (1 - h_j),
-// each unbiased for its point's variance V_j and scattered as V_j χ²₁: least squares weighted by
-// 1/V_j², iterated from equal weights (a gamma GLM's scoring), so that the few largest |x| do not
-// decide b alone. Where b would be negative the variance is one for all, `pooled` (RSS / (m - 2));
-// where a would be, b x² alone.
-std::pair<double, double> variance_growing_with_x(std::span<const double> x, std::span<const double> z, double pooled) {
-  std::vector<double> weights(x.size(), 1.0);
-  double a = pooled;
-  double b = 0.0;
-  for (int iteration = 0; iteration < 8; ++iteration) {
-    CompensatedSum w0, w2, w4, z0, z2;
-    for (std::size_t j = 0; j < x.size(); ++j) {
-      const double x2 = x[j] * x[j];
-      w0.add(weights[j]);
-      w2.add(weights[j] * x2);
-      w4.add(weights[j] * x2 * x2);
-      z0.add(weights[j] * z[j]);
-      z2.add(weights[j] * z[j] * x2);
-    }
-    const double determinant = w0.value() * w4.value() - w2.value() * w2.value();
-    b = determinant > 0.0 ? (w0.value() * z2.value() - w2.value() * z0.value()) / determinant : 0.0;
-    if (!(b > 0.0)) return {pooled, 0.0};
-    a = (z0.value() - b * w2.value()) / w0.value();
-    if (a < 0.0) {
-      a = 0.0;
-      b = z2.value() / w4.value();
-    }
-    for (std::size_t j = 0; j < x.size(); ++j) {
-      const double variance = a + b * x[j] * x[j];
-      weights[j] = variance > 0.0 ? 1.0 / (variance * variance) : 0.0;
-    }
-  }
-  return {a, b};
-}
-
 }  // namespace
 
 LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const double> observations,
@@ -234,6 +199,38 @@ LeastSquaresResult solve_least_squares(const Matrix& design, std::span<const dou
   return result;
 }
 
+// z_j = e_j² / (1 - h_j) is unbiased for its point's variance V_j and scattered as V_j χ²₁: least
+// squares weighted by 1/V_j², iterated from equal weights (a gamma GLM's scoring), so that the few
+// largest |x| do not decide b alone. Where a would be negative, b x² alone.
+PointVariance point_variance_of(std::span<const double> x, std::span<const double> z, double pooled) {
+  std::vector<double> weights(x.size(), 1.0);
+  double a = pooled;
+  double b = 0.0;
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    CompensatedSum w0, w2, w4, z0, z2;
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double x2 = x[j] * x[j];
+      w0.add(weights[j]);
+      w2.add(weights[j] * x2);
+      w4.add(weights[j] * x2 * x2);
+      z0.add(weights[j] * z[j]);
+      z2.add(weights[j] * z[j] * x2);
+    }
+    const double determinant = w0.value() * w4.value() - w2.value() * w2.value();
+    b = determinant > 0.0 ? (w0.value() * z2.value() - w2.value() * z0.value()) / determinant : 0.0;
+    if (!(b > 0.0)) return {pooled, 0.0};
+    a = (z0.value() - b * w2.value()) / w0.value();
+    if (a < 0.0) {
+      a = 0.0;
+      b = z2.value() / w4.value();
+    }
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double variance = a + b * x[j] * x[j];
+      weights[j] = variance > 0.0 ? 1.0 / (variance * variance) : 0.0;
+    }
+  }
+  return {a, b};
+}
 
 LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic,
                  const std::optional<PointVariance>& given) {
@@ -258,6 +255,13 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y, bool hete
     rss.add(r * r);
   }
   fit.residual_rms = std::sqrt(rss.value() / m);
+  if (x.size() > 2) {
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const double r = y[j] - (fit.slope * x[j] + fit.intercept);
+      const double leverage = 1.0 / m + (x[j] - x_mean) * (x[j] - x_mean) / sxx.value();
+      fit.scaled_squares.push_back(r * r / std::max(1.0 - leverage, 1e-8));
+    }
+  }
   if (given) {
     fit.point_variance = *given;
   } else if (x.size() <= 2) {
@@ -265,16 +269,7 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y, bool hete
   } else if (const double pooled = rss.value() / (m - 2.0); !heteroscedastic) {
     fit.point_variance = {pooled, 0.0};
   } else {
-    // The variance of each point a + b x² (a, b >= 0), fitted to the squared residuals scaled by
-    // 1/(1 - h_j), which are unbiased for it.
-    std::vector<double> scaled_squares(x.size());
-    for (std::size_t j = 0; j < x.size(); ++j) {
-      const double r = y[j] - (fit.slope * x[j] + fit.intercept);
-      const double leverage = 1.0 / m + (x[j] - x_mean) * (x[j] - x_mean) / sxx.value();
-      scaled_squares[j] = r * r / std::max(1.0 - leverage, 1e-8);
-    }
-    const auto [a, b] = variance_growing_with_x(x, scaled_squares, pooled);
-    fit.point_variance = {a, b};
+    fit.point_variance = point_variance_of(x, fit.scaled_squares, pooled);
   }
   // slope = sum w_j y_j, intercept = sum c_j y_j, each point of its variance.
   CompensatedSum slope_variance;

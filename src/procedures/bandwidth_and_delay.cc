@@ -43,31 +43,31 @@ void check_points(std::span<const FrequencyResponsePoint> points, const Bandwidt
   }
 }
 
-// Phases spanning more than a turn are unwrapped already and kept: taken again one frequency after
-// the other, a step of 230° between two frequencies became one of −130° and the delay 0.86 ms for
-// 1.5. Others lie in one turn (±180°, or 0 to −360° as some analysers give them) and are taken one
-// frequency after the other with no jump larger than π, so a lag that grows past 180° at high
-// frequency stays a lag (a sine fit only knows the phase modulo 2π). `wrapped` says which.
-std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> points, bool& wrapped) {
-  const auto [lowest, highest] = std::minmax_element(
-      points.begin(), points.end(), [](const auto& a, const auto& b) { return a.phase_rad < b.phase_rad; });
-  wrapped = highest->phase_rad - lowest->phase_rad <= 2.0 * kPi;
+// Phases are known modulo a turn (a sine fit's; an analyser's ±180°, 0 to −360° or 0 to 360°; or
+// unwrapped already). The first is taken into (−180°, 180°], each next so that from its neighbour
+// the lag grows by less than 300° or shrinks by less than 60° (noise, where the phase is flat at low
+// frequencies): a gyro's lag grows with frequency. Taking each step the short way made a step of
+// 230° one of −130° (Td 0.86 ms for 1.5); keeping phases as given read a first phase of 354° (0 to
+// 360°, unwrapped) as a negative polarity.
+std::vector<double> unwrapped_phases(std::span<const FrequencyResponsePoint> points) {
+  constexpr double kLargestLead = kPi / 3.0;
   std::vector<double> phases;
   for (const auto& p : points) {
-    if (!wrapped) {
-      phases.push_back(p.phase_rad);
-    } else {  // the first in (−π, π] (357° of the 0 to 360° convention is −3°), the others from it
-      phases.push_back(phases.empty() ? wrap_to_pi(p.phase_rad) : phases.back() + wrap_to_pi(p.phase_rad - phases.back()));
+    if (phases.empty()) {
+      phases.push_back(wrap_to_pi(p.phase_rad));
+      continue;
     }
+    double short_of_lead = std::fmod(kLargestLead - (p.phase_rad - phases.back()), 2.0 * kPi);
+    if (short_of_lead < 0.0) short_of_lead += 2.0 * kPi;
+    phases.push_back(phases.back() + kLargestLead - short_of_lead);  // a step in (60° − 360°, 60°]
   }
   return phases;
 }
 
-// The largest change of phase between neighbouring frequencies, in rad: near π, phases known modulo
-// 2π no longer tell which way the step went.
-double largest_phase_step(const std::vector<double>& phases) {
+// The largest growth of the lag between neighbouring frequencies, in rad.
+double largest_lag_step(const std::vector<double>& phases) {
   double largest = 0.0;
-  for (std::size_t i = 1; i < phases.size(); ++i) largest = std::max(largest, std::abs(phases[i] - phases[i - 1]));
+  for (std::size_t i = 1; i < phases.size(); ++i) largest = std::max(largest, phases[i - 1] - phases[i]);
   return largest;
 }
 
@@ -141,8 +141,7 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
   const double sigma_k = std::sqrt(std::max(0.0, variance_k2)) / (2.0 * k);
 
   // Eqs. (44)-(46): Td = Σ ωi·yi / Σ ωi², yi = −Pi − atan(ωi·T), on the phases with the polarity's π removed.
-  bool wrapped = true;
-  std::vector<double> phase = unwrapped_phases(points, wrapped);
+  std::vector<double> phase = unwrapped_phases(points);
   const int polarity = remove_polarity(phase);
   CompensatedSum omega_y;
   CompensatedSum omega_omega;
@@ -208,13 +207,14 @@ BandwidthResult bandwidth_and_delay(std::span<const FrequencyResponsePoint> poin
                                           "deg): the output delay is no figure of this response",
                                           result.phase_fit_residual_rms.value, kPhaseResidualWarningDeg));
   }
-  // Wrapped phases whose neighbours differ by more than 120 deg may hide a step beyond 180 deg, which
-  // unwrapping takes the other way round.
-  if (constexpr double kAmbiguousStep = 2.0 * kPi / 3.0; wrapped && largest_phase_step(phase) > kAmbiguousStep) {
-    result.warnings.push_back(fmt::format("the phase changes by up to {:.0f} deg between neighbouring frequencies: a "
-                                          "step near 180 deg may have been unwrapped the wrong way; test more "
-                                          "frequencies, or give the phases unwrapped (spanning more than a turn)",
-                                          largest_phase_step(phase) / constants::kDegree));
+  // A lag growing by more than 180 deg between neighbours is taken as a lag (see unwrapped_phases),
+  // not as the lead the short way round would make it: said, as it rests on that.
+  if (largest_lag_step(phase) > kPi) {
+    result.warnings.push_back(fmt::format("the lag grows by up to {:.0f} deg between neighbouring frequencies, taken "
+                                          "as a lag (not the lead of {:.0f} deg the other way round); test more "
+                                          "frequencies to close the gap",
+                                          largest_lag_step(phase) / constants::kDegree,
+                                          360.0 - largest_lag_step(phase) / constants::kDegree));
   }
   if (points.back().frequency_hz < 2.0 * bandwidth) {
     result.warnings.push_back(fmt::format("the highest frequency ({} Hz) is below twice the bandwidth ({:.6g} Hz); "

@@ -111,34 +111,35 @@ TEST(BandwidthAndDelay, PhaseLagsPastHalfATurnAreUnwrapped) {
 }
 
 // Bw 500 Hz, Td 1.5 ms over 10 frequencies from 10 to 1000 Hz (5.13.3 a): the lag grows by 230 deg
-// between the last two. Given unwrapped, the phases are kept (wrapped again, Td came out 0.86 ms);
-// given wrapped, the step is taken the short way and a warning says so.
-TEST(BandwidthAndDelay, PhasesGivenUnwrappedAreKept) {
-  const Lag lag{1.0, 500.0, 1.5e-3};
-  auto points = response(lag, log_spaced(10.0, 1000.0, 10));
-  const auto unwrapped = bandwidth_and_delay(points);
-  EXPECT_NEAR_RELATIVE(unwrapped.delay.value, 1.5e-3, 1e-9);
-  EXPECT_THAT(nlohmann::json(unwrapped.warnings).dump(), Not(HasSubstr("unwrapped the wrong way")));
-  for (auto& p : points) p.phase_rad = std::remainder(p.phase_rad, 2 * kPi);
-  const auto wrapped = bandwidth_and_delay(points);
-  EXPECT_GT(std::abs(wrapped.delay.value - 1.5e-3), 1e-4);
-  EXPECT_THAT(nlohmann::json(wrapped.warnings).dump(), HasSubstr("may have been unwrapped the wrong way"));
-}
-
-// Phases given in one turn of another convention, 0 to -360 deg (or 0 to 360), are unwrapped as
-// the ±180 deg ones: taken as unwrapped because beyond ±180, a -349 to -44 deg wrap made Td 0.91 ms
-// for 1.5 ms.
-TEST(BandwidthAndDelay, PhasesOfOneTurnInAnyConventionAreUnwrapped) {
-  const Lag lag{1.0, 100.0, 1.5e-3};
-  for (const double turn_start : {-2 * kPi, 0.0}) {
-    auto points = response(lag, log_spaced(5.0, 600.0, 15));
-    for (auto& p : points) {
-      p.phase_rad = std::fmod(p.phase_rad, 2 * kPi);
-      if (p.phase_rad > turn_start + 2 * kPi) p.phase_rad -= 2 * kPi;
-      if (p.phase_rad < turn_start) p.phase_rad += 2 * kPi;
+// between the last two. A gyro's lag grows with frequency, so the step is taken as lag whatever
+// turn the phases are given in (±180, 0 to -360, 0 to 360, unwrapped, either polarity); taken the
+// short way it was -130 deg and Td 0.86 ms, and a first phase of 354 deg read as a negative
+// polarity. The warning says the step was taken as lag.
+TEST(BandwidthAndDelay, PhasesInAnyTurnTakeTheLagAsGrowing) {
+  for (const double bandwidth : {500.0, 100.0}) {
+    const Lag lag{1.0, bandwidth, 1.5e-3};
+    const auto truth = response(lag, log_spaced(bandwidth == 500.0 ? 10.0 : 5.0, bandwidth == 500.0 ? 1000.0 : 600.0,
+                                                bandwidth == 500.0 ? 10 : 15));
+    for (const double shift : {0.0, -2 * kPi, 2 * kPi}) {
+      for (const bool negative : {false, true}) {
+        for (const bool wrapped : {false, true}) {
+          auto points = truth;
+          for (auto& p : points) {
+            p.phase_rad += (negative ? kPi : 0.0);
+            if (wrapped) p.phase_rad = std::remainder(p.phase_rad, 2 * kPi);
+            p.phase_rad += shift;
+          }
+          const auto result = bandwidth_and_delay(points);
+          EXPECT_NEAR_RELATIVE(result.delay.value, 1.5e-3, 1e-9)
+              << bandwidth << " Hz, shift " << shift << (negative ? ", negative" : "") << (wrapped ? ", wrapped" : "");
+          EXPECT_EQ(result.polarity, negative ? -1 : 1) << bandwidth << " " << shift;
+        }
+      }
     }
-    EXPECT_NEAR_RELATIVE(bandwidth_and_delay(points).delay.value, 1.5e-3, 1e-9) << turn_start;
   }
+  const auto sparse = bandwidth_and_delay(response(Lag{1.0, 500.0, 1.5e-3}, log_spaced(10.0, 1000.0, 10)));
+  EXPECT_THAT(nlohmann::json(sparse.warnings).dump(),
+              HasSubstr("the lag grows by up to 230 deg between neighbouring frequencies, taken as a lag"));
 }
 
 TEST(BandwidthAndDelay, NegativePolarityIsRemovedBeforeTheDelayFit) {

@@ -20,8 +20,8 @@ std::size_t samples_in_window(double seconds, double sample_rate_hz) {
   const double whole = std::round(exact);
   if (whole < 1.0 || std::abs(exact - whole) > 1e-6 * std::max(1.0, whole)) {
     // The rate a record's jittered stamps give (9.999385 Hz) is no nominal one: the hint says how to state it.
-    throw Error(fmt::format("a smoothing time of {} s is not a whole number of samples at {} Hz ({} samples; "
-                            "give the nominal rate, --rate, where the time stamps only approximate it)",
+    throw Error(fmt::format("a smoothing time of {} s is not a whole number of samples at {} Hz ({:.6g} samples; "
+                            "a rate read from jittered time stamps is no nominal one: give it, --rate)",
                             seconds, sample_rate_hz, exact));
   }
   return static_cast<std::size_t>(whole);

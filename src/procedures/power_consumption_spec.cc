@@ -155,7 +155,8 @@ PowerConsumptionResult power_consumption(const std::vector<SupplyReadings>& read
     const auto [lowest, highest] = std::minmax_element(supply.voltage_v.begin(), supply.voltage_v.end());
     if (*lowest < 0.0 && *highest > 0.0) {
       result.warnings.push_back(fmt::format("supply '{}' reads both positive and negative voltages ({} V to {} V): two "
-                                            "rails under one name? its mean voltage and current are no rail's",
+                                            "rails under one name? its mean voltage, current and power are no "
+                                            "rail's, and the total counts one rail where there are two",
                                             supply.supply, *lowest, *highest));
     }
     variance += row.power.uncertainty.value_or(0.0) * row.power.uncertainty.value_or(0.0);

@@ -9,6 +9,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/io/text_table.h"
+#include "inertest/numerics/least_squares.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -201,6 +202,27 @@ TEST_P(ScaleFactorCoverage, OneSigmaHoldsTheTruthInAboutTwoThirdsOfTrials) {
   EXPECT_NEAR(k_within / double(kTrials), 0.683, 0.06) << GetParam().name;
   EXPECT_NEAR(f0_within / double(kTrials), 0.683, 0.06) << GetParam().name;
   EXPECT_NEAR(k_positive_within / double(kTrials), 0.683, 0.06) << GetParam().name;
+}
+
+// A gyro of 2000 ppm asymmetry (K(+) 100.1, K(-) 99.9): K(+)'s error is its own line's, not the
+// misfit of the line through both directions, which stated it 24 times too large.
+TEST(ScaleFactor, AsymmetryIsNoNoiseInKPositivesError) {
+  std::vector<ScaleFactorPoint> data = {{0, 0.3}, {0, -0.2}};
+  const double wobble[] = {0.4, -0.3, 0.1, -0.5, 0.2, 0.3, -0.1, -0.4, 0.5, -0.2, 0.0};
+  const std::vector<double> magnitudes = {1, 2, 5, 10, 20, 50, 100, 150, 200, 300, 400};
+  for (std::size_t i = 0; i < magnitudes.size(); ++i) {
+    data.push_back({magnitudes[i], 100.1 * magnitudes[i] + wobble[i]});
+    data.push_back({-magnitudes[i], -99.9 * magnitudes[i] - wobble[10 - i]});
+  }
+  data.insert(data.end(), {{0, 0.1}, {0, -0.3}});
+  const ScaleFactorResult r = scale_factor(data);
+  std::vector<double> x, y;
+  for (const auto& p : data) {
+    if (p.rate > 0) x.push_back(p.rate), y.push_back(p.output);
+  }
+  const double own = fit_line(x, y).slope_standard_error;  // the positive line's own, one variance
+  EXPECT_LT(r.scale_factor_positive.uncertainty.value(), 2.0 * own);
+  EXPECT_GT(r.scale_factor_positive.uncertainty.value(), 0.5 * own);
 }
 
 INSTANTIATE_TEST_SUITE_P(Noise, ScaleFactorCoverage,

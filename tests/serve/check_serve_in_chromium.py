@@ -244,6 +244,10 @@ def check_allan_plot(tools, url, page, downloads):
     data = tools.evaluate(f"window.inertestPlots.plots[{n}].data")
     before = tools.evaluate(GEOMETRY % n)
     failures += check_drawn(data, before, where)
+    # Drawn by the script, the plot keeps its name for a screen reader (the report's caption).
+    title = tools.evaluate(f"(window.inertestPlots.plots[{n}].svg.querySelector('title') || {{}}).textContent || ''")
+    if "Allan" not in title:
+        failures.append(f"{where}: the drawn plot's <title> is {title!r}, not its caption")
     measured = [k for k, s in enumerate(data["panels"][0]["series"]) if s["y_low"]][0]
     points = len(data["panels"][0]["series"][measured]["x"])
     if before[0]["series"][measured]["shown"] != points:

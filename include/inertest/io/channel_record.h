@@ -119,8 +119,9 @@ std::optional<std::string> resolve_stated_unit(const SourceLocation& where, cons
 
 // The unit a text column's header name states at its end, in brackets or parentheses ("gyro_x
 // [deg/s]", "rate (deg/h)"): one inertest knows and not a bare ratio (1, ppm, %); nullopt for none
-// or a note ("(raw)", "(pulses/s)"); an Error at `where` for text that names an angle in a unit
-// inertest does not read ("[deg s-1]"), which resolve_text_unit lets a unit given override.
+// or a note ("(raw)", "(inc/s)"); an Error at `where` for text that names an angle or a rate in a
+// unit inertest does not read ("[deg s-1]", "(mdps)"), which resolve_text_unit lets a unit given
+// override.
 std::optional<std::string> unit_stated_in_name(std::string_view name, const SourceLocation& where);
 
 // resolve_unit for a text record: the unit its header states for the column (by name, by 1-based

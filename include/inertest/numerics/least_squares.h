@@ -89,8 +89,15 @@ struct LineFit {
   double intercept_standard_error = 0.0;
   double residual_rms = 0.0;
   PointVariance point_variance;           // the variance the errors were taken from
+  // Each point's squared residual over 1 - h_j, unbiased for its variance (empty for two points).
+  std::vector<double> scaled_squares;
 };
 LineFit fit_line(std::span<const double> x, std::span<const double> y, bool heteroscedastic = false,
                  const std::optional<PointVariance>& given = std::nullopt);
+
+// The variance a + b x² (a, b >= 0) of points of abscissa x whose scaled squared residuals
+// (LineFit::scaled_squares, of one line or several) are z, as fit_line's heteroscedastic errors
+// take it; one variance for all, `pooled`, where b would not be positive.
+PointVariance point_variance_of(std::span<const double> x, std::span<const double> z, double pooled);
 
 }  // namespace inertest

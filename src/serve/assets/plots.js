@@ -391,7 +391,9 @@
   }
 
   function draw(plot) {
-    var out = '', top = 0;
+    // The plot's name for a screen reader (its <title>, render_svg's) stays through every redraw.
+    var title = plot.svg.querySelector('title');
+    var out = title ? '<title>' + esc(title.textContent) + '</title>\n' : '', top = 0;
     plot.geometry = [];
     plot.data.panels.forEach(function (panel, p) {
       out += drawPanel(plot, p, top);

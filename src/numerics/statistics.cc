@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <fmt/format.h>
 #include <string>
 
 #include "inertest/core/error.h"
@@ -62,6 +63,15 @@ bool is_constant(std::span<const double> values) {
 
 double one_sigma_coverage(double degrees_of_freedom) {
   return 1.0 - 2.0 * boost::math::cdf(boost::math::complement(boost::math::students_t(degrees_of_freedom), 1.0));
+}
+
+std::optional<std::string> few_degrees_of_freedom_warning(const std::string& fit, std::size_t degrees_of_freedom,
+                                                          const std::string& cases) {
+  if (degrees_of_freedom == 0 || degrees_of_freedom >= kFewDegreesOfFreedom) return std::nullopt;
+  return fmt::format("{} has {} degree{} of freedom: its 1-sigma uncertainties, estimated from so few residuals, hold "
+                     "the truth in about {:.0f} % of {}, not 68 % (Student's t)",
+                     fit, degrees_of_freedom, degrees_of_freedom == 1 ? "" : "s",
+                     100.0 * one_sigma_coverage(static_cast<double>(degrees_of_freedom)), cases);
 }
 
 }  // namespace inertest

@@ -335,13 +335,10 @@ AccelerometerTumbleResult accelerometer_tumble(const std::vector<TumblePosition>
     result.warnings.emplace_back(
         "as many positions as fitted terms: the fit is exact and gives no uncertainty (repeat the tumble, or add "
         "positions)");
-  } else if (fit.fit.degrees_of_freedom < 10) {
+  } else if (const std::optional<std::string> few =
+                 few_degrees_of_freedom_warning("the fit", fit.fit.degrees_of_freedom, "tumbles")) {
     // 8 positions a turn leave 2: the 1-sigma held the truth in 53-58 % of trials, as Student's t says.
-    result.warnings.push_back(fmt::format(
-        "the fit has {} degree{} of freedom: its 1-sigma uncertainties, estimated from so few residuals, hold the "
-        "truth in about {:.0f} % of tumbles, not 68 % (Student's t); add positions or repeat the tumble",
-        fit.fit.degrees_of_freedom, fit.fit.degrees_of_freedom == 1 ? "" : "s",
-        100.0 * one_sigma_coverage(static_cast<double>(fit.fit.degrees_of_freedom))));
+    result.warnings.push_back(*few + "; add positions or repeat the tumble");
   }
   return result;
 }

@@ -149,8 +149,6 @@ const std::vector<std::string> kAccelerometerNames = {"bias x", "bias y", "bias 
 const std::vector<std::string> kGyroNames = {"scale x", "scale y", "scale z", "misalignment xy", "misalignment xz",
                                              "misalignment yx", "misalignment yz", "misalignment zx", "misalignment zy"};
 constexpr std::array<std::pair<int, int>, 3> kAccelerometerOffDiagonal = {{{0, 1}, {0, 2}, {1, 2}}};
-// Below this many degrees of freedom a fit's 1-sigma holds the truth in 66 % of cases or fewer.
-constexpr std::size_t kFewDegreesOfFreedom = 10;
 constexpr std::array<std::pair<int, int>, 6> kGyroOffDiagonal = {{{0, 1}, {0, 2}, {1, 0}, {1, 2}, {2, 0}, {2, 1}}};
 
 // T K of a triad from k (p[first..first+2]) and the off-diagonals of M that follow.
@@ -919,13 +917,9 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
       result.warnings.push_back(fmt::format("the {} fit has as many observations as parameters: it is exact and gives "
                                             "no uncertainty (hold more orientations)",
                                             name));
-    } else if (fit->degrees_of_freedom < kFewDegreesOfFreedom) {
-      // A sigma estimated from few residuals: the truth lies within it as often as |t_nu| < 1.
-      const double within = one_sigma_coverage(static_cast<double>(fit->degrees_of_freedom));
-      result.warnings.push_back(fmt::format(
-          "the {} fit has {} degree{} of freedom: its 1-sigma uncertainties, estimated from so few residuals, hold "
-          "the truth in about {:.0f} % of calibrations, not 68 % (Student's t); hold more orientations",
-          name, fit->degrees_of_freedom, fit->degrees_of_freedom == 1 ? "" : "s", 100.0 * within));
+    } else if (const std::optional<std::string> few = few_degrees_of_freedom_warning(
+                   fmt::format("the {} fit", name), fit->degrees_of_freedom, "calibrations")) {
+      result.warnings.push_back(*few + "; hold more orientations");
     }
   }
   return result;

@@ -116,9 +116,6 @@ std::vector<SupplyReadings> read_supply_readings(const std::string& path) {
   return supplies;
 }
 
-// Below this many readings a supply's standard error holds its mean in 66 % of tests or fewer.
-constexpr std::size_t kFewReadings = 11;
-
 // The mean of the values and, from two values on, its standard error s / sqrt(n).
 Figure mean_figure(const std::vector<double>& values, const std::string& unit) {
   if (values.size() < 2) return {mean(values), unit, std::nullopt};
@@ -144,7 +141,7 @@ PowerConsumptionResult power_consumption(const std::vector<SupplyReadings>& read
           "the {} readings of supply '{}' are all equal: the uncertainty 0 is the meters' resolution, not the "
           "supply's",
           power.size(), supply.supply));
-    } else if (power.size() < kFewReadings) {
+    } else if (power.size() - 1 < kFewDegreesOfFreedom) {
       // s/sqrt(n) from few readings held the mean power in 50 % of trials at n = 2.
       result.warnings.push_back(fmt::format(
           "supply '{}' has {} readings: the 1-sigma of its power, estimated from so few, holds the true mean in about "

@@ -121,24 +121,27 @@ std::string number(const json& value, const char* format = "{:.6g}") {
 }
 std::string limit(const json& value) { return number(value, "{:.10g}"); }
 
-// A point as the campaign report gives a figure: "36000.25 ± 0.50 pulse/s/(°/s)".
-std::string point_text(const json& point, const std::string& unit, const Page& page) {
-  if (!point.at("value").is_number()) return escape_xml(page.word("not_measured"));
+// A measured point of a history or a fleet as a figure {"value", "unit", "uncertainty" if known}.
+json point_figure(const json& point, const std::string& unit) {
   json figure = {{"value", point.at("value")}, {"unit", unit}};
   if (point.at("uncertainty").is_number()) figure["uncertainty"] = point.at("uncertainty");
-  return escape_xml(figure_text(figure, page.labels()));
+  return figure;
 }
 
-// A point's value and uncertainty as the campaign report gives them (to the uncertainty's second
-// significant digit, GUM 7.2.6) with its readable unit; null: the test did not measure it.
+// A point as the campaign report gives a figure: "36000.25 ± 0.50 pulse/s/(°/s)"; null: the test
+// did not measure it.
+std::string point_text(const json& point, const std::string& unit, const Page& page) {
+  if (!point.at("value").is_number()) return escape_xml(page.word("not_measured"));
+  return escape_xml(figure_text(point_figure(point, unit), page.labels()));
+}
+
+// A point's value and uncertainty in two cells, as the campaign report gives them (to the
+// uncertainty's second significant digit, GUM 7.2.6) with its readable unit.
 std::pair<std::string, std::string> point_cells(const json& point, const std::string& unit, const Page& page) {
   if (!point.at("value").is_number()) return {escape_xml(page.word("not_measured")), "—"};
-  json figure = {{"value", point.at("value")}, {"unit", unit}};
-  if (point.at("uncertainty").is_number()) figure["uncertainty"] = point.at("uncertainty");
-  const auto [value, uncertainty] = format_figure(figure, page.labels());
-  const std::string shown_unit = pretty_unit(unit);
-  return {escape_xml(value + (shown_unit.empty() ? "" : " " + shown_unit)),
-          uncertainty.empty() ? "—" : escape_xml(uncertainty + (shown_unit.empty() ? "" : " " + shown_unit))};
+  const auto [value, uncertainty] = format_figure(point_figure(point, unit), page.labels());
+  const std::string shown_unit = pretty_unit(unit).empty() ? "" : " " + pretty_unit(unit);
+  return {escape_xml(value + shown_unit), uncertainty.empty() ? "—" : escape_xml(uncertainty + shown_unit)};
 }
 
 // Days from 1970-01-01 of a YYYY-MM-DD date (the archive checked the form).

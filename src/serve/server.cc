@@ -194,8 +194,9 @@ struct Server::Impl {
                                                  missing);
       const std::string note =
           fmt::format("<p class=\"note\" id=\"figure-missing\">{}</p>\n", report::escape_xml(text));
-      const std::size_t nav_end = page.find("</nav>\n");
-      page.insert(nav_end == std::string::npos ? 0 : nav_end + 7, note);
+      constexpr std::string_view kNavEnd = "</nav>\n";  // the switcher's, after the page's header
+      const std::size_t nav_end = page.find(kNavEnd);
+      page.insert(nav_end == std::string::npos ? 0 : nav_end + kNavEnd.size(), note);
     }
     return with_interactive_plots(std::move(page));
   }

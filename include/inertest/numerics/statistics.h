@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -35,5 +36,14 @@ bool is_constant(std::span<const double> values);
 // How often a 1-sigma estimated from `degrees_of_freedom` residuals holds the truth: P(|t_nu| < 1),
 // Student's t (0.50 at 1, 0.61 at 3, 0.66 at 10; 0.683 as nu grows).
 double one_sigma_coverage(double degrees_of_freedom);
+
+// Below this many degrees of freedom such a 1-sigma holds the truth in 66 % of cases or fewer.
+inline constexpr std::size_t kFewDegreesOfFreedom = 10;
+
+// "FIT has N degrees of freedom: its 1-sigma uncertainties, estimated from so few residuals, hold
+// the truth in about P % of CASES, not 68 % (Student's t)" for 0 < N < kFewDegreesOfFreedom, else
+// nothing (an exact fit, N = 0, gives no uncertainty at all).
+std::optional<std::string> few_degrees_of_freedom_warning(const std::string& fit, std::size_t degrees_of_freedom,
+                                                          const std::string& cases);
 
 }  // namespace inertest

@@ -500,6 +500,7 @@ std::optional<nlohmann::json> check_limit(const Limit& limit, const std::string&
   nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", value},
                             {"unit", unit},           {"pass", pass}};
   if (!identified) verdict["identified"] = false;  // value: the upper bound
+  if (yes_no) verdict["yes_no"] = true;            // value 1 or 0, judged against 1
   if (magnitude && value < 0.0) verdict["magnitude"] = true;  // judged as |value|
   if (limit.min) verdict["min"] = *limit.min;
   if (limit.max) verdict["max"] = *limit.max;

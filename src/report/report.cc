@@ -124,6 +124,7 @@ bool is_number_member(const json& node, std::string_view key) {
 std::string verdict_value_text(const json& verdict, const Labels& labels) {
   const auto* value = member(verdict, "value");
   if (value == nullptr || !value->is_number()) return labels("ui.not_measured");
+  if (verdict.value("yes_no", false)) return labels(value->get<double>() == 1.0 ? "ui.yes" : "ui.no");
   const auto* identified = member(verdict, "identified");
   if (identified != nullptr && identified->is_boolean() && !identified->get<bool>()) {
     return labels("ui.not_identified") + " (< " + format_number(value->get<double>()) + ")";
@@ -446,8 +447,9 @@ std::string verdict_key(const std::string& procedure, const std::string& pointer
 }
 
 // "≤ 100 ppm", "|value| ≤ 0.05 °/h" (a negative value judged by its magnitude), "≥ 4999",
-// "4999 … 5001 pulse/s/(°/s)".
-std::string limit_text(const json& verdict) {
+// "4999 … 5001 pulse/s/(°/s)"; "yes" for a yes/no the procedure judges itself with (it is 1 or 0).
+std::string limit_text(const json& verdict, const Labels& labels) {
+  if (verdict.value("yes_no", false)) return labels("ui.yes");
   const std::string unit = pretty_unit(verdict.value("unit", ""));
   const std::string suffix = unit.empty() ? "" : " " + unit;
   const auto* min = member(verdict, "min");
@@ -512,9 +514,10 @@ class ReportWriter {
       for (const json& v : verdicts()) {
         const auto* value = member(v, "value");
         const bool measured = value != nullptr && value->is_number();  // "not measured", not "not measured °/h"
+        const std::string unit = measured ? pretty_unit(v.value("unit", "")) : "";
         text += fmt::format("  {:<5} {} / {} = {}{} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
-                            v.value("procedure", ""), v.value("figure", ""), verdict_value_text(v, labels_),
-                            measured ? " " + pretty_unit(v.value("unit", "")) : "", limit_text(v));
+                            v.value("procedure", ""), verdict_figure_name(v), verdict_value_text(v, labels_),
+                            unit.empty() ? "" : " " + unit, limit_text(v, labels_));
       }
     }
     return text + fmt::format("\nVerdict: {}\n", overall_verdict());
@@ -680,6 +683,20 @@ class ReportWriter {
   // fields in their declared order, under the spec's labels (a plain number, text or yes/no field as
   // a figure without a unit, in the words the spec gives its values), a table's figures marked
   // in_table; otherwise every member that holds figures, in the label table's order.
+  // A verdict's figure as its procedure's table names it ("Bias stability (smoothing_s = 10.0)"), or
+  // its key when no row shows it.
+  std::string verdict_figure_name(const json& verdict) const {
+    const std::string figure = verdict.value("figure", "");
+    const std::string pointer = normalised_pointer(figure);
+    for (const auto& procedure : results_.at("procedures")) {
+      if (procedure.value("name", "") != verdict.value("procedure", "")) continue;
+      for (const auto& row : figures_of(procedure)) {
+        if (row.pointer == pointer) return row.name;
+      }
+    }
+    return figure;
+  }
+
   std::vector<FigureRow> figures_of(const json& procedure) const {
     std::vector<FigureRow> rows;
     const auto* result = member(procedure, "result");
@@ -830,7 +847,7 @@ class ReportWriter {
       if (with_limits) {
         if (figure_verdicts) {
           std::vector<std::string> limits;
-          for (const json* v : *figure_verdicts) limits.push_back(limit_text(*v));
+          for (const json* v : *figure_verdicts) limits.push_back(limit_text(*v, labels_));
           out_ += fmt::format("<td>{}</td>{}", html(fmt::format("{}", fmt::join(limits, "; "))),
                               verdict_cell(all_pass(*figure_verdicts), labels_));
         } else {
@@ -874,22 +891,15 @@ class ReportWriter {
         html(labels_("ui.procedure")), html(labels_("ui.figure")), html(labels_("ui.specification")),
         html(labels_("ui.measured")), html(labels_("ui.verdict")));
     for (const auto& v : verdicts()) {
-      const std::string figure = v.value("figure", "");
-      const std::string pointer = normalised_pointer(figure);
-      std::string name = figure;
-      for (const auto& procedure : results_.at("procedures")) {
-        if (procedure.value("name", "") != v.value("procedure", "")) continue;
-        for (const auto& row : figures_of(procedure)) {
-          if (row.pointer == pointer) name = row.name;
-        }
-      }
+      const std::string pointer = normalised_pointer(v.value("figure", ""));
+      const std::string name = verdict_figure_name(v);
       const bool pass = v.value("pass", false);
       const std::string unit = pretty_unit(v.value("unit", ""));
       out_ += fmt::format(
           "<tr data-procedure=\"{}\" data-figure=\"{}\" data-verdict=\"{}\"><td>{}</td><td>{}</td>"
           "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
           html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
-          html(name), html(limit_text(v)),
+          html(name), html(limit_text(v, labels_)),
           html(verdict_value_text(v, labels_) + (unit.empty() || !is_number_member(v, "value") ? "" : " " + unit) +
                (v.contains("reason") ? " (" + v.value("reason", "") + ")" : "")),
           verdict_cell(pass, labels_));
@@ -927,7 +937,7 @@ class ReportWriter {
         if (item.contains("max")) limit["max"] = item.at("max");
         out_ +=
             fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td>{}</td>{}</tr>\n", html(item.value("name", "")),
-                        html(measured), html(limit_text(limit)), verdict_cell(item.at("pass").get<bool>(), labels_));
+                        html(measured), html(limit_text(limit, labels_)), verdict_cell(item.at("pass").get<bool>(), labels_));
       }
       out_ += "</tbody></table>\n";
     }

@@ -127,7 +127,7 @@ TEST(Report, AMagnitudeVerdictShowsTheAbsoluteValueAgainstTheLimit) {
   verdict["magnitude"] = true;
   verdict["pass"] = false;
   const std::string text = render_text_report(results, {Language::english, ""});
-  EXPECT_THAT(text, HasSubstr("FAIL  SF 20 degC / zero_offset = -250 pulse/s (|value| ≤ 100 pulse/s)"));
+  EXPECT_THAT(text, HasSubstr("FAIL  SF 20 degC / Zero offset F0 = -250 pulse/s (|value| ≤ 100 pulse/s)"));
 }
 
 TEST(Report, WithoutLimitsThereIsNoVerdictColumn) {
@@ -392,7 +392,7 @@ TEST(Report, TextReportListsTheFiguresOfTheHtmlReport) {
       std::regex(R"(\n  Gyro triad · Misalignment zy +-?[0-9.]+ ± [0-9.]+ rad\n)"),
   };
   for (const std::regex& section : sections) EXPECT_TRUE(std::regex_search(text, section)) << text;
-  EXPECT_THAT(text, HasSubstr("\nSpecification limits\n  PASS  scale_factor / nonlinearity = "));
+  EXPECT_THAT(text, HasSubstr("\nSpecification limits\n  PASS  scale_factor / Nonlinearity Kn = "));
   std::size_t limits = 0;
   for (auto at = text.find("\n  PASS  "); at != std::string::npos; at = text.find("\n  PASS  ", at + 1)) ++limits;
   for (auto at = text.find("\n  FAIL  "); at != std::string::npos; at = text.find("\n  FAIL  ", at + 1)) ++limits;

@@ -84,8 +84,6 @@ nlohmann::json report_data(Archive& archive, const std::vector<std::string>& fig
   const std::vector<std::string> archived = archive.figures(false);
   // A figure of two quantities across the fleet is named once, on the fleet page; an instrument's
   // history of it is shown where the instrument's own campaigns measured one quantity.
-  nlohmann::json fleet = nlohmann::json::array();
-  nlohmann::json not_comparable = nlohmann::json::array();
   nlohmann::json histories = nlohmann::json::array();
   for (const auto& instrument : instruments) {
     nlohmann::json list = nlohmann::json::array();
@@ -101,15 +99,25 @@ nlohmann::json report_data(Archive& archive, const std::vector<std::string>& fig
     }
     histories.push_back({{"instrument", instrument}, {"figures", list}});
   }
+  nlohmann::json data = fleet_data(archive, figures, std::nullopt);
+  data["histories"] = std::move(histories);
+  return data;
+}
+
+nlohmann::json fleet_data(Archive& archive, const std::vector<std::string>& figures,
+                          const std::optional<std::string>& since) {
+  const std::vector<std::string> archived = archive.figures(false);
+  nlohmann::json fleet = nlohmann::json::array();
+  nlohmann::json not_comparable = nlohmann::json::array();
   for (const auto& figure : figures) {
     if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
     try {
-      fleet.push_back(fleet_summary(archive.fleet(figure, std::nullopt), std::nullopt));
+      fleet.push_back(fleet_summary(archive.fleet(figure, since), since));
     } catch (const NotOneQuantity& e) {
       not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
     }
   }
-  return {{"histories", histories}, {"fleet", fleet}, {"not_comparable", not_comparable}};
+  return {{"fleet", fleet}, {"not_comparable", not_comparable}};
 }
 
 }  // namespace inertest::archive

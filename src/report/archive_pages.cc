@@ -46,6 +46,7 @@ constexpr PageWord page_words[] = {
     {"lower_limit", "lower specification limit", "指标下限"},
     {"upper_limit", "upper specification limit", "指标上限"},
     {"out_of_control", "Out of control", "失控点"},
+    {"since", "Tests on or after", "统计起始日期（含）"},
     {"magnitude", "(−max: the max bounds |value|)", "（−max：上限约束 |值|）"},
     {"instrument_number", "instrument, in order of first test", "仪表（按首次测试顺序）"},
     {"not_comparable", "Not comparable: archived in units that do not convert", "无法比较：存档单位不能相互换算"},
@@ -220,6 +221,11 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options, c
   Page page(options);
   page.open(page.word("fleet"), page.word("control_chart"));
   page.out() += fmt::format("<p>{}</p>\n", escape_xml(page.word("method")));
+  // Counted from a date (archive fleet --since, /fleet?since=): said, or the page reads as the whole fleet.
+  if (!fleet.empty() && fleet.front().value("since", json()).is_string()) {
+    page.out() += fmt::format("<p class=\"since\">{}: {}</p>\n", escape_xml(page.word("since")),
+                              escape_xml(fleet.front().at("since").get<std::string>()));
+  }
   // The capability table first: one row per figure.
   page.out() += fmt::format(
       "<section><h2>{}</h2>\n<table><tr><th>{}</th><th>{}</th><th>n</th><th>x̄</th><th>σ</th><th>{}</th><th>{}</th>"

@@ -55,6 +55,14 @@ std::string required_parameter(const httplib::Request& request, const char* name
   return request.get_param_value(name);
 }
 
+// The query's 'since' (tests on or after it, YYYY-MM-DD), as the command line's --since.
+std::optional<std::string> since_of(const httplib::Request& request) {
+  if (!request.has_param("since")) return std::nullopt;
+  std::string since = request.get_param_value("since");
+  if (!archive::is_test_date(since)) throw Refusal{400, "the query parameter 'since' is not a date YYYY-MM-DD"};
+  return since;
+}
+
 const char* reason(int status) {
   switch (status) {
     case 400: return "bad request";
@@ -260,11 +268,7 @@ struct Server::Impl {
     }));
     http.Get("/api/fleet", route([this](const httplib::Request& request, httplib::Response&) {
       const std::string figure = checked(required_parameter(request, "figure"), figure_pattern, "the figure");
-      std::optional<std::string> since;
-      if (request.has_param("since")) {
-        since = request.get_param_value("since");
-        if (!archive::is_test_date(*since)) throw Refusal{400, "the query parameter 'since' is not a date YYYY-MM-DD"};
-      }
+      const std::optional<std::string> since = since_of(request);
       return archive::fleet_summary(store->fleet(figure, since), since);
     }));
     // The body is read here whatever its type: `curl --data-binary @results.json` sends a form,
@@ -320,7 +324,7 @@ struct Server::Impl {
       return nlohmann::json();
     }));
     http.Get("/fleet", route([this](const httplib::Request& request, httplib::Response& response) {
-      const nlohmann::json data = archive::report_data(*store, page_figures());
+      const nlohmann::json data = archive::fleet_data(*store, page_figures(), since_of(request));
       response.set_content(with_interactive_plots(report::render_fleet_page(data.at("fleet"), page_options(request),
                                                                             data.at("not_comparable"))),
                            "text/html; charset=utf-8");

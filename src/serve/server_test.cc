@@ -3,6 +3,7 @@
 #include "inertest/serve/server.h"
 
 #include <arpa/inet.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -26,6 +27,9 @@
 
 namespace inertest::serve {
 namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 // An HTTP answer read off the socket.
 struct Reply {
@@ -171,6 +175,21 @@ TEST_F(ServeApi, EveryRouteGivesTheCommandLinesJson) {
   ASSERT_EQ(since.status, 200) << since.body;
   EXPECT_EQ(since.json(),
             cli_json({"archive", "fleet", "--figure", "scale_factor/scale_factor", "--since", "2026-03-02"}));
+  // The fleet page counts from the date too, and says so (it showed the whole fleet).
+  const std::size_t counted = since.json()["instruments"].size();
+  ASSERT_LT(counted, 3u);
+  const auto row = [](const std::string& page) {
+    const auto at = page.find("<tr><td>scale_factor/scale_factor</td>");
+    return at == std::string::npos ? std::string() : page.substr(at, page.find("</tr>", at) - at);
+  };
+  const auto whole_page = get(port(), "/fleet");
+  const auto since_page = get(port(), "/fleet?since=2026-03-02");
+  ASSERT_EQ(since_page.status, 200) << since_page.body;
+  EXPECT_THAT(row(whole_page.body), HasSubstr("</td><td>3</td>"));
+  EXPECT_THAT(row(since_page.body), HasSubstr(fmt::format("</td><td>{}</td>", counted)));
+  EXPECT_THAT(since_page.body, HasSubstr("<p class=\"since\">Tests on or after: 2026-03-02</p>"));
+  EXPECT_THAT(whole_page.body, Not(HasSubstr("class=\"since\"")));
+  EXPECT_EQ(get(port(), "/fleet?since=2026-3-2").status, 400);
 
   const auto results = get(port(), "/api/campaigns/" + demo_id_);
   ASSERT_EQ(results.status, 200) << results.body;

@@ -173,6 +173,11 @@ nlohmann::json instrument_list_json(const std::vector<CampaignEntry>& campaigns)
 // units that do not convert (NotOneQuantity), left out of the fleet and of the histories]}.
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures);
 
+// report_data's "fleet" and "not_comparable" alone, of the tests on or after `since` (YYYY-MM-DD)
+// when given, as `inertest archive fleet --since` counts them.
+nlohmann::json fleet_data(Archive& archive, const std::vector<std::string>& figures,
+                          const std::optional<std::string>& since);
+
 // Whether opening an archive may create it: a read of a mistyped path must not make an empty one.
 enum class ArchiveOpening { create, existing };
 

@@ -65,11 +65,11 @@ InputAxisMisalignmentResult input_axis_misalignment(std::span<const Misalignment
   if (delta.size() == 2) {
     alpha = angle_from_components(delta[0] * delta[0] + delta[1] * delta[1]);  // eq. (49)
   } else {
-    const double about_ox = 0.5 * (delta[0] - delta[2]);
-    const double about_oy = 0.5 * (delta[1] - delta[3]);
-    alpha = angle_from_components(about_ox * about_ox + about_oy * about_oy);
-    result.misalignment_about_ox = arcsec(about_ox);
-    result.misalignment_about_oy = arcsec(about_oy);
+    const double toward_ox = 0.5 * (delta[0] - delta[2]);
+    const double toward_oy = 0.5 * (delta[1] - delta[3]);
+    alpha = angle_from_components(toward_ox * toward_ox + toward_oy * toward_oy);
+    result.misalignment_toward_ox = arcsec(toward_ox);
+    result.misalignment_toward_oy = arcsec(toward_oy);
     result.mounting_error = arcsec(0.25 * (delta[0] + delta[1] + delta[2] + delta[3]));
     double printed = 0.0;
     for (double d : delta) printed += d * d;

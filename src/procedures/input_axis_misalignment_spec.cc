@@ -44,10 +44,10 @@ ProcedureSpec input_axis_misalignment_spec() {
       .field({"misalignment_deg", FieldRole::detail, "misalignment alpha (deg)", "输入轴失准角 (°)", "eq. (49)"},
              &Result::misalignment_deg)
       .field({"deltas", FieldRole::table, "delta per position", "各位置偏角", "eqs. (47)-(48)"}, &Result::deltas)
-      .field_from({"misalignment_about_ox", FieldRole::detail, "misalignment about ox", "绕ox失准角", "(delta1 - delta3)/2"},
-                  [](const Result& r) { return optional_figure(r.misalignment_about_ox); })
-      .field_from({"misalignment_about_oy", FieldRole::detail, "misalignment about oy", "绕oy失准角", "(delta2 - delta4)/2"},
-                  [](const Result& r) { return optional_figure(r.misalignment_about_oy); })
+      .field_from({"misalignment_toward_ox", FieldRole::detail, "IA tilt toward ox (about oy)", "IA 向 ox 偏斜（绕 oy）", "(delta1 - delta3)/2"},
+                  [](const Result& r) { return optional_figure(r.misalignment_toward_ox); })
+      .field_from({"misalignment_toward_oy", FieldRole::detail, "IA tilt toward oy (about ox)", "IA 向 oy 偏斜（绕 ox）", "(delta2 - delta4)/2"},
+                  [](const Result& r) { return optional_figure(r.misalignment_toward_oy); })
       .field_from({"mounting_error", FieldRole::detail, "mounting error", "安装误差", "(delta1 + delta2 + delta3 + delta4)/4"},
                   [](const Result& r) { return optional_figure(r.mounting_error); })
       .field_from({"misalignment_eq50_as_printed", FieldRole::detail, "eq. (50) as printed", "式(50)原式", "eq. (50)"},
@@ -56,8 +56,8 @@ ProcedureSpec input_axis_misalignment_spec() {
       .unit_of("misalignment", "arcsec")
       .unit_of("misalignment_deg", "deg")
       .unit_of("deltas", "arcsec")
-      .unit_of("misalignment_about_ox", "arcsec")
-      .unit_of("misalignment_about_oy", "arcsec")
+      .unit_of("misalignment_toward_ox", "arcsec")
+      .unit_of("misalignment_toward_oy", "arcsec")
       .unit_of("mounting_error", "arcsec")
       .unit_of("misalignment_eq50_as_printed", "arcsec")
       .compute([](const ProcedureCall& call, const InputAxisMisalignmentOptions& options) {

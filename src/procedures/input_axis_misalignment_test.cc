@@ -71,8 +71,8 @@ TEST(InputAxisMisalignment, FourPositionsCancelTheMountingError) {
   EXPECT_NEAR_RELATIVE(result.misalignment.value, std::asin(std::hypot(dx, dy)) / kArcsecond, 1e-9);
   ASSERT_TRUE(result.mounting_error.has_value());
   EXPECT_NEAR_RELATIVE(result.mounting_error->value, eps / kArcsecond, 1e-9);
-  EXPECT_NEAR_RELATIVE(result.misalignment_about_ox->value, dx / kArcsecond, 1e-9);
-  EXPECT_NEAR_RELATIVE(result.misalignment_about_oy->value, dy / kArcsecond, 1e-9);
+  EXPECT_NEAR_RELATIVE(result.misalignment_toward_ox->value, dx / kArcsecond, 1e-9);
+  EXPECT_NEAR_RELATIVE(result.misalignment_toward_oy->value, dy / kArcsecond, 1e-9);
   // Eq. (50) as printed: asin(√(2δx² + 2δy² + 4ε²)).
   EXPECT_NEAR_RELATIVE(result.misalignment_eq50_as_printed->value,
                        std::asin(std::sqrt(2 * dx * dx + 2 * dy * dy + 4 * eps * eps)) / kArcsecond, 1e-9);

@@ -193,9 +193,9 @@ void generate_input_axis_misalignment(campaign::PlanTable& test, const std::stri
   const double epsilon = -std::sin(lab.rate_table.face_y_rad) * std::cos(lab.rate_table.face_x_rad);
   const double epsilon_expected = (delta[0] + delta[1] + delta[2] + delta[3]) / 4.0;
   const std::string basis = "4 sigma from the noise of the whole-revolution means";
-  lab.truth.push_back({name, "IA misalignment about ox", "misalignment_about_ox", dx / kArcsec, "arcsec",
+  lab.truth.push_back({name, "IA tilt toward ox", "misalignment_toward_ox", dx / kArcsec, "arcsec",
                        4.0 * sigma / kArcsec, basis, (ex - dx) / kArcsec});
-  lab.truth.push_back({name, "IA misalignment about oy", "misalignment_about_oy", dy / kArcsec, "arcsec",
+  lab.truth.push_back({name, "IA tilt toward oy", "misalignment_toward_oy", dy / kArcsec, "arcsec",
                        4.0 * sigma / kArcsec, basis, (ey - dy) / kArcsec});
   const double alpha = std::asin(std::hypot(dx, dy));
   const double alpha_expected = std::asin(std::hypot(ex, ey));

@@ -47,8 +47,10 @@ struct InputAxisMisalignmentResult {
   Figure misalignment_deg;      // α, deg
   std::vector<Figure> deltas;   // δj of eqs. (47)-(48) per position, arcsec
   // Four positions only:
-  std::optional<Figure> misalignment_about_ox;  // δx = (δ1 − δ3)/2, arcsec
-  std::optional<Figure> misalignment_about_oy;  // δy = (δ2 − δ4)/2, arcsec
+  // IA's component along ox: its tilt toward ox, a turn about oy (position 1 has ox along the table
+  // axis, and δ1 is IA's angle out of the plane normal to it).
+  std::optional<Figure> misalignment_toward_ox;  // δx = (δ1 − δ3)/2, arcsec
+  std::optional<Figure> misalignment_toward_oy;  // δy = (δ2 − δ4)/2, arcsec: toward oy, about ox
   std::optional<Figure> mounting_error;         // ε, arcsec
   std::optional<Figure> misalignment_eq50_as_printed;  // arcsec
   std::vector<std::string> warnings;

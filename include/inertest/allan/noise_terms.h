@@ -16,8 +16,9 @@
 // (U)/sqrt(s), (U)/s.
 //
 // Covariance of the points: overlapping estimates at different taus share data and are correlated.
-// The variance of point i is 2 sigma_i^4 / edf_i (sigma_i of the model, the curve's edf); the
-// correlation of points i, j is that of two means of squared, jointly Gaussian second differences,
+// The variance of point i is 2 sigma_i^4 / edf_i (sigma_i of the model, edf_i the curve's: of one
+// noise type) times the ratio, where above 1, of sum_k C_ii(k)^2 / C_ii(0)^2 of the random mix to
+// that of its largest term alone (each term of a mix scatters with its own edf); the correlation of points i, j is that of two means of squared, jointly Gaussian second differences,
 //   Cov(s_i^2, s_j^2) = (2 / max(M_i, M_j)) sum_k C_ij(k)^2     (Isserlis' theorem)
 // with C_ij(k) the cross-covariance at lag k of the second differences at tau_i and tau_j, computed
 // from the fitted model through the generalised covariance of the angle (Matheron, "The intrinsic

@@ -37,6 +37,23 @@ TEST(ProcedureCommand, ParametersAreCheckedAndErrorsNameTheFile) {
   EXPECT_THAT(run.err, HasSubstr("inertest: error: " + steps + ": resolution:"));
 }
 
+// A unit parameter is a unit inertest reads, in every command (it was checked by some: bias printed
+// "banana" as the output unit).
+TEST(ProcedureCommand, AUnitParameterMustBeAUnit) {
+  testing::ScratchDirectory scratch;
+  const std::string record = scratch.write("rest.txt", "0.1\n0.2\n0.1\n0.2\n");
+  for (const std::vector<std::string>& arguments :
+       {std::vector<std::string>{"bias", record, "--scale-factor", "1", "--rate", "1", "--output-unit", "banana"},
+        std::vector<std::string>{"polarity", "--positive-output", "3", "--negative-output", "-3", "--output-unit",
+                                 "banana"}}) {
+    const auto run = run_cli(arguments);
+    EXPECT_EQ(run.exit_code, 2) << arguments[0];
+    EXPECT_TRUE(run.out.empty()) << arguments[0];
+    EXPECT_THAT(run.err, HasSubstr("--output-unit")) << arguments[0];
+    EXPECT_THAT(run.err, HasSubstr("banana")) << arguments[0];
+  }
+}
+
 TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   testing::ScratchDirectory scratch;
   const std::string first = scratch.write("run1.txt", "0.1\n0.1\n");

@@ -45,6 +45,16 @@ std::string ordinal(std::size_t n) {
 
 }  // namespace
 
+void check_unit_parameters(const ProcedureCall& call) {
+  for (const auto& [name, value] : call.parameters.items()) {
+    if (!name.ends_with("_unit") || !value.is_string()) continue;
+    // Empty: none given; a list per channel ("gx=deg/s,ax=m/s^2", allan's) is its procedure's to read.
+    const std::string& text = value.get_ref<const std::string&>();
+    if (text.empty() || text.find('=') != std::string::npos) continue;
+    check_parameter(name, [&value] { Unit::parse(value.get<std::string>()); });
+  }
+}
+
 void check_runs_distinct(const ProcedureCall& call) {
   for (const auto& [name, runs] : call.runs) {
     std::map<std::filesystem::path, std::size_t> seen;  // the first run of each file, by place

@@ -483,6 +483,11 @@ void check_unit_template(const ProcedureSpec& spec, const FieldSpec& field);
 // one test as two).
 void check_runs_distinct(const ProcedureCall& call);
 
+// Throws ParameterError unless each given text parameter named "..._unit" (output_unit, rate_unit,
+// input_unit...) is a unit core/units.h reads, or a list per channel (NAME=UNIT,...) its procedure
+// reads: "banana" was taken as an output unit and printed.
+void check_unit_parameters(const ProcedureCall& call);
+
 // Throws Error("<who>give exactly one of A, B or C") unless exactly one input of each group of
 // alternatives (InputSpec::alternative_in) is given; `name_of` names an input as its caller takes it.
 void check_alternatives(const ProcedureSpec& spec, const std::string& who,
@@ -724,6 +729,7 @@ class ProcedureDefinition {
     };
     spec.check = [options_of, check = check_](const ProcedureCall& call) {
       check_runs_distinct(call);
+      check_unit_parameters(call);
       if (check) {
         check(call, options_of(call));
       } else if constexpr (requires(const Options& options) { options.validate(); }) {

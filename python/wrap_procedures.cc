@@ -1,5 +1,8 @@
 // procedures: the GJB 2426A-2004 / IEEE Std 952-1997 procedures on numpy arrays.
 #include "bindings.h"
+
+#include <limits>
+
 #include "inertest/core/units.h"
 #include "inertest/procedures/bandwidth_and_delay.h"
 #include "inertest/procedures/bias.h"
@@ -45,8 +48,8 @@ struct BiasTag {};
 
 ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std::optional<double> scale_factor,
                           bool input_in_deg_h, const std::string& output_unit, const std::vector<double>& smoothing_s,
-                          bool random_walk, std::optional<double> latitude_deg, double heading_deg,
-                          double elevation_deg, const std::optional<std::string>& source) {
+                          bool random_walk, bool remove_earth_rate, std::optional<double> latitude_deg,
+                          double heading_deg, double elevation_deg, const std::optional<std::string>& source) {
   const auto samples = as_span(output, "output");
   BiasOptions options;
   options.sample_rate_hz = sample_rate_hz;
@@ -55,7 +58,16 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
   options.output_unit = output_unit;
   options.smoothing_s = smoothing_s;
   options.random_walk = random_walk;
-  if (latitude_deg) options.remove_earth_rate = AxisOrientation{*latitude_deg, heading_deg, elevation_deg};
+  // As the command line's --remove-earth-rate: a latitude alone removes nothing there, and removed the
+  // Earth rate here (one record, biases 10.8 deg/h apart at 45.75 deg N); now it is refused alone.
+  if (latitude_deg && !remove_earth_rate) {
+    throw Error("bias: latitude_deg is used only with remove_earth_rate=True (the command line's --latitude with "
+                "--remove-earth-rate)");
+  }
+  if (remove_earth_rate) {
+    options.remove_earth_rate =
+        AxisOrientation{latitude_deg.value_or(std::numeric_limits<double>::quiet_NaN()), heading_deg, elevation_deg};
+  }
   // K and a record in deg/h exclude each other, as on the command line (K was silently ignored).
   ProcedureCall given;
   if (scale_factor) given.parameters["scale_factor"] = *scale_factor;
@@ -244,12 +256,14 @@ void wrap_procedures(py::module_& module) {
   module.def("bias", &bias_of, "output"_a, py::kw_only(), "sample_rate_hz"_a, "scale_factor"_a = py::none(),
              "input_in_deg_h"_a = false, "output_unit"_a = "1",
              "smoothing_s"_a = std::vector<double>{1.0, 10.0, 100.0}, "random_walk"_a = true,
-             "latitude_deg"_a = py::none(), "heading_deg"_a = 0.0, "elevation_deg"_a = 0.0, "source"_a = py::none(),
+             "remove_earth_rate"_a = false, "latitude_deg"_a = py::none(), "heading_deg"_a = 0.0,
+             "elevation_deg"_a = 0.0, "source"_a = py::none(),
              "Bias B0 = F/K (GJB 2426A-2004 5.12.1 eq. (19)), bias stability over each smoothing time (5.12.2\n"
              "eq. (20)) and the random walk coefficient by normalisation (5.12.5.4.1 eqs. (23)-(24)); IEEE Std\n"
              "952-1997 clause 13 (A.11). output: one sample per interval at sample_rate_hz (read in place, no\n"
              "copy); scale_factor K in output units per deg/s, or input_in_deg_h=True for a record in deg/h.\n"
-             "latitude_deg (with the IRA's heading_deg, elevation_deg) removes the Earth rate along the IRA.");
+             "remove_earth_rate=True removes the Earth rate along the IRA at latitude_deg (with the IRA's\n"
+             "heading_deg, elevation_deg), as the command line's --remove-earth-rate --latitude.");
 
   bind_result<MaximumInputRateTag>(module, "MaximumInputRateResult", result_doc(maximum_input_rate_spec()));
   module.def("maximum_input_rate", &maximum_input_rate_of, "rate"_a, "output"_a, py::kw_only(),

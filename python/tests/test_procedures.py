@@ -69,6 +69,24 @@ def test_bias_takes_a_scale_factor_or_a_record_in_deg_h_as_the_cli_does():
     assert inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True).bias.value == pytest.approx(0.01)
 
 
+def test_bias_removes_the_earth_rate_only_when_asked_as_the_cli_does(tmp_path):
+    """A latitude alone removed the Earth rate here and nothing on the command line (10.8 deg/h apart)."""
+    output = np.full(100, 0.01)
+    with pytest.raises(inertest.Error, match="latitude_deg is used only with remove_earth_rate=True"):
+        inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True, latitude_deg=45.75)
+    removed = inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True, remove_earth_rate=True,
+                            latitude_deg=45.75)
+    # IRA north, horizontal: the Earth rate's north component, 15.041 deg/h cos(latitude).
+    assert removed.earth_rate_removed.value == pytest.approx(15.041067 * np.cos(np.radians(45.75)), rel=1e-6)
+    assert removed.bias.value == pytest.approx(0.01 - removed.earth_rate_removed.value, rel=1e-12)
+    record = tmp_path / "rest.txt"
+    record.write_text("\n".join(["0.01"] * 100) + "\n")
+    assert removed.to_dict() == cli_json("bias", record, "--rate", "10", "--input-deg-h", "--remove-earth-rate",
+                                         "--latitude", "45.75")
+    with pytest.raises(inertest.Error, match="latitude"):
+        inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True, remove_earth_rate=True)
+
+
 def test_bandwidth_of_a_first_order_lag_with_delay_equals_the_cli(source_dir):
     # G = 1/sqrt(1 + (w T)^2), P = -atan(w T) - w Td: the fit returns T and Td exactly (eqs. 37-46).
     bandwidth_hz, delay_s = 300.0, 2e-4

@@ -555,24 +555,30 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
 void require_one_quantity(const std::vector<Row>& rows, const std::string& figure) {
   // Of one dimension is not enough: degC and K do not convert as bare temperatures (an absolute one
   // needs an offset a difference does not), and history, fleet and the report failed on them.
-  const std::string first = rows.front().text(4);
-  std::map<std::string, std::set<std::string>> instruments_by_unit;
+  // The units in groups that convert within: pulse/s/(deg/s) and pulse/ms/(deg/s) are one, V/(deg/s)
+  // another (the message listed all as not converting to one another).
+  std::vector<std::map<std::string, std::set<std::string>>> tests_by_unit_group;
   std::map<std::string, std::set<std::string>> tests_by_abscissa;
-  bool mixed_units = false;
   for (const auto& row : rows) {
-    instruments_by_unit[row.text(4)].insert(row.text(5));
+    const std::string unit = row.text(4);
+    auto group = std::find_if(tests_by_unit_group.begin(), tests_by_unit_group.end(),
+                              [&unit](const auto& units) { return converts(unit, units.begin()->first); });
+    if (group == tests_by_unit_group.end()) group = tests_by_unit_group.emplace(tests_by_unit_group.end());
+    (*group)[unit].insert(row.text(5) + " " + row.text(0));
     if (!row.is_null(8)) tests_by_abscissa[row.text(8)].insert(row.text(5) + " " + row.text(0));
-    mixed_units = mixed_units || !converts(row.text(4), first);
   }
   const auto listed = [](const std::map<std::string, std::set<std::string>>& groups) {
     std::vector<std::string> texts;
     for (const auto& [key, members] : groups) texts.push_back(fmt::format("{} ({})", key, fmt::join(members, ", ")));
     return fmt::format("{}", fmt::join(texts, "; "));
   };
-  if (mixed_units) {
-    throw NotOneQuantity(fmt::format("figure '{}' is archived in units that do not convert to one another: {}; these are "
-                                     "different quantities under one name (name the step differently in one kind of plan)",
-                                     figure, listed(instruments_by_unit)));
+  if (tests_by_unit_group.size() > 1) {
+    std::vector<std::string> groups;
+    for (const auto& units : tests_by_unit_group) groups.push_back("[" + listed(units) + "]");
+    throw NotOneQuantity(fmt::format("figure '{}' is archived in units of {} quantities that do not convert to one "
+                                     "another: {}; these are different quantities under one name (name the step "
+                                     "differently in one kind of plan)",
+                                     figure, tests_by_unit_group.size(), fmt::join(groups, " and ")));
   }
   if (tests_by_abscissa.size() > 1) {
     throw NotOneQuantity(fmt::format("figure '{}' names rows at different places in their table: {}; these are different "

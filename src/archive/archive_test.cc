@@ -667,6 +667,18 @@ TEST_P(ArchiveBackend, RunAddsItsResultsToTheArchive) {
   EXPECT_EQ(open()->results(campaigns[0].id), written);
 }
 
+// A plan that is refused makes no archive (a mistyped key left a new, empty one behind).
+TEST(ArchiveRun, ARefusedPlanMakesNoArchive) {
+  testing::ScratchDirectory scratch;
+  const std::string plan = scratch.write("plan.toml", "[plan]\ntitel = \"typo\"\n");
+  const std::string location = scratch.path() + "/new/archive.sqlite";
+  const auto run = testing::run_cli({"run", plan, "--out", scratch.path() + "/out", "--archive", location});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("plan.toml:2:1"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(location));
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/new"));
+}
+
 // An analog gyro's K in V/(deg/s) and a digital one's in pulse/s/(deg/s) under one step name are
 // two quantities: history and fleet say so, naming the units and their instruments (a fleet failed
 // with "cannot convert"); the report names the figure on the fleet page and writes every other page.
@@ -677,14 +689,21 @@ TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
   analog["procedures"][0]["result"]["scale_factor"]["unit"] = "V/(deg/s)";
   analog["verdicts"][0]["unit"] = "V/(deg/s)";
   archive->add(analog, "a1");
+  // A unit that converts to another is of its quantity, and said with it (the message listed it as
+  // not converting).
+  nlohmann::json per_ms = campaign("FOG-D2", "2026-01-03", 36.0001);
+  per_ms["procedures"][0]["result"]["scale_factor"]["unit"] = "pulse/ms/(deg/s)";
+  per_ms["verdicts"][0]["unit"] = "pulse/ms/(deg/s)";
+  archive->add(per_ms, "d2");
   try {
     archive->fleet("scale_factor/scale_factor", std::nullopt);
     ADD_FAILURE() << "expected NotOneQuantity";
   } catch (const archive::NotOneQuantity& e) {
-    EXPECT_THAT(e.message(), HasSubstr("figure 'scale_factor/scale_factor' is archived in units that do not convert to one "
-                                       "another: V/(deg/s) (FOG-A1); pulse/s/(deg/s) (FOG-D1)"));
+    EXPECT_THAT(e.message(), HasSubstr("figure 'scale_factor/scale_factor' is archived in units of 2 quantities that do "
+                                       "not convert to one another: [V/(deg/s) (FOG-A1 2026-01-02)] and [pulse/ms/(deg/s) "
+                                       "(FOG-D2 2026-01-03); pulse/s/(deg/s) (FOG-D1 2026-01-01)]"));
   }
-  EXPECT_EQ(archive->fleet("scale_factor/nonlinearity", std::nullopt).points.size(), 2u);  // ppm for both
+  EXPECT_EQ(archive->fleet("scale_factor/nonlinearity", std::nullopt).points.size(), 3u);  // ppm for all
   EXPECT_EQ(archive->history("FOG-A1", "scale_factor/scale_factor").unit, "V/(deg/s)");  // one instrument, one unit
   const auto report = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/pages", "--figure",
                                         "scale_factor/scale_factor", "--figure", "scale_factor/nonlinearity",
@@ -692,7 +711,7 @@ TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
   ASSERT_EQ(report.exit_code, 0) << report.err;
   const std::string fleet = testing::read_file(scratch_.path() + "/pages/fleet.html");
   EXPECT_THAT(fleet, HasSubstr("Not comparable: archived in units that do not convert"));
-  EXPECT_THAT(fleet, HasSubstr("V/(deg/s) (FOG-A1); pulse/s/(deg/s) (FOG-D1)"));
+  EXPECT_THAT(fleet, HasSubstr("[V/(deg/s) (FOG-A1 2026-01-02)]"));
   // Each instrument's own history is one quantity, and shown.
   const std::string history = testing::read_file(scratch_.path() + "/pages/history-FOG-A1.html");
   EXPECT_THAT(history, HasSubstr("scale_factor/nonlinearity"));
@@ -709,7 +728,7 @@ TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
   archive->add(celsius, "t1");
   archive->add(kelvin, "t2");
   EXPECT_THAT([&] { archive->fleet("scale_factor/worst_temperature", std::nullopt); },
-              ::testing::ThrowsMessage<archive::NotOneQuantity>(HasSubstr("K (FOG-T2); degC (FOG-T1)")));
+              ::testing::ThrowsMessage<archive::NotOneQuantity>(HasSubstr("[degC (FOG-T1 2026-01-03)] and [K (FOG-T2 2026-01-04)]")));
 }
 
 // inertest archive report: the fleet page and one history page per instrument; by default the

@@ -38,6 +38,8 @@ CommandAction setup(CLI::App& root) {
           ->expected(0, 1);
   return [arguments, archive_option] {
     // The archive is opened first: one that cannot be opened stops the run before anything is written.
+    // A plan that would be refused is refused before that (a mistyped key made a new, empty archive).
+    if (archive_option->count() > 0) validate_plan(arguments->plan);
     const auto store = archive_option->count() > 0
                            ? open_archive_option(arguments->archive, archive::ArchiveOpening::create)
                            : nullptr;

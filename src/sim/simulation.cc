@@ -8,6 +8,7 @@
 
 #include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
+#include "inertest/core/instrument_id.h"
 #include "inertest/core/units.h"
 #include "inertest/version.h"
 #include "sim/generators.h"
@@ -177,11 +178,13 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   auto gyro = top.optional_table("gyro");
   if (!gyro) top.fail("missing [gyro] table");
   read_gyro(*gyro, lab.gyro);
+  // The id the written plan's [instrument] gives: held to the rules `inertest run` holds it to (it
+  // took "LAB2/FOG-001", which run and the archive take, and wrote "..", which run refuses).
+  if (const std::optional<std::string> problem = instrument_id_problem(lab.gyro.id)) gyro->fail_at("id", *problem);
   if (!options.instrument_id.empty()) {
-    const bool id_ok = std::all_of(options.instrument_id.begin(), options.instrument_id.end(), [](char c) {
-      return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
-    });
-    if (!id_ok) throw Error("instrument id '" + options.instrument_id + "': use letters, digits, '-', '_' and '.' only");
+    if (const std::optional<std::string> problem = instrument_id_problem(options.instrument_id)) {
+      throw Error("--instrument: the instrument id " + *problem);
+    }
     lab.gyro.id = options.instrument_id;
   }
   if (auto table = top.optional_table("rate_table")) {
@@ -270,10 +273,11 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
   std::string plan = fmt::format(
       "# Processing plan written by inertest simulate (seed {}): run it with\n"
       "#   inertest run plan.toml --out results\n"
-      "[plan]\ntitle = \"{}\"\n{}\n[instrument]\nid = \"{}\"\ntype = \"gyro\"\noutput_unit = \"{}\"\n"
-      "nominal_scale_factor = {}\nsample_rate_hz = {}\n\n[site]\nname = \"{}\"\nlatitude_deg = {}\n"
+      "[plan]\ntitle = {}\n{}\n[instrument]\nid = {}\ntype = \"gyro\"\noutput_unit = {}\n"
+      "nominal_scale_factor = {}\nsample_rate_hz = {}\n\n[site]\nname = {}\nlatitude_deg = {}\n"
       "gravity_m_s2 = {}\n\n",
-      lab.seed, title, date.empty() ? std::string() : "date = \"" + date + "\"\n", g.id, g.output_unit, exact(g.scale_factor), exact(g.sample_rate_hz), lab.site_name,
+      lab.seed, toml_string(title), date.empty() ? std::string() : "date = \"" + date + "\"\n", toml_string(g.id),
+      toml_string(g.output_unit), exact(g.scale_factor), exact(g.sample_rate_hz), toml_string(lab.site_name),
       exact(lab.site.latitude_deg), exact(lab.site.gravity_m_s2));
   plan += lab.plan_steps;
   SimulationSummary summary;

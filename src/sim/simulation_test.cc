@@ -113,8 +113,14 @@ TEST(SimSimulate, SeedInstrumentAndDateOverrideThePlan) {
   simulate_text(other, "small", b.path());
   EXPECT_EQ(read(a.path() + "/bias.f64"), read(b.path() + "/bias.f64"));
 
+  // The id is held to the rules run holds a plan's id to: "LAB2/FOG \"1\"" is one (written escaped),
+  // ".." is not.
+  SimulationOptions quoted;
+  quoted.instrument_id = "LAB2/FOG \"1\"";
+  const std::string quoted_plan = read(simulate_text(kSmallPlan, "small", a.path() + "/q", quoted).plan_path);
+  EXPECT_NE(quoted_plan.find("id = \"LAB2/FOG \\\"1\\\"\"\n"), std::string::npos) << quoted_plan;
   SimulationOptions bad_id;
-  bad_id.instrument_id = "FOG \"1\"";
+  bad_id.instrument_id = "..";
   EXPECT_THROW(simulate_text(kSmallPlan, "small", a.path() + "/x", bad_id), Error);
   SimulationOptions bad_date;
   bad_date.date = "04/03/2026";

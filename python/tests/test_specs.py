@@ -206,3 +206,16 @@ def test_temperature_model_with_several_sensors_is_the_cli_json(source_dir):
     assert [row["sensor"] for row in expected["sensors"]] == ["coil", "chamber"]
     with pytest.raises(inertest.Error, match="temperature_column must be a list"):
         inertest.temperature_model(file=str(record), temperature_column="coil", scale_factor=36000)
+
+
+def test_a_bad_cell_in_a_plan_step_keeps_its_place(tmp_path):
+    """run_campaign's Error named points.csv:3:3 in its message, with file, line and column None."""
+    (tmp_path / "points.csv").write_text("rate,output\n0,1\n5,x\n")
+    plan = tmp_path / "plan.toml"
+    plan.write_text('[instrument]\nid = "FOG-1"\noutput_unit = "pulse/s"\n\n'
+                    '[[procedure]]\nkind = "scale_factor"\nname = "sf"\nfile = "points.csv"\n')
+    with pytest.raises(inertest.Error) as raised:
+        inertest.run_campaign(str(plan), str(tmp_path / "out"))
+    assert (raised.value.file, raised.value.line, raised.value.column) == (str(tmp_path / "points.csv"), 3, 3)
+    assert "procedure 'sf'" in str(raised.value)
+    assert not (tmp_path / "out" / "results.json").exists()

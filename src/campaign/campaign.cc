@@ -753,8 +753,8 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       try {
         result = step.action(context);
       } catch (const Error& e) {
-        if (e.location()) throw Error("procedure '" + step.name + "': " + std::string(e.what()));
-        throw Error(step.where, "procedure '" + step.name + "': " + e.message());
+        // The place stays the data's (Python's Error.file, .line, .column were None); the step is named.
+        throw Error(e.location() ? *e.location() : step.where, "procedure '" + step.name + "': " + e.message());
       }
       for (const auto& limit : step.limits) {
         if (std::optional<nlohmann::json> verdict = check_limit(limit, step.name, result)) verdicts.push_back(*verdict);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "inertest/io/angle_column.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
 
@@ -84,6 +85,7 @@ CentrifugeRecord parse_centrifuge_record(std::string_view text, const std::strin
   };
 
   CentrifugeRecord record;
+  if (table.has_column("beta_deg")) check_degrees_not_radians(table, "beta_deg");
   if (table.has_column("gamma_deg") || table.has_column("output")) {
     check_columns(table, kSampleColumns, header, "raw-sample");
     record.kind = CentrifugeRecord::Kind::kSamples;

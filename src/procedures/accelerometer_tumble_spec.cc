@@ -57,6 +57,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/figure.h"
 #include "inertest/core/procedure_spec.h"
+#include "inertest/io/angle_column.h"
 #include "inertest/io/text_table.h"
 #include "inertest/core/units.h"
 #include "inertest/numerics/least_squares.h"
@@ -120,6 +121,7 @@ std::vector<TumblePosition> read_tumble_positions(const std::string& path) {
                               name));
     }
   }
+  check_degrees_not_radians(table, "angle_deg");
   const auto& angles = table.column("angle_deg");
   const auto& outputs = table.column("output");
   const std::vector<double>* runs = table.has_column("run") ? &table.column("run") : nullptr;

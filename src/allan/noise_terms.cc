@@ -416,11 +416,20 @@ void read_floor(SlopeReadOff& result, std::span<const double> tau_s, std::span<c
     return;
   }
   const std::size_t i = *floor;
+  // The pairs (i - 1, i) and (i, i + 1), those that exist and are resolved: one flat, and the slope
+  // turning across the floor by at most kFloorTurn. Any minimum has a pair near 0 on one side: the
+  // bottom of the valley between angle and rate random walk, with no flicker at all, was read as
+  // B = 0.118 deg/h (0.114 from sqrt(2 N K / sqrt(3)) / 0.664). There the slope turns by 1/2 sech^2
+  // over the spacing, about 0.3 an octave; over a flicker floor it turns less (a real MEMS gyro's:
+  // -0.08 to +0.11 an octave, data/real_mems).
   std::optional<double> flattest;
-  // The pairs (i - 1, i) and (i, i + 1), those that exist.
+  std::optional<double> before;
+  std::optional<double> after;
   for (std::size_t pair = i > 0 ? i - 1 : i; pair <= i && pair + 1 < tau_s.size(); ++pair) {
     const PairSlope s = pair_slope(tau_s, deviation, edf, pair);
-    if (s.resolved() && (!flattest || std::abs(s.slope) < std::abs(*flattest))) flattest = s.slope;
+    if (!s.resolved()) continue;
+    (pair < i ? before : after) = s.slope;
+    if (!flattest || std::abs(s.slope) < std::abs(*flattest)) flattest = s.slope;
   }
   if (!flattest || std::abs(*flattest) > kSlopeTolerance) {
     result.warnings.push_back(fmt::format(
@@ -428,6 +437,13 @@ void read_floor(SlopeReadOff& result, std::span<const double> tau_s, std::span<c
         tau_s[i], flattest.value_or(std::numeric_limits<double>::quiet_NaN()), kSlopeTolerance,
         i + 1 == tau_s.size() || !in_resolved_pair[std::min(i + 1, tau_s.size() - 1)] ? ": the curve is still falling"
                                                                                      : ""));
+    return;
+  }
+  if (before && after && *after - *before > kFloorTurn) {
+    result.warnings.push_back(fmt::format(
+        "{}: the curve turns at tau = {:g} s from slope {:+.2f} to {:+.2f} (by more than {:g}): the bottom of a "
+        "valley between angle and rate random walk, not a flicker floor",
+        what, tau_s[i], *before, *after, kFloorTurn));
     return;
   }
   SlopeReading& reading = result.bias_instability;

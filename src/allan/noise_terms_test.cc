@@ -217,6 +217,23 @@ TEST(SlopeReadOff, BiasInstabilityIsReadAtTheFloorNotAtAShortTauPlateau) {
   EXPECT_THAT(declined.warnings, ::testing::Contains(::testing::HasSubstr("the curve is still falling")));
 }
 
+// The bottom of the valley between angle and rate random walk, with no flicker: a pair beside it is
+// flat within 0.1 on an octave grid, and the slope turns across it by 0.3. It was read as a bias
+// instability.
+TEST(SlopeReadOff, AValleyIsNoFlickerFloor) {
+  std::vector<double> tau, deviation, edf;
+  for (double t = 0.01; t < 3000.0; t *= 2.0) {
+    tau.push_back(t);
+    deviation.push_back(std::sqrt(1.0 / t + t / 160.0));
+    edf.push_back(1e5);
+  }
+  const SlopeReadOff slopes = read_noise_slopes(tau, deviation, edf, "deg/s");
+  EXPECT_FALSE(slopes.bias_instability.figure.has_value());
+  EXPECT_THAT(slopes.warnings, ::testing::Contains(::testing::HasSubstr(
+                                   "the curve turns at tau = 10.24 s from slope -0.25 to +0.06 (by more than 0.25): the "
+                                   "bottom of a valley between angle and rate random walk, not a flicker floor")));
+}
+
 // A floor at the first tau has only the pair after it: a rising curve (rate random walk alone) is
 // declined as not flat; a curve flat at its start and rising after is read at the first tau.
 TEST(SlopeReadOff, FloorAtTheFirstTauUsesTheOnePairBesideIt) {

@@ -156,9 +156,10 @@ FitRange parse_fit_range(const std::string& text);
 // neighbouring points whose log-log slope is closest to -1/2 and +1/2 gives, on the line of that
 // slope through its first point, N at tau = 1 s and K at tau = 3 s. B = sigma_min / 0.664 is read at
 // the curve's floor (IEEE 952 C.1, Fig. C.1: the flat part is where the curve bottoms out), the
-// least resolved point, and only when a resolved pair beside it is flat (slope within the
-// tolerance of 0): a flat part at short tau (anti-alias filter, quantisation) lies above the floor
-// and is never read.
+// least resolved point, and only when a resolved pair beside it is flat (slope within the tolerance
+// of 0) and the slope turns across it by at most kFloorTurn: a flat part at short tau (anti-alias
+// filter, quantisation) lies above the floor and is never read, nor the bottom of a valley between
+// angle and rate random walk (where the slope turns by about 0.3 an octave).
 //
 // A figure is read only where the curve has a region of its slope: a pair qualifies when its slope
 // lies within kSlopeTolerance of the target and is resolved, i.e. its 1-sigma uncertainty
@@ -190,6 +191,7 @@ SlopeReadOff read_noise_slopes(std::span<const double> tau_s, std::span<const do
 
 inline constexpr double kSlopeTolerance = 0.1;
 inline constexpr double kSlopeResolution = 0.2;
+inline constexpr double kFloorTurn = 0.25;
 
 // sqrt(2 ln 2 / pi) = 0.6643, printed 0.664 in IEEE Std 952-1997 C.1.
 inline constexpr double kBiasInstabilityFactor = 0.66428696;

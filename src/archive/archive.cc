@@ -574,7 +574,7 @@ void require_one_quantity(const std::vector<Row>& rows, const std::string& figur
   };
   if (tests_by_unit_group.size() > 1) {
     std::vector<std::string> groups;
-    for (const auto& units : tests_by_unit_group) groups.push_back("[" + listed(units) + "]");
+    for (const auto& units : tests_by_unit_group) groups.push_back(fmt::format("[{}]", listed(units)));
     throw NotOneQuantity(fmt::format("figure '{}' is archived in units of {} quantities that do not convert to one "
                                      "another: {}; these are different quantities under one name (name the step "
                                      "differently in one kind of plan)",

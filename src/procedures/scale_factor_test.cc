@@ -227,7 +227,7 @@ TEST(ScaleFactor, AsymmetryIsNoNoiseInKPositivesError) {
 
 INSTANTIATE_TEST_SUITE_P(Noise, ScaleFactorCoverage,
                          ::testing::Values(CoverageCase{"constant", 2.0, 0.0}, CoverageCase{"growing", 0.5, 5e-6}),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& test) { return std::string(test.param.name); });
 
 struct BadCase {
   const char* name;

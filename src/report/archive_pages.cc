@@ -58,6 +58,14 @@ constexpr PageWord page_words[] = {
 
 class Page {
  public:
+  // One panel's plot at the page's width, its data embedded where the page is interactive.
+  Plot plot_of(Panel panel) const {
+    Plot plot;
+    plot.panels = {std::move(panel)};
+    plot.embed_data = options_.embed_plot_data;
+    return plot;
+  }
+
   explicit Page(const ReportOptions& options) : options_(options), labels_(options.language) {}
 
   std::string word(const std::string& key) const {
@@ -99,7 +107,6 @@ class Page {
         options_.language == Language::chinese ? "zh-CN" : "en", escape_xml(title), report_css(), escape_xml(kicker),
         escape_xml(title));
   }
-  bool embed_plot_data() const { return options_.embed_plot_data; }
 
   std::string close() {
     out_ += fmt::format("<footer>{}{}</footer>\n</body>\n</html>\n",
@@ -201,7 +208,7 @@ std::string render_history_page(const json& history, const ReportOptions& option
     add_limits(panel, figure, plotted, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n", escape_xml(panel.title));
     if (!plotted.empty()) {
-      page.out() += fmt::format("<figure>\n{}</figure>\n", render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
+      page.out() += fmt::format("<figure>\n{}</figure>\n", render_svg(page.plot_of(panel)));
     }
     page.out() += fmt::format("<table><tr><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
                               escape_xml(page.word("tested_on")), escape_xml(page.labels()("ui.value")),
@@ -298,7 +305,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options, c
     add_limits(panel, f, plotted, page);
     page.out() += fmt::format("<section class=\"procedure\">\n<h2>{}</h2>\n", escape_xml(panel.title));
     if (!plotted.empty()) {
-      page.out() += fmt::format("<figure>\n{}</figure>\n", render_svg(Plot{900.0, {panel}, page.embed_plot_data()}));
+      page.out() += fmt::format("<figure>\n{}</figure>\n", render_svg(page.plot_of(panel)));
     }
     page.out() += fmt::format("<table><tr><th>#</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th><th>{}</th></tr>\n",
                               escape_xml(page.labels()("ui.instrument")), escape_xml(page.word("tested_on")),

@@ -382,7 +382,9 @@ TEST(SvgPlotData, EmbeddedOnlyOnRequestWithColoursAndEscapes) {
   model.color = "#123456";
   panel.series.push_back(model);
   panel.references.push_back({ReferenceLine::Direction::horizontal, 0.05, "limit", "#b3261e"});
-  Plot plot{600.0, {panel}};
+  Plot plot;
+  plot.width = 600.0;
+  plot.panels = {panel};
 
   const std::string plain = render_svg(plot);
   EXPECT_THAT(plain, Not(HasSubstr("<script")));

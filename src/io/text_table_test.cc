@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "inertest/core/error.h"
 #include "io/text_rows.h"
 #include "test_util/test_util.h"
@@ -291,11 +293,11 @@ namespace {
 std::string digest_of(const std::string& text, const TextTableOptions& options, std::size_t columns) {
   try {
     const TextTable table = parse(text, options);
-    std::string digest = std::to_string(table.rows()) + "@" + std::to_string(table.first_data_line) + "|";
+    std::string digest = fmt::format("{}@{}|", table.rows(), table.first_data_line);
     for (std::size_t c = 0; c < columns; ++c) {
-      for (double v : table.columns[c]) digest += std::to_string(std::bit_cast<std::uint64_t>(v)) + ",";
+      for (double v : table.columns[c]) digest += fmt::format("{},", std::bit_cast<std::uint64_t>(v));
     }
-    for (std::size_t line : table.row_lines) digest += ";" + std::to_string(line);
+    for (std::size_t line : table.row_lines) digest += fmt::format(";{}", line);
     return digest;
   } catch (const Error& e) {
     return std::string("error: ") + e.what();

@@ -46,12 +46,12 @@ std::string ordinal(std::size_t n) {
 }  // namespace
 
 void check_unit_parameters(const ProcedureCall& call) {
-  for (const auto& [name, value] : call.parameters.items()) {
-    if (!name.ends_with("_unit") || !value.is_string()) continue;
+  for (const auto& item : call.parameters.items()) {
+    if (!item.key().ends_with("_unit") || !item.value().is_string()) continue;
     // Empty: none given; a list per channel ("gx=deg/s,ax=m/s^2", allan's) is its procedure's to read.
-    const std::string& text = value.get_ref<const std::string&>();
+    const std::string& text = item.value().get_ref<const std::string&>();
     if (text.empty() || text.find('=') != std::string::npos) continue;
-    check_parameter(name, [&value] { Unit::parse(value.get<std::string>()); });
+    check_parameter(item.key(), [&text] { Unit::parse(text); });
   }
 }
 

@@ -17,6 +17,7 @@
 #include <iterator>
 #include <thread>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "inertest/archive/archive.h"

@@ -731,6 +731,28 @@ TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
               ::testing::ThrowsMessage<archive::NotOneQuantity>(HasSubstr("[degC (FOG-T1 2026-01-03)] and [K (FOG-T2 2026-01-04)]")));
 }
 
+// An instrument whose own campaigns archived a figure in units that do not convert: its history page
+// says so (the figure was left out of it with no word).
+TEST_P(ArchiveBackend, AHistoryOfTwoQuantitiesIsNamedOnItsPage) {
+  auto archive = open();
+  archive->add(campaign("FOG-M1", "2026-01-01", 36000.0), "m1");
+  nlohmann::json analog = campaign("FOG-M1", "2026-01-02", 36000.3);
+  analog["procedures"][0]["result"]["scale_factor"]["unit"] = "V/(deg/s)";
+  analog["verdicts"][0]["unit"] = "V/(deg/s)";
+  archive->add(analog, "m2");
+  const nlohmann::json data = archive::history_data(*archive, "FOG-M1", {"scale_factor/scale_factor"});
+  EXPECT_TRUE(data.at("figures").empty());
+  ASSERT_EQ(data.at("not_comparable").size(), 1u);
+  EXPECT_EQ(data.at("not_comparable")[0].at("figure"), "scale_factor/scale_factor");
+  const auto report = testing::run_cli({"archive", "report", "--out", scratch_.path() + "/pages", "--figure",
+                                        "scale_factor/scale_factor", "--db", location_});
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  const std::string history = testing::read_file(scratch_.path() + "/pages/history-FOG-M1.html");
+  EXPECT_THAT(history, HasSubstr("<section class=\"not-comparable\"><h2>Not comparable: archived in units that do "
+                                 "not convert</h2>"));
+  EXPECT_THAT(history, HasSubstr("[pulse/s/(deg/s) (FOG-M1 2026-01-01)] and [V/(deg/s) (FOG-M1 2026-01-02)]"));
+}
+
 // inertest archive report: the fleet page and one history page per instrument; by default the
 // figures some plan set limits on; an unknown figure is an error that writes nothing.
 TEST_P(ArchiveBackend, ReportWritesTheFleetAndHistoryPages) {

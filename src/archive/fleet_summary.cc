@@ -76,29 +76,33 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
   return json;
 }
 
+nlohmann::json history_data(Archive& archive, const std::string& instrument, const std::vector<std::string>& figures) {
+  const std::vector<std::string> archived = archive.figures(false);
+  nlohmann::json list = nlohmann::json::array();
+  nlohmann::json not_comparable = nlohmann::json::array();
+  for (const auto& figure : figures) {
+    if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
+    try {
+      list.push_back(archive.history(instrument, figure).to_json());
+    } catch (const DatabaseError&) {
+      throw;
+    } catch (const NotOneQuantity& e) {
+      // The instrument's own campaigns measured two quantities under the name: said, not left out.
+      not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
+    } catch (const Error&) {
+      // this instrument's campaigns do not report the figure
+    }
+  }
+  return {{"instrument", instrument}, {"figures", list}, {"not_comparable", not_comparable}};
+}
+
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures) {
   std::vector<std::string> instruments;
   for (const auto& campaign : archive.list(std::nullopt)) instruments.push_back(campaign.instrument);
   std::sort(instruments.begin(), instruments.end());
   instruments.erase(std::unique(instruments.begin(), instruments.end()), instruments.end());
-  const std::vector<std::string> archived = archive.figures(false);
-  // A figure of two quantities across the fleet is named once, on the fleet page; an instrument's
-  // history of it is shown where the instrument's own campaigns measured one quantity.
   nlohmann::json histories = nlohmann::json::array();
-  for (const auto& instrument : instruments) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const auto& figure : figures) {
-      if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
-      try {
-        list.push_back(archive.history(instrument, figure).to_json());
-      } catch (const DatabaseError&) {
-        throw;
-      } catch (const Error&) {
-        // this instrument's campaigns do not report the figure (or two quantities: the fleet page says)
-      }
-    }
-    histories.push_back({{"instrument", instrument}, {"figures", list}});
-  }
+  for (const auto& instrument : instruments) histories.push_back(history_data(archive, instrument, figures));
   nlohmann::json data = fleet_data(archive, figures, std::nullopt);
   data["histories"] = std::move(histories);
   return data;

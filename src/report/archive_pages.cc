@@ -58,6 +58,14 @@ constexpr PageWord page_words[] = {
 
 class Page {
  public:
+  // The figures archived in units that do not convert ({"figure", "why"}), each said, if any.
+  void not_comparable(const json& figures) {
+    if (figures.empty()) return;
+    out() += fmt::format("<section class=\"not-comparable\"><h2>{}</h2>\n<ul>\n", escape_xml(word("not_comparable")));
+    for (const auto& f : figures) out() += fmt::format("<li>{}</li>\n", escape_xml(f.at("why").get<std::string>()));
+    out() += "</ul>\n</section>\n";
+  }
+
   // One panel's plot at the page's width, its data embedded where the page is interactive.
   Plot plot_of(Panel panel) const {
     Plot plot;
@@ -221,6 +229,7 @@ std::string render_history_page(const json& history, const ReportOptions& option
     }
     page.out() += "</table>\n</section>\n";
   }
+  page.not_comparable(history.value("not_comparable", json::array()));
   return page.close();
 }
 
@@ -258,11 +267,7 @@ std::string render_fleet_page(const json& fleet, const ReportOptions& options, c
         chart.is_null() ? 0 : chart.at("out_of_control").size());
   }
   page.out() += "</table>\n</section>\n";
-  if (!not_comparable.empty()) {
-    page.out() += fmt::format("<section><h2>{}</h2>\n<ul>\n", escape_xml(page.word("not_comparable")));
-    for (const auto& f : not_comparable) page.out() += fmt::format("<li>{}</li>\n", escape_xml(f.at("why").get<std::string>()));
-    page.out() += "</ul>\n</section>\n";
-  }
+  page.not_comparable(not_comparable);
 
   for (const auto& f : fleet) {
     const json& chart = f.at("control_chart");

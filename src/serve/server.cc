@@ -149,21 +149,10 @@ struct Server::Impl {
     return figures.empty() ? store->figures(false) : figures;
   }
 
-  // What the history page of instrument shows: {"instrument", "figures": [FigureHistory JSON]},
-  // every page figure the instrument's campaigns report.
+  // What the history page of instrument shows (archive::history_data of the page figures).
   nlohmann::json history_page_data(const std::string& instrument) {
     if (store->list(instrument).empty()) throw Refusal{404, "instrument '" + instrument + "' has no campaign in the archive"};
-    nlohmann::json figures = nlohmann::json::array();
-    for (const auto& figure : page_figures()) {
-      try {
-        figures.push_back(store->history(instrument, figure).to_json());
-      } catch (const archive::DatabaseError&) {
-        throw;
-      } catch (const Error&) {
-        // this instrument's campaigns do not report the figure: nothing to plot
-      }
-    }
-    return {{"instrument", instrument}, {"figures", std::move(figures)}};
+    return archive::history_data(*store, instrument, page_figures());
   }
 
   // The history page: every figure, or (?figure=P/F) the one chosen, under the switcher.

@@ -167,11 +167,16 @@ nlohmann::json campaign_list_json(const std::vector<CampaignEntry>& campaigns);
 // "latest": {the latest campaign, as in campaign_list_json}}]}, sorted by instrument id.
 nlohmann::json instrument_list_json(const std::vector<CampaignEntry>& campaigns);
 
-// What the archive's report pages show (report/archive_pages.h): {"histories": [{"instrument",
-// "figures": [FigureHistory::to_json() of each of figures the instrument has]}], "fleet":
-// [fleet_summary of each figure], "not_comparable": [{"figure", "why"} of each figure archived in
-// units that do not convert (NotOneQuantity), left out of the fleet and of the histories]}.
+// What the archive's report pages show (report/archive_pages.h): {"histories": [history_data of
+// each instrument], "fleet": [fleet_summary of each figure], "not_comparable": [{"figure", "why"} of
+// each figure archived across the fleet in units that do not convert (NotOneQuantity), left out of
+// the fleet]}.
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures);
+
+// One instrument's history page: {"instrument", "figures": [FigureHistory::to_json() of each of
+// figures its campaigns report], "not_comparable": [{"figure", "why"} of each its own campaigns
+// archived in units that do not convert]}.
+nlohmann::json history_data(Archive& archive, const std::string& instrument, const std::vector<std::string>& figures);
 
 // report_data's "fleet" and "not_comparable" alone, of the tests on or after `since` (YYYY-MM-DD)
 // when given, as `inertest archive fleet --since` counts them.

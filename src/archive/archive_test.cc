@@ -751,6 +751,9 @@ TEST_P(ArchiveBackend, AHistoryOfTwoQuantitiesIsNamedOnItsPage) {
   EXPECT_THAT(history, HasSubstr("<section class=\"not-comparable\"><h2>Not comparable: archived in units that do "
                                  "not convert</h2>"));
   EXPECT_THAT(history, HasSubstr("[pulse/s/(deg/s) (FOG-M1 2026-01-01)] and [V/(deg/s) (FOG-M1 2026-01-02)]"));
+  // Printed, its figures are kept whole rather than each put on a page of its own.
+  EXPECT_THAT(history, HasSubstr("<body class=\"archive\">"));
+  EXPECT_THAT(history, HasSubstr("body.archive section.procedure { break-before: auto; break-inside: avoid; }"));
 }
 
 // inertest archive report: the fleet page and one history page per instrument; by default the

@@ -110,7 +110,7 @@ class Page {
     out_ += fmt::format(
         "<!DOCTYPE html>\n<html lang=\"{}\">\n<head>\n<meta charset=\"utf-8\">\n"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-        "<title>{}</title>\n<style>\n{}</style>\n</head>\n<body>\n<header class=\"cover\">\n"
+        "<title>{}</title>\n<style>\n{}</style>\n</head>\n<body class=\"archive\">\n<header class=\"cover\">\n"
         "<p class=\"kicker\">{}</p>\n<h1>{}</h1>\n</header>\n",
         options_.language == Language::chinese ? "zh-CN" : "en", escape_xml(title), report_css(), escape_xml(kicker),
         escape_xml(title));

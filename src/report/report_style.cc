@@ -54,6 +54,8 @@ footer { margin-top: 32px; padding-top: 8px; border-top: 1px solid var(--rule); 
   h2 { font-size: 14pt; }
   .contents { display: none; }
   section.procedure, section.truth { break-before: page; }
+  /* A history or fleet page's figures are short: each kept whole, not each on a page of its own. */
+  body.archive section.procedure { break-before: auto; break-inside: avoid; }
   table.rows { display: table; overflow: visible; font-size: 8pt; }
   h2, h3 { break-after: avoid; }
   figure, tr, .facts table, .overall { break-inside: avoid; }

@@ -291,8 +291,21 @@ RowLayout read_row_layout(const Line& first, const std::string& source, const Te
     if (it == layout.header_names.end()) {
       std::string known;
       for (const auto& n : layout.header_names) known += (known.empty() ? "" : ", ") + n;
+      // "rate (deg/h)" for "rate": the unit belongs in the command's unit option, not the name.
+      std::string hint;
+      for (const auto& n : layout.header_names) {
+        if (!n.starts_with(selector.name)) continue;
+        std::string_view rest = std::string_view(n).substr(selector.name.size());
+        while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
+        if (!rest.empty() && (rest.front() == '(' || rest.front() == '[')) {
+          hint = fmt::format(": name the column '{}' and give the unit {} where the command takes one (e.g. "
+                             "--rate-unit, rate_unit)",
+                             selector.name, rest);
+          break;
+        }
+      }
       throw Error(SourceLocation{source, first.number, 1},
-                  "no column '" + selector.name + "' in the header (columns: " + known + ")");
+                  "no column '" + selector.name + "' in the header (columns: " + known + ")" + hint);
     }
     // Two columns of one name (an export with two "output" columns): the first was taken silently.
     if (const auto again = std::find(it + 1, layout.header_names.end(), selector.name);

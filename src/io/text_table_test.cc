@@ -227,6 +227,12 @@ TEST(TextTable, UnknownColumnListsTheHeader) {
   options.columns = {ColumnSelector{"rates"}};
   EXPECT_THAT(error_of("rate,output\n1,2\n", options),
               HasSubstr("rec.csv:1:1: no column 'rates' in the header (columns: rate, output)"));
+  // A unit in the name: where it belongs instead.
+  options.columns = {ColumnSelector{"rate"}};
+  EXPECT_THAT(error_of("rate (deg/h),output (pulse/s)\n1,2\n", options),
+              HasSubstr("rec.csv:1:1: no column 'rate' in the header (columns: rate (deg/h), output (pulse/s)): name the "
+                        "column 'rate' and give the unit (deg/h) where the command takes one (e.g. --rate-unit, "
+                        "rate_unit)"));
   options.columns = {ColumnSelector::parse("3")};
   EXPECT_THAT(error_of("rate,output\n1,2\n", options), HasSubstr("column 3 asked for, but the record has 2 columns"));
   options.columns = {ColumnSelector{"rate"}};

@@ -46,9 +46,10 @@ namespace inertest::sim {
 
 struct SimulationOptions {
   ProgressCallback progress;
-  // Overrides of the plan, so that one plan simulates a batch (`inertest simulate --seed
-  // --instrument --date`, `inertest demo --fleet`): the seed, the gyro's id (letters, digits,
-  // '-', '_', '.') and the test date (YYYY-MM-DD) written into the processing plan.
+  // Overrides of the plan (`inertest simulate --seed --instrument --date`): the seed of the noise
+  // (the gyro's parameters stay the plan's: another run of the same gyro; a batch of gyros is a plan
+  // each, as `inertest demo --fleet` writes them), the gyro's id (held to run's rules,
+  // core/instrument_id.h) and the test date (YYYY-MM-DD) written into the processing plan.
   std::optional<std::uint64_t> seed;
   std::string instrument_id;
   std::string date;

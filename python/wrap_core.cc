@@ -29,7 +29,7 @@ std::span<const double> as_span(const DoubleArray& array, const char* name, Valu
   if (values == Values::finite) {
     const auto bad = std::find_if(span.begin(), span.end(), [](double v) { return !std::isfinite(v); });
     if (bad != span.end()) {
-      throw Error(fmt::format("{}: value {} ({}) is not a finite number", name, bad - span.begin() + 1, *bad));
+      throw Error(fmt::format("{}[{}] ({}) is not a finite number", name, bad - span.begin(), *bad));  // numpy's index
     }
   }
   return span;

@@ -36,12 +36,13 @@ ResultOf<ScaleFactorTag> scale_factor_of(const DoubleArray& rate, const DoubleAr
                                          const std::string& rate_unit, const std::string& output_unit,
                                          std::size_t recommended_rates_per_direction,
                                          const std::optional<std::string>& source) {
-  const std::vector<ScaleFactorPoint> points = points_of(rate, output);
   ScaleFactorOptions options;
   options.rate_unit = rate_unit;
   options.output_unit = output_unit;
   options.recommended_rates_per_direction = recommended_rates_per_direction;
-  return make_spec_result<ScaleFactorTag>(scale_factor_spec(), with_source(source, [&] { return scale_factor(points, options); }));
+  // The arrays' own errors (a NaN, unequal lengths) name the source too.
+  return make_spec_result<ScaleFactorTag>(
+      scale_factor_spec(), with_source(source, [&] { return scale_factor(points_of(rate, output), options); }));
 }
 
 struct BiasTag {};
@@ -50,7 +51,7 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
                           bool input_in_deg_h, const std::string& output_unit, const std::vector<double>& smoothing_s,
                           bool random_walk, bool remove_earth_rate, std::optional<double> latitude_deg,
                           double heading_deg, double elevation_deg, const std::optional<std::string>& source) {
-  const auto samples = as_span(output, "output");
+  const auto samples = with_source(source, [&] { return as_span(output, "output"); });
   BiasOptions options;
   options.sample_rate_hz = sample_rate_hz;
   options.scale_factor = scale_factor.value_or(0.0);

@@ -71,7 +71,7 @@ def test_runs_and_lines_must_be_whole_numbers():
     beta = np.arange(0.0, 360.0, 45.0)
     output = np.cos(np.radians(beta))
     for run, message in [(np.full(8, 1.5), r"run: value 1 \(1.5\) is not a whole number"),
-                         (np.array([1.0] * 7 + [np.nan]), r"run: value 8 \(nan\) is not a finite number")]:
+                         (np.array([1.0] * 7 + [np.nan]), r"run\[7\] \(nan\) is not a finite number")]:
         with pytest.raises(inertest.Error, match=message):
             inertest.accelerometer_misalignment(beta, output, scale_factor=1.0, run=run)
     with pytest.raises(inertest.Error, match=r"line: value 1 \(-1\) is not a whole number of at least 0"):

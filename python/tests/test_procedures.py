@@ -182,10 +182,16 @@ def test_threshold_criterion_denominator_keyword_matches_the_cli(tmp_path):
 def test_a_nan_in_an_array_is_an_error_naming_its_place():
     # As a record's NaN is: never a result of None, nor a misleading complaint about the fit.
     output = np.array([1.0, np.nan, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
-    with pytest.raises(inertest.Error, match=r"output: value 2 \(nan\) is not a finite number"):
+    with pytest.raises(inertest.Error, match=r"output\[1\] \(nan\) is not a finite number"):
         inertest.bias(output, sample_rate_hz=1.0, scale_factor=1.0)
-    with pytest.raises(inertest.Error, match=r"scale_factors: value 3 \(inf\) is not a finite number"):
+    with pytest.raises(inertest.Error, match=r"scale_factors\[2\] \(inf\) is not a finite number"):
         inertest.scale_factor_repeatability(np.array([1000.0, 1001.0, np.inf, 1000.0, 1000.0, 1000.0]))
+    # With the source named, as the procedure's own errors are.
+    with pytest.raises(inertest.Error, match=r"^run7.csv: output\[1\] \(nan\)") as raised:
+        inertest.bias(output, sample_rate_hz=1.0, scale_factor=1.0, source="run7.csv")
+    assert raised.value.file == "run7.csv"
+    with pytest.raises(inertest.Error, match=r"^points.csv: output has 3 values but rate has 2"):
+        inertest.scale_factor(np.array([0.0, 1.0]), np.array([0.0, 1.0, 2.0]), source="points.csv")
 
 
 @pytest.mark.parametrize("values, dtype", [

@@ -731,6 +731,22 @@ TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
               ::testing::ThrowsMessage<archive::NotOneQuantity>(HasSubstr("[degC (FOG-T1 2026-01-03)] and [K (FOG-T2 2026-01-04)]")));
 }
 
+// The fleet since a date leaves out a figure no test since then reports (the web view's /fleet?since=
+// was a 404 for it).
+TEST_P(ArchiveBackend, TheFleetSinceADateLeavesOutFiguresNotTestedSince) {
+  auto archive = open();
+  nlohmann::json old = campaign("FOG-O1", "2026-01-01", 36000.0);
+  old["procedures"][0]["result"]["output_at_rest"] = {{"value", 1.5}, {"unit", "pulse/s"}};
+  archive->add(old, "o1");
+  archive->add(campaign("FOG-O1", "2026-03-01", 36000.1), "o2");
+  const std::vector<std::string> figures = {"scale_factor/scale_factor", "scale_factor/output_at_rest"};
+  EXPECT_EQ(archive::fleet_data(*archive, figures, std::nullopt).at("fleet").size(), 2u);
+  const nlohmann::json since = archive::fleet_data(*archive, figures, "2026-02-01");
+  ASSERT_EQ(since.at("fleet").size(), 1u);
+  EXPECT_EQ(since.at("fleet")[0].at("figure"), "scale_factor/scale_factor");
+  EXPECT_EQ(since.at("fleet")[0].at("since"), "2026-02-01");
+}
+
 // An instrument whose own campaigns archived a figure in units that do not convert: its history page
 // says so (the figure was left out of it with no word).
 TEST_P(ArchiveBackend, AHistoryOfTwoQuantitiesIsNamedOnItsPage) {

@@ -117,8 +117,13 @@ nlohmann::json fleet_data(Archive& archive, const std::vector<std::string>& figu
     if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
     try {
       fleet.push_back(fleet_summary(archive.fleet(figure, since), since));
+    } catch (const DatabaseError&) {
+      throw;
     } catch (const NotOneQuantity& e) {
       not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
+    } catch (const Error&) {
+      if (!since) throw;
+      // no test of the figure since then: not on the page (the page was a 404)
     }
   }
   return {{"fleet", fleet}, {"not_comparable", not_comparable}};

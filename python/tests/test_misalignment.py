@@ -17,6 +17,19 @@ def test_gyro_misalignment_equals_the_cli_on_table_1(source_dir):
     assert result.misalignment.unit == "arcsec"
 
 
+def test_positions_in_radians_are_refused(source_dir):
+    """Read as degrees they gave gamma = 20 820 arcsec with no word."""
+    path = source_dir / "data" / "misalignment" / "gyro_table1.csv"
+    rows = inertest.read_gyro_misalignment_positions(str(path))
+    rows["alpha_deg"] = np.radians(rows["alpha_deg"])
+    rows["beta_deg"] = np.radians(rows["beta_deg"])
+    with pytest.raises(inertest.Error, match="alpha_deg 3.14159.*radians"):
+        inertest.gyro_misalignment(**rows, scale_factor=-2.9222)
+    beta = np.radians([0.0, 90.0, 180.0, 270.0])
+    with pytest.raises(inertest.Error, match="beta_deg 1.5707.*radians"):
+        inertest.accelerometer_misalignment(beta, np.array([-1.8e-3, 4e-4, 1.9e-3, -3e-4]), scale_factor=1.3)
+
+
 def test_papers_are_cited_by_title_not_by_file_name():
     assert "《惯性元件的失准角分离技术研究》" in inertest.CITATIONS["misalignment"]
     assert "Harbin Institute of Technology" in inertest.CITATIONS["misalignment"]

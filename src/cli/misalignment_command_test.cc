@@ -102,6 +102,22 @@ TEST(MisalignmentCommand, GyroRecordsModeAveragesWholeRevolutions) {
   EXPECT_NEAR_RELATIVE(json["delta_theta_y1"]["value"].get<double>(), y1, 1e-9);
   EXPECT_NEAR_RELATIVE(json["delta_theta_y2"]["value"].get<double>(), y2, 1e-9);
   EXPECT_NEAR_RELATIVE(json["delta_theta_z2"]["value"].get<double>(), z2, 1e-9);
+
+  // The same listing with its positions in radians: refused at the row (gamma came out 146 480 arcsec).
+  std::string in_radians = "alpha_deg,beta_deg,rate_dps,file\n";
+  index = 0;
+  for (const auto& [alpha_deg, beta_deg] : positions) {
+    for (double rate : {20.0, -20.0}) {
+      in_radians += fmt::format("{:.6f},{:.6f},{},records/r{}.csv\n", alpha_deg * constants::kDegree,
+                                beta_deg * constants::kDegree, rate, index++);
+    }
+  }
+  const std::string radians_path = scratch.write("radians.csv", in_radians);
+  const auto refused = run_cli({"misalignment", "gyro", radians_path, "--records", "--scale-factor", "-2.9222"});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_TRUE(refused.out.empty());
+  EXPECT_THAT(refused.err, ::testing::HasSubstr(radians_path + ":6: gyro misalignment: alpha_deg 3.141593: the column's "
+                                                "angles all lie within 2 pi and are not all whole degrees: radians?"));
 }
 
 TEST(MisalignmentCommand, RecordsListingErrorsNameTheLine) {

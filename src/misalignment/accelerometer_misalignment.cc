@@ -8,6 +8,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/io/angle_column.h"
 #include "inertest/numerics/compensated_sum.h"
 #include "inertest/numerics/statistics.h"
 #include "misalignment/misalignment_fit.h"
@@ -105,6 +106,13 @@ AccelerometerMisalignmentResult accelerometer_misalignment(std::span<const Accel
   options.validate();
   if (rows.empty()) {
     throw Error(SourceLocation{options.source, 0, 0}, "accelerometer misalignment: no positions given");
+  }
+  // Positions in radians read as degrees (io/angle_column.h): from a file or arrays.
+  std::vector<double> angles;
+  for (const AccelerometerMisalignmentRow& row : rows) angles.push_back(row.beta_deg);
+  if (const std::optional<std::size_t> i = radians_among_degrees(angles)) {
+    throw Error(SourceLocation{options.source, rows[*i].line, 0},
+                "accelerometer misalignment: " + radians_message("beta_deg", angles[*i]));
   }
   std::vector<long> run_order;
   std::vector<std::vector<const AccelerometerMisalignmentRow*>> run_rows;

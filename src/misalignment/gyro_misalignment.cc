@@ -8,6 +8,7 @@
 
 #include "inertest/core/error.h"
 #include "inertest/core/units.h"
+#include "inertest/io/angle_column.h"
 #include "misalignment/misalignment_fit.h"
 
 namespace inertest {
@@ -33,6 +34,18 @@ struct PositionPair {
 
 SourceLocation location_of(const GyroMisalignmentOptions& options, const GyroMisalignmentRow& row) {
   return {options.source, row.line, 0};
+}
+
+// Positions in radians read as degrees (io/angle_column.h): from a file, a record listing or arrays.
+void check_positions_in_degrees(std::span<const GyroMisalignmentRow> rows, const GyroMisalignmentOptions& options) {
+  for (const auto& [column, angle_of] :
+       {std::pair{"alpha_deg", &GyroMisalignmentRow::alpha_deg}, std::pair{"beta_deg", &GyroMisalignmentRow::beta_deg}}) {
+    std::vector<double> angles;
+    for (const GyroMisalignmentRow& row : rows) angles.push_back(row.*angle_of);
+    if (const std::optional<std::size_t> i = radians_among_degrees(angles)) {
+      throw Error(location_of(options, rows[*i]), "gyro misalignment: " + radians_message(column, angles[*i]));
+    }
+  }
 }
 
 std::vector<PositionPair> pair_directions(std::span<const GyroMisalignmentRow> rows,
@@ -137,6 +150,7 @@ GyroMisalignmentResult gyro_misalignment(std::span<const GyroMisalignmentRow> ro
                                          const GyroMisalignmentOptions& options) {
   options.validate();
   if (rows.empty()) throw Error(SourceLocation{options.source, 0, 0}, "gyro misalignment: no positions given");
+  check_positions_in_degrees(rows, options);
   const std::vector<PositionPair> pairs = pair_directions(rows, options);
 
   std::vector<double> rates;

@@ -8,7 +8,6 @@
 #include <string_view>
 
 #include "inertest/core/error.h"
-#include "inertest/io/angle_column.h"
 #include "inertest/io/mapped_file.h"
 #include "inertest/io/text_table.h"
 #include "inertest/misalignment/revolution_average.h"
@@ -39,8 +38,6 @@ double parse_number(const TextField& field, const SourceLocation& line_location,
 
 std::vector<GyroMisalignmentRow> read_gyro_misalignment_positions(const std::string& path) {
   const TextTable table = read_with_header(path);
-  check_degrees_not_radians(table, "alpha_deg");
-  check_degrees_not_radians(table, "beta_deg");
   const auto& alpha = table.column("alpha_deg");
   const auto& beta = table.column("beta_deg");
   const auto& rate = table.column("rate_dps");
@@ -113,7 +110,6 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::strin
 
 std::vector<AccelerometerMisalignmentRow> read_accelerometer_misalignment_positions(const std::string& path) {
   const TextTable table = read_with_header(path);
-  check_degrees_not_radians(table, "beta_deg");
   const auto& beta = table.column("beta_deg");
   const auto& output = table.column("output");
   const std::vector<double>* run = table.has_column("run") ? &table.column("run") : nullptr;

@@ -9,21 +9,6 @@ namespace {
 
 // The record listing is split by the shared row parser: a quoted file name may hold a comma, and a
 // quote left open names its line and column.
-// Positions in radians were read as angles of a few degrees (gamma came out 148 716 arcsec).
-TEST(MisalignmentFiles, PositionsInRadiansAreRefused) {
-  testing::ScratchDirectory dir;
-  const std::string gyro = dir.write("gyro.csv", "alpha_deg,beta_deg,rate_dps,output\n0,0,20,-0.06\n0,0,-20,0.06\n"
-                                                 "0,3.14159265,20,-0.05\n0,3.14159265,-20,0.06\n"
-                                                 "1.57079633,0,20,0.03\n1.57079633,0,-20,-0.03\n");
-  EXPECT_THAT([&] { read_gyro_misalignment_positions(gyro); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr(gyro + ":6: alpha_deg 1.57079633: the column's angles "
-                                                                          "all lie within 2 pi")));
-  const std::string accelerometer =
-      dir.write("accelerometer.csv", "beta_deg,output\n0,-0.0018\n1.57079633,0.0004\n3.14159265,0.0019\n");
-  EXPECT_THAT([&] { read_accelerometer_misalignment_positions(accelerometer); },
-              ::testing::ThrowsMessage<Error>(::testing::HasSubstr(accelerometer + ":3: beta_deg 1.57079633")));
-}
-
 TEST(MisalignmentFiles, GyroRecordListingTakesQuotedFileNames) {
   testing::ScratchDirectory dir;
   dir.write("run 1, +20.csv", "table_angle_deg,output\n0,1.0\n90,2.0\n180,3.0\n270,2.0\n360,1.0\n");

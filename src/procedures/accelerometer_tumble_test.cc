@@ -288,7 +288,7 @@ INSTANTIATE_TEST_SUITE_P(
                 ": the head angles leave 180 deg of the turn without a position (from 180 deg on)"},
         // Radians in the degrees' column, and a part of a turn: figures a million times off, no word.
         Refusal{"radians", "angle_deg,output\n0,1\n1.5708,0\n3.1416,-1\n4.7124,0\n",
-                ":3: angle_deg 1.5708: the column's angles all lie within 2 pi and are not whole degrees: radians? "
+                ":3: angle_deg 1.5708: the column's angles all lie within 2 pi and are not all whole degrees: radians? "
                 "Give them in degrees"},
         Refusal{"part_of_a_turn", "angle_deg,output\n0,1\n45,0.7\n90,0\n135,-0.7\n",
                 ": the head angles leave 225 deg of the turn without a position (from 135 deg on)"}),

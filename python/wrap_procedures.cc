@@ -60,19 +60,23 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
   options.smoothing_s = smoothing_s;
   options.random_walk = random_walk;
   // As the command line's --remove-earth-rate: a latitude alone removes nothing there, and removed the
-  // Earth rate here (one record, biases 10.8 deg/h apart at 45.75 deg N); now it is refused alone.
-  if (latitude_deg && !remove_earth_rate) {
-    throw Error("bias: latitude_deg is used only with remove_earth_rate=True (the command line's --latitude with "
-                "--remove-earth-rate)");
+  // Earth rate here (one record, biases 10.8 deg/h apart at 45.75 deg N); now it is refused alone, as
+  // is the IRA's orientation.
+  if (!remove_earth_rate && (latitude_deg || heading_deg != 0.0 || elevation_deg != 0.0)) {
+    throw Error("bias: latitude_deg, heading_deg and elevation_deg are used only with remove_earth_rate=True (the "
+                "command line's --latitude, --heading and --elevation with --remove-earth-rate)");
   }
   if (remove_earth_rate) {
     options.remove_earth_rate =
         AxisOrientation{latitude_deg.value_or(std::numeric_limits<double>::quiet_NaN()), heading_deg, elevation_deg};
   }
-  // K and a record in deg/h exclude each other, as on the command line (K was silently ignored).
+  // K and a record in deg/h exclude each other, as on the command line (K was silently ignored); the
+  // output unit is one inertest reads, as there.
   ProcedureCall given;
   if (scale_factor) given.parameters["scale_factor"] = *scale_factor;
+  given.parameters["output_unit"] = output_unit;
   check_bias_conversion(given, options, "bias");
+  check_unit_parameters(given);
   BiasResult result;
   {
     py::gil_scoped_release release;

@@ -69,11 +69,17 @@ def test_bias_takes_a_scale_factor_or_a_record_in_deg_h_as_the_cli_does():
     assert inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True).bias.value == pytest.approx(0.01)
 
 
+def test_bias_output_unit_must_be_a_unit_as_on_the_cli():
+    with pytest.raises(inertest.Error, match="unknown unit 'banana'"):
+        inertest.bias(np.full(10, 0.01), sample_rate_hz=1.0, scale_factor=1.0, output_unit="banana")
+
+
 def test_bias_removes_the_earth_rate_only_when_asked_as_the_cli_does(tmp_path):
     """A latitude alone removed the Earth rate here and nothing on the command line (10.8 deg/h apart)."""
     output = np.full(100, 0.01)
-    with pytest.raises(inertest.Error, match="latitude_deg is used only with remove_earth_rate=True"):
-        inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True, latitude_deg=45.75)
+    for alone in ({"latitude_deg": 45.75}, {"heading_deg": 90.0}, {"elevation_deg": 10.0}):
+        with pytest.raises(inertest.Error, match="are used only with remove_earth_rate=True"):
+            inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True, **alone)
     removed = inertest.bias(output, sample_rate_hz=10.0, input_in_deg_h=True, remove_earth_rate=True,
                             latitude_deg=45.75)
     # IRA north, horizontal: the Earth rate's north component, 15.041 deg/h cos(latitude).

@@ -52,6 +52,11 @@ TEST(ProcedureCommand, AUnitParameterMustBeAUnit) {
     EXPECT_THAT(run.err, HasSubstr("--output-unit")) << arguments[0];
     EXPECT_THAT(run.err, HasSubstr("banana")) << arguments[0];
   }
+  // A list of units is its procedure's to read, with its own message.
+  const std::string two = scratch.write("two.csv", "a,b\n0.1,0.2\n0.2,0.1\n0.1,0.2\n0.2,0.1\n");
+  const auto unnamed = run_cli({"allan", two, "--rate", "1", "--columns", "a,b", "--input-unit", "deg/s,deg/h"});
+  EXPECT_EQ(unnamed.exit_code, 2);
+  EXPECT_THAT(unnamed.err, Not(HasSubstr("unknown unit")));
 }
 
 TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {

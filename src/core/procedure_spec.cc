@@ -48,9 +48,10 @@ std::string ordinal(std::size_t n) {
 void check_unit_parameters(const ProcedureCall& call) {
   for (const auto& item : call.parameters.items()) {
     if (!item.key().ends_with("_unit") || !item.value().is_string()) continue;
-    // Empty: none given; a list per channel ("gx=deg/s,ax=m/s^2", allan's) is its procedure's to read.
+    // Empty: none given; a list per channel ("gx=deg/s,ax=m/s^2", allan's) is its procedure's to
+    // read, with its own messages (a list without names, "deg/s,deg/h", says so there).
     const std::string& text = item.value().get_ref<const std::string&>();
-    if (text.empty() || text.find('=') != std::string::npos) continue;
+    if (text.empty() || text.find_first_of("=,") != std::string::npos) continue;
     check_parameter(item.key(), [&text] { Unit::parse(text); });
   }
 }

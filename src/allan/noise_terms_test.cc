@@ -217,6 +217,19 @@ TEST(SlopeReadOff, BiasInstabilityIsReadAtTheFloorNotAtAShortTauPlateau) {
   EXPECT_THAT(declined.warnings, ::testing::Contains(::testing::HasSubstr("the curve is still falling")));
 }
 
+// A record of 6 samples leaves its fit no degree of freedom: the fit range says so, not that the
+// model fits.
+TEST(NoiseTerms, AFitWithNoDegreeOfFreedomIsNotSaidToFit) {
+  AllanOptions options;
+  options.sample_rate_hz = 1.0;
+  options.estimators = EstimatorSet::parse("oadev");
+  const AllanResult result = allan_variance(std::vector<double>{1, 2, 1, 3, 2, 1}, options);
+  ASSERT_TRUE(result.noise.has_value());
+  EXPECT_EQ(result.noise->degrees_of_freedom, 0u);
+  EXPECT_EQ(result.noise->verdict, "undetermined");
+  EXPECT_EQ(result.noise->fit_range_reason, "the whole curve: no degree of freedom left, no test of the fit");
+}
+
 // The bottom of the valley between angle and rate random walk, with no flicker: a pair beside it is
 // flat within 0.1 on an octave grid, and the slope turns across it by 0.3. It was read as a bias
 // instability.
@@ -230,8 +243,17 @@ TEST(SlopeReadOff, AValleyIsNoFlickerFloor) {
   const SlopeReadOff slopes = read_noise_slopes(tau, deviation, edf, "deg/s");
   EXPECT_FALSE(slopes.bias_instability.figure.has_value());
   EXPECT_THAT(slopes.warnings, ::testing::Contains(::testing::HasSubstr(
-                                   "the curve turns at tau = 10.24 s from slope -0.25 to +0.06 (by more than 0.25): the "
-                                   "bottom of a valley between angle and rate random walk, not a flicker floor")));
+                                   "the curve turns at tau = 10.24 s from slope -0.25 to +0.06 (0.31 an octave, more "
+                                   "than 0.25): more like the bottom of a valley between the white and the random-walk "
+                                   "noise than a flat floor")));
+  // On a denser grid the pairs are closer and turn less each, as much an octave (it was read as B).
+  std::vector<double> dense_tau, dense_deviation, dense_edf;
+  for (double t = 0.01; t < 3000.0; t *= std::pow(10.0, 0.2)) {
+    dense_tau.push_back(t);
+    dense_deviation.push_back(std::sqrt(1.0 / t + t / 160.0));
+    dense_edf.push_back(1e5);
+  }
+  EXPECT_FALSE(read_noise_slopes(dense_tau, dense_deviation, dense_edf, "deg/s").bias_instability.figure.has_value());
 }
 
 // A floor at the first tau has only the pair after it: a rising curve (rate random walk alone) is

@@ -53,12 +53,18 @@ std::array<double, 2> pair_or(PlanTable& table, std::string_view key, std::array
   return {(*values)[0], (*values)[1]};
 }
 
-// A TOML basic string: the text in quotes, '"' and '\\' escaped.
+// A TOML basic string: the text in quotes, '"', '\\' and control characters escaped.
 std::string toml_string(std::string_view text) {
   std::string out = "\"";
   for (const char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      out += fmt::format("\\u{:04X}", static_cast<unsigned char>(c));
+    } else {
+      out += c;
+    }
   }
   return out + "\"";
 }
@@ -249,7 +255,8 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
       test.fail_at("kind", "'" + kind + "' cannot be simulated (known: " + known + ")");
     }
     const std::string name = test.string_or("name", kind);
-    if (name.empty() || name.find_first_of("/\\\"") != std::string::npos || name.front() == '.') {
+    if (name.empty() || name.find_first_of("/\\\"") != std::string::npos || name.front() == '.' ||
+        std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
       test.fail_at("name", "must be a plain file name");
     }
     if (names[name]++ > 0) test.fail_at("name", "'" + name + "' names two tests");

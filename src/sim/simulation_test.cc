@@ -119,6 +119,11 @@ TEST(SimSimulate, SeedInstrumentAndDateOverrideThePlan) {
   quoted.instrument_id = "LAB2/FOG \"1\"";
   const std::string quoted_plan = read(simulate_text(kSmallPlan, "small", a.path() + "/q", quoted).plan_path);
   EXPECT_NE(quoted_plan.find("id = \"LAB2/FOG \\\"1\\\"\"\n"), std::string::npos) << quoted_plan;
+  // The title, a TOML string of the written plan, keeps a newline escaped (run refused the plan).
+  std::string titled = kSmallPlan;
+  titled.replace(titled.find("seed = 7\n"), 9, "seed = 7\n[plan]\ntitle = \"FOG\\nbatch \\\"7\\\"\"\n");
+  const std::string titled_plan = read(simulate_text(titled, "small", a.path() + "/t").plan_path);
+  EXPECT_NE(titled_plan.find("title = \"FOG\\u000Abatch \\\"7\\\"\"\n"), std::string::npos) << titled_plan;
   SimulationOptions bad_id;
   bad_id.instrument_id = "..";
   EXPECT_THROW(simulate_text(kSmallPlan, "small", a.path() + "/x", bad_id), Error);
@@ -148,6 +153,8 @@ TEST(SimSimulate, BadPlansNameTheLineAndWriteNothing) {
   expect_plan_error("seed = 1\n[gyro]\nbandwidth_hz = -3\n[[test]]\nkind = \"bias\"\n", "bandwidth_hz", 2);
   expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\nseconds = \"long\"\n", "must be a number", 5);
   expect_plan_error("seed = 1.5\n[gyro]\n[[test]]\nkind = \"bias\"\n", "whole number", 1);
+  // A step name is a directory and a plan string: no control character (a newline broke the plan).
+  expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\nname = \"a\\nb\"\n", "plain file name", 5);
   expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"scale_factor\"\nrates_deg_s = [1, -2]\n", "positive", 5);
   expect_plan_error("seed = 1\n[gyro]\n[gyro.drift]\nDF = 1\n[[test]]\nkind = \"bias\"\n", "bias_deg_h", 4);
   expect_plan_error("seed = 1\n[gyro]\n[[test]]\nkind = \"bias\"\n[[test]]\nkind = \"bias\"\n", "names two tests", 5);

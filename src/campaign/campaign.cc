@@ -49,6 +49,8 @@ struct Limit {
   // The step's own specification (PreparedAction::limits, FieldSpec::states_verdict), not the plan's
   // [procedure.limits]: judged where the result gives the figure, no verdict where it leaves it out.
   bool stated = false;
+  // A yes/no (1 or 0, judged against 1): the step's own pass/fail, a verdict field or a check by eye.
+  bool yes_no = false;
 };
 
 struct PreparedStep {
@@ -267,12 +269,13 @@ void add_stated_limits(const std::vector<FieldSpec>& fields, const std::vector<c
     limit.stated = true;
     return limit;
   };
-  for (const campaign::StatedLimit& own : stated) add(own.figure, own.min, own.max, own.where);
+  for (const campaign::StatedLimit& own : stated) add(own.figure, own.min, own.max, own.where).yes_no = own.yes_no;
   for (const FieldSpec& field : fields) {
     if (!field.states_verdict) continue;
     Limit& limit = add(field.name, 1.0, std::nullopt, step.where);
     limit.declared = field;
     limit.plain_number = true;
+    limit.yes_no = true;
   }
 }
 
@@ -500,7 +503,7 @@ std::optional<nlohmann::json> check_limit(const Limit& limit, const std::string&
   nlohmann::json verdict = {{"procedure", step_name}, {"figure", limit.figure}, {"value", value},
                             {"unit", unit},           {"pass", pass}};
   if (!identified) verdict["identified"] = false;  // value: the upper bound
-  if (yes_no) verdict["yes_no"] = true;            // value 1 or 0, judged against 1
+  if (yes_no || limit.yes_no) verdict["yes_no"] = true;  // value 1 or 0, judged against 1
   if (magnitude && value < 0.0) verdict["magnitude"] = true;  // judged as |value|
   if (limit.min) verdict["min"] = *limit.min;
   if (limit.max) verdict["max"] = *limit.max;

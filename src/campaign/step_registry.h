@@ -79,6 +79,7 @@ struct StatedLimit {
   std::optional<double> min;
   std::optional<double> max;
   SourceLocation where;
+  bool yes_no = false;  // a pass/fail judged by eye: its figure 1 or 0, against min 1
 };
 struct PreparedAction {
   StepAction run;

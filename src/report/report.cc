@@ -514,7 +514,7 @@ class ReportWriter {
       for (const json& v : verdicts()) {
         const auto* value = member(v, "value");
         const bool measured = value != nullptr && value->is_number();  // "not measured", not "not measured °/h"
-        const std::string unit = measured ? pretty_unit(v.value("unit", "")) : "";
+        const std::string unit = measured && !v.value("yes_no", false) ? pretty_unit(v.value("unit", "")) : "";
         text += fmt::format("  {:<5} {} / {} = {}{} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
                             v.value("procedure", ""), verdict_figure_name(v), verdict_value_text(v, labels_),
                             unit.empty() ? "" : " " + unit, limit_text(v, labels_));
@@ -900,7 +900,8 @@ class ReportWriter {
           "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
           html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
           html(name), html(limit_text(v, labels_)),
-          html(verdict_value_text(v, labels_) + (unit.empty() || !is_number_member(v, "value") ? "" : " " + unit) +
+          html(verdict_value_text(v, labels_) +
+               (unit.empty() || !is_number_member(v, "value") || v.value("yes_no", false) ? "" : " " + unit) +
                (v.contains("reason") ? " (" + v.value("reason", "") + ")" : "")),
           verdict_cell(pass, labels_));
     }

@@ -47,7 +47,8 @@ PreparedAction prepare_hand_checks_step(PlanTable& step, const PlanContext&) {
     // The check's own bounds, and a pass/fail check's "pass" (its figure 1), judged as plan limits.
     if (check.min || check.max || check.verdict) {
       limits.push_back({first->first, check.verdict ? std::optional(1.0) : check.min, check.max,
-                        table.location_of_key(check.verdict ? "value" : check.min ? "min" : "max")});
+                        table.location_of_key(check.verdict ? "value" : check.min ? "min" : "max"),
+                        check.verdict.has_value()});
     }
     checks.push_back(check);
     figures.push_back({first->first, FieldRole::headline, check.name, "", ""});

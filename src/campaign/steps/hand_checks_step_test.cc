@@ -3,6 +3,7 @@
 
 #include "inertest/campaign/campaign.h"
 #include "inertest/core/error.h"
+#include "inertest/report/report.h"
 #include "test_util/test_util.h"
 
 namespace inertest {
@@ -128,6 +129,13 @@ file = "on.csv"
                                               "hand_checks/power_consumption 4.2 FAIL", "polarity/pass 1 PASS",
                                               "threshold/threshold 4 PASS"}));
   EXPECT_EQ(summary.results.at("verdict"), "FAIL");
+  // The yes/no ones (a check by eye, the polarity as specified) say so, and read "yes" in the report,
+  // not "1 (>= 1)".
+  std::vector<bool> yes_no;
+  for (const auto& v : summary.results.at("verdicts")) yes_no.push_back(v.value("yes_no", false));
+  EXPECT_EQ(yes_no, (std::vector<bool>{true, false, false, true, false}));
+  const std::string text = report::render_text_report(summary.results, {report::Language::english, ""});
+  EXPECT_NE(text.find("  PASS  hand_checks / Appearance = yes (yes)\n"), std::string::npos) << text;
 }
 
 // A failed appearance check or a reversed polarity fails the campaign; a polarity without an

@@ -567,18 +567,24 @@ void require_one_quantity(const std::vector<Row>& rows, const std::string& figur
     (*group)[unit].insert(row.text(5) + " " + row.text(0));
     if (!row.is_null(8)) tests_by_abscissa[row.text(8)].insert(row.text(5) + " " + row.text(0));
   }
+  // Each key with its first tests (a fleet's hundred would make the message a page long).
   const auto listed = [](const std::map<std::string, std::set<std::string>>& groups) {
+    constexpr std::size_t kShown = 3;
     std::vector<std::string> texts;
-    for (const auto& [key, members] : groups) texts.push_back(fmt::format("{} ({})", key, fmt::join(members, ", ")));
+    for (const auto& [key, members] : groups) {
+      std::vector<std::string> shown(members.begin(), std::next(members.begin(), std::min(members.size(), kShown)));
+      if (members.size() > kShown) shown.push_back(fmt::format("{} more", members.size() - kShown));
+      texts.push_back(fmt::format("{} ({})", key, fmt::join(shown, ", ")));
+    }
     return fmt::format("{}", fmt::join(texts, "; "));
   };
   if (tests_by_unit_group.size() > 1) {
     std::vector<std::string> groups;
     for (const auto& units : tests_by_unit_group) groups.push_back(fmt::format("[{}]", listed(units)));
-    throw NotOneQuantity(fmt::format("figure '{}' is archived in units of {} quantities that do not convert to one "
-                                     "another: {}; these are different quantities under one name (name the step "
-                                     "differently in one kind of plan)",
-                                     figure, tests_by_unit_group.size(), fmt::join(groups, " and ")));
+    throw NotOneQuantity(fmt::format("figure '{}' is archived in units that do not convert to one another: {}; "
+                                     "these cannot be charted as one figure (name the step differently in one kind "
+                                     "of plan)",
+                                     figure, fmt::join(groups, " and ")));
   }
   if (tests_by_abscissa.size() > 1) {
     throw NotOneQuantity(fmt::format("figure '{}' names rows at different places in their table: {}; these are different "

@@ -679,12 +679,8 @@ class ReportWriter {
     return tables;
   }
 
-  // The figures of a procedure's result: for a declared procedure its headline, detail and table
-  // fields in their declared order, under the spec's labels (a plain number, text or yes/no field as
-  // a figure without a unit, in the words the spec gives its values), a table's figures marked
-  // in_table; otherwise every member that holds figures, in the label table's order.
-  // A verdict's figure as its procedure's table names it ("Bias stability (smoothing_s = 10.0)"), or
-  // its key when no row shows it.
+  // A verdict's figure as its procedure's figures name it ("Bias stability (100 s)"), or its key
+  // when no row shows it.
   std::string verdict_figure_name(const json& verdict) const {
     const std::string figure = verdict.value("figure", "");
     const std::string pointer = normalised_pointer(figure);
@@ -697,6 +693,10 @@ class ReportWriter {
     return figure;
   }
 
+  // The figures of a procedure's result: for a declared procedure its headline, detail and table
+  // fields in their declared order, under the spec's labels (a plain number, text or yes/no field as
+  // a figure without a unit, in the words the spec gives its values), a table's figures marked
+  // in_table; otherwise every member that holds figures, in the label table's order.
   std::vector<FigureRow> figures_of(const json& procedure) const {
     std::vector<FigureRow> rows;
     const auto* result = member(procedure, "result");

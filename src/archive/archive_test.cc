@@ -677,6 +677,20 @@ TEST(ArchiveRun, ARefusedPlanMakesNoArchive) {
   EXPECT_NE(run.err.find("plan.toml:2:1"), std::string::npos) << run.err;
   EXPECT_FALSE(std::filesystem::exists(location));
   EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/new"));
+  // Nor does a valid plan whose data is bad (the archive was made before the data was read).
+  scratch.write("points.csv", "rate,output\n0,1\n5,x\n");
+  const std::string bad_data = scratch.write("data.toml", "[instrument]\nid = \"FOG-1\"\noutput_unit = \"pulse/s\"\n\n"
+                                                         "[[procedure]]\nkind = \"scale_factor\"\nfile = \"points.csv\"\n");
+  const auto bad = testing::run_cli({"run", bad_data, "--out", scratch.path() + "/out", "--archive", location});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("points.csv:3:3"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/new"));
+  // An archive that was there stays, with what it held.
+  const auto good = testing::run_cli({"run", testing::source_path("examples/scale_factor/plan.toml"), "--out",
+                                      scratch.path() + "/good", "--archive", location});
+  ASSERT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_EQ(testing::run_cli({"run", bad_data, "--out", scratch.path() + "/out", "--archive", location}).exit_code, 2);
+  EXPECT_EQ(archive::open_archive(location, archive::ArchiveOpening::existing)->list(std::nullopt).size(), 1u);
 }
 
 // An analog gyro's K in V/(deg/s) and a digital one's in pulse/s/(deg/s) under one step name are

@@ -1,5 +1,6 @@
 // inertest run PLAN.toml --out DIR [--archive [DB]]
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -10,6 +11,19 @@
 
 namespace inertest::cli {
 namespace {
+
+// What a run makes to hold a new archive file: the file, or the topmost of its directories that is
+// not there yet; nothing for an archive that exists or a server's. A run that fails removes it (a bad
+// data file left a new, empty archive behind).
+std::optional<std::filesystem::path> made_for_archive(const std::string& location) {
+  if (location.starts_with("postgresql://") || location.starts_with("postgres://")) return std::nullopt;
+  std::filesystem::path path = std::filesystem::absolute(location);
+  if (std::filesystem::exists(path)) return std::nullopt;
+  while (path.has_parent_path() && path.parent_path() != path && !std::filesystem::exists(path.parent_path())) {
+    path = path.parent_path();
+  }
+  return path;
+}
 
 struct Arguments {
   std::string plan;
@@ -40,16 +54,27 @@ CommandAction setup(CLI::App& root) {
     // The archive is opened first: one that cannot be opened stops the run before anything is written.
     // A plan that would be refused is refused before that (a mistyped key made a new, empty archive).
     if (archive_option->count() > 0) validate_plan(arguments->plan);
-    const auto store = archive_option->count() > 0
-                           ? open_archive_option(arguments->archive, archive::ArchiveOpening::create)
-                           : nullptr;
+    const std::optional<std::filesystem::path> made =
+        archive_option->count() > 0
+            ? made_for_archive(arguments->archive.empty() ? archive::default_archive_location() : arguments->archive)
+            : std::nullopt;
+    auto store = archive_option->count() > 0
+                     ? open_archive_option(arguments->archive, archive::ArchiveOpening::create)
+                     : nullptr;
     const report::ReportOptions report_options{report::parse_language(arguments->lang), report::current_date()};
     CampaignOptions options;
     options.progress = terminal_progress();
     options.report_page = [&report_options](const nlohmann::json& results) {
       return report::render_report(results, report_options);
     };
-    const CampaignSummary summary = run_campaign(arguments->plan, arguments->out, options);
+    CampaignSummary summary;
+    try {
+      summary = run_campaign(arguments->plan, arguments->out, options);
+    } catch (...) {
+      store.reset();
+      if (made) std::filesystem::remove_all(*made);
+      throw;
+    }
     if (store) {
       const auto outcome = store->add(summary.results, summary.written_files.front());
       fmt::print(stderr, "{} the archive as campaign {}\n", outcome.added ? "added to" : "already in", outcome.id);

@@ -827,9 +827,13 @@ nlohmann::json FigureHistory::to_json() const {
 
 void check_results(const nlohmann::json& results, const std::string& source) { read_campaign(results, source); }
 
+bool is_server_location(const std::string& location) {
+  return location.starts_with("postgresql://") || location.starts_with("postgres://");
+}
+
 std::unique_ptr<Archive> open_archive(const std::string& location, ArchiveOpening opening) {
   if (location.empty()) throw Error("archive: no location given (a file path or a postgresql:// URL)");
-  const bool is_url = location.rfind("postgresql://", 0) == 0 || location.rfind("postgres://", 0) == 0;
+  const bool is_url = is_server_location(location);
   if (!is_url && opening == ArchiveOpening::existing && !std::filesystem::is_regular_file(location)) {
     throw Error(SourceLocation{location, 0, 0}, "no archive here (inertest archive add creates one)");
   }

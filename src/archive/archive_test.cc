@@ -65,6 +65,15 @@ nlohmann::json campaign(const std::string& instrument, const std::string& tested
   };
 }
 
+// The campaign with its scale factor (and the limit on it) in `unit`.
+nlohmann::json campaign_in_unit(const std::string& instrument, const std::string& tested_on, double scale_factor,
+                                const std::string& unit) {
+  nlohmann::json results = campaign(instrument, tested_on, scale_factor);
+  results["procedures"][0]["result"]["scale_factor"]["unit"] = unit;
+  results["verdicts"][0]["unit"] = unit;
+  return results;
+}
+
 class ArchiveBackend : public ::testing::TestWithParam<const char*> {
  protected:
   void SetUp() override {
@@ -607,9 +616,7 @@ TEST_P(ArchiveBackend, RepeatabilityAcrossArchivedCampaigns) {
   EXPECT_THAT(neither.err, HasSubstr("repeatability is defined for a scale factor (GJB 2426A 5.8.4) or a bias"));
   // A scale factor of a dimensionless output (output_unit left "1") is one by its name.
   for (int i = 0; i < 3; ++i) {
-    nlohmann::json results = campaign("FOG-U", fmt::format("2026-02-0{}", i + 1), scale_factors[i]);
-    results["procedures"][0]["result"]["scale_factor"]["unit"] = "1/(deg/s)";
-    results["verdicts"][0]["unit"] = "1/(deg/s)";
+    nlohmann::json results = campaign_in_unit("FOG-U", fmt::format("2026-02-0{}", i + 1), scale_factors[i], "1/(deg/s)");
     archive->add(results, "u.json");
   }
   const auto dimensionless = testing::run_cli(
@@ -699,16 +706,10 @@ TEST(ArchiveRun, ARefusedPlanMakesNoArchive) {
 TEST_P(ArchiveBackend, AFigureOfTwoQuantitiesIsNamedNotMixed) {
   auto archive = open();
   archive->add(campaign("FOG-D1", "2026-01-01", 36000.0), "d1");
-  nlohmann::json analog = campaign("FOG-A1", "2026-01-02", 36000.3);
-  analog["procedures"][0]["result"]["scale_factor"]["unit"] = "V/(deg/s)";
-  analog["verdicts"][0]["unit"] = "V/(deg/s)";
-  archive->add(analog, "a1");
+  archive->add(campaign_in_unit("FOG-A1", "2026-01-02", 36000.3, "V/(deg/s)"), "a1");
   // A unit that converts to another is of its quantity, and said with it (the message listed it as
   // not converting).
-  nlohmann::json per_ms = campaign("FOG-D2", "2026-01-03", 36.0001);
-  per_ms["procedures"][0]["result"]["scale_factor"]["unit"] = "pulse/ms/(deg/s)";
-  per_ms["verdicts"][0]["unit"] = "pulse/ms/(deg/s)";
-  archive->add(per_ms, "d2");
+  archive->add(campaign_in_unit("FOG-D2", "2026-01-03", 36.0001, "pulse/ms/(deg/s)"), "d2");
   try {
     archive->fleet("scale_factor/scale_factor", std::nullopt);
     ADD_FAILURE() << "expected NotOneQuantity";
@@ -766,10 +767,7 @@ TEST_P(ArchiveBackend, TheFleetSinceADateLeavesOutFiguresNotTestedSince) {
 TEST_P(ArchiveBackend, AHistoryOfTwoQuantitiesIsNamedOnItsPage) {
   auto archive = open();
   archive->add(campaign("FOG-M1", "2026-01-01", 36000.0), "m1");
-  nlohmann::json analog = campaign("FOG-M1", "2026-01-02", 36000.3);
-  analog["procedures"][0]["result"]["scale_factor"]["unit"] = "V/(deg/s)";
-  analog["verdicts"][0]["unit"] = "V/(deg/s)";
-  archive->add(analog, "m2");
+  archive->add(campaign_in_unit("FOG-M1", "2026-01-02", 36000.3, "V/(deg/s)"), "m2");
   for (const char* day : {"2026-01-03", "2026-01-04", "2026-01-05"}) {
     archive->add(campaign("FOG-M1", day, 36000.0), std::string("m-") + day);
   }

@@ -76,24 +76,40 @@ nlohmann::json fleet_summary(const FleetFigure& fleet, const std::optional<std::
   return json;
 }
 
-nlohmann::json history_data(Archive& archive, const std::string& instrument, const std::vector<std::string>& figures) {
+namespace {
+
+// Of `figures`, those the archive holds: what `summary` makes of each (into "figures"), and those
+// archived in units that do not convert ({"figure", "why"} into "not_comparable"). Another Error of
+// a figure (none of the instrument's, none since the date) leaves it out when `absent_is_expected`.
+template <typename Summary>
+nlohmann::json each_archived_figure(Archive& archive, const std::vector<std::string>& figures,
+                                    bool absent_is_expected, const Summary& summary) {
   const std::vector<std::string> archived = archive.figures(false);
-  nlohmann::json list = nlohmann::json::array();
+  nlohmann::json made = nlohmann::json::array();
   nlohmann::json not_comparable = nlohmann::json::array();
   for (const auto& figure : figures) {
     if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
     try {
-      list.push_back(archive.history(instrument, figure).to_json());
+      made.push_back(summary(figure));
     } catch (const DatabaseError&) {
       throw;
     } catch (const NotOneQuantity& e) {
-      // The instrument's own campaigns measured two quantities under the name: said, not left out.
       not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
     } catch (const Error&) {
-      // this instrument's campaigns do not report the figure
+      if (!absent_is_expected) throw;
     }
   }
-  return {{"instrument", instrument}, {"figures", list}, {"not_comparable", not_comparable}};
+  return {{"figures", made}, {"not_comparable", not_comparable}};
+}
+
+}  // namespace
+
+nlohmann::json history_data(Archive& archive, const std::string& instrument, const std::vector<std::string>& figures) {
+  nlohmann::json data = each_archived_figure(archive, figures, true, [&](const std::string& figure) {
+    return archive.history(instrument, figure).to_json();
+  });
+  data["instrument"] = instrument;
+  return data;
 }
 
 nlohmann::json report_data(Archive& archive, const std::vector<std::string>& figures) {
@@ -110,23 +126,11 @@ nlohmann::json report_data(Archive& archive, const std::vector<std::string>& fig
 
 nlohmann::json fleet_data(Archive& archive, const std::vector<std::string>& figures,
                           const std::optional<std::string>& since) {
-  const std::vector<std::string> archived = archive.figures(false);
-  nlohmann::json fleet = nlohmann::json::array();
-  nlohmann::json not_comparable = nlohmann::json::array();
-  for (const auto& figure : figures) {
-    if (!std::binary_search(archived.begin(), archived.end(), figure)) continue;
-    try {
-      fleet.push_back(fleet_summary(archive.fleet(figure, since), since));
-    } catch (const DatabaseError&) {
-      throw;
-    } catch (const NotOneQuantity& e) {
-      not_comparable.push_back({{"figure", figure}, {"why", e.message()}});
-    } catch (const Error&) {
-      if (!since) throw;
-      // no test of the figure since then: not on the page (the page was a 404)
-    }
-  }
-  return {{"fleet", fleet}, {"not_comparable", not_comparable}};
+  // A figure no test since the date reports is left off (the web view's page was a 404 for it).
+  nlohmann::json data = each_archived_figure(archive, figures, since.has_value(), [&](const std::string& figure) {
+    return fleet_summary(archive.fleet(figure, since), since);
+  });
+  return {{"fleet", std::move(data.at("figures"))}, {"not_comparable", std::move(data.at("not_comparable"))}};
 }
 
 }  // namespace inertest::archive

@@ -46,8 +46,12 @@ void add_db_option(CLI::App& command, std::string& db) {
                      "~/.local/share/inertest/archive.sqlite");
 }
 
+std::string archive_location_option(const std::string& db) {
+  return db.empty() ? archive::default_archive_location() : db;
+}
+
 std::unique_ptr<archive::Archive> open_archive_option(const std::string& db, archive::ArchiveOpening opening) {
-  return archive::open_archive(db.empty() ? archive::default_archive_location() : db, opening);
+  return archive::open_archive(archive_location_option(db), opening);
 }
 
 }  // namespace inertest::cli

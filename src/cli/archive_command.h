@@ -16,8 +16,11 @@ bool register_archive_command(const std::string& name, CommandSetup setup);
 // Adds --db to command, writing into db.
 void add_db_option(CLI::App& command, std::string& db);
 
-// Opens the archive that --db names, or the default one (default_archive_location) when empty; one
-// that is not there is an Error unless `opening` is create (archive add, run --archive).
+// The archive that --db names, or the default one (default_archive_location) when empty.
+std::string archive_location_option(const std::string& db);
+
+// Opens the archive at archive_location_option(db); one that is not there is an Error unless
+// `opening` is create (archive add, run --archive).
 std::unique_ptr<archive::Archive> open_archive_option(const std::string& db,
                                                       archive::ArchiveOpening opening = archive::ArchiveOpening::existing);
 

@@ -16,7 +16,7 @@ namespace {
 // not there yet; nothing for an archive that exists or a server's. A run that fails removes it (a bad
 // data file left a new, empty archive behind).
 std::optional<std::filesystem::path> made_for_archive(const std::string& location) {
-  if (location.starts_with("postgresql://") || location.starts_with("postgres://")) return std::nullopt;
+  if (archive::is_server_location(location)) return std::nullopt;
   std::filesystem::path path = std::filesystem::absolute(location);
   if (std::filesystem::exists(path)) return std::nullopt;
   while (path.has_parent_path() && path.parent_path() != path && !std::filesystem::exists(path.parent_path())) {
@@ -56,7 +56,7 @@ CommandAction setup(CLI::App& root) {
     if (archive_option->count() > 0) validate_plan(arguments->plan);
     const std::optional<std::filesystem::path> made =
         archive_option->count() > 0
-            ? made_for_archive(arguments->archive.empty() ? archive::default_archive_location() : arguments->archive)
+            ? made_for_archive(archive_location_option(arguments->archive))
             : std::nullopt;
     auto store = archive_option->count() > 0
                      ? open_archive_option(arguments->archive, archive::ArchiveOpening::create)

@@ -10,7 +10,7 @@ namespace inertest {
 std::optional<std::string> instrument_id_problem(std::string_view id) {
   if (id.empty()) return "is empty";
   if (id.size() > 256) return "is longer than 256 bytes";
-  if (std::any_of(id.begin(), id.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+  if (std::any_of(id.begin(), id.end(), is_ascii_control)) {
     return "contains a control character";
   }
   // "." and ".." would name the directory of the history pages, not a page of their own.

@@ -447,6 +447,14 @@ std::string verdict_key(const std::string& procedure, const std::string& pointer
 }
 
 // "≤ 100 ppm", "|value| ≤ 0.05 °/h" (a negative value judged by its magnitude), "≥ 4999",
+// verdict_value_text with the unit of a measured number ("not measured", not "not measured °/h";
+// "yes", not "yes 1").
+std::string verdict_measured_text(const json& verdict, const Labels& labels) {
+  const std::string unit = pretty_unit(verdict.value("unit", ""));
+  const bool with_unit = is_number_member(verdict, "value") && !verdict.value("yes_no", false) && !unit.empty();
+  return verdict_value_text(verdict, labels) + (with_unit ? " " + unit : "");
+}
+
 // "4999 … 5001 pulse/s/(°/s)"; "yes" for a yes/no the procedure judges itself with (it is 1 or 0).
 std::string limit_text(const json& verdict, const Labels& labels) {
   if (verdict.value("yes_no", false)) return labels("ui.yes");
@@ -512,12 +520,9 @@ class ReportWriter {
     if (!verdicts().empty()) {
       text += "\nSpecification limits\n";
       for (const json& v : verdicts()) {
-        const auto* value = member(v, "value");
-        const bool measured = value != nullptr && value->is_number();  // "not measured", not "not measured °/h"
-        const std::string unit = measured && !v.value("yes_no", false) ? pretty_unit(v.value("unit", "")) : "";
-        text += fmt::format("  {:<5} {} / {} = {}{} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
-                            v.value("procedure", ""), verdict_figure_name(v), verdict_value_text(v, labels_),
-                            unit.empty() ? "" : " " + unit, limit_text(v, labels_));
+        text += fmt::format("  {:<5} {} / {} = {} ({})\n", v.value("pass", false) ? "PASS" : "FAIL",
+                            v.value("procedure", ""), verdict_figure_name(v), verdict_measured_text(v, labels_),
+                            limit_text(v, labels_));
       }
     }
     return text + fmt::format("\nVerdict: {}\n", overall_verdict());
@@ -894,14 +899,12 @@ class ReportWriter {
       const std::string pointer = normalised_pointer(v.value("figure", ""));
       const std::string name = verdict_figure_name(v);
       const bool pass = v.value("pass", false);
-      const std::string unit = pretty_unit(v.value("unit", ""));
       out_ += fmt::format(
           "<tr data-procedure=\"{}\" data-figure=\"{}\" data-verdict=\"{}\"><td>{}</td><td>{}</td>"
           "<td>{}</td><td class=\"num\">{}</td>{}</tr>\n",
           html(v.value("procedure", "")), html(pointer), pass ? "pass" : "fail", html(v.value("procedure", "")),
           html(name), html(limit_text(v, labels_)),
-          html(verdict_value_text(v, labels_) +
-               (unit.empty() || !is_number_member(v, "value") || v.value("yes_no", false) ? "" : " " + unit) +
+          html(verdict_measured_text(v, labels_) +
                (v.contains("reason") ? " (" + v.value("reason", "") + ")" : "")),
           verdict_cell(pass, labels_));
     }

@@ -9,6 +9,7 @@
 #include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
 #include "inertest/core/instrument_id.h"
+#include "inertest/core/utf8.h"
 #include "inertest/core/units.h"
 #include "inertest/version.h"
 #include "sim/generators.h"
@@ -60,7 +61,7 @@ std::string toml_string(std::string_view text) {
     if (c == '"' || c == '\\') {
       out += '\\';
       out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+    } else if (is_ascii_control(c)) {
       out += fmt::format("\\u{:04X}", static_cast<unsigned char>(c));
     } else {
       out += c;
@@ -256,7 +257,7 @@ SimulationSummary run(const toml::table& root, const std::string& source, const 
     }
     const std::string name = test.string_or("name", kind);
     if (name.empty() || name.find_first_of("/\\\"") != std::string::npos || name.front() == '.' ||
-        std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+        std::any_of(name.begin(), name.end(), is_ascii_control)) {
       test.fail_at("name", "must be a plain file name");
     }
     if (names[name]++ > 0) test.fail_at("name", "'" + name + "' names two tests");

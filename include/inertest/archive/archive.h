@@ -183,6 +183,9 @@ nlohmann::json history_data(Archive& archive, const std::string& instrument, con
 nlohmann::json fleet_data(Archive& archive, const std::vector<std::string>& figures,
                           const std::optional<std::string>& since);
 
+// Whether location names a PostgreSQL server (a postgresql:// or postgres:// URL), not an SQLite file.
+bool is_server_location(const std::string& location);
+
 // Whether opening an archive may create it: a read of a mistyped path must not make an empty one.
 enum class ArchiveOpening { create, existing };
 

@@ -19,6 +19,9 @@ bool is_unicode_punctuation_or_blank(char32_t c);
 // U+2000-U+200A, U+202F, U+205F, U+3000).
 bool is_unicode_blank(char32_t c);
 
+// An ASCII control character (below U+0020, or DEL): no id, name or plan string holds one.
+inline bool is_ascii_control(char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }
+
 // A character that prints as nothing: a zero-width space, non-joiner or joiner, a word joiner, or a
 // byte order mark.
 bool is_invisible(char32_t c);

@@ -10,6 +10,9 @@ find_package(Boost 1.74 REQUIRED)
 # The results archive: SQLite embedded, PostgreSQL (libpq) for a lab's shared server.
 find_package(SQLite3 REQUIRED)
 find_package(PostgreSQL REQUIRED)
+# SHA-256 of records and campaigns (core/sha256.cc): OpenSSL's libcrypto, with the processor's SHA
+# extensions.
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 # Lab record formats (issue 21): HDF5 through its C API, MATLAB .mat (v5, v7, v7.3) through matio.
 # FindHDF5 test-compiles a C program: the C language is enabled for it (no C sources are built).
 enable_language(C)

@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ccache pkg-config clang libclang-rt-14-dev llvm
   libeigen3-dev libfmt-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libfast-float-dev
   libboost-dev
-  libsqlite3-dev libpq-dev postgresql
+  libsqlite3-dev libpq-dev postgresql libssl-dev
   libmatio-dev libhdf5-dev zlib1g-dev
   libfftw3-dev
   libcpp-httplib-dev

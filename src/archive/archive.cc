@@ -16,11 +16,11 @@
 #include <fmt/format.h>
 
 #include "archive/database.h"
-#include "archive/sha256.h"
 #include "inertest/core/calendar_date.h"
 #include "inertest/core/error.h"
 #include "inertest/core/instrument_id.h"
 #include "inertest/core/json_text.h"
+#include "inertest/core/sha256.h"
 #include "inertest/core/units.h"
 
 namespace inertest::archive {
@@ -79,6 +79,9 @@ struct FigureRow {
   // Where a row of a table a limit names lies in it: the row's plain numbers ("smoothing_s = 10"),
   // none for a figure that is no such row or a row without them.
   std::optional<std::string> abscissa;
+  // The records its step read: the SHA-256 of their digests in order (records_identity); none when
+  // the results name no records (inline data, results written before they did).
+  std::optional<std::string> records;
 };
 
 struct CampaignRecord {
@@ -252,6 +255,26 @@ nlohmann::json comparable_content(nlohmann::json results) {
   return results;
 }
 
+// What identifies the records a step read: the SHA-256 of their digests, one a line, in the order
+// read (a list of runs is another test in another order); none when it names none. Their names are
+// left out: the same records moved or renamed are the same test.
+std::optional<std::string> records_identity(const nlohmann::json& procedure, const std::string& name,
+                                            const std::string& source) {
+  const auto it = procedure.find("records");
+  if (it == procedure.end()) return std::nullopt;
+  if (!it->is_array()) malformed(source, "procedure '" + name + "': \"records\" must be an array");
+  std::string digests;
+  for (const auto& record : *it) {
+    const auto digest = record.is_object() ? record.find("sha256") : record.end();
+    const bool valid = record.is_object() && digest != record.end() && digest->is_string() && digest->get<std::string>().size() == 64 &&
+                       digest->get<std::string>().find_first_not_of("0123456789abcdef") == std::string::npos;
+    if (!valid) malformed(source, "procedure '" + name + "': each of \"records\" needs a \"sha256\" of 64 hex digits");
+    digests += digest->get<std::string>() + "\n";
+  }
+  if (digests.empty()) return std::nullopt;
+  return sha256_hex(digests);
+}
+
 CampaignRecord read_campaign(const nlohmann::json& results, const std::string& source) {
   using type = nlohmann::json::value_t;
   if (!results.is_object()) malformed(source, "expected a JSON object");
@@ -312,6 +335,8 @@ CampaignRecord read_campaign(const nlohmann::json& results, const std::string& s
     const std::size_t first = record.figures.size();
     collect_figures(result, name, "", source, record.figures);
     collect_limited_figures(result, name, verdicts, first, source, record.figures);
+    const std::optional<std::string> records = records_identity(procedure, name, source);
+    for (std::size_t i = first; i < record.figures.size(); ++i) record.figures[i].records = records;
   }
   // One row per figure: two steps of one name (a plan's two steps of one kind, both named by it)
   // would store one figure twice, and which of the two a history shows would be chance.
@@ -436,16 +461,25 @@ const std::vector<std::vector<std::string>> migrations = {
         // results (fill_from_stored_results).
         "ALTER TABLE figure ADD COLUMN abscissa TEXT",
     },
+    {
+        // Version 4: the records a figure's step read (FigureRow::records), and the campaign whose
+        // later processing of them supersedes the row (DatabaseArchive::supersede). Archives of
+        // version 3 stored no records: their rows supersede nothing and are superseded by nothing.
+        "ALTER TABLE figure ADD COLUMN records TEXT",
+        "ALTER TABLE figure ADD COLUMN superseded_by TEXT",
+        "CREATE INDEX figure_by_records ON figure (records)",
+    },
 };
-static_assert(schema_version == 3, "one migration per schema version");
+static_assert(schema_version == 4, "one migration per schema version");
 
 void insert_figure(Database& db, const std::string& campaign, const FigureRow& row, bool unless_stored) {
   const auto optional = [](const auto& v) -> Value { return v ? Value(*v) : Value(std::monostate{}); };
   db.query(std::string("INSERT INTO figure (campaign, procedure, figure, value, unit, uncertainty, verdict, lower_limit,"
-                       " upper_limit, abscissa) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)") +
+                       " upper_limit, abscissa, records) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11)") +
                (unless_stored ? " ON CONFLICT DO NOTHING" : ""),
            {campaign, row.procedure, row.figure, optional(row.value), row.unit, optional(row.uncertainty),
-            optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit), optional(row.abscissa)});
+            optional(row.verdict), optional(row.lower_limit), optional(row.upper_limit), optional(row.abscissa),
+            optional(row.records)});
 }
 
 // What an archive of schema version `from` did not store, read again from each campaign's stored
@@ -641,7 +675,7 @@ void take_limits(const std::vector<Row>& rows, const std::string& unit, std::opt
 
 constexpr const char* figure_columns =
     "SELECT c.tested_on, f.value, f.uncertainty, c.id, f.unit, c.instrument, f.lower_limit, f.upper_limit, f.abscissa "
-    "FROM figure f JOIN campaign c ON c.id = f.campaign ";
+    "FROM figure f JOIN campaign c ON c.id = f.campaign WHERE f.superseded_by IS NULL ";
 
 // Fault injection for the kill tests (archive_test.cc): INERTEST_ARCHIVE_KILL_AFTER_FIGURES=N
 // makes an add kill its own process (SIGKILL: no clean-up, as a power cut or `kill -9`) after
@@ -684,9 +718,14 @@ class DatabaseArchive final : public Archive {
     const std::string order = " ORDER BY tested_on, processed_at, id";
     const auto rows = instrument ? db_->query(select + "WHERE instrument = $1" + order, {*instrument})
                                  : db_->query(select + order);
+    std::map<std::string, std::vector<std::string>> superseded;
+    for (const auto& row : db_->query("SELECT DISTINCT campaign, superseded_by FROM figure WHERE superseded_by IS NOT NULL"
+                                      " ORDER BY campaign, superseded_by")) {
+      superseded[row.text(0)].push_back(row.text(1));
+    }
     std::vector<CampaignEntry> entries;
     for (const auto& row : rows) {
-      entries.push_back({row.text(0), row.text(1), row.text(2), row.text(3), row.text(4), row.text(5)});
+      entries.push_back({row.text(0), row.text(1), row.text(2), row.text(3), row.text(4), row.text(5), superseded[row.text(0)]});
     }
     return entries;
   }
@@ -696,13 +735,13 @@ class DatabaseArchive final : public Archive {
     const std::string& procedure = parts.first;
     const std::string& name = parts.second;
     const auto rows = db_->query(std::string(figure_columns) +
-                                     "WHERE c.instrument = $1 AND f.procedure = $2 AND f.figure = $3"
+                                     "AND c.instrument = $1 AND f.procedure = $2 AND f.figure = $3"
                                      " ORDER BY c.tested_on, c.processed_at, c.id",
                                  {instrument, procedure, name});
     if (rows.empty()) {
       const auto known = db_->query(
           "SELECT DISTINCT f.procedure, f.figure FROM figure f JOIN campaign c ON c.id = f.campaign"
-          " WHERE c.instrument = $1 ORDER BY f.procedure, f.figure",
+          " WHERE c.instrument = $1 AND f.superseded_by IS NULL ORDER BY f.procedure, f.figure",
           {instrument});
       if (known.empty() && db_->query("SELECT id FROM campaign WHERE instrument = $1", {instrument}).empty()) {
         throw Error("instrument '" + instrument + "' has no campaign in the archive");
@@ -725,7 +764,7 @@ class DatabaseArchive final : public Archive {
 
   FleetFigure fleet(const std::string& figure, const std::optional<std::string>& since) override {
     const auto [procedure, name] = split_figure(figure);
-    const std::string where = "WHERE f.procedure = $1 AND f.figure = $2";
+    const std::string where = "AND f.procedure = $1 AND f.figure = $2";
     const std::string order = " ORDER BY c.instrument, c.tested_on, c.processed_at, c.id";
     if (since && !is_test_date(*since)) throw Error("--since '" + *since + "': expected YYYY-MM-DD");
     const auto rows = since ? db_->query(std::string(figure_columns) + where + " AND c.tested_on >= $3" + order,
@@ -743,8 +782,8 @@ class DatabaseArchive final : public Archive {
 
   std::vector<std::string> figures(bool with_limits_only) override {
     const auto rows = db_->query(
-        std::string("SELECT DISTINCT procedure, figure FROM figure") +
-        (with_limits_only ? " WHERE lower_limit IS NOT NULL OR upper_limit IS NOT NULL" : "") +
+        std::string("SELECT DISTINCT procedure, figure FROM figure WHERE superseded_by IS NULL") +
+        (with_limits_only ? " AND (lower_limit IS NOT NULL OR upper_limit IS NOT NULL)" : "") +
         " ORDER BY procedure, figure");
     std::vector<std::string> names;
     for (const auto& row : rows) names.push_back(row.text(0) + "/" + row.text(1));
@@ -764,7 +803,9 @@ class DatabaseArchive final : public Archive {
   // content is archived already. figures_written counts the figure rows of the transaction (for
   // the fault injection).
   AddOutcome insert(const CampaignRecord& record, long& figures_written) {
-    AddOutcome outcome{record.entry.id, record.entry.instrument, false};
+    AddOutcome outcome;
+    outcome.id = record.entry.id;
+    outcome.instrument = record.entry.instrument;
     // The same content with its numbers spelt otherwise (108 for 108.0, as jq rewrites a file) hashes
     // to another id: compared by value with the instrument's campaigns of that day, it is the one
     // archived (it was stored twice, and repeatability counted the test twice). The id stays the hash
@@ -791,8 +832,42 @@ class DatabaseArchive final : public Archive {
         insert_figure(*db_, record.entry.id, row, false);
       }
       outcome.added = true;
+      supersede(record, outcome);
     }
     return outcome;
+  }
+
+  // Marks, step by step, the earlier processing of the same records by a step of the same name
+  // (same instrument) as superseded by the latest (Archive::add): the campaign just stored when it
+  // was processed last (or in the same second), else the latest stored, which then supersedes the
+  // new campaign's step too.
+  void supersede(const CampaignRecord& record, AddOutcome& outcome) {
+    const std::string& id = record.entry.id;
+    std::set<std::pair<std::string, std::string>> steps;  // procedure, records
+    for (const auto& row : record.figures) {
+      if (row.records) steps.emplace(row.procedure, *row.records);
+    }
+    const std::string same_step =
+        "FROM figure f JOIN campaign c ON c.id = f.campaign WHERE c.instrument = $1 AND f.procedure = $2 AND f.records = $3"
+        " AND f.superseded_by IS NULL AND c.id <> $4 AND c.processed_at ";
+    std::set<std::string> supersedes;
+    std::set<std::string> superseded_by;
+    for (const auto& [procedure, records] : steps) {
+      const std::vector<Value> parameters = {record.entry.instrument, procedure, records, id, record.entry.processed_at};
+      const auto later = db_->query("SELECT c.id " + same_step + "> $5 ORDER BY c.processed_at DESC, c.id LIMIT 1", parameters);
+      if (!later.empty()) {
+        db_->query("UPDATE figure SET superseded_by = $1 WHERE campaign = $2 AND procedure = $3",
+                   {later.front().text(0), id, procedure});
+        superseded_by.insert(later.front().text(0));
+        continue;
+      }
+      for (const auto& row : db_->query("SELECT DISTINCT c.id " + same_step + "<= $5", parameters)) {
+        db_->query("UPDATE figure SET superseded_by = $1 WHERE campaign = $2 AND procedure = $3", {id, row.text(0), procedure});
+        supersedes.insert(row.text(0));
+      }
+    }
+    outcome.supersedes.assign(supersedes.begin(), supersedes.end());
+    outcome.superseded_by.assign(superseded_by.begin(), superseded_by.end());
   }
 
   void require_writable() const {
@@ -807,6 +882,26 @@ class DatabaseArchive final : public Archive {
 };
 
 }  // namespace
+
+nlohmann::json AddOutcome::to_json(const std::string& file) const {
+  return {{"id", id},
+          {"instrument", instrument},
+          {"file", file},
+          {"added", added},
+          {"supersedes", supersedes},
+          {"superseded_by", superseded_by}};
+}
+
+std::string AddOutcome::to_text(const std::string& file) const {
+  std::string text = fmt::format("{} {} {} ({})", added ? "added  " : "already", id, instrument, file);
+  if (!supersedes.empty()) {
+    text += fmt::format("; supersedes {}, an earlier processing of the same records", fmt::join(supersedes, ", "));
+  }
+  if (!superseded_by.empty()) {
+    text += fmt::format("; superseded by {}, a later processing of the same records", fmt::join(superseded_by, ", "));
+  }
+  return text;
+}
 
 nlohmann::json FigureHistory::to_json() const {
   nlohmann::json list = nlohmann::json::array();

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -17,8 +18,8 @@
 #include <fmt/format.h>
 
 #include "archive/database.h"
-#include "archive/sha256.h"
 #include "inertest/core/error.h"
+#include "inertest/core/sha256.h"
 #include "test_util/postgresql_server.h"
 #include "test_util/demo_campaign.h"
 
@@ -27,14 +28,6 @@ namespace {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-// FIPS 180-2 appendix B.1 and B.2: the digests of "abc" and of the 448-bit two-block message.
-TEST(Sha256, PublishedExamples) {
-  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
-  EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
-            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
-  EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
-}
 
 // A results.json as inertest run writes it: one scale factor procedure with a limit, one bias.
 nlohmann::json campaign(const std::string& instrument, const std::string& tested_on, double scale_factor,
@@ -327,8 +320,10 @@ TEST_P(ArchiveBackend, ARowOfATableIsOneQuantityAtOnePlaceInIt) {
       {"archive", "repeatability", "FOG-R", "--figure", "bias_static/bias_stability/1", "--db", location_});
   EXPECT_EQ(repeatability.exit_code, 2);
   EXPECT_THAT(repeatability.err, HasSubstr(mixed));
-  // Schema version 2 stored no place: opening such an archive fills it in from the stored results.
-  execute_sql("ALTER TABLE figure DROP COLUMN abscissa");
+  // Schema version 2 stored no place (nor version 3's records): opening such an archive fills it in
+  // from the stored results.
+  execute_sql("DROP INDEX figure_by_records");
+  for (const char* column : {"records", "superseded_by", "abscissa"}) execute_sql(fmt::format("ALTER TABLE figure DROP COLUMN {}", column));
   execute_sql("UPDATE schema_version SET version = 2");
   EXPECT_THROW(open()->history("FOG-R", "bias_static/bias_stability/1"), archive::NotOneQuantity);
   EXPECT_EQ(open()->history("FOG-R", "scale_factor/scale_factor").points.size(), 4u);
@@ -365,6 +360,74 @@ TEST_P(ArchiveBackend, SameContentIsStoredOnce) {
   EXPECT_FALSE(spelt.added);
   EXPECT_EQ(spelt.id, first.id);
   EXPECT_EQ(archive->list(std::nullopt).size(), 2u);
+}
+
+// The campaign as processed at processed_at from records: each step reads the record of its digest
+// (sha256 of the text given).
+nlohmann::json processed_from(const std::string& instrument, const std::string& tested_on, double scale_factor,
+                              const std::string& processed_at, const std::string& scale_factor_record,
+                              const std::string& bias_record) {
+  nlohmann::json results = campaign(instrument, tested_on, scale_factor, 0.02, processed_at);
+  results["procedures"][0]["records"] =
+      nlohmann::json::array({{{"file", "k.csv"}, {"bytes", 5}, {"sha256", sha256_hex(scale_factor_record)}}});
+  results["procedures"][1]["records"] =
+      nlohmann::json::array({{{"file", "b.csv"}, {"bytes", 5}, {"sha256", sha256_hex(bias_record)}}});
+  return results;
+}
+
+// Records processed again (a changed limit, a newer inertest, a plan without a date run another
+// day) are one test: the later processing's figures replace the earlier's step by step, and the
+// earlier stay stored and listed. The history counted such a test twice, and repeatability took
+// Br = 0 from one test.
+TEST_P(ArchiveBackend, ALaterProcessingOfTheSameRecordsSupersedesTheEarlier) {
+  auto archive = open();
+  const auto first = archive->add(processed_from("FOG-7", "2026-02-01", 36000.2, "2026-02-01T10:00:00Z", "K-1", "B-1"), "a");
+  // Again a month later, without a plan date (tested_on the day processed); the bias from a new record.
+  const auto again = archive->add(processed_from("FOG-7", "2026-03-01", 36000.4, "2026-03-01T09:00:00Z", "K-1", "B-2"), "b");
+  EXPECT_TRUE(again.added);
+  EXPECT_EQ(again.supersedes, std::vector<std::string>{first.id});
+  EXPECT_TRUE(again.superseded_by.empty());
+  const auto scale_factor = archive->history("FOG-7", "scale_factor/scale_factor");
+  ASSERT_EQ(scale_factor.points.size(), 1u);
+  EXPECT_EQ(scale_factor.points[0].value, 36000.4);
+  EXPECT_EQ(scale_factor.points[0].campaign, again.id);
+  EXPECT_EQ(archive->history("FOG-7", "bias_static/bias").points.size(), 2u);  // two records: two tests
+  // An older processing added after: stored, each step superseded by the latest of its records
+  // (the scale factor's by b, the bias's by a), and it changes no history.
+  const auto older = archive->add(processed_from("FOG-7", "2026-01-15", 36000.1, "2026-01-15T08:00:00Z", "K-1", "B-1"), "c");
+  EXPECT_TRUE(older.added);
+  EXPECT_TRUE(older.supersedes.empty());
+  std::vector<std::string> first_and_again = {first.id, again.id};
+  std::sort(first_and_again.begin(), first_and_again.end());
+  EXPECT_EQ(older.superseded_by, first_and_again);
+  EXPECT_EQ(archive->history("FOG-7", "scale_factor/scale_factor").points.front().value, 36000.4);
+  EXPECT_EQ(archive->history("FOG-7", "bias_static/bias").points.size(), 2u);
+  // Another instrument's step of the same records (one record, several gyros' channels) is its own.
+  archive->add(processed_from("FOG-8", "2026-03-02", 36000.9, "2026-03-02T09:00:00Z", "K-1", "B-1"), "d");
+  EXPECT_EQ(archive->history("FOG-7", "scale_factor/scale_factor").points.size(), 1u);
+  EXPECT_EQ(archive->fleet("scale_factor/scale_factor", std::nullopt).points.size(), 2u);
+  // Processed in the same second: the one added last is the latest.
+  const auto same_second = archive->add(processed_from("FOG-7", "2026-03-01", 36000.5, "2026-03-01T09:00:00Z", "K-1", "B-3"), "e");
+  EXPECT_EQ(same_second.supersedes, std::vector<std::string>{again.id});
+  EXPECT_EQ(archive->history("FOG-7", "scale_factor/scale_factor").points.front().value, 36000.5);
+  // Every campaign stays listed, with the campaigns that superseded figures of it.
+  const auto listed = open()->list(std::string("FOG-7"));
+  ASSERT_EQ(listed.size(), 4u);
+  const auto entry = [&](const std::string& id) {
+    return *std::find_if(listed.begin(), listed.end(), [&](const CampaignEntry& e) { return e.id == id; });
+  };
+  EXPECT_EQ(entry(first.id).superseded_by, std::vector<std::string>{again.id});
+  EXPECT_EQ(entry(older.id).superseded_by, first_and_again);
+  EXPECT_EQ(entry(again.id).superseded_by, std::vector<std::string>{same_second.id});
+  EXPECT_TRUE(entry(same_second.id).superseded_by.empty());
+  const auto text = testing::run_cli({"archive", "list", "--instrument", "FOG-7", "--db", location_});
+  EXPECT_THAT(text.out, HasSubstr("(superseded by " + again.id + ")"));
+  // Three bias records, three tests: B-1 (a's processing, the later of two), B-2 and B-3.
+  EXPECT_EQ(archive->history("FOG-7", "bias_static/bias").points.size(), 3u);
+  // Results naming records without a digest are refused.
+  nlohmann::json no_digest = processed_from("FOG-7", "2026-04-01", 36000.2, "2026-04-01T10:00:00Z", "K-9", "B-9");
+  no_digest["procedures"][0]["records"][0].erase("sha256");
+  EXPECT_THAT(error_of_add(*archive, no_digest), HasSubstr("each of \"records\" needs a \"sha256\" of 64 hex digits"));
 }
 
 TEST_P(ArchiveBackend, HostileResultsAreRefusedAndChangeNothing) {
@@ -475,7 +538,7 @@ TEST_P(ArchiveBackend, NewerSchemaIsRefused) {
     FAIL() << "opened an archive of schema version 99";
   } catch (const Error& e) {
     EXPECT_THAT(std::string(e.what()),
-                HasSubstr("the archive's schema version is 99, newer than this inertest knows (3): use a newer inertest"));
+                HasSubstr("the archive's schema version is 99, newer than this inertest knows (4): use a newer inertest"));
   }
 }
 
@@ -672,6 +735,31 @@ TEST_P(ArchiveBackend, RunAddsItsResultsToTheArchive) {
   EXPECT_EQ(campaigns[0].instrument, written["instrument"]["id"]);
   EXPECT_EQ(campaigns[0].processed_at, written["processed_at"]);
   EXPECT_EQ(open()->results(campaigns[0].id), written);
+}
+
+// results.json names each record a step read, from the plan's directory, with its size and SHA-256
+// (what `sha256sum` prints); the same plan run again with a changed limit supersedes its figures.
+TEST_P(ArchiveBackend, ARunAgainWithAChangedLimitSupersedesTheFirst) {
+  const std::string points = testing::read_file(testing::source_path("examples/scale_factor/points.csv"));
+  scratch_.write("data/points.csv", points);
+  const auto plan = [&](int limit) {
+    return scratch_.write("plan.toml", fmt::format("[instrument]\nid = \"FOG-1\"\noutput_unit = \"pulse/s\"\n\n"
+                                                   "[[procedure]]\nkind = \"scale_factor\"\nfile = \"data/points.csv\"\n"
+                                                   "[procedure.limits]\nnonlinearity = {{ max = {}, unit = \"ppm\" }}\n",
+                                                   limit));
+  };
+  const auto first = testing::run_cli({"run", plan(100), "--out", scratch_.path() + "/out", "--archive", location_});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const auto written = read_results_file(scratch_.path() + "/out/results.json");
+  EXPECT_EQ(written["procedures"][0]["records"],
+            nlohmann::json::array({{{"file", "data/points.csv"}, {"bytes", points.size()}, {"sha256", sha256_hex(points)}}}));
+  const auto second = testing::run_cli({"run", plan(50), "--out", scratch_.path() + "/out", "--archive", location_});
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_THAT(second.err, HasSubstr("(an earlier processing of the same records)"));
+  const auto history = open()->history("FOG-1", "scale_factor/nonlinearity");
+  ASSERT_EQ(history.points.size(), 1u);
+  EXPECT_EQ(history.upper_limit, 50.0);
+  EXPECT_EQ(open()->list(std::nullopt).size(), 2u);
 }
 
 // A plan that is refused makes no archive (a mistyped key left a new, empty one behind).

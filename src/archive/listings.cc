@@ -13,7 +13,8 @@ nlohmann::json entry_json(const CampaignEntry& e) {
           {"title", e.title},
           {"tested_on", e.tested_on},
           {"processed_at", e.processed_at},
-          {"verdict", e.verdict}};
+          {"verdict", e.verdict},
+          {"superseded_by", e.superseded_by}};
 }
 
 }  // namespace

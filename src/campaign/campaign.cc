@@ -19,6 +19,8 @@
 #include "inertest/core/instrument_id.h"
 #include "inertest/core/json_text.h"
 #include "inertest/core/procedure_spec.h"
+#include "inertest/core/records_read.h"
+#include "inertest/core/sha256.h"
 #include "inertest/core/units.h"
 #include "inertest/io/atomic_write.h"
 #include "inertest/version.h"
@@ -60,6 +62,7 @@ struct PreparedStep {
   campaign::StepAction action;
   nlohmann::json parameters;  // of a declared procedure, by name (PreparedAction)
   SourceLocation where;  // the [[procedure]] table, for errors from data that carry no location
+  std::vector<std::string> records_read;  // the record files its preparation opened (RecordsRead)
 };
 
 struct Plan {
@@ -371,7 +374,9 @@ Plan load_plan(const std::string& path) {
     const ProcedureSpec* spec = find_procedure_spec(prepared.kind);
     if (spec) check_declared_figures(spec->fields, prepared);
     check_limit_units(prepared);  // the fixed units, before the step's own keys are read
+    RecordsRead records;
     campaign::PreparedAction action = (*preparer)(step, plan.context);
+    prepared.records_read = records.paths();
     prepared.action = std::move(action.run);
     prepared.parameters = std::move(action.parameters);
     if (!spec) check_declared_figures(action.figures, prepared);
@@ -535,6 +540,27 @@ std::filesystem::path first_missing(const std::filesystem::path& out) {
     missing = p;
   }
   return missing;
+}
+
+// The records a step read (those its preparation and its run opened, listed files included), each
+// named from the plan's directory (its whole path when it lies elsewhere) with its size and SHA-256:
+// what a lab checks with `sha256sum`, and what the archive knows a reprocessing of the same records
+// by (archive.cc, superseded figures).
+nlohmann::json records_of(const Plan& plan, const std::vector<std::string>& prepared, const std::vector<std::string>& run) {
+  const std::filesystem::path plan_directory = std::filesystem::path(plan.path).parent_path().lexically_normal();
+  std::vector<std::string> paths = prepared;
+  for (const auto& path : run) {
+    if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
+  }
+  nlohmann::json records = nlohmann::json::array();
+  for (const auto& path : paths) {
+    const FileDigest digest = file_sha256(path);
+    const std::filesystem::path relative =
+        plan_directory.empty() ? std::filesystem::path(path) : std::filesystem::path(path).lexically_relative(plan_directory);
+    const bool inside = !relative.empty() && *relative.begin() != "..";
+    records.push_back({{"file", inside ? relative.generic_string() : path}, {"bytes", digest.bytes}, {"sha256", digest.sha256}});
+  }
+  return records;
 }
 
 // results.json of a run: the steps' results and verdicts under the plan's header.
@@ -753,6 +779,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       const auto& step = plan.steps[i];
       if (options.progress) options.progress(step.name, static_cast<double>(i) / static_cast<double>(plan.steps.size()));
       nlohmann::json result;
+      RecordsRead records;
       try {
         result = step.action(context);
       } catch (const Error& e) {
@@ -762,7 +789,10 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       for (const auto& limit : step.limits) {
         if (std::optional<nlohmann::json> verdict = check_limit(limit, step.name, result)) verdicts.push_back(*verdict);
       }
-      procedures.push_back({{"name", step.name}, {"kind", step.kind}, {"result", std::move(result)}});
+      procedures.push_back({{"name", step.name},
+                            {"kind", step.kind},
+                            {"records", records_of(plan, step.records_read, records.paths())},
+                            {"result", std::move(result)}});
     }
     summary.results = campaign_results(plan, std::move(procedures), std::move(verdicts));
     write_file_atomically((staging / "results.json").string(), json_text(summary.results, 2) + "\n");

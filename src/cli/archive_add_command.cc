@@ -18,13 +18,16 @@ CommandAction setup(CLI::App& archive) {
   CLI::App* command = archive.add_subcommand(
       "add",
       "Add campaigns' results.json to the archive, all in one transaction. A campaign already there\n"
-      "(the same content, whatever its processing time) is recognised and stored once. All files are\n"
+      "(the same content, whatever its processing time) is recognised and stored once; a later\n"
+      "processing of the same records (a changed limit, a newer inertest) supersedes the earlier's\n"
+      "figures step by step, which stay stored and listed. All files are\n"
       "read and checked before any is added: a malformed one adds nothing, nor does a failure of the\n"
       "database part-way.");
   command->add_option("RESULTS", arguments->files, "results.json of inertest run")->required();
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,
-                    "print {\"added\": [{\"id\", \"instrument\", \"file\", \"added\"}]} on stdout");
+                    "print {\"added\": [{\"id\", \"instrument\", \"file\", \"added\", \"supersedes\", \"superseded_by\"}]} on "
+                    "stdout");
   return [arguments] {
     std::vector<std::pair<nlohmann::json, std::string>> files;
     for (const auto& file : arguments->files) {
@@ -37,10 +40,8 @@ CommandAction setup(CLI::App& archive) {
     std::string report;
     for (std::size_t i = 0; i < outcomes.size(); ++i) {
       const archive::AddOutcome& outcome = outcomes[i];
-      added.push_back({{"id", outcome.id}, {"instrument", outcome.instrument}, {"file", arguments->files[i]},
-                       {"added", outcome.added}});
-      report += fmt::format("{} {} {} ({})\n", outcome.added ? "added  " : "already", outcome.id, outcome.instrument,
-                            arguments->files[i]);
+      added.push_back(outcome.to_json(arguments->files[i]));
+      report += outcome.to_text(arguments->files[i]) + "\n";
     }
     print_result({{"added", added}}, report, arguments->json);
     return 0;

@@ -20,7 +20,7 @@ CommandAction setup(CLI::App& archive) {
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,
                     "print {\"campaigns\": [{\"id\", \"instrument\", \"title\", \"tested_on\", \"processed_at\", "
-                    "\"verdict\"}]}");
+                    "\"verdict\", \"superseded_by\"}]}");
   return [arguments] {
     const auto store = open_archive_option(arguments->db);
     const auto entries =
@@ -28,8 +28,9 @@ CommandAction setup(CLI::App& archive) {
     std::string report = fmt::format("{:<16}  {:<16}  {:<10}  {:<20}  {:<7}  {}\n", "id", "instrument", "tested on",
                                      "processed at", "verdict", "title");
     for (const auto& e : entries) {
-      report += fmt::format("{:<16}  {:<16}  {:<10}  {:<20}  {:<7}  {}\n", e.id, e.instrument, e.tested_on,
-                            e.processed_at, e.verdict, e.title);
+      report += fmt::format("{:<16}  {:<16}  {:<10}  {:<20}  {:<7}  {}{}\n", e.id, e.instrument, e.tested_on,
+                            e.processed_at, e.verdict, e.title,
+                            e.superseded_by.empty() ? "" : fmt::format("  (superseded by {})", fmt::join(e.superseded_by, ", ")));
     }
     print_result(archive::campaign_list_json(entries), report, arguments->json);
     return 0;

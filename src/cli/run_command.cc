@@ -77,7 +77,10 @@ CommandAction setup(CLI::App& root) {
     }
     if (store) {
       const auto outcome = store->add(summary.results, summary.written_files.front());
-      fmt::print(stderr, "{} the archive as campaign {}\n", outcome.added ? "added to" : "already in", outcome.id);
+      fmt::print(stderr, "{} the archive as campaign {}{}\n", outcome.added ? "added to" : "already in", outcome.id,
+                 outcome.supersedes.empty() ? ""
+                                            : fmt::format(", superseding {} (an earlier processing of the same records)",
+                                                          fmt::join(outcome.supersedes, ", ")));
     }
     print_result(summary.results, report::render_text_report(summary.results, report_options), arguments->json);
     if (!arguments->json) {

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "inertest/core/error.h"
+#include "inertest/core/records_read.h"
 #include "inertest/core/units.h"
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
@@ -120,6 +121,7 @@ std::size_t ChannelRecord::find(const std::optional<ColumnSelector>& selector) c
 }
 
 std::unique_ptr<ChannelRecord> open_channel_record(const std::string& path, ChannelRecordFormat format) {
+  note_record_read(path);
   switch (format) {
     case ChannelRecordFormat::kMat: return open_mat_record(path);
     case ChannelRecordFormat::kHdf5: return open_hdf5_record(path);

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "inertest/core/error.h"
+#include "inertest/core/records_read.h"
 
 namespace inertest {
 
@@ -37,6 +38,7 @@ MappedFile::MappedFile(const std::string& path) : path_(path) {
     data_ = static_cast<const char*>(address);
   }
   ::close(fd);
+  note_record_read(path);
 }
 
 MappedFile::~MappedFile() {

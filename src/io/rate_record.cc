@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "inertest/core/error.h"
+#include "inertest/core/records_read.h"
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
 
@@ -30,6 +31,7 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 File open(const std::string& path) {
   File file(std::fopen(path.c_str(), "rb"));
   if (!file) throw Error(SourceLocation{path, 0, 0}, std::string("cannot open: ") + std::strerror(errno));
+  note_record_read(path);
   return file;
 }
 

@@ -234,10 +234,7 @@ struct Server::Impl {
       throw Refusal{400, e.message()};
     }
     const archive::AddOutcome outcome = store->add(results, "request body");
-    return {{"added", nlohmann::json::array({{{"id", outcome.id},
-                                              {"instrument", outcome.instrument},
-                                              {"file", "request body"},
-                                              {"added", outcome.added}}})}};
+    return {{"added", nlohmann::json::array({outcome.to_json("request body")})}};
   }
 
   void add_routes() {

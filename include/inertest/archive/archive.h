@@ -38,7 +38,7 @@ class DatabaseError : public Error {
 };
 
 // The schema version this inertest writes and reads (migrations bring older archives up to it).
-inline constexpr int schema_version = 3;
+inline constexpr int schema_version = 4;
 
 // One archived campaign, as `archive list` shows it.
 struct CampaignEntry {
@@ -48,6 +48,9 @@ struct CampaignEntry {
   std::string tested_on;     // when the test was done (results.json "tested_on")
   std::string processed_at;  // when it was processed, UTC ISO 8601
   std::string verdict;       // PASS, FAIL or NONE
+  // The campaigns that processed records of this one again, step by step, later: their figures
+  // replace this one's in histories and the fleet (Archive::add). Empty for most.
+  std::vector<std::string> superseded_by;
 };
 
 // One archived value of a figure.
@@ -108,6 +111,15 @@ struct AddOutcome {
   std::string id;
   std::string instrument;
   bool added = false;  // false: the same content was already archived
+  // The campaigns whose earlier processing of the same records this one replaces (step by step),
+  // and those whose later processing replaces steps of this one (an older results.json added after).
+  std::vector<std::string> supersedes;
+  std::vector<std::string> superseded_by;
+
+  // {"id", "instrument", "file", "added", "supersedes", "superseded_by"}, as `archive add --json`,
+  // `run --archive` and the web view's POST /api/campaigns answer; and the line `archive add` prints.
+  nlohmann::json to_json(const std::string& file) const;
+  std::string to_text(const std::string& file) const;
 };
 
 class Archive {
@@ -117,6 +129,11 @@ class Archive {
   // Adds a campaign's results (results.json parsed); source names the file in error messages.
   // Throws Error, changing nothing, when the results are malformed (a missing or mistyped key, a
   // results_schema_version this inertest does not know, a figure without a finite value or unit).
+  // A step that read the same records (results.json "records", their SHA-256 in order) as a step of
+  // the same name of an earlier processing for the same instrument supersedes it: the later
+  // processing's figures are the ones histories, the fleet and figures() show, and the earlier
+  // rows stay stored, marked (list() names who superseded them). Later is processed_at, and of
+  // two processed in the same second the one added last. Results without records supersede nothing.
   virtual AddOutcome add(const nlohmann::json& results, const std::string& source) = 0;
 
   // Adds several campaigns (results, source) in one transaction: all are checked as add() checks

@@ -112,6 +112,14 @@ TEST(BiasCommandTest, ClearErrors) {
   EXPECT_EQ(no_latitude.exit_code, 2);
   EXPECT_THAT(no_latitude.err, ::testing::HasSubstr("--latitude is needed to remove the Earth rate"));
   EXPECT_TRUE(no_latitude.out.empty());
+  // A latitude or heading without --remove-earth-rate is an error: it was ignored, and the bias
+  // kept the Earth rate the engineer meant to remove.
+  for (const char* option : {"--latitude", "--heading"}) {
+    const auto alone = run_cli({"bias", file, "--rate", "10", "--scale-factor", "5", option, "45"});
+    EXPECT_EQ(alone.exit_code, 2) << option;
+    EXPECT_THAT(alone.err, ::testing::HasSubstr(std::string(option) + ") is used only with remove_earth_rate"));
+    EXPECT_TRUE(alone.out.empty());
+  }
 }
 
 TEST(BiasCommandTest, RepeatabilityAndTemperature) {

@@ -14,24 +14,25 @@
 namespace inertest {
 
 // Declares the four parameters on `definition`, storing the orientation in `axis` when
-// remove_earth_rate is true; an elevation without it is an Error. The latitude has no default: not
+// remove_earth_rate is true. A latitude, heading or elevation given without it is an Error (the
+// command line's --latitude alone was ignored: the bias kept the Earth rate unsaid); a plan's [site]
+// gives the latitude and heading only to a step that removes it. The latitude has no default: not
 // given, it stays NaN and the orientation's validate() asks for it (0 assumed unsaid removed the
-// equator's Earth rate). The heading defaults to north, the elevation to horizontal.
+// equator's Earth rate). The heading is north and the elevation horizontal unless given.
 template <typename Options, typename Result>
 ProcedureDefinition<Options, Result>& earth_rate_parameters(ProcedureDefinition<Options, Result>& definition,
                                                              std::optional<AxisOrientation> Options::*axis) {
-  // An angle of the orientation, set only with remove_earth_rate: [site]'s `name` in a plan.
-  const auto site_angle = [&definition, axis](const char* name, const char* doc, const char* option,
-                                              double AxisOrientation::*angle, std::optional<double> default_value) {
-    ParameterSpec parameter = ParameterSpec(name, doc).unit_is("deg").site_gives(name, true).command_line_name_is(option);
-    const auto bind = [axis, angle](Options& options, const nlohmann::json& value) {
-      if (options.*axis) (*(options.*axis)).*angle = value.get<double>();
-    };
-    if (default_value) {
-      definition.parameter(std::move(parameter), *default_value, bind);
-    } else {
-      definition.parameter(std::move(parameter), bind);
-    }
+  // An angle of the orientation, only with remove_earth_rate.
+  const auto orientation_angle = [&definition, axis](ParameterSpec parameter, double AxisOrientation::*angle) {
+    const std::string used_only = parameter.name + " (" + parameter.command_line_option() +
+                                  ") is used only with remove_earth_rate (--remove-earth-rate)";
+    definition.parameter(std::move(parameter), [axis, angle, used_only](Options& options, const nlohmann::json& value) {
+      if (!(options.*axis)) throw Error(used_only);
+      (*(options.*axis)).*angle = value.get<double>();
+    });
+  };
+  const auto removes_earth_rate = [](const ProcedureCall& call, const nlohmann::json&) {
+    return call.parameters.value("remove_earth_rate", false);
   };
   definition.parameter(
       ParameterSpec("remove_earth_rate", "remove the Earth rate along the IRA (site latitude, IRA heading and elevation)")
@@ -39,18 +40,23 @@ ProcedureDefinition<Options, Result>& earth_rate_parameters(ProcedureDefinition<
       false, [axis](Options& options, const nlohmann::json& value) {
         if (value.get<bool>()) options.*axis = AxisOrientation{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
       });
-  site_angle("latitude_deg", "site latitude (north positive; needed with remove_earth_rate)", "latitude",
-             &AxisOrientation::latitude_deg, std::nullopt);
-  site_angle("heading_deg", "azimuth of the IRA from north (east positive)", "heading", &AxisOrientation::heading_deg,
-             0.0);
-  return definition.parameter(
-      ParameterSpec("ira_elevation_deg", "elevation of the IRA above the horizontal (default 0)")
-          .unit_is("deg")
-          .command_line_name_is("elevation"),
-      [axis](Options& options, const nlohmann::json& value) {
-        if (!(options.*axis)) throw Error("ira_elevation_deg (--elevation) is used only with remove_earth_rate");
-        (options.*axis)->elevation_deg = value.get<double>();
-      });
+  orientation_angle(ParameterSpec("latitude_deg", "site latitude (north positive; needed with remove_earth_rate)")
+                        .unit_is("deg")
+                        .site_gives("latitude_deg", true)
+                        .instrument_gives_if(removes_earth_rate)
+                        .command_line_name_is("latitude"),
+                    &AxisOrientation::latitude_deg);
+  orientation_angle(ParameterSpec("heading_deg", "azimuth of the IRA from north (east positive; default 0)")
+                        .unit_is("deg")
+                        .site_gives("heading_deg", true)
+                        .instrument_gives_if(removes_earth_rate)
+                        .command_line_name_is("heading"),
+                    &AxisOrientation::heading_deg);
+  orientation_angle(ParameterSpec("ira_elevation_deg", "elevation of the IRA above the horizontal (default 0)")
+                        .unit_is("deg")
+                        .command_line_name_is("elevation"),
+                    &AxisOrientation::elevation_deg);
+  return definition;
 }
 
 }  // namespace inertest

@@ -977,6 +977,24 @@ class ReportWriter {
     out_ += "</tbody></table>\n</section>\n";
   }
 
+  // The records the step read, as results.json names them (campaign.cc records_of): what the
+  // figures below were computed from, each with the SHA-256 a lab checks with `sha256sum`.
+  void write_records(const json& procedure) {
+    const auto* records = member(procedure, "records");
+    if (records == nullptr || !records->is_array() || records->empty()) return;
+    out_ += fmt::format("<h3>{}</h3>\n<table class=\"records\">\n<thead><tr><th>{}</th><th class=\"num\">{}</th>"
+                        "<th>SHA-256</th></tr></thead>\n<tbody>\n",
+                        html(labels_("ui.records")), html(labels_("ui.file")), html(labels_("ui.bytes")));
+    for (const auto& record : *records) {
+      if (!record.is_object()) continue;
+      const auto bytes = record.value("bytes", json());
+      out_ += fmt::format("<tr><td><code>{}</code></td><td class=\"num\">{}</td><td><code class=\"digest\">{}</code></td></tr>\n",
+                          html(record.value("file", "")), bytes.is_number() ? bytes.dump() : "",
+                          html(record.value("sha256", "")));
+    }
+    out_ += "</tbody></table>\n";
+  }
+
   void write_procedure(const json& procedure, std::size_t index) {
     const int number = ++section_;
     const std::string kind = procedure.value("kind", "");
@@ -997,6 +1015,7 @@ class ReportWriter {
       out_ += fmt::format("<p>{}</p>\n", html(method));
     }
     out_ += "</div>\n";
+    write_records(procedure);
 
     out_ += fmt::format("<h3>{}</h3>\n<table class=\"figures\">\n", html(labels_("ui.results")));
     bool with_limits = false;

@@ -39,6 +39,7 @@ tr.more td { color: var(--muted); font-style: italic; }
 .contents a { color: var(--accent); text-decoration: none; }
 .kind { margin: -6px 0 8px; color: var(--muted); }
 .clause { font-weight: bold; }
+code.digest { font-size: 11px; word-break: break-all; }
 .method p { margin: 4px 0; }
 .warnings { border-left: 4px solid #e0a800; background: #fff8e1; padding: 4px 12px; margin: 10px 0; }
 .warnings h3 { margin: 4px 0; }

@@ -71,10 +71,14 @@ const std::unordered_map<std::string_view, NamedUnit>& simple_units() {
       {"V", {1.0, Dimension::kVoltage}},
       {"mV", {1e-3, Dimension::kVoltage}},
       {"uV", {1e-6, Dimension::kVoltage}},
+      {"µV", {1e-6, Dimension::kVoltage}},  // U+00B5 micro sign
+      {"μV", {1e-6, Dimension::kVoltage}},  // U+03BC Greek mu
       {"kV", {1e3, Dimension::kVoltage}},
       {"A", {1.0, Dimension::kCurrent}},
       {"mA", {1e-3, Dimension::kCurrent}},
       {"uA", {1e-6, Dimension::kCurrent}},
+      {"µA", {1e-6, Dimension::kCurrent}},  // U+00B5 micro sign
+      {"μA", {1e-6, Dimension::kCurrent}},  // U+03BC Greek mu
       // instrument counts
       {"pulse", {1.0, Dimension::kCount}},
       {"count", {1.0, Dimension::kCount}},

@@ -46,7 +46,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ConversionCase{"m/s2", "m/s^2", 1.0, 1.0}, ConversionCase{"Volts", "mV", 1.0, 1000.0},
                       // a bond's milliohms are no megohms (case folding had read mOhm as Mohm, 1e9 off)
                       ConversionCase{"mOhm", "ohm", 5.0, 5e-3}, ConversionCase{"KHZ", "Hz", 1.0, 1000.0},
-                      ConversionCase{"DEGC", "degC", 20.0, 20.0}));
+                      ConversionCase{"DEGC", "degC", 20.0, 20.0},
+                      // a power supply's currents and a pickoff's voltages, with the micro sign or the Greek mu
+                      ConversionCase{"µA", "mA", 250.0, 0.25}, ConversionCase{"μA", "uA", 1.0, 1.0},
+                      ConversionCase{"µV", "V", 2e6, 2.0}, ConversionCase{"μV/(deg/s)", "mV/(deg/s)", 5.0, 5e-3}));
 
 TEST(Units, IncompatibleDimensionsAreAnError) {
   EXPECT_THROW(convert(1.0, "deg/h", "deg"), Error);

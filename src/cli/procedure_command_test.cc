@@ -45,7 +45,10 @@ TEST(ProcedureCommand, AUnitParameterMustBeAUnit) {
   for (const std::vector<std::string>& arguments :
        {std::vector<std::string>{"bias", record, "--scale-factor", "1", "--rate", "1", "--output-unit", "banana"},
         std::vector<std::string>{"polarity", "--positive-output", "3", "--negative-output", "-3", "--output-unit",
-                                 "banana"}}) {
+                                 "banana"},
+        // each unit of a list too ("ch=banana" passed as a unit)
+        std::vector<std::string>{"polarity", "--positive-output", "3", "--negative-output", "-3", "--output-unit",
+                                 "ch=banana"}}) {
     const auto run = run_cli(arguments);
     EXPECT_EQ(run.exit_code, 2) << arguments[0];
     EXPECT_TRUE(run.out.empty()) << arguments[0];
@@ -57,6 +60,9 @@ TEST(ProcedureCommand, AUnitParameterMustBeAUnit) {
   const auto unnamed = run_cli({"allan", two, "--rate", "1", "--columns", "a,b", "--input-unit", "deg/s,deg/h"});
   EXPECT_EQ(unnamed.exit_code, 2);
   EXPECT_THAT(unnamed.err, Not(HasSubstr("unknown unit")));
+  const auto named = run_cli({"allan", two, "--rate", "1", "--columns", "a,b", "--input-unit", "a=deg/s,b=banana"});
+  EXPECT_EQ(named.exit_code, 2);
+  EXPECT_THAT(named.err, HasSubstr("--input-unit: unknown unit 'banana'"));
 }
 
 TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {

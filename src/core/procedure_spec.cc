@@ -48,11 +48,18 @@ std::string ordinal(std::size_t n) {
 void check_unit_parameters(const ProcedureCall& call) {
   for (const auto& item : call.parameters.items()) {
     if (!item.key().ends_with("_unit") || !item.value().is_string()) continue;
-    // Empty: none given; a list per channel ("gx=deg/s,ax=m/s^2", allan's) is its procedure's to
-    // read, with its own messages (a list without names, "deg/s,deg/h", says so there).
+    // Empty: none given. Of a list per channel ("gx=deg/s,ax=m/s^2", allan's) each unit is checked
+    // here, and the list is its procedure's to read, with its own messages (a list without names,
+    // "deg/s,deg/h", says so there); "ch=banana" passed as a unit.
     const std::string& text = item.value().get_ref<const std::string&>();
-    if (text.empty() || text.find_first_of("=,") != std::string::npos) continue;
-    check_parameter(item.key(), [&text] { Unit::parse(text); });
+    if (text.empty()) continue;
+    for (std::size_t begin = 0; begin <= text.size();) {
+      const std::size_t end = std::min(text.find(',', begin), text.size());
+      std::string_view unit = std::string_view(text).substr(begin, end - begin);
+      if (const std::size_t equals = unit.find('='); equals != std::string_view::npos) unit.remove_prefix(equals + 1);
+      check_parameter(item.key(), [unit] { Unit::parse(unit); });
+      begin = end + 1;
+    }
   }
 }
 

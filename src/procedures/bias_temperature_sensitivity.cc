@@ -8,12 +8,6 @@
 #include "inertest/core/units.h"
 
 namespace inertest {
-namespace {
-
-constexpr double kStandardAtmosphereDegC[2] = {15.0, 35.0};  // GJB 2426A-2004 4.1.1.1 a)
-
-}  // namespace
-
 BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const TemperatureRunBias> runs,
                                                               const BiasTemperatureOptions& options) {
   if (runs.size() < 2) {
@@ -22,20 +16,8 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
                             runs.size()));
   }
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (!std::isfinite(runs[i].temperature_degC) || !std::isfinite(runs[i].bias_deg_h)) {
-      throw Error("bias temperature sensitivity: a run's temperature or bias is not a finite number");
-    }
-    if (runs[i].temperature_degC < constants::kAbsoluteZeroDegC) {  // a typo (-400 for -40) moved Bt silently
-      throw Error(fmt::format("bias temperature sensitivity: run {}: {} degC is below absolute zero", i + 1,
-                              runs[i].temperature_degC));
-    }
-    // No gyro is tested above 200 degC: such a value is a temperature in kelvin (298.15 for 25), which
-    // divided Bt by up to 9 when it stood beside runs in degC.
-    if (runs[i].temperature_degC > kHottestTestDegC) {
-      throw Error(fmt::format("bias temperature sensitivity: run {}: {} degC is above {} degC; is it in kelvin? "
-                              "temperatures are in degC",
-                              i + 1, runs[i].temperature_degC, kHottestTestDegC));
-    }
+    if (!std::isfinite(runs[i].bias_deg_h)) throw Error("bias temperature sensitivity: a run's bias is not a finite number");
+    check_test_temperature("bias temperature sensitivity", i + 1, runs[i].temperature_degC);
   }
   std::size_t room = 0;
   if (options.room_temperature_degC) {
@@ -51,13 +33,9 @@ BiasTemperatureSensitivityResult bias_temperature_sensitivity(std::span<const Te
                               "is needed",
                               found, *options.room_temperature_degC));
     }
-  } else if (const double first = runs.front().temperature_degC;
-             first < kStandardAtmosphereDegC[0] || first > kStandardAtmosphereDegC[1]) {
-    // Runs listed cold to hot made the coldest one Tm, and Bt 2.2 times too small, without a word.
-    throw Error(fmt::format("bias temperature sensitivity: the first run, taken as the room-temperature run "
-                            "(5.12.4.3 a), is at {} degC, outside the standard atmosphere's {}-{} degC (4.1.1.1): "
-                            "give the room temperature (--room-temperature; room_temperature_degC in a plan)",
-                            first, kStandardAtmosphereDegC[0], kStandardAtmosphereDegC[1]));
+  } else {
+    check_first_run_is_room_temperature("bias temperature sensitivity", "5.12.4.3 a", runs.front().temperature_degC,
+                                        "--room-temperature; room_temperature_degC in a plan");
   }
   BiasTemperatureSensitivityResult result;
   result.runs.assign(runs.begin(), runs.end());

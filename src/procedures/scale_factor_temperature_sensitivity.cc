@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "inertest/core/error.h"
+#include "inertest/core/test_temperature.h"
 #include "inertest/core/units.h"
 
 namespace inertest {
@@ -25,13 +26,7 @@ ScaleFactorTemperatureResult scale_factor_temperature_sensitivity(std::span<cons
                             runs.size()));
   }
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (!std::isfinite(runs[i].temperature_degC)) {
-      throw Error(fmt::format("scale factor temperature sensitivity: run {}: temperature is not finite", i + 1));
-    }
-    if (runs[i].temperature_degC < constants::kAbsoluteZeroDegC) {  // a typo (-400 for -40) moved Kt silently
-      throw Error(fmt::format("scale factor temperature sensitivity: run {}: {} degC is below absolute zero", i + 1,
-                              runs[i].temperature_degC));
-    }
+    check_test_temperature("scale factor temperature sensitivity", i + 1, runs[i].temperature_degC);
     for (std::size_t j = 0; j < i; ++j) {
       if (runs[j].temperature_degC == runs[i].temperature_degC) {
         throw Error(fmt::format("scale factor temperature sensitivity: runs {} and {} are both at {} degC", j + 1,
@@ -49,6 +44,10 @@ ScaleFactorTemperatureResult scale_factor_temperature_sensitivity(std::span<cons
                               *options.reference_temperature_degC));
     }
     reference = static_cast<std::size_t>(it - runs.begin());
+  } else {
+    check_first_run_is_room_temperature("scale factor temperature sensitivity", "5.8.5.3 a",
+                                        runs.front().temperature_degC,
+                                        "--reference-temperature; reference_temperature_degC in a plan");
   }
 
   std::vector<Figure> k(runs.size());

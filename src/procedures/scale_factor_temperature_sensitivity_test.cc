@@ -60,6 +60,31 @@ TEST(ScaleFactorTemperatureSensitivity, BadInputIsAnError) {
   } catch (const Error& e) {
     EXPECT_EQ(e.message(), "scale factor temperature sensitivity: run 3: -400 degC is below absolute zero");
   }
+  // Runs listed cold to hot: the first is no room temperature (it was taken as Tm: Kt 3.00 for 3.50).
+  auto cold_first = runs();
+  std::swap(cold_first[0], cold_first[2]);
+  try {
+    scale_factor_temperature_sensitivity(cold_first);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "scale factor temperature sensitivity: the first run, taken as the room-temperature run "
+                           "(5.8.5.3 a), is at -20 degC, outside the standard atmosphere's 15-35 degC (4.1.1.1): give "
+                           "the room temperature (--reference-temperature; reference_temperature_degC in a plan)");
+  }
+  ScaleFactorTemperatureOptions named;
+  named.reference_temperature_degC = 20.0;
+  EXPECT_NEAR_RELATIVE(scale_factor_temperature_sensitivity(cold_first, named).scale_factor_temperature_sensitivity.value,
+                       75.0, 1e-9);
+  // A run in kelvin beside runs in degC (0.60 for 3.50 ppm/degC), or all of them (Tm 293.15 degC).
+  auto kelvin = runs();
+  kelvin[1].temperature_degC = 313.15;
+  try {
+    scale_factor_temperature_sensitivity(kelvin);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "scale factor temperature sensitivity: run 2: 313.15 degC is above 200 degC; is it in "
+                           "kelvin? temperatures are in degC");
+  }
   auto missing = runs();
   missing[1].points.pop_back();  // no static run at the end
   try {

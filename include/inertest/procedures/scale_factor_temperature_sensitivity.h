@@ -25,7 +25,7 @@ struct TemperatureRun {
 struct ScaleFactorTemperatureOptions {
   ScaleFactorOptions scale_factor;
   // Tm: the run at this temperature is the room-temperature run. Unset: the first run (5.8.5.3 a
-  // measures room temperature first).
+  // measures room temperature first), which must then lie in 15-35 degC (4.1.1.1 a).
   std::optional<double> reference_temperature_degC;
 
   void validate() const;

@@ -398,6 +398,33 @@ TEST(FilterParameters, WhatAFormatCannotHoldIsInItsComments) {
 // 6-hour record at 10 Hz, K is measured on every axis but within 2 sigma of zero on each (each
 // bound was above the simulator's K: gx 1.9e-6 against 8.1e-7 rad/s^2/sqrt(Hz), az 2.8e-5 against
 // 2.3e-5 m/s^3/sqrt(Hz)).
+// A fit whose sigma^2 still falls at the longest tau (K held at zero: flicker over white) shows no
+// correlation time: the one written (that tau / 1.8926) is said to be the record's, in the JSON and
+// in every file's comments (six channels of one flicker noise gave 185 to 3463 s, unsaid).
+TEST(FilterParameters, ACorrelationTimeTheRecordCannotShowIsSaidToBeUnknown) {
+  AllanChannels channels = analysed();
+  // gx's K^2/3 (A_1) and ramp (A_2) held at zero.
+  channels.channels[0].result.noise->coefficients[3] = 0.0;
+  channels.channels[0].result.noise->coefficients[4] = 0.0;
+  const std::vector<SensorNoiseParameters> sensors = filter_noise_parameters(channels);
+  EXPECT_FALSE(sensors[0].gauss_markov_identified);
+  EXPECT_NEAR_RELATIVE(sensors[0].gauss_markov_correlation_time_s, channels.channels[0].result.tau_s.back() / 1.8926179,
+                       1e-6);
+  const nlohmann::json json = filter_parameters_json(sensors).at("sensors");
+  EXPECT_EQ(json.at("gx").at("gauss_markov").at("correlation_time").at("identified"), false);
+  // The others turn up within the record (their K): their correlation times are theirs.
+  for (std::size_t i = 1; i < sensors.size(); ++i) {
+    EXPECT_TRUE(sensors[i].gauss_markov_identified) << sensors[i].channel;
+    EXPECT_LT(sensors[i].gauss_markov_correlation_time_s, 0.999 * channels.channels[i].result.tau_s.back() / 1.8926179);
+  }
+  for (const FilterFormat format : {FilterFormat::kKalibr, FilterFormat::kMatlab, FilterFormat::kGnssInsSim}) {
+    const std::string text = format_filter_parameters(sensors, format, "test");
+    EXPECT_THAT(text, ::testing::HasSubstr("Gauss-Markov correlation time not identified (the fitted curve still falls "
+                                           "at the longest tau: the value is that tau/1.8926, a figure of the record's "
+                                           "length): gx;"));
+  }
+}
+
 TEST(FilterParameters, AnEstimateWithinTwoSigmaOfZeroHasItsBoundInTheComments) {
   const std::vector<SensorNoiseParameters> sensors = filter_noise_parameters(analysed());
   const nlohmann::json json = filter_parameters_json(sensors).at("sensors");

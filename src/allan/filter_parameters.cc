@@ -63,6 +63,10 @@ double tau_of_least_variance(const NoiseTerms& noise, double tau_first, double t
   return std::exp((a + b) / 2.0);
 }
 
+// A least within this fraction of the longest tau is at the end of the curve (the golden-section
+// search stops within 1e-9 of it in log tau).
+constexpr double kLeastAtTheEnd = 0.999;
+
 std::string number(double value) { return fmt::format("{:.6g}", value); }
 
 // "[x, y, z]" of one field over the sensors.
@@ -95,6 +99,10 @@ std::string bounds_note(const std::vector<const SensorNoiseParameters*>& sensors
     if (!s->random_walk_density.identified) text += " " + s->channel + ": random walk;";
     if (!s->bias_instability.identified) text += " " + s->channel + ": bias instability;";
   }
+  std::string unknown_times;
+  for (const SensorNoiseParameters* s : sensors) {
+    if (!s->gauss_markov_identified) unknown_times += " " + s->channel + ";";
+  }
   std::string insignificant;  // in SI, whatever unit the file writes the values in
   for (const SensorNoiseParameters* s : sensors) {
     const SiUnits units = si_units(s->kind);
@@ -107,6 +115,12 @@ std::string bounds_note(const std::vector<const SensorNoiseParameters*>& sensors
     }
   }
   if (!text.empty()) text = "upper bounds (not identified by the fit):" + text;
+  if (!unknown_times.empty()) {
+    text += (text.empty() ? "" : " ") +
+            std::string("Gauss-Markov correlation time not identified (the fitted curve still falls at the longest "
+                        "tau: the value is that tau/1.8926, a figure of the record's length):") +
+            unknown_times;
+  }
   if (!insignificant.empty()) {
     text += (text.empty() ? "" : " ") +
             std::string("estimates within 2 sigma of zero, their 2-sigma upper bounds in brackets:") + insignificant;
@@ -285,8 +299,9 @@ std::vector<SensorNoiseParameters> filter_noise_parameters(const AllanChannels& 
     s.white_noise_density = density(noise, noise.angle_random_walk, -1, units.white);
     s.random_walk_density = density(noise, noise.rate_random_walk, 1, units.walk);
     s.bias_instability = density(noise, noise.bias_instability, 0, units.bias);
-    s.gauss_markov_correlation_time_s =
-        tau_of_least_variance(noise, result.tau_s.front(), result.tau_s.back()) / kGaussMarkovPeakTau;
+    const double least = tau_of_least_variance(noise, result.tau_s.front(), result.tau_s.back());
+    s.gauss_markov_correlation_time_s = least / kGaussMarkovPeakTau;
+    s.gauss_markov_identified = least < kLeastAtTheEnd * result.tau_s.back();
     s.gauss_markov_sigma = kBiasInstabilityFactor * s.bias_instability.value / kGaussMarkovPeakDeviation;
     const double dt = 1.0 / s.sample_rate_hz;
     s.discrete_white_sigma = s.white_noise_density.value / std::sqrt(dt);
@@ -327,7 +342,9 @@ nlohmann::json filter_parameters_json(const std::vector<SensorNoiseParameters>& 
         {"random_walk_density", figure(s.random_walk_density, units.walk)},
         {"bias_instability", figure(s.bias_instability, units.bias)},
         {"gauss_markov", {{"sigma", {{"value", s.gauss_markov_sigma}, {"unit", units.bias}}},
-                          {"correlation_time", {{"value", s.gauss_markov_correlation_time_s}, {"unit", "s"}}}}},
+                          {"correlation_time",
+                           {{"value", s.gauss_markov_correlation_time_s}, {"unit", "s"},
+                            {"identified", s.gauss_markov_identified}}}}},
         {"discrete",
          {{"sample_interval_s", 1.0 / s.sample_rate_hz},
           {"white_sigma", {{"value", s.discrete_white_sigma}, {"unit", units.bias}}},

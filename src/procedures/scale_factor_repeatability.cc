@@ -26,8 +26,16 @@ ScaleFactorRepeatabilityResult scale_factor_repeatability(std::span<const double
   options.validate();
   const std::size_t q = scale_factors.size();
   options.check_run_count(q);
+  // A run of the other sign is a run reversed (the table turned the other way, the output's sign
+  // convention), not scatter: eq. (12) made one such run of six Kr = 1 224 741 ppm, unsaid.
+  for (std::size_t i = 1; i < q; ++i) {
+    if (!(scale_factors[i] * scale_factors[0] > 0.0)) {
+      throw Error(fmt::format("scale factor repeatability: run {} has K = {:.8g} and run 1 K = {:.8g}: a run of "
+                              "the other sign (or zero) is reversed (the rates' or the output's sign), not scatter",
+                              i + 1, scale_factors[i], scale_factors[0]));
+    }
+  }
   const double k_mean = mean(scale_factors);
-  if (k_mean == 0.0) throw Error("scale factor repeatability: the mean scale factor is zero");
   const double kr = sample_standard_deviation(scale_factors) / std::abs(k_mean);  // eq. (12)
 
   ScaleFactorRepeatabilityResult result;

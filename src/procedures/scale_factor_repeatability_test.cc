@@ -69,5 +69,22 @@ TEST(ScaleFactorRepeatability, ABadRunIsNamed) {
   }
 }
 
+// A run of the other sign is reversed, not scatter (one of six gave Kr = 1 224 741 ppm, unsaid).
+TEST(ScaleFactorRepeatability, ARunOfTheOtherSignIsAnError) {
+  std::vector<std::vector<ScaleFactorPoint>> runs(6, linear_run(36000.0));
+  runs[4] = linear_run(-36000.0);
+  try {
+    scale_factor_repeatability(runs);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.message(), "scale factor repeatability: run 5 has K = -36000 and run 1 K = 36000: a run of the other "
+                           "sign (or zero) is reversed (the rates' or the output's sign), not scatter");
+  }
+  // Every run reversed alike is one sign convention: Kr as before.
+  const std::vector<double> negative = {-100, -101, -99, -100, -102, -98};
+  EXPECT_NEAR_RELATIVE(scale_factor_repeatability(negative, "pulse/s/(deg/s)").scale_factor_repeatability.value,
+                       std::sqrt(2.0) / 100.0 * 1e6, 1e-12);
+}
+
 }  // namespace
 }  // namespace inertest

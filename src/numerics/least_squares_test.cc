@@ -123,6 +123,37 @@ TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
   EXPECT_NEAR(coverage(0.0, true), 0.683, 0.04);
 }
 
+// A drift under white noise (a gyro's record): the lag-1 correlation is the drift's persistence
+// diluted by the white variance, and prewhitening by it alone held the slope within ±1σ in 28 % of
+// these trials (51 % with a Newey-West bandwidth from the persistence instead). White noise plus
+// AR(1), its persistence and variance from lags 1 and 2, gives the covariance.
+TEST(LeastSquares, ADriftUnderWhiteNoiseIsCounted) {
+  constexpr std::size_t kSamples = 4000;
+  Matrix design(kSamples, 2);
+  for (std::size_t t = 0; t < kSamples; ++t) {
+    design(t, 0) = static_cast<double>(t) / kSamples;
+    design(t, 1) = 1.0;
+  }
+  std::mt19937_64 random(2026);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  LeastSquaresOptions options;
+  options.serially_correlated = true;
+  constexpr double kPhi = 0.98;  // a correlation time of 50 samples
+  int within = 0;
+  constexpr int kTrials = 400;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    std::vector<double> y(kSamples);
+    double drift = normal(random);
+    for (std::size_t t = 0; t < kSamples; ++t) {
+      drift = kPhi * drift + std::sqrt(1.0 - kPhi * kPhi) * normal(random);
+      y[t] = 2.0 * design(t, 0) + 1.0 + drift + 3.0 * normal(random);
+    }
+    const LeastSquaresResult fit = solve_least_squares(design, y, options);
+    within += std::abs(fit.parameters[0] - 2.0) <= fit.standard_error(0) ? 1 : 0;
+  }
+  EXPECT_NEAR(within / double(kTrials), 0.683, 0.06);
+}
+
 // Relative variances keep the unweighted estimate and give its covariance through them, the common
 // factor c = RSS / Σ (1 - h_i) v_i: numpy's sandwich of the same line gives the values below.
 TEST(LeastSquares, RelativeVariancesGiveTheUnweightedFitsCovariance) {

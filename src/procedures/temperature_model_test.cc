@@ -123,11 +123,12 @@ TEST(TemperatureModel, AModelWithoutTheRateFailsOnTheSameData) {
   EXPECT_GT(static_only.residual_bias_stability.value, 3.0 * floor);
   EXPECT_GT(static_only.residual_bias_stability.value - full.residual_bias_stability.value,
             10.0 * *full.residual_bias_stability.uncertainty);
-  // Its hysteresis D_H takes up the Shupe term (heating and cooling differ in the sign of dT/dt), and
-  // D_0 shifts: both far outside their own sigmas (about 45 and 15 on seed 7).
+  // Its hysteresis D_H takes up the Shupe term (heating and cooling differ in the sign of dT/dt): far
+  // outside its own sigma. (D_0 shifts too, by 0.65 of its sigma on seed 7: the Shupe term left in
+  // the residuals is a persistent error, which the covariance counts as one, least_squares.cc.)
   const std::map<std::string, double> truth = true_coefficients(gyro);
   for (const ThermalCoefficient& c : static_only.coefficients) {
-    if (c.name == "D_H" || c.name == "D_0") {
+    if (c.name == "D_H") {
       EXPECT_GT(std::abs(c.value.value - truth.at(c.name)), 4.0 * *c.value.uncertainty) << c.name;
     }
   }

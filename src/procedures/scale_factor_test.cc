@@ -171,6 +171,11 @@ struct CoverageCase {
   const char* name;
   double constant_noise;
   double relative_noise;
+  double asymmetry_ppm = 0.0;  // K(+) and K(-) this far apart
+  double cubic_ppm = 0.0;      // a cubic nonlinearity, this much of the full-scale output at full scale
+  // The coverage's upper end: a gyro's shape that the F-test misses in a trial counts as noise there
+  // (0.74-0.78 measured over 1000 trials for these; 1.00 before the shape was taken out).
+  double most = 0.743;
 };
 
 class ScaleFactorCoverage : public ::testing::TestWithParam<CoverageCase> {};
@@ -184,24 +189,38 @@ TEST_P(ScaleFactorCoverage, OneSigmaHoldsTheTruthInAboutTwoThirdsOfTrials) {
   int k_within = 0;
   int f0_within = 0;
   int k_positive_within = 0;
-  for (int trial = 0; trial < kTrials; ++trial) {
-    const auto noisy = [&](double rate) {
-      return 10.0 + k * rate + (GetParam().constant_noise + GetParam().relative_noise * k * std::abs(rate)) * unit(random);
-    };
-    std::vector<ScaleFactorPoint> data = {{0, noisy(0)}, {0, noisy(0)}};
+  // The gyro's output without noise; the truth is what the procedure gives of it (the asymmetry and
+  // the nonlinearity are the gyro's, the same in every test: no uncertainty of K is theirs).
+  const CoverageCase& c = GetParam();
+  const auto output = [&](double rate) {
+    const double asymmetric = k * (1.0 + (rate > 0.0 ? 0.5 : -0.5) * c.asymmetry_ppm * 1e-6) * rate;
+    return 10.0 + asymmetric + c.cubic_ppm * 1e-6 * k * 400.0 * std::pow(rate / 400.0, 3);
+  };
+  const auto test = [&](const auto& reading) {
+    std::vector<ScaleFactorPoint> data = {{0, reading(0)}, {0, reading(0)}};
     for (double sign : {1.0, -1.0}) {
-      for (double w : magnitudes) data.push_back({sign * w, noisy(sign * w)});
+      for (double w : magnitudes) data.push_back({sign * w, reading(sign * w)});
     }
-    data.insert(data.end(), {{0, noisy(0)}, {0, noisy(0)}});
-    const ScaleFactorResult r = scale_factor(data);
-    k_within += std::abs(r.scale_factor.value - k) <= r.scale_factor.uncertainty.value() ? 1 : 0;
-    f0_within += std::abs(r.zero_offset.value) <= r.zero_offset.uncertainty.value() ? 1 : 0;
-    k_positive_within += std::abs(r.scale_factor_positive.value - k) <= r.scale_factor_positive.uncertainty.value() ? 1 : 0;
+    data.insert(data.end(), {{0, reading(0)}, {0, reading(0)}});
+    return scale_factor(data);
+  };
+  const ScaleFactorResult truth = test(output);
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const ScaleFactorResult r = test([&](double rate) {
+      return output(rate) + (c.constant_noise + c.relative_noise * k * std::abs(rate)) * unit(random);
+    });
+    k_within += std::abs(r.scale_factor.value - truth.scale_factor.value) <= r.scale_factor.uncertainty.value() ? 1 : 0;
+    f0_within += std::abs(r.zero_offset.value - truth.zero_offset.value) <= r.zero_offset.uncertainty.value() ? 1 : 0;
+    k_positive_within += std::abs(r.scale_factor_positive.value - truth.scale_factor_positive.value) <=
+                                 r.scale_factor_positive.uncertainty.value()
+                             ? 1
+                             : 0;
   }
   // 68.3 % expected; the binomial spread of 1000 trials is 1.5 %, HC3's own scatter widens it.
-  EXPECT_NEAR(k_within / double(kTrials), 0.683, 0.06) << GetParam().name;
-  EXPECT_NEAR(f0_within / double(kTrials), 0.683, 0.06) << GetParam().name;
-  EXPECT_NEAR(k_positive_within / double(kTrials), 0.683, 0.06) << GetParam().name;
+  for (const auto& [name, within] : {std::pair{"K", k_within}, std::pair{"F0", f0_within}, std::pair{"K+", k_positive_within}}) {
+    EXPECT_GE(within / double(kTrials), 0.683 - 0.06) << c.name << " " << name;
+    EXPECT_LE(within / double(kTrials), c.most) << c.name << " " << name;
+  }
 }
 
 // A gyro of 2000 ppm asymmetry (K(+) 100.1, K(-) 99.9): K(+)'s error is its own line's, not the
@@ -226,7 +245,10 @@ TEST(ScaleFactor, AsymmetryIsNoNoiseInKPositivesError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Noise, ScaleFactorCoverage,
-                         ::testing::Values(CoverageCase{"constant", 2.0, 0.0}, CoverageCase{"growing", 0.5, 5e-6}),
+                         ::testing::Values(CoverageCase{"constant", 2.0, 0.0}, CoverageCase{"growing", 0.5, 5e-6},
+                                           // a gyro's own shape: it was counted as noise (coverage 100 %)
+                                           CoverageCase{"asymmetric", 2.0, 0.0, 6.0, 0.0, 0.80},
+                                           CoverageCase{"curved", 2.0, 0.0, 6.0, 8.0, 0.80}),
                          [](const auto& test) { return std::string(test.param.name); });
 
 struct BadCase {

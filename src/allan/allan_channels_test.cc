@@ -417,11 +417,17 @@ TEST(FilterParameters, ACorrelationTimeTheRecordCannotShowIsSaidToBeUnknown) {
     EXPECT_TRUE(sensors[i].gauss_markov_identified) << sensors[i].channel;
     EXPECT_LT(sensors[i].gauss_markov_correlation_time_s, 0.999 * channels.channels[i].result.tau_s.back() / 1.8926179);
   }
+  // A rate random walk alone (gy's N and B held at zero) is least at the shortest tau.
+  AllanChannels walk = analysed();
+  walk.channels[1].result.noise->coefficients[0] = 0.0;
+  walk.channels[1].result.noise->coefficients[1] = 0.0;
+  walk.channels[1].result.noise->coefficients[2] = 0.0;
+  EXPECT_FALSE(filter_noise_parameters(walk)[1].gauss_markov_identified);
   for (const FilterFormat format : {FilterFormat::kKalibr, FilterFormat::kMatlab, FilterFormat::kGnssInsSim}) {
     const std::string text = format_filter_parameters(sensors, format, "test");
-    EXPECT_THAT(text, ::testing::HasSubstr("Gauss-Markov correlation time not identified (the fitted curve still falls "
-                                           "at the longest tau: the value is that tau/1.8926, a figure of the record's "
-                                           "length): gx;"));
+    EXPECT_THAT(text, ::testing::HasSubstr("Gauss-Markov correlation time not identified (the fitted curve is least at "
+                                           "an end of its taus: the value is that tau/1.8926, a figure of the record, "
+                                           "and so are phi and the driving sigma): gx;"));
   }
 }
 

@@ -63,8 +63,8 @@ double tau_of_least_variance(const NoiseTerms& noise, double tau_first, double t
   return std::exp((a + b) / 2.0);
 }
 
-// A least within this fraction of the longest tau is at the end of the curve (the golden-section
-// search stops within 1e-9 of it in log tau).
+// A least within this fraction of the longest (or shortest) tau is at an end of the curve (the
+// golden-section search stops within 1e-9 of it in log tau).
 constexpr double kLeastAtTheEnd = 0.999;
 
 std::string number(double value) { return fmt::format("{:.6g}", value); }
@@ -116,9 +116,10 @@ std::string bounds_note(const std::vector<const SensorNoiseParameters*>& sensors
   }
   if (!text.empty()) text = "upper bounds (not identified by the fit):" + text;
   if (!unknown_times.empty()) {
-    text += (text.empty() ? "" : " ") +
-            std::string("Gauss-Markov correlation time not identified (the fitted curve still falls at the longest "
-                        "tau: the value is that tau/1.8926, a figure of the record's length):") +
+    text += (text.empty() ? "" : "; ") +
+            std::string("Gauss-Markov correlation time not identified (the fitted curve is least at an end of its "
+                        "taus: the value is that tau/1.8926, a figure of the record, and so are phi and the driving "
+                        "sigma):") +
             unknown_times;
   }
   if (!insignificant.empty()) {
@@ -301,7 +302,7 @@ std::vector<SensorNoiseParameters> filter_noise_parameters(const AllanChannels& 
     s.bias_instability = density(noise, noise.bias_instability, 0, units.bias);
     const double least = tau_of_least_variance(noise, result.tau_s.front(), result.tau_s.back());
     s.gauss_markov_correlation_time_s = least / kGaussMarkovPeakTau;
-    s.gauss_markov_identified = least < kLeastAtTheEnd * result.tau_s.back();
+    s.gauss_markov_identified = least < kLeastAtTheEnd * result.tau_s.back() && least > result.tau_s.front() / kLeastAtTheEnd;
     s.gauss_markov_sigma = kBiasInstabilityFactor * s.bias_instability.value / kGaussMarkovPeakDeviation;
     const double dt = 1.0 / s.sample_rate_hz;
     s.discrete_white_sigma = s.white_noise_density.value / std::sqrt(dt);

@@ -3,6 +3,7 @@
 #include "inertest/archive/archive.h"
 
 #include <algorithm>
+#include <cctype>
 #include <csignal>
 #include <cmath>
 #include <cstdlib>
@@ -266,10 +267,12 @@ std::optional<std::string> records_identity(const nlohmann::json& procedure, con
   std::string digests;
   for (const auto& record : *it) {
     const auto digest = record.is_object() ? record.find("sha256") : record.end();
-    const bool valid = record.is_object() && digest != record.end() && digest->is_string() && digest->get<std::string>().size() == 64 &&
-                       digest->get<std::string>().find_first_not_of("0123456789abcdef") == std::string::npos;
-    if (!valid) malformed(source, "procedure '" + name + "': each of \"records\" needs a \"sha256\" of 64 hex digits");
-    digests += digest->get<std::string>() + "\n";
+    std::string hex = digest != record.end() && digest->is_string() ? digest->get<std::string>() : std::string();
+    std::transform(hex.begin(), hex.end(), hex.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (hex.size() != 64 || hex.find_first_not_of("0123456789abcdef") != std::string::npos) {
+      malformed(source, "procedure '" + name + "': each of \"records\" needs a \"sha256\" of 64 hex digits");
+    }
+    digests += hex + "\n";
   }
   if (digests.empty()) return std::nullopt;
   return sha256_hex(digests);
@@ -837,34 +840,48 @@ class DatabaseArchive final : public Archive {
     return outcome;
   }
 
-  // Marks, step by step, the earlier processing of the same records by a step of the same name
-  // (same instrument) as superseded by the latest (Archive::add): the campaign just stored when it
+  // Marks, figure by figure, the earlier processing of the same records by a step of the same name
+  // (same instrument) as superseded by the latest (Archive::add): the campaign just stored where it
   // was processed last (or in the same second), else the latest stored, which then supersedes the
-  // new campaign's step too.
+  // new campaign's figure. A figure the latest does not state stays the one that does.
   void supersede(const CampaignRecord& record, AddOutcome& outcome) {
     const std::string& id = record.entry.id;
     std::set<std::pair<std::string, std::string>> steps;  // procedure, records
     for (const auto& row : record.figures) {
       if (row.records) steps.emplace(row.procedure, *row.records);
     }
-    const std::string same_step =
-        "FROM figure f JOIN campaign c ON c.id = f.campaign WHERE c.instrument = $1 AND f.procedure = $2 AND f.records = $3"
-        " AND f.superseded_by IS NULL AND c.id <> $4 AND c.processed_at ";
+    // The current rows of figure `of` (the new campaign's row) in the same step of other campaigns of
+    // the instrument, processed before or with ($5) or after the new one.
+    const auto same_figure = [](const std::string& of, const char* when) {
+      return "FROM figure g JOIN campaign c ON c.id = g.campaign WHERE c.instrument = $1 AND g.procedure = $2 AND "
+             "g.records = $3 AND g.figure = " + of + " AND g.superseded_by IS NULL AND c.id <> $4 AND c.processed_at " +
+             when + " $5";
+    };
+    const std::string of_new = "(SELECT figure FROM figure WHERE campaign = $4 AND procedure = $2)";
+    const std::string earlier = "g.figure IN " + of_new + " AND g.superseded_by IS NULL AND g.procedure = $2 AND "
+                                "g.records = $3 AND c.instrument = $1 AND c.id <> $4 AND c.processed_at <= $5";
     std::set<std::string> supersedes;
     std::set<std::string> superseded_by;
     for (const auto& [procedure, records] : steps) {
       const std::vector<Value> parameters = {record.entry.instrument, procedure, records, id, record.entry.processed_at};
-      const auto later = db_->query("SELECT c.id " + same_step + "> $5 ORDER BY c.processed_at DESC, c.id LIMIT 1", parameters);
-      if (!later.empty()) {
-        db_->query("UPDATE figure SET superseded_by = $1 WHERE campaign = $2 AND procedure = $3",
-                   {later.front().text(0), id, procedure});
-        superseded_by.insert(later.front().text(0));
-        continue;
-      }
-      for (const auto& row : db_->query("SELECT DISTINCT c.id " + same_step + "<= $5", parameters)) {
-        db_->query("UPDATE figure SET superseded_by = $1 WHERE campaign = $2 AND procedure = $3", {id, row.text(0), procedure});
+      for (const auto& row : db_->query("SELECT DISTINCT c.id FROM figure g JOIN campaign c ON c.id = g.campaign WHERE " +
+                                            earlier,
+                                        parameters)) {
         supersedes.insert(row.text(0));
       }
+      db_->query("UPDATE figure SET superseded_by = $4 WHERE (campaign, procedure, figure) IN (SELECT g.campaign, "
+                 "g.procedure, g.figure FROM figure g JOIN campaign c ON c.id = g.campaign WHERE " + earlier + ")",
+                 parameters);
+      const std::string latest = "(SELECT c.id " + same_figure("figure.figure", ">") +
+                                 " ORDER BY c.processed_at DESC, c.id LIMIT 1)";
+      for (const auto& row : db_->query("SELECT DISTINCT " + latest + " FROM figure WHERE campaign = $4 AND procedure = $2"
+                                        " AND " + latest + " IS NOT NULL",
+                                        parameters)) {
+        superseded_by.insert(row.text(0));
+      }
+      db_->query("UPDATE figure SET superseded_by = " + latest + " WHERE campaign = $4 AND procedure = $2 AND " + latest +
+                     " IS NOT NULL",
+                 parameters);
     }
     outcome.supersedes.assign(supersedes.begin(), supersedes.end());
     outcome.superseded_by.assign(superseded_by.begin(), superseded_by.end());

@@ -382,8 +382,11 @@ nlohmann::json processed_from(const std::string& instrument, const std::string& 
 TEST_P(ArchiveBackend, ALaterProcessingOfTheSameRecordsSupersedesTheEarlier) {
   auto archive = open();
   const auto first = archive->add(processed_from("FOG-7", "2026-02-01", 36000.2, "2026-02-01T10:00:00Z", "K-1", "B-1"), "a");
-  // Again a month later, without a plan date (tested_on the day processed); the bias from a new record.
-  const auto again = archive->add(processed_from("FOG-7", "2026-03-01", 36000.4, "2026-03-01T09:00:00Z", "K-1", "B-2"), "b");
+  // Again a month later, without a plan date (tested_on the day processed); the bias from a new
+  // record; without the nonlinearity (as a figure a limit no longer names).
+  nlohmann::json processed_again = processed_from("FOG-7", "2026-03-01", 36000.4, "2026-03-01T09:00:00Z", "K-1", "B-2");
+  processed_again["procedures"][0]["result"].erase("nonlinearity");
+  const auto again = archive->add(processed_again, "b");
   EXPECT_TRUE(again.added);
   EXPECT_EQ(again.supersedes, std::vector<std::string>{first.id});
   EXPECT_TRUE(again.superseded_by.empty());
@@ -392,6 +395,10 @@ TEST_P(ArchiveBackend, ALaterProcessingOfTheSameRecordsSupersedesTheEarlier) {
   EXPECT_EQ(scale_factor.points[0].value, 36000.4);
   EXPECT_EQ(scale_factor.points[0].campaign, again.id);
   EXPECT_EQ(archive->history("FOG-7", "bias_static/bias").points.size(), 2u);  // two records: two tests
+  // A figure the later processing does not state again stays the earlier's (it was hidden).
+  const auto nonlinearity = archive->history("FOG-7", "scale_factor/nonlinearity");
+  ASSERT_EQ(nonlinearity.points.size(), 1u);
+  EXPECT_EQ(nonlinearity.points[0].campaign, first.id);
   // An older processing added after: stored, each step superseded by the latest of its records
   // (the scale factor's by b, the bias's by a), and it changes no history.
   const auto older = archive->add(processed_from("FOG-7", "2026-01-15", 36000.1, "2026-01-15T08:00:00Z", "K-1", "B-1"), "c");
@@ -408,22 +415,36 @@ TEST_P(ArchiveBackend, ALaterProcessingOfTheSameRecordsSupersedesTheEarlier) {
   EXPECT_EQ(archive->fleet("scale_factor/scale_factor", std::nullopt).points.size(), 2u);
   // Processed in the same second: the one added last is the latest.
   const auto same_second = archive->add(processed_from("FOG-7", "2026-03-01", 36000.5, "2026-03-01T09:00:00Z", "K-1", "B-3"), "e");
-  EXPECT_EQ(same_second.supersedes, std::vector<std::string>{again.id});
+  // It states the nonlinearity again too: the first's, current till now, is superseded as well.
+  std::vector<std::string> again_and_first = {again.id, first.id};
+  std::sort(again_and_first.begin(), again_and_first.end());
+  EXPECT_EQ(same_second.supersedes, again_and_first);
   EXPECT_EQ(archive->history("FOG-7", "scale_factor/scale_factor").points.front().value, 36000.5);
+  EXPECT_EQ(archive->history("FOG-7", "scale_factor/nonlinearity").points.front().campaign, same_second.id);
   // Every campaign stays listed, with the campaigns that superseded figures of it.
   const auto listed = open()->list(std::string("FOG-7"));
   ASSERT_EQ(listed.size(), 4u);
   const auto entry = [&](const std::string& id) {
     return *std::find_if(listed.begin(), listed.end(), [&](const CampaignEntry& e) { return e.id == id; });
   };
-  EXPECT_EQ(entry(first.id).superseded_by, std::vector<std::string>{again.id});
+  std::vector<std::string> again_and_same_second = {again.id, same_second.id};
+  std::sort(again_and_same_second.begin(), again_and_same_second.end());
+  EXPECT_EQ(entry(first.id).superseded_by, again_and_same_second);
   EXPECT_EQ(entry(older.id).superseded_by, first_and_again);
   EXPECT_EQ(entry(again.id).superseded_by, std::vector<std::string>{same_second.id});
   EXPECT_TRUE(entry(same_second.id).superseded_by.empty());
   const auto text = testing::run_cli({"archive", "list", "--instrument", "FOG-7", "--db", location_});
-  EXPECT_THAT(text.out, HasSubstr("(superseded by " + again.id + ")"));
+  EXPECT_THAT(text.out, HasSubstr("(figures superseded by " + same_second.id + ")"));
   // Three bias records, three tests: B-1 (a's processing, the later of two), B-2 and B-3.
   EXPECT_EQ(archive->history("FOG-7", "bias_static/bias").points.size(), 3u);
+  // A digest in capitals (as some tools print it) is the same digest.
+  nlohmann::json capitals = processed_from("FOG-9", "2026-04-01", 36000.2, "2026-04-01T10:00:00Z", "K-1", "B-1");
+  std::string upper = capitals["procedures"][0]["records"][0]["sha256"];
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  capitals["procedures"][0]["records"][0]["sha256"] = upper;
+  archive->add(capitals, "f");
+  const auto same_record = archive->add(processed_from("FOG-9", "2026-04-02", 36000.3, "2026-04-02T10:00:00Z", "K-1", "B-5"), "g");
+  EXPECT_EQ(same_record.supersedes.size(), 1u);
   // Results naming records without a digest are refused.
   nlohmann::json no_digest = processed_from("FOG-7", "2026-04-01", 36000.2, "2026-04-01T10:00:00Z", "K-9", "B-9");
   no_digest["procedures"][0]["records"][0].erase("sha256");

@@ -30,7 +30,7 @@ CommandAction setup(CLI::App& archive) {
     for (const auto& e : entries) {
       report += fmt::format("{:<16}  {:<16}  {:<10}  {:<20}  {:<7}  {}{}\n", e.id, e.instrument, e.tested_on,
                             e.processed_at, e.verdict, e.title,
-                            e.superseded_by.empty() ? "" : fmt::format("  (superseded by {})", fmt::join(e.superseded_by, ", ")));
+                            e.superseded_by.empty() ? "" : fmt::format("  (figures superseded by {})", fmt::join(e.superseded_by, ", ")));
     }
     print_result(archive::campaign_list_json(entries), report, arguments->json);
     return 0;

@@ -77,8 +77,9 @@ std::optional<Eigen::MatrixXd> correlated_scores_variance(const Eigen::MatrixXd&
   // g(0) = s_w² + s_d², g(k) = s_d² phi^k: phi = g(2)/g(1) and s_d² = g(1)/phi, undiluted, and
   // Var(Aᵀe) = Σ_t Σ_s a_tᵀ a_s g(|t - s|) = g(0) AᵀA + s_d² Σ_t (a_tᵀ r_t + r_tᵀ a_t), with
   // r_t = phi (r_(t-1) + a_(t-1)). Where that covariance is the larger, it is taken.
+  // Both lags significant (lag 2 of white noise alone made phi 0.999 by chance).
   const double second = lag_correlation(e, 2).value_or(0.0);
-  if (!(second > 0.0)) return prewhitened;
+  if (!(second > 2.0 / std::sqrt(static_cast<double>(m)))) return prewhitened;
   const double phi = std::min(second / *correlation, 0.999);
   const double g0 = e.squaredNorm() / static_cast<double>(m);
   const double drift = std::min(*correlation * g0 / phi, g0);  // s_d²

@@ -83,7 +83,34 @@ Matrix shape_design(const std::vector<double>& rates, std::size_t shape) {
   return design;
 }
 
-// The points' squared residuals about the shape the F-tests choose, weighted by `variance`, each
+// Wald's statistic βᵀ V⁻¹ β of a fit's parameters from `first` on (V their covariance block), by
+// Gauss-Jordan elimination on the small block; 0 where the block is singular.
+double added_columns_wald(const LeastSquaresResult& fit, std::size_t first) {
+  const std::size_t q = fit.parameters.size() - first;
+  std::vector<std::vector<double>> v(q, std::vector<double>(q + 1));
+  for (std::size_t i = 0; i < q; ++i) {
+    for (std::size_t j = 0; j < q; ++j) v[i][j] = fit.covariance(first + i, first + j);
+    v[i][q] = fit.parameters[first + i];
+  }
+  for (std::size_t c = 0; c < q; ++c) {  // V x = β, partial pivoting
+    std::size_t pivot = c;
+    for (std::size_t r = c + 1; r < q; ++r) {
+      if (std::abs(v[r][c]) > std::abs(v[pivot][c])) pivot = r;
+    }
+    if (!(std::abs(v[pivot][c]) > 0.0)) return 0.0;
+    std::swap(v[c], v[pivot]);
+    for (std::size_t r = 0; r < q; ++r) {
+      if (r == c) continue;
+      const double factor = v[r][c] / v[c][c];
+      for (std::size_t k = c; k <= q; ++k) v[r][k] -= factor * v[c][k];
+    }
+  }
+  double wald = 0.0;
+  for (std::size_t i = 0; i < q; ++i) wald += fit.parameters[first + i] * v[i][q] / v[i][i];
+  return wald;
+}
+
+// The points' squared residuals about the shape the tests choose, weighted by `variance`, each
 // scaled by 1/(1 - h_j), h_j its leverage, unbiased for its point's variance; and the shape. Empty
 // without a residual.
 std::pair<std::vector<double>, std::size_t> residuals_about_shape(const std::vector<double>& rates,
@@ -112,12 +139,21 @@ std::pair<std::vector<double>, std::size_t> residuals_about_shape(const std::vec
     Matrix next_design = shape_design(rates, next_shape);
     LeastSquaresResult next = fit(next_design);
     if (next.rank < next_design.cols) break;
-    // Against the shape chosen so far, not only the one before: a cubic is not a quadratic first.
-    const double q = static_cast<double>(next_design.cols - design.cols);
+    // Against the shape chosen so far, not only the one before (a cubic is not a quadratic first):
+    // Wald's test of the columns it adds, their covariance HC3's, which weights that are not the
+    // points' variances (a noise growing with the rate, guessed from few points) do not make too
+    // sure, as they made the F-test (K's ±1σ then held its truth in 45-57 % of trials).
+    LeastSquaresOptions robust;
+    robust.require_full_rank = false;
+    robust.weights = weights;
+    robust.heteroscedastic = true;
+    const LeastSquaresResult tested = solve_least_squares(next_design, outputs, robust);
+    const std::size_t q = next_design.cols - design.cols;
+    const double wald = added_columns_wald(tested, design.cols);
     const double nu = static_cast<double>(next.degrees_of_freedom);
-    const double rss = rss_of(next);
-    const double f = rss > 0.0 ? (rss_of(chosen) - rss) / q / (rss / nu) : 0.0;
-    if (!(f > boost::math::quantile(boost::math::fisher_f_distribution<double>(q, nu), 1.0 - kShapeSignificance))) continue;
+    const double critical = static_cast<double>(q) * boost::math::quantile(
+        boost::math::fisher_f_distribution<double>(static_cast<double>(q), nu), 1.0 - kShapeSignificance);
+    if (!(wald > critical)) continue;
     shape = next_shape;
     design = std::move(next_design);
     chosen = std::move(next);
@@ -138,39 +174,23 @@ std::pair<std::vector<double>, std::size_t> residuals_about_shape(const std::vec
 
 std::optional<PointVariance> point_noise(const std::vector<double>& rates, const std::vector<double>& outputs) {
   if (rates.size() < 3) return std::nullopt;
-  // The F-tests weigh the points by their variance a + b Ω² about the most flexible shape the points
-  // allow, which no smooth shape of the gyro's inflates. Unweighted, a noise growing with the rate
-  // made them take shapes of noise (K's ±1σ held its truth in 60 % of trials); weighted by the
-  // variance about the line through both directions, the gyro's shape in it hid the shape (81 %).
-  std::size_t flexible = kShapes - 1;
-  while (flexible > 0 && rates.size() < 2 * flexible + 2 + 3) --flexible;
+  // The F-tests weigh the points by their variance a + b Ω²: first the one about the line through
+  // both directions, then the one about the shape chosen, until the shape stays. Unweighted, a
+  // noise growing with the rate made them take shapes of noise (K's ±1σ held its truth in 60 % of
+  // trials), and so did weights from the residuals about the most flexible shape (48 %), whose
+  // largest rates' residuals their leverage leaves near zero.
   PointVariance variance = fit_line(rates, outputs, true).point_variance;
-  if (flexible > 0) {
-    LeastSquaresOptions options;
-    options.require_full_rank = false;
-    const Matrix design = shape_design(rates, flexible);
-    const LeastSquaresResult most = solve_least_squares(design, outputs, options);
-    if (most.rank == design.cols && most.degrees_of_freedom > 0) {
-      std::vector<double> z;
-      double pooled = 0.0;
-      for (std::size_t j = 0; j < rates.size(); ++j) {
-        double leverage = 0.0;
-        const double s2 = most.residual_rms * most.residual_rms * static_cast<double>(rates.size()) /
-                          static_cast<double>(most.degrees_of_freedom);
-        for (std::size_t p = 0; p < design.cols; ++p) {
-          for (std::size_t r = 0; r < design.cols; ++r) leverage += design(j, p) * most.covariance(p, r) * design(j, r) / s2;
-        }
-        z.push_back(most.residuals[j] * most.residuals[j] / std::max(1.0 - leverage, 1e-12));
-        pooled += z.back() / static_cast<double>(rates.size());
-      }
-      if (pooled > 0.0) variance = point_variance_of(rates, z, pooled);
-    }
+  std::optional<std::size_t> shape;
+  for (int pass = 0; pass < 4; ++pass) {
+    const auto [z, chosen] = residuals_about_shape(rates, outputs, variance);
+    if (z.empty()) return std::nullopt;
+    double pooled = 0.0;
+    for (double v : z) pooled += v / static_cast<double>(z.size());
+    variance = point_variance_of(rates, z, pooled);
+    if (shape == chosen) break;
+    shape = chosen;
   }
-  const std::vector<double> z = residuals_about_shape(rates, outputs, variance).first;
-  if (z.empty()) return std::nullopt;
-  double pooled = 0.0;
-  for (double v : z) pooled += v / static_cast<double>(z.size());
-  return point_variance_of(rates, z, pooled);
+  return variance;
 }
 
 // K(+) and K(−): each direction's own line, their errors from the points' noise (point_noise). One

@@ -176,7 +176,7 @@ TEST(Report, ShowsInstrumentSitePlanVersionMethodAndFigures) {
   // Value and uncertainty to the uncertainty's second significant digit.
   // (The example's points are a smooth shape to 4 decimals: its noise is their rounding.)
   EXPECT_THAT(page, HasSubstr(">5000.088365<"));
-  EXPECT_THAT(page, HasSubstr(">± 0.000062<"));
+  EXPECT_THAT(page, HasSubstr(">± 0.000065<"));
   EXPECT_THAT(page, HasSubstr("Nonlinearity curve"));
   // A plot is named for a screen reader by its caption.
   EXPECT_THAT(page, HasSubstr("role=\"img\" font-family="));

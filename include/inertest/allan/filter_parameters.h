@@ -52,10 +52,11 @@ struct SensorNoiseParameters {
   NoiseDensity bias_instability;        // B: rad/s or m/s^2
   double gauss_markov_sigma = 0.0;                 // rad/s or m/s^2
   double gauss_markov_correlation_time_s = 0.0;
-  // False when the fitted sigma^2(tau) is least at the curve's longest tau (no turn up within the
-  // record: flicker without a rate random walk, or a fit with K held at zero): the correlation time
-  // is then the longest tau over 1.8926, a figure of the record's length, not of the instrument
-  // (six channels of one flicker noise gave 185 to 3463 s, unsaid).
+  // False when the fitted sigma^2(tau) is least at an end of the curve's taus: at the longest (no
+  // turn up within the record: flicker without a rate random walk, or a fit with K held at zero) or
+  // the shortest (a rate random walk alone). The correlation time is then that tau over 1.8926, a
+  // figure of the record, not of the instrument (six channels of one flicker noise gave 185 to
+  // 3463 s, unsaid).
   bool gauss_markov_identified = true;
   double discrete_white_sigma = 0.0;               // per sample: rad/s or m/s^2
   double discrete_random_walk_sigma = 0.0;         // per sample step: rad/s or m/s^2

@@ -48,8 +48,8 @@ struct CampaignEntry {
   std::string tested_on;     // when the test was done (results.json "tested_on")
   std::string processed_at;  // when it was processed, UTC ISO 8601
   std::string verdict;       // PASS, FAIL or NONE
-  // The campaigns that processed records of this one again, step by step, later: their figures
-  // replace this one's in histories and the fleet (Archive::add). Empty for most.
+  // The campaigns that processed records of this one again later: the figures they state again
+  // replace this one's in histories and the fleet (Archive::add); its others stay. Empty for most.
   std::vector<std::string> superseded_by;
 };
 
@@ -130,10 +130,12 @@ class Archive {
   // Throws Error, changing nothing, when the results are malformed (a missing or mistyped key, a
   // results_schema_version this inertest does not know, a figure without a finite value or unit).
   // A step that read the same records (results.json "records", their SHA-256 in order) as a step of
-  // the same name of an earlier processing for the same instrument supersedes it: the later
-  // processing's figures are the ones histories, the fleet and figures() show, and the earlier
-  // rows stay stored, marked (list() names who superseded them). Later is processed_at, and of
-  // two processed in the same second the one added last. Results without records supersede nothing.
+  // the same name of an earlier processing for the same instrument supersedes the figures of it
+  // that it states again: those of the later processing are the ones histories, the fleet and
+  // figures() show, and the earlier rows stay stored, marked (list() names who superseded them).
+  // Later is processed_at, and of two processed in the same second the one added last. Results
+  // without records (written before inertest named them) supersede nothing and are superseded by
+  // nothing.
   virtual AddOutcome add(const nlohmann::json& results, const std::string& source) = 0;
 
   // Adds several campaigns (results, source) in one transaction: all are checked as add() checks

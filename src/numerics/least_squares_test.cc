@@ -88,17 +88,23 @@ TEST(FitLine, HeteroscedasticStandardErrorsByHand) {
   EXPECT_NEAR_RELATIVE(fit_line(flat_x, flat_y, true).slope_standard_error, std::sqrt(0.18), 1e-12);
 }
 
+// The design of a slope over time and an offset, at samples 0, 1/m, ... (m samples).
+Matrix slope_over_time(std::size_t m) {
+  Matrix design(m, 2);
+  for (std::size_t t = 0; t < m; ++t) {
+    design(t, 0) = static_cast<double>(t) / static_cast<double>(m);
+    design(t, 1) = 1.0;
+  }
+  return design;
+}
+
 // A slope over time under AR(1) errors of correlation 0.8 from sample to sample (a drift of a few
 // samples' memory), 1000 trials of 400 samples: the white-noise covariance holds the truth within
 // 1 sigma in about 35 % of trials; serially_correlated in about two thirds. On white errors it
 // stays the white one (the test for correlation passes it in 2.5 % of trials, and only widens it).
 TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
   constexpr std::size_t kSamples = 400;
-  Matrix design(kSamples, 2);
-  for (std::size_t t = 0; t < kSamples; ++t) {
-    design(t, 0) = static_cast<double>(t) / kSamples;
-    design(t, 1) = 1.0;
-  }
+  const Matrix design = slope_over_time(kSamples);
   std::mt19937_64 random(1987);
   std::normal_distribution<double> normal(0.0, 1.0);
   const auto coverage = [&](double rho, bool correlated) {
@@ -129,11 +135,7 @@ TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
 // AR(1), its persistence and variance from lags 1 and 2, gives the covariance.
 TEST(LeastSquares, ADriftUnderWhiteNoiseIsCounted) {
   constexpr std::size_t kSamples = 4000;
-  Matrix design(kSamples, 2);
-  for (std::size_t t = 0; t < kSamples; ++t) {
-    design(t, 0) = static_cast<double>(t) / kSamples;
-    design(t, 1) = 1.0;
-  }
+  const Matrix design = slope_over_time(kSamples);
   std::mt19937_64 random(2026);
   std::normal_distribution<double> normal(0.0, 1.0);
   LeastSquaresOptions options;

@@ -49,18 +49,12 @@ DirectionFit direction_line(const std::vector<double>& rates, const std::vector<
 
 // The shapes the test points' noise is taken about, each the one before and two columns more: the
 // line through both directions; each direction's own line (the asymmetry); then each direction's
-// polynomial of degree 2 and 3 (the nonlinearity's smooth shape). The next is taken while its two
-// columns are significant at kShapeSignificance against the shape chosen (F-test) and leave 3
-// degrees of freedom.
+// polynomial of degree 2 and 3 (the nonlinearity's smooth shape). A shape is taken where the
+// columns it adds are significant at kShapeSignificance against the shape chosen (Wald's test) and
+// it leaves 3 degrees of freedom.
 constexpr std::size_t kShapes = 4;
 constexpr double kShapeSignificance = 0.01;
 
-// The test points' noise variance a + b Ω², from their residuals about the shape chosen (each
-// squared and scaled by 1/(1 - h_j), h_j its leverage, unbiased for its point's variance); nothing
-// without a residual. About the line through both directions alone, the asymmetry and the
-// nonlinearity, which a repeat of the test gives again, counted as noise: on the demo's gyro (Kn 4.3
-// ppm, Ka 6.0 ppm) u(K) was 2.79 ppm where K scattered by 0.0072 ppm over 180 simulated tests, and
-// K's ±1σ held its truth in every trial of a gyro of 1 ppm asymmetry or of a cubic of 8 ppm.
 // The design of shape `shape` (0 to kShapes - 1) at the rates, over the largest |rate|.
 Matrix shape_design(const std::vector<double>& rates, std::size_t shape) {
   double largest = 0.0;
@@ -172,13 +166,18 @@ std::pair<std::vector<double>, std::size_t> residuals_about_shape(const std::vec
   return {z, shape};
 }
 
+// The test points' noise variance a + b Ω², from their residuals about the shape chosen (each
+// squared and scaled by 1/(1 - h_j), h_j its leverage, unbiased for its point's variance); nothing
+// without a residual. About the line through both directions alone, the asymmetry and the
+// nonlinearity, which a repeat of the test gives again, counted as noise: on the demo's gyro (Kn 4.3
+// ppm, Ka 6.0 ppm) u(K) was 2.79 ppm where K scattered by 0.0072 ppm over 180 simulated tests, and
+// K's ±1σ held its truth in every trial of a gyro of 1 ppm asymmetry or of a cubic of 8 ppm.
 std::optional<PointVariance> point_noise(const std::vector<double>& rates, const std::vector<double>& outputs) {
   if (rates.size() < 3) return std::nullopt;
-  // The F-tests weigh the points by their variance a + b Ω²: first the one about the line through
-  // both directions, then the one about the shape chosen, until the shape stays. Unweighted, a
-  // noise growing with the rate made them take shapes of noise (K's ±1σ held its truth in 60 % of
-  // trials), and so did weights from the residuals about the most flexible shape (48 %), whose
-  // largest rates' residuals their leverage leaves near zero.
+  // The fits weigh the points by their variance a + b Ω²: first the one about the line through both
+  // directions, then the one about the shape chosen, until the shape stays. Weights from the
+  // residuals about the most flexible shape, whose largest rates' residuals their leverage leaves
+  // near zero, made noise growing with the rate look like shapes (K's ±1σ held its truth in 48 %).
   PointVariance variance = fit_line(rates, outputs, true).point_variance;
   std::optional<std::size_t> shape;
   for (int pass = 0; pass < 4; ++pass) {

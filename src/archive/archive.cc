@@ -80,7 +80,7 @@ struct FigureRow {
   // Where a row of a table a limit names lies in it: the row's plain numbers ("smoothing_s = 10"),
   // none for a figure that is no such row or a row without them.
   std::optional<std::string> abscissa;
-  // The records its step read: the SHA-256 of their digests in order (records_identity); none when
+  // The records its step read: the SHA-256 of their sorted digests (records_identity); none when
   // the results name no records (inline data, results written before they did).
   std::optional<std::string> records;
 };
@@ -256,15 +256,16 @@ nlohmann::json comparable_content(nlohmann::json results) {
   return results;
 }
 
-// What identifies the records a step read: the SHA-256 of their digests, one a line, in the order
-// read (a list of runs is another test in another order); none when it names none. Their names are
-// left out: the same records moved or renamed are the same test.
+// What identifies the records a step read: the SHA-256 of their digests, sorted, one a line; none
+// when it names none. Their names and order are left out: the same records moved, renamed or listed
+// in another order (the runs of a temperature plan reordered, or given to their right temperatures
+// after a mix-up) are the same test, processed again.
 std::optional<std::string> records_identity(const nlohmann::json& procedure, const std::string& name,
                                             const std::string& source) {
   const auto it = procedure.find("records");
   if (it == procedure.end()) return std::nullopt;
   if (!it->is_array()) malformed(source, "procedure '" + name + "': \"records\" must be an array");
-  std::string digests;
+  std::set<std::string> sorted;
   for (const auto& record : *it) {
     const auto digest = record.is_object() ? record.find("sha256") : record.end();
     std::string hex = digest != record.end() && digest->is_string() ? digest->get<std::string>() : std::string();
@@ -272,9 +273,11 @@ std::optional<std::string> records_identity(const nlohmann::json& procedure, con
     if (hex.size() != 64 || hex.find_first_not_of("0123456789abcdef") != std::string::npos) {
       malformed(source, "procedure '" + name + "': each of \"records\" needs a \"sha256\" of 64 hex digits");
     }
-    digests += hex + "\n";
+    sorted.insert(hex);
   }
-  if (digests.empty()) return std::nullopt;
+  if (sorted.empty()) return std::nullopt;
+  std::string digests;
+  for (const std::string& hex : sorted) digests += hex + "\n";
   return sha256_hex(digests);
 }
 

@@ -445,6 +445,15 @@ TEST_P(ArchiveBackend, ALaterProcessingOfTheSameRecordsSupersedesTheEarlier) {
   archive->add(capitals, "f");
   const auto same_record = archive->add(processed_from("FOG-9", "2026-04-02", 36000.3, "2026-04-02T10:00:00Z", "K-1", "B-5"), "g");
   EXPECT_EQ(same_record.supersedes.size(), 1u);
+  // Two runs listed the other way round are the same records: the later processing supersedes.
+  nlohmann::json two_runs = processed_from("FOG-10", "2026-04-01", 36000.2, "2026-04-01T10:00:00Z", "K-1", "B-1");
+  two_runs["procedures"][0]["records"].push_back({{"file", "k2.csv"}, {"bytes", 5}, {"sha256", sha256_hex("K-2")}});
+  archive->add(two_runs, "h");
+  nlohmann::json reordered = processed_from("FOG-10", "2026-04-01", 36000.3, "2026-04-02T10:00:00Z", "K-1", "B-1");
+  reordered["procedures"][0]["records"] = nlohmann::json::array({two_runs["procedures"][0]["records"][1],
+                                                                 two_runs["procedures"][0]["records"][0]});
+  EXPECT_EQ(archive->add(reordered, "i").supersedes.size(), 1u);
+  EXPECT_EQ(archive->history("FOG-10", "scale_factor/scale_factor").points.size(), 1u);
   // Results naming records without a digest are refused.
   nlohmann::json no_digest = processed_from("FOG-7", "2026-04-01", 36000.2, "2026-04-01T10:00:00Z", "K-9", "B-9");
   no_digest["procedures"][0]["records"][0].erase("sha256");

@@ -129,7 +129,7 @@ class Archive {
   // Adds a campaign's results (results.json parsed); source names the file in error messages.
   // Throws Error, changing nothing, when the results are malformed (a missing or mistyped key, a
   // results_schema_version this inertest does not know, a figure without a finite value or unit).
-  // A step that read the same records (results.json "records", their SHA-256 in order) as a step of
+  // A step that read the same records (results.json "records", their SHA-256 in any order) as a step of
   // the same name of an earlier processing for the same instrument supersedes the figures of it
   // that it states again: those of the later processing are the ones histories, the fleet and
   // figures() show, and the earlier rows stay stored, marked (list() names who superseded them).

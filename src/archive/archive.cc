@@ -853,30 +853,26 @@ class DatabaseArchive final : public Archive {
     for (const auto& row : record.figures) {
       if (row.records) steps.emplace(row.procedure, *row.records);
     }
-    // The current rows of figure `of` (the new campaign's row) in the same step of other campaigns of
-    // the instrument, processed before or with ($5) or after the new one.
-    const auto same_figure = [](const std::string& of, const char* when) {
-      return "FROM figure g JOIN campaign c ON c.id = g.campaign WHERE c.instrument = $1 AND g.procedure = $2 AND "
-             "g.records = $3 AND g.figure = " + of + " AND g.superseded_by IS NULL AND c.id <> $4 AND c.processed_at " +
-             when + " $5";
-    };
-    const std::string of_new = "(SELECT figure FROM figure WHERE campaign = $4 AND procedure = $2)";
-    const std::string earlier = "g.figure IN " + of_new + " AND g.superseded_by IS NULL AND g.procedure = $2 AND "
-                                "g.records = $3 AND c.instrument = $1 AND c.id <> $4 AND c.processed_at <= $5";
+    // The current rows of this step (same instrument, name and records) in the other campaigns ...
+    const std::string current =
+        "FROM figure g JOIN campaign c ON c.id = g.campaign WHERE c.instrument = $1 AND g.procedure = $2 AND "
+        "g.records = $3 AND g.superseded_by IS NULL AND c.id <> $4";
+    // ... of the figures the new campaign states, processed before it or in the same second;
+    const std::string earlier =
+        current + " AND c.processed_at <= $5 AND g.figure IN (SELECT figure FROM figure WHERE campaign = $4 AND "
+                  "procedure = $2)";
+    // ... and the latest processed after it that states the figure of the new campaign's row.
+    const std::string latest =
+        "(SELECT c.id " + current + " AND c.processed_at > $5 AND g.figure = figure.figure ORDER BY c.processed_at DESC, "
+        "c.id LIMIT 1)";
     std::set<std::string> supersedes;
     std::set<std::string> superseded_by;
     for (const auto& [procedure, records] : steps) {
       const std::vector<Value> parameters = {record.entry.instrument, procedure, records, id, record.entry.processed_at};
-      for (const auto& row : db_->query("SELECT DISTINCT c.id FROM figure g JOIN campaign c ON c.id = g.campaign WHERE " +
-                                            earlier,
-                                        parameters)) {
-        supersedes.insert(row.text(0));
-      }
+      for (const auto& row : db_->query("SELECT DISTINCT c.id " + earlier, parameters)) supersedes.insert(row.text(0));
       db_->query("UPDATE figure SET superseded_by = $4 WHERE (campaign, procedure, figure) IN (SELECT g.campaign, "
-                 "g.procedure, g.figure FROM figure g JOIN campaign c ON c.id = g.campaign WHERE " + earlier + ")",
+                 "g.procedure, g.figure " + earlier + ")",
                  parameters);
-      const std::string latest = "(SELECT c.id " + same_figure("figure.figure", ">") +
-                                 " ORDER BY c.processed_at DESC, c.id LIMIT 1)";
       for (const auto& row : db_->query("SELECT DISTINCT " + latest + " FROM figure WHERE campaign = $4 AND procedure = $2"
                                         " AND " + latest + " IS NOT NULL",
                                         parameters)) {

@@ -545,8 +545,9 @@ std::filesystem::path first_missing(const std::filesystem::path& out) {
 // The records a step read (those its preparation and its run opened, listed files included), each
 // named from the plan's directory (its whole path when it lies elsewhere) with its size and SHA-256:
 // what a lab checks with `sha256sum`, and what the archive knows a reprocessing of the same records
-// by (archive.cc, superseded figures).
-nlohmann::json records_of(const Plan& plan, const std::vector<std::string>& prepared, const std::vector<std::string>& run) {
+// by (archive.cc, superseded figures). `digests` keeps each file's, for the steps that read it too.
+nlohmann::json records_of(const Plan& plan, const std::vector<std::string>& prepared, const std::vector<std::string>& run,
+                          std::map<std::string, FileDigest>& digests) {
   const std::filesystem::path plan_directory = std::filesystem::path(plan.path).parent_path().lexically_normal();
   std::vector<std::string> paths = prepared;
   for (const auto& path : run) {
@@ -554,7 +555,9 @@ nlohmann::json records_of(const Plan& plan, const std::vector<std::string>& prep
   }
   nlohmann::json records = nlohmann::json::array();
   for (const auto& path : paths) {
-    const FileDigest digest = file_sha256(path);
+    auto known = digests.find(path);
+    if (known == digests.end()) known = digests.emplace(path, file_sha256(path)).first;
+    const FileDigest& digest = known->second;
     const std::filesystem::path relative =
         plan_directory.empty() ? std::filesystem::path(path) : std::filesystem::path(path).lexically_relative(plan_directory);
     const bool inside = !relative.empty() && *relative.begin() != "..";
@@ -774,6 +777,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
   std::vector<std::filesystem::path> staged;
   try {
     nlohmann::json procedures = nlohmann::json::array();
+    std::map<std::string, FileDigest> digests;  // of the records read, each file once
     nlohmann::json verdicts = nlohmann::json::array();
     for (std::size_t i = 0; i < plan.steps.size(); ++i) {
       const auto& step = plan.steps[i];
@@ -791,7 +795,7 @@ CampaignSummary run_campaign(const std::string& plan_path, const std::string& ou
       }
       procedures.push_back({{"name", step.name},
                             {"kind", step.kind},
-                            {"records", records_of(plan, step.records_read, records.paths())},
+                            {"records", records_of(plan, step.records_read, records.paths(), digests)},
                             {"result", std::move(result)}});
     }
     summary.results = campaign_results(plan, std::move(procedures), std::move(verdicts));

@@ -53,14 +53,11 @@ CommandAction setup(CLI::App& root) {
   return [arguments, archive_option] {
     // The archive is opened first: one that cannot be opened stops the run before anything is written.
     // A plan that would be refused is refused before that (a mistyped key made a new, empty archive).
-    if (archive_option->count() > 0) validate_plan(arguments->plan);
+    const bool archiving = archive_option->count() > 0;
+    if (archiving) validate_plan(arguments->plan);
     const std::optional<std::filesystem::path> made =
-        archive_option->count() > 0
-            ? made_for_archive(archive_location_option(arguments->archive))
-            : std::nullopt;
-    auto store = archive_option->count() > 0
-                     ? open_archive_option(arguments->archive, archive::ArchiveOpening::create)
-                     : nullptr;
+        archiving ? made_for_archive(archive_location_option(arguments->archive)) : std::nullopt;
+    auto store = archiving ? open_archive_option(arguments->archive, archive::ArchiveOpening::create) : nullptr;
     const report::ReportOptions report_options{report::parse_language(arguments->lang), report::current_date()};
     CampaignOptions options;
     options.progress = terminal_progress();

@@ -98,35 +98,37 @@ Matrix slope_over_time(std::size_t m) {
   return design;
 }
 
+// How often a slope over time, fitted to `samples` errors of an AR(1) drift of unit variance and
+// persistence phi plus white noise of sigma `white`, lies within its standard error of the truth.
+double slope_coverage(std::size_t samples, double phi, double white, int trials, bool correlated,
+                      std::mt19937_64& random) {
+  const Matrix design = slope_over_time(samples);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  LeastSquaresOptions options;
+  options.serially_correlated = correlated;
+  int within = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    std::vector<double> y(samples);
+    double drift = normal(random);
+    for (std::size_t t = 0; t < samples; ++t) {
+      drift = phi * drift + std::sqrt(1.0 - phi * phi) * normal(random);
+      y[t] = 2.0 * design(t, 0) + 1.0 + drift + (white > 0.0 ? white * normal(random) : 0.0);
+    }
+    const LeastSquaresResult fit = solve_least_squares(design, y, options);
+    within += std::abs(fit.parameters[0] - 2.0) <= fit.standard_error(0) ? 1 : 0;
+  }
+  return within / double(trials);
+}
+
 // A slope over time under AR(1) errors of correlation 0.8 from sample to sample (a drift of a few
 // samples' memory), 1000 trials of 400 samples: the white-noise covariance holds the truth within
 // 1 sigma in about 35 % of trials; serially_correlated in about two thirds. On white errors it
 // stays the white one (the test for correlation passes it in 2.5 % of trials, and only widens it).
 TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
-  constexpr std::size_t kSamples = 400;
-  const Matrix design = slope_over_time(kSamples);
   std::mt19937_64 random(1987);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  const auto coverage = [&](double rho, bool correlated) {
-    LeastSquaresOptions options;
-    options.serially_correlated = correlated;
-    int within = 0;
-    constexpr int kTrials = 1000;
-    for (int trial = 0; trial < kTrials; ++trial) {
-      std::vector<double> y(kSamples);
-      double e = normal(random);
-      for (std::size_t t = 0; t < kSamples; ++t) {
-        e = rho * e + std::sqrt(1.0 - rho * rho) * normal(random);
-        y[t] = 2.0 * design(t, 0) + 1.0 + e;
-      }
-      const LeastSquaresResult fit = solve_least_squares(design, y, options);
-      within += std::abs(fit.parameters[0] - 2.0) <= fit.standard_error(0) ? 1 : 0;
-    }
-    return within / double(kTrials);
-  };
-  EXPECT_LT(coverage(0.8, false), 0.45);
-  EXPECT_NEAR(coverage(0.8, true), 0.683, 0.06);
-  EXPECT_NEAR(coverage(0.0, true), 0.683, 0.04);
+  EXPECT_LT(slope_coverage(400, 0.8, 0.0, 1000, false, random), 0.45);
+  EXPECT_NEAR(slope_coverage(400, 0.8, 0.0, 1000, true, random), 0.683, 0.06);
+  EXPECT_NEAR(slope_coverage(400, 0.0, 0.0, 1000, true, random), 0.683, 0.04);
 }
 
 // A drift under white noise (a gyro's record): the lag-1 correlation is the drift's persistence
@@ -134,26 +136,9 @@ TEST(LeastSquares, SeriallyCorrelatedCovarianceCoversTheTruth) {
 // these trials (51 % with a Newey-West bandwidth from the persistence instead). White noise plus
 // AR(1), its persistence and variance from lags 1 and 2, gives the covariance.
 TEST(LeastSquares, ADriftUnderWhiteNoiseIsCounted) {
-  constexpr std::size_t kSamples = 4000;
-  const Matrix design = slope_over_time(kSamples);
   std::mt19937_64 random(2026);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  LeastSquaresOptions options;
-  options.serially_correlated = true;
-  constexpr double kPhi = 0.98;  // a correlation time of 50 samples
-  int within = 0;
-  constexpr int kTrials = 400;
-  for (int trial = 0; trial < kTrials; ++trial) {
-    std::vector<double> y(kSamples);
-    double drift = normal(random);
-    for (std::size_t t = 0; t < kSamples; ++t) {
-      drift = kPhi * drift + std::sqrt(1.0 - kPhi * kPhi) * normal(random);
-      y[t] = 2.0 * design(t, 0) + 1.0 + drift + 3.0 * normal(random);
-    }
-    const LeastSquaresResult fit = solve_least_squares(design, y, options);
-    within += std::abs(fit.parameters[0] - 2.0) <= fit.standard_error(0) ? 1 : 0;
-  }
-  EXPECT_NEAR(within / double(kTrials), 0.683, 0.06);
+  // A correlation time of 50 samples under white noise of three times the drift's sigma.
+  EXPECT_NEAR(slope_coverage(4000, 0.98, 3.0, 400, true, random), 0.683, 0.06);
 }
 
 // Relative variances keep the unweighted estimate and give its covariance through them, the common

@@ -115,49 +115,41 @@ std::pair<std::vector<double>, std::size_t> residuals_about_shape(const std::vec
     const double v = variance.at_zero + variance.per_x2 * rate * rate;
     weights.push_back(v > 0.0 ? 1.0 / v : 1.0);
   }
-  const auto fit = [&](const Matrix& design) {
+  // Each shape's fit with the covariance HC3's, for Wald's test of the columns it adds over the shape
+  // chosen so far, not only over the one before (a cubic is not a quadratic first): weights that are
+  // not the points' variances (a noise growing with the rate, guessed from few points) do not make
+  // it too sure, as they made an F-test (K's ±1σ then held its truth in 45-57 % of trials).
+  const auto fit = [&](const Matrix& design, bool heteroscedastic) {
     LeastSquaresOptions options;
     options.require_full_rank = false;
     options.weights = weights;
+    options.heteroscedastic = heteroscedastic;
     return solve_least_squares(design, outputs, options);
-  };
-  const auto rss_of = [&weights](const LeastSquaresResult& r) {  // weighted
-    double sum = 0.0;
-    for (std::size_t j = 0; j < r.residuals.size(); ++j) sum += weights[j] * r.residuals[j] * r.residuals[j];
-    return sum;
   };
   std::size_t shape = 0;
   Matrix design = shape_design(rates, 0);
-  LeastSquaresResult chosen = fit(design);
   for (std::size_t next_shape = 1; next_shape < kShapes && rates.size() >= 2 * next_shape + 2 + 3; ++next_shape) {
     Matrix next_design = shape_design(rates, next_shape);
-    LeastSquaresResult next = fit(next_design);
+    const LeastSquaresResult next = fit(next_design, true);
     if (next.rank < next_design.cols) break;
-    // Against the shape chosen so far, not only the one before (a cubic is not a quadratic first):
-    // Wald's test of the columns it adds, their covariance HC3's, which weights that are not the
-    // points' variances (a noise growing with the rate, guessed from few points) do not make too
-    // sure, as they made the F-test (K's ±1σ then held its truth in 45-57 % of trials).
-    LeastSquaresOptions robust;
-    robust.require_full_rank = false;
-    robust.weights = weights;
-    robust.heteroscedastic = true;
-    const LeastSquaresResult tested = solve_least_squares(next_design, outputs, robust);
     const std::size_t q = next_design.cols - design.cols;
-    const double wald = added_columns_wald(tested, design.cols);
-    const double nu = static_cast<double>(next.degrees_of_freedom);
-    const double critical = static_cast<double>(q) * boost::math::quantile(
-        boost::math::fisher_f_distribution<double>(static_cast<double>(q), nu), 1.0 - kShapeSignificance);
-    if (!(wald > critical)) continue;
+    const double critical = static_cast<double>(q) *
+                            boost::math::quantile(boost::math::fisher_f_distribution<double>(
+                                                      static_cast<double>(q), static_cast<double>(next.degrees_of_freedom)),
+                                                  1.0 - kShapeSignificance);
+    if (!(added_columns_wald(next, design.cols) > critical)) continue;
     shape = next_shape;
     design = std::move(next_design);
-    chosen = std::move(next);
   }
-  const double rss = rss_of(chosen);
+  // The shape chosen, its covariance s² (AᵀWA)⁻¹ for the leverages.
+  const LeastSquaresResult chosen = fit(design, false);
+  double rss = 0.0;  // weighted
+  for (std::size_t j = 0; j < rates.size(); ++j) rss += weights[j] * chosen.residuals[j] * chosen.residuals[j];
   if (chosen.degrees_of_freedom == 0 || chosen.rank < design.cols || !(rss > 0.0)) return {{}, shape};
   const double s2 = rss / static_cast<double>(chosen.degrees_of_freedom);
   std::vector<double> z;
   for (std::size_t j = 0; j < rates.size(); ++j) {
-    double leverage = 0.0;  // w_j a_j (AᵀWA)⁻¹ a_jᵀ, the covariance being s² (AᵀWA)⁻¹
+    double leverage = 0.0;  // w_j a_j (AᵀWA)⁻¹ a_jᵀ
     for (std::size_t p = 0; p < design.cols; ++p) {
       for (std::size_t r = 0; r < design.cols; ++r) leverage += design(j, p) * chosen.covariance(p, r) * design(j, r) / s2;
     }
@@ -169,9 +161,11 @@ std::pair<std::vector<double>, std::size_t> residuals_about_shape(const std::vec
 // The test points' noise variance a + b Ω², from their residuals about the shape chosen (each
 // squared and scaled by 1/(1 - h_j), h_j its leverage, unbiased for its point's variance); nothing
 // without a residual. About the line through both directions alone, the asymmetry and the
-// nonlinearity, which a repeat of the test gives again, counted as noise: on the demo's gyro (Kn 4.3
-// ppm, Ka 6.0 ppm) u(K) was 2.79 ppm where K scattered by 0.0072 ppm over 180 simulated tests, and
-// K's ±1σ held its truth in every trial of a gyro of 1 ppm asymmetry or of a cubic of 8 ppm.
+// nonlinearity, which a repeat of the test gives again, counted as noise: on the demo's scale
+// factor test (Kn 4.3 ppm, Ka 6.0 ppm) u(K) was 2.1 ppm where K scatters by 0.005 ppm over 40
+// simulated tests (now 0.0044 ppm), and K's ±1σ held its truth in every trial of a gyro of 1 ppm
+// asymmetry or of a cubic of 8 ppm. With 4 rates a direction only the asymmetry can be told from
+// the noise: a nonlinearity stays in u(K) (3.2 ppm on the demo's repeatability runs).
 std::optional<PointVariance> point_noise(const std::vector<double>& rates, const std::vector<double>& outputs) {
   if (rates.size() < 3) return std::nullopt;
   // The fits weigh the points by their variance a + b Ω²: first the one about the line through both

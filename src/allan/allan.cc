@@ -372,6 +372,68 @@ AllanResult allan_variance_in_place(std::span<double> rate, const AllanOptions& 
   return analyse_samples(rate, options);
 }
 
+namespace {
+
+// A streamed record into the engine's ring: the binary reader writes its samples there
+// (SampleDestination), a record of named channels pushes its chunks. The engine is made at the
+// first chunk, read into a buffer of its own: the phase is integrated about that chunk's mean.
+class EngineFeed final : public SampleDestination {
+ public:
+  EngineFeed(std::string path, std::size_t count, AllanEngineOptions setup, const ProgressCallback& progress)
+      : path_(std::move(path)), count_(count), setup_(std::move(setup)), progress_(progress) {}
+
+  std::span<double> room() override {
+    if (!engine_) {
+      first_.resize(kFirstChunk);  // the binary reader's chunk of 256 KiB, of 2-byte samples at the most
+      return first_;
+    }
+    if (pushed_ == count_) throw Error(SourceLocation{path_, 0, 0}, "the file changed while it was read");
+    return engine_->room();
+  }
+  void filled(std::size_t count) override {
+    if (!engine_) {
+      push(std::span<const double>(first_.data(), count));
+      return;
+    }
+    engine_->commit(count);
+    advance(count);
+  }
+  void push(std::span<const double> samples) {
+    if (samples.empty()) return;
+    if (!engine_) {
+      offset_ = provisional_offset(samples);
+      engine_ = std::make_unique<AllanEngine>(count_, offset_, std::move(setup_));
+    }
+    if (pushed_ + samples.size() > count_) throw Error(SourceLocation{path_, 0, 0}, "the file changed while it was read");
+    engine_->push(samples);
+    advance(samples.size());
+  }
+  AllanEngine* engine() const { return engine_.get(); }
+  double offset() const { return offset_; }
+
+ private:
+  static constexpr std::size_t kFirstChunk = std::size_t{128} << 10;
+  void advance(std::size_t count) {
+    pushed_ += count;
+    if (progress_ && pushed_ - reported_ >= count_ / 100 + 1) {
+      reported_ = pushed_;
+      progress_("Allan variance", static_cast<double>(pushed_) / static_cast<double>(count_));
+    }
+  }
+
+  std::string path_;
+  std::size_t count_;
+  AllanEngineOptions setup_;
+  const ProgressCallback& progress_;
+  std::vector<double> first_;
+  std::unique_ptr<AllanEngine> engine_;
+  double offset_ = 0.0;
+  std::size_t pushed_ = 0;
+  std::size_t reported_ = 0;
+};
+
+}  // namespace
+
 AllanResult allan_variance_of_file(const RateRecordSource& given_source, const AllanOptions& options,
                                    const ProgressCallback& progress) {
   options.validate();
@@ -434,27 +496,11 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
   }
   AllanEngineOptions engine_setup = engine_options(std::move(factors), options);
   if (engine_setup.ring_capacity_limit == 0) engine_setup.ring_capacity_limit = automatic_ring_limit(source);
-  std::unique_ptr<AllanEngine> engine;
-  double offset = 0.0;
-  std::size_t pushed = 0;
-  std::size_t reported = 0;
-  const std::size_t again = stream([&](std::span<const double> samples) {
-    if (samples.empty()) return;
-    if (!engine) {
-      offset = provisional_offset(samples);
-      engine = std::make_unique<AllanEngine>(count, offset, std::move(engine_setup));
-    }
-    if (pushed + samples.size() > count) {
-      throw Error(SourceLocation{source.path, 0, 0}, "the file changed while it was read");
-    }
-    engine->push(samples);
-    pushed += samples.size();
-    if (progress && pushed - reported >= count / 100 + 1) {
-      reported = pushed;
-      progress("Allan variance", static_cast<double>(pushed) / static_cast<double>(count));
-    }
-  });
+  EngineFeed feed(source.path, count, std::move(engine_setup), progress);
+  const std::size_t again = record ? stream_channel(*record, channel, [&feed](std::span<const double> samples) { feed.push(samples); })
+                                   : read_binary_rate_record(source, feed);
   if (again != count) throw Error(SourceLocation{source.path, 0, 0}, "the file changed while it was read");
+  AllanEngine* const engine = feed.engine();
   SampleReader reader;
   if (engine->deferred_factor_count() > 0) {
     if (progress) progress("Allan variance (largest taus, second pass)", 1.0);
@@ -466,7 +512,7 @@ AllanResult allan_variance_of_file(const RateRecordSource& given_source, const A
   }
   const auto sums = engine->finish(reader);
   if (progress) progress("Allan variance", 1.0);
-  const double mean = offset + engine->phase_total() / static_cast<double>(count);
+  const double mean = feed.offset() + engine->phase_total() / static_cast<double>(count);
   return assemble(count, mean, sums, options);
 }
 

@@ -1241,24 +1241,32 @@ AllanEngine::~AllanEngine() {
 }
 
 void AllanEngine::push(std::span<const double> samples) {
+  while (!samples.empty()) {
+    const std::span<double> slots = room();
+    const std::size_t piece = std::min(slots.size(), samples.size());
+    std::copy_n(samples.begin(), piece, slots.begin());
+    commit(piece);
+    samples = samples.subspan(piece);
+  }
+}
+
+std::span<double> AllanEngine::room() {
   State& s = *state_;
   if (s.samples_in_place != nullptr) throw Error("internal: an engine in place has its samples already");
-  if (s.written - 1 + samples.size() > s.sample_count) {
-    throw Error("more samples than the " + std::to_string(s.sample_count) + " announced");
-  }
+  // To the block's end, the record's end or the ring's end, whichever is first.
   const std::size_t block = s.options.block_size;
-  std::size_t i = 0;
-  while (i < samples.size()) {
-    // The piece ends at the block's end, the samples' end or the ring's end, whichever is first.
-    const std::size_t slot = s.written % s.capacity;
-    const std::size_t room = std::min((s.written / block + 1) * block - s.written, s.capacity - slot);
-    const std::size_t piece = std::min(room, samples.size() - i);
-    // The samples wait in their slots; the block is integrated in place once it is whole.
-    std::copy_n(samples.begin() + static_cast<std::ptrdiff_t>(i), piece, s.ring.data() + slot);
-    s.written += piece;
-    i += piece;
-    if (s.written % block == 0) s.block_written();
-  }
+  const std::size_t slot = s.written % s.capacity;
+  const std::size_t room = std::min({(s.written / block + 1) * block - s.written, s.capacity - slot,
+                                     s.sample_count + 1 - s.written});
+  if (room == 0) throw Error("more samples than the " + std::to_string(s.sample_count) + " announced");
+  return {s.ring.data() + slot, room};
+}
+
+void AllanEngine::commit(std::size_t count) {
+  State& s = *state_;
+  // The samples wait in their slots; the block is integrated in place once it is whole.
+  s.written += count;
+  if (s.written % s.options.block_size == 0) s.block_written();
 }
 
 std::vector<AllanSums> AllanEngine::finish(const SampleReader& reader) {

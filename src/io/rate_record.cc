@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -17,9 +18,9 @@
 namespace inertest {
 namespace {
 
-// A chunk in L2: the finite check, the engine's copy into its ring and its integration each find
-// the chunk there (4 MiB chunks went to L3 and back three times: OADEV alone on 3e7 f64 samples,
-// 9 runs alternated, wall time 0.253 -> 0.230 s at best, 0.271 -> 0.256 s median).
+// A chunk in L2: the finite check and the engine's integration find the chunk there, in its ring
+// (4 MiB chunks went to L3 and back: OADEV alone on 3e7 f64 samples, 9 runs alternated, wall time
+// 0.253 -> 0.230 s at best, 0.271 -> 0.256 s median, when the engine still copied each chunk).
 constexpr std::size_t kChunkBytes = 256u << 10;
 static_assert(std::endian::native == std::endian::little, "a little-endian f64 record is read as it is stored");
 
@@ -45,53 +46,59 @@ bool all_finite(const double* values, std::size_t count) {
   return infinite == 0;
 }
 
-std::size_t read_binary(const RateRecordSource& source, const SampleSink& sink) {
+// The first sample of values[0, count) that is not finite, as a 1-based sample number from `first`.
+[[noreturn]] void throw_not_finite(const std::string& path, const double* values, std::size_t count, std::size_t first) {
+  const std::size_t i = static_cast<std::size_t>(std::find_if(values, values + count, [](double v) { return !std::isfinite(v); }) - values);
+  throw Error(SourceLocation{path, 0, 0}, "sample " + std::to_string(first + i + 1) + " is not a finite number");
+}
+
+// A destination of its own: a chunk of samples, handed to `sink` as each read fills it.
+class SinkDestination final : public SampleDestination {
+ public:
+  SinkDestination(std::size_t samples, const SampleSink& sink) : samples_(samples), sink_(sink) {}
+  std::span<double> room() override { return samples_; }
+  void filled(std::size_t count) override { sink_(std::span<const double>(samples_.data(), count)); }
+
+ private:
+  std::vector<double> samples_;
+  const SampleSink& sink_;
+};
+
+}  // namespace
+
+std::size_t read_binary_rate_record(const RateRecordSource& source, SampleDestination& destination) {
   const std::size_t sample_size = source.binary.sample_size();
-  // Little-endian f64 is read straight into the sample buffer; any other type into `bytes`, then
-  // decoded (widened, byte-swapped).
+  // Little-endian f64 is read straight into the destination's slots; any other type into
+  // `bytes`, then decoded there (widened, byte-swapped).
   const bool direct = source.binary.type == BinaryFormat::SampleType::kFloat64 &&
                       source.binary.endian == BinaryFormat::Endian::kLittle;
   File file = open(source.path);
-  std::vector<double> samples(kChunkBytes / sample_size);
-  std::vector<char> bytes(direct ? 0 : kChunkBytes);
-  char* const target = direct ? reinterpret_cast<char*>(samples.data()) : bytes.data();
-  std::size_t count = 0;
-  std::size_t carried = 0;  // bytes of an incomplete sample kept from the last read
-  while (true) {
-    const std::size_t got = std::fread(target + carried, 1, kChunkBytes - carried, file.get());
-    if (got == 0) {
-      if (std::ferror(file.get())) throw Error(SourceLocation{source.path, 0, 0}, "read error");
-      break;
-    }
-    const std::size_t available = carried + got;
-    const std::size_t whole = available / sample_size;
-    if (!direct) {
-      decode_binary_frames(std::string_view(bytes.data(), whole * sample_size), source.binary,
-                           std::span<double>(samples.data(), whole));
-    }
-    if (!all_finite(samples.data(), whole)) {
-      for (std::size_t i = 0; i < whole; ++i) {
-        if (!std::isfinite(samples[i])) {
-          throw Error(SourceLocation{source.path, 0, 0},
-                      "sample " + std::to_string(count + i + 1) + " is not a finite number");
-        }
-      }
-    }
-    count += whole;
-    if (whole > 0) sink(std::span<const double>(samples.data(), whole));
-    carried = available - whole * sample_size;
-    std::memmove(target, target + whole * sample_size, carried);
-  }
-  if (carried != 0) {
+  std::error_code size_error;
+  const auto size = static_cast<std::size_t>(std::filesystem::file_size(source.path, size_error));
+  if (size_error) throw Error(SourceLocation{source.path, 0, 0}, "cannot read its size: " + size_error.message());
+  if (size % sample_size != 0) {
     throw Error(SourceLocation{source.path, 0, 0},
                 "the size is not a whole number of " + std::to_string(sample_size) + "-byte samples (" +
-                    std::to_string(carried) + " trailing bytes)");
+                    std::to_string(size % sample_size) + " trailing bytes)");
   }
+  const std::size_t count = size / sample_size;
   if (count == 0) throw Error(SourceLocation{source.path, 0, 0}, "no data: the file is empty");
+  std::vector<char> bytes(direct ? 0 : kChunkBytes);
+  for (std::size_t done = 0; done < count;) {
+    const std::span<double> slots = destination.room();
+    const std::size_t want = std::min({slots.size(), count - done, kChunkBytes / sample_size});
+    char* const target = direct ? reinterpret_cast<char*>(slots.data()) : bytes.data();
+    if (std::fread(target, sample_size, want, file.get()) != want) {
+      throw Error(SourceLocation{source.path, 0, 0}, std::ferror(file.get()) ? "read error" : "the file changed while it was read");
+    }
+    if (!direct) decode_binary_frames(std::string_view(bytes.data(), want * sample_size), source.binary, slots.first(want));
+    if (!all_finite(slots.data(), want)) throw_not_finite(source.path, slots.data(), want, done);
+    destination.filled(want);
+    done += want;
+  }
   return count;
 }
 
-}  // namespace
 
 void RateRecordSource::set_format(std::string_view text) {
   if (text == "auto") {
@@ -179,7 +186,10 @@ std::size_t read_rate_record(const RateRecordSource& source, const SampleSink& s
     const std::unique_ptr<ChannelRecord> record = open_channel_record(source.path, *channel_format);
     return stream_channel(*record, record->find(source.column), sink);
   }
-  if (format == RateRecordFormat::kBinary) return read_binary(source, sink);
+  if (format == RateRecordFormat::kBinary) {
+    SinkDestination chunk(kChunkBytes / source.binary.sample_size(), sink);
+    return read_binary_rate_record(source, chunk);
+  }
   const std::vector<double> samples = read_text_rate_record(source);
   sink(samples);
   return samples.size();

@@ -27,12 +27,13 @@
 // at every offset, so decimated data would not give the same sums; re-reading costs about 5 (N - m) samples per deferred factor, and at most a
 // few octave factors exceed any limit above N/2 phase values.
 //
-// Speed (issue 15): the caller copies the samples into the ring and each whole block is
-// integrated there in place, in four Neumaier chains side by side in the lanes of a vector (one
-// chain cost an FP-add latency per sample), the chains' carries added after; the cut depends on
-// the block only, so the phase is the same bits whatever the chunks pushed or the thread count,
-// and the second pass repeats it. Worker w takes a contiguous range of the factors and sweeps each
-// block in sub-blocks of 16384 anchors, every one of its factors per sub-block: on an octave grid
+// Speed (issue 15): the reader writes the samples into the ring (room/commit; push() copies them
+// there) and each whole block is integrated there in place, in four Neumaier chains side by side
+// in the lanes of a vector (one chain cost an FP-add latency per sample), the chains' carries
+// added after; the cut depends on the block only, so the phase is the same bits whatever the
+// chunks pushed or the thread count, and the second pass repeats it. The workers take contiguous
+// ranges of the factors and sweep each block in sub-blocks of 16384 anchors, every factor of the
+// range per sub-block: on an octave grid
 // the lag 2m of factor m is the lag m of the next factor, so a sub-block of a far lag comes from
 // DRAM once and serves two factors, and small lags come from L1/L2. Each term is a few flops on 3
 // or 4 phase streams; the sums of the overlapping averages (B1 ratio) ride in the same loops, and
@@ -140,6 +141,11 @@ class AllanEngine {
 
   // Feeds the next samples, in order, in chunks of any size. Throws Error past N samples.
   void push(std::span<const double> samples);
+  // push() without the copy, for a reader that can write the samples where they go: room() is
+  // where the next samples go (at least one slot, up to the end of a block), and commit(count)
+  // says that its first `count` slots hold the next samples. Throws Error past N samples.
+  std::span<double> room();
+  void commit(std::size_t count);
   // Completes the sums after exactly N samples, running the second pass through `reader` when some
   // factors were deferred; throws Error when fewer were pushed, or when a second pass is needed and
   // there is no reader. Sums are ordered by averaging factor.

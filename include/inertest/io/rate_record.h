@@ -61,6 +61,21 @@ using SampleSink = std::function<void(std::span<const double> samples)>;
 // infinite sample, a binary size that is not a whole number of samples, or an unreadable file.
 std::size_t read_rate_record(const RateRecordSource& source, const SampleSink& sink);
 
+// Where a reader puts the samples: room() is where the next ones go (at least one slot), and
+// filled(count) says that its first `count` slots now hold them, in order. A reader that writes
+// them there spares the copy from a buffer of its own (the Allan engine's ring).
+class SampleDestination {
+ public:
+  virtual ~SampleDestination() = default;
+  virtual std::span<double> room() = 0;
+  virtual void filled(std::size_t count) = 0;
+};
+
+// A raw binary record (source.format kBinary) read into `destination` in chunks of 256 KiB at
+// most, little-endian f64 straight into its slots; returns the number of samples. Throws Error as
+// read_rate_record (a size that is not a whole number of samples before anything is read).
+std::size_t read_binary_rate_record(const RateRecordSource& source, SampleDestination& destination);
+
 // The samples of a text record (source.format csv): the file mapped and parsed once, in parallel
 // chunks at line boundaries (read_text_table), into memory: 8 bytes a sample, beside the mapped
 // text. Without source.column the record must have one column.

@@ -333,6 +333,42 @@ TEST(AllanEngine, SameBitsOnEveryThreadCount) {
   }
 }
 
+// A reader writing the samples into the ring (room, then commit, in pieces of any size up to the
+// room given) gives the bits of push(), with and without a second pass; past N samples, room()
+// refuses.
+TEST(AllanEngine, RoomAndCommitGiveTheBitsOfPush) {
+  const std::vector<double> y = white_and_random_walk(20000, 50.0, 0.01, 43);
+  const std::vector<std::size_t> factors = {1, 2, 4, 8, 64, 1000, 6000};
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  for (std::size_t ring_limit : {std::size_t{0}, std::size_t{9000}}) {
+    const auto pushed = run_engine(y, factors, 2, 1024, 333, EstimatorSet::all(), ring_limit);
+    AllanEngineOptions options;
+    options.averaging_factors = factors;
+    options.block_size = 1024;
+    options.ring_capacity_limit = ring_limit;
+    AllanEngine engine(y.size(), mean_of(y), options);
+    for (std::size_t done = 0, piece = 1; done < y.size(); piece = piece % 777 + 1) {
+      const std::span<double> slots = engine.room();
+      ASSERT_GE(slots.size(), 1U);
+      const std::size_t count = std::min({piece, slots.size(), y.size() - done});
+      std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(done), count, slots.begin());
+      engine.commit(count);
+      done += count;
+    }
+    EXPECT_THROW(engine.room(), Error);
+    EXPECT_EQ(engine.deferred_factor_count() > 0, ring_limit > 0);
+    const auto written = engine.finish([&y](std::size_t first, std::span<double> out) {
+      std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
+    });
+    ASSERT_EQ(written.size(), pushed.size());
+    for (std::size_t i = 0; i < pushed.size(); ++i) {
+      for (Estimator e : kAllEstimators) {
+        EXPECT_EQ(bits(written[i].sum(e)), bits(pushed[i].sum(e))) << estimator_name(e) << " m=" << pushed[i].averaging_factor;
+      }
+    }
+  }
+}
+
 // Long runs (the 16 lanes, the 8 MDEV chains and the vector kernels) on a record with a large
 // offset and a rate random walk: every estimator still within 1e-9 of the long-double definitions.
 TEST(AllanEngine, LongRunsAgreeWithTheDefinitions) {

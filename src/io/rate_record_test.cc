@@ -2,6 +2,7 @@
 #include "inertest/io/rate_record.h"
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -103,6 +104,59 @@ TEST(RateRecord, BinaryRecords) {
   for (std::size_t i = 0; i < shorts.size(); ++i) ASSERT_EQ(shorts[i], std::fmod(expected[i], 32768.0)) << i;
   little.path = dir.write("odd.i16", i16 + "x");
   EXPECT_THAT([&] { read_all(little); }, ::testing::ThrowsMessage<Error>(HasSubstr("not a whole number of 2-byte samples (1 trailing bytes)")));
+}
+
+// A destination that gives rooms of 1, 2, .. 7 slots in turn: the reader writes into each no more
+// than it has, and the samples come out as read_rate_record hands them over; a bad sample is
+// named by its number in the record, not in its read.
+class SmallRooms final : public SampleDestination {
+ public:
+  std::span<double> room() override {
+    slots_.assign(next_ = next_ % 7 + 1, 0.0);
+    return slots_;
+  }
+  void filled(std::size_t count) override {
+    EXPECT_LE(count, slots_.size());
+    samples.insert(samples.end(), slots_.begin(), slots_.begin() + static_cast<std::ptrdiff_t>(count));
+  }
+  std::vector<double> samples;
+
+ private:
+  std::vector<double> slots_;
+  std::size_t next_ = 0;
+};
+
+TEST(RateRecord, BinaryRecordIntoADestination) {
+  testing::ScratchDirectory dir;
+  std::vector<double> values;
+  for (int i = 0; i < 1000; ++i) values.push_back(0.25 * i - 7.0);
+  for (const char* format : {"f64", "f32be", "i16"}) {
+    RateRecordSource source;
+    source.set_format(format);
+    std::string bytes;
+    for (double v : values) {
+      if (source.binary.type == BinaryFormat::SampleType::kFloat64) {
+        bytes += testing::f64_bytes({v});
+      } else if (source.binary.type == BinaryFormat::SampleType::kFloat32) {
+        const auto word = std::bit_cast<std::uint32_t>(static_cast<float>(v));
+        for (int b = 3; b >= 0; --b) bytes += static_cast<char>((word >> (8 * b)) & 0xFF);
+      } else {
+        const auto word = static_cast<std::uint16_t>(static_cast<std::int16_t>(v * 4));
+        bytes += static_cast<char>(word & 0xFF);
+        bytes += static_cast<char>(word >> 8);
+      }
+    }
+    source.path = dir.write(std::string("r.") + format, bytes);
+    SmallRooms rooms;
+    EXPECT_EQ(read_binary_rate_record(source, rooms), values.size()) << format;
+    EXPECT_EQ(rooms.samples, read_all(source)) << format;
+  }
+  std::vector<double> bad = values;
+  bad[600] = std::numeric_limits<double>::infinity();
+  RateRecordSource source{dir.write("inf.f64", testing::f64_bytes(bad)), RateRecordFormat::kBinary, std::nullopt};
+  SmallRooms rooms;
+  EXPECT_THAT([&] { read_binary_rate_record(source, rooms); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("sample 601 is not a finite number")));
 }
 
 // Every text file of the bad-input corpus, read as a rate record and as a table: the same values,

@@ -474,17 +474,34 @@ const char* parse_plain_row(const char* p, const char* end, const RowLayout& lay
 }
 
 std::size_t line_capacity(std::string_view chunk) {
-  // The '\n' bytes counted eight at a time: a zero byte of w ^ 0x0a..0a is one, marked 0x80 by
-  // zero_bytes; the marks summed by a multiplication (no popcount instruction in the x86-64
-  // baseline). The tail byte by byte.
   std::size_t count = 0;
   std::size_t i = 0;
+#if defined(__SSE2__)
+  // Sixteen bytes a step: each '\n' is 0xFF in the comparison, subtracted (+1) from its lane's byte
+  // counter; every 255 steps, before a counter could wrap, the counters are summed (psadbw). The
+  // 8-byte word form below took a quarter of the row parser's time on the bench record (116 MB,
+  // 5e6 rows of two numbers: 52 of 230 CPU-ms).
+  const __m128i line_end = _mm_set1_epi8('\n');
+  while (chunk.size() - i >= 16) {
+    __m128i counters = _mm_setzero_si128();
+    const std::size_t steps = std::min<std::size_t>(255, (chunk.size() - i) / 16);
+    for (std::size_t step = 0; step < steps; ++step, i += 16) {
+      const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(chunk.data() + i));
+      counters = _mm_sub_epi8(counters, _mm_cmpeq_epi8(bytes, line_end));
+    }
+    const __m128i sums = _mm_sad_epu8(counters, _mm_setzero_si128());
+    count += static_cast<std::size_t>(_mm_cvtsi128_si64(sums)) + static_cast<std::size_t>(_mm_extract_epi16(sums, 4));
+  }
+#else
+  // Eight bytes a step: a zero byte of w ^ 0x0a..0a is one, marked 0x80 by zero_bytes; the marks
+  // summed by a multiplication.
   for (; i + 8 <= chunk.size(); i += 8) {
     std::uint64_t word = 0;
     std::memcpy(&word, chunk.data() + i, 8);
     const std::uint64_t zero = zero_bytes(word ^ (kOnes * '\n'));
     count += static_cast<std::size_t>(((zero >> 7) * kOnes) >> 56);  // the sum of the marks' bytes
   }
+#endif
   for (; i < chunk.size(); ++i) count += chunk[i] == '\n' ? 1 : 0;
   return count + 1;
 }

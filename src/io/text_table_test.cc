@@ -337,6 +337,26 @@ TEST_P(PlainAndGeneralRows, GiveTheSameValuesOrTheSameError) {
   expect_plain_as_general(std::string("a\tb\n") + row);
 }
 
+// The lines of a chunk, counted sixteen bytes a step with byte counters summed every 255 steps:
+// the count of '\n' plus one, for every length about the steps and the flushes, with line ends at
+// random, in runs (a counter's 255 in one lane) and none at all.
+TEST(PlainRows, LineCapacityCountsEveryLineEnd) {
+  std::mt19937 random(5);
+  for (std::size_t length : {0u, 1u, 15u, 16u, 17u, 4079u, 4080u, 4081u, 4096u, 8161u, 100003u}) {
+    std::string random_text(length, 'x');
+    std::string all_line_ends(length, '\n');
+    std::string lane_runs(length, 'x');  // a '\n' every 16 bytes: one lane's counter takes them all
+    for (std::size_t i = 0; i < length; ++i) {
+      if (random() % 7 == 0) random_text[i] = '\n';
+      if (i % 16 == 3) lane_runs[i] = '\n';
+    }
+    for (const std::string& text : {random_text, all_line_ends, lane_runs, std::string(length, '1')}) {
+      EXPECT_EQ(io_detail::line_capacity(text), static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1)
+          << "length " << length;
+    }
+  }
+}
+
 // A tab-separated row is read by the plain path (its delimiter was skipped as a blank there, and
 // every row of a LabVIEW export went the general way), and a delimiter that a number may hold, or
 // '\r', is left to the general path (the plain one read "1.5.2" split at '.' as 1.5 and 2).

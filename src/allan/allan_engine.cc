@@ -781,6 +781,13 @@ struct AllanEngine::State {
                                        : PhaseStore(ring.data(), capacity);
   }
 
+  // Slots free from X_written on: to the block's end, the record's end or the ring's end,
+  // whichever is first.
+  std::size_t room() const {
+    const std::size_t block = options.block_size;
+    return std::min({(written / block + 1) * block - written, capacity - written % capacity, sample_count + 1 - written});
+  }
+
   void write_phase(double value) {
     ring.data()[written % capacity] = value;
     ++written;
@@ -1241,6 +1248,10 @@ AllanEngine::~AllanEngine() {
 }
 
 void AllanEngine::push(std::span<const double> samples) {
+  const State& s = *state_;
+  if (s.samples_in_place == nullptr && s.written - 1 + samples.size() > s.sample_count) {
+    throw Error("more samples than the " + std::to_string(s.sample_count) + " announced");
+  }
   while (!samples.empty()) {
     const std::span<double> slots = room();
     const std::size_t piece = std::min(slots.size(), samples.size());
@@ -1253,17 +1264,14 @@ void AllanEngine::push(std::span<const double> samples) {
 std::span<double> AllanEngine::room() {
   State& s = *state_;
   if (s.samples_in_place != nullptr) throw Error("internal: an engine in place has its samples already");
-  // To the block's end, the record's end or the ring's end, whichever is first.
-  const std::size_t block = s.options.block_size;
-  const std::size_t slot = s.written % s.capacity;
-  const std::size_t room = std::min({(s.written / block + 1) * block - s.written, s.capacity - slot,
-                                     s.sample_count + 1 - s.written});
-  if (room == 0) throw Error("more samples than the " + std::to_string(s.sample_count) + " announced");
-  return {s.ring.data() + slot, room};
+  const std::size_t slots = s.room();
+  if (slots == 0) throw Error("more samples than the " + std::to_string(s.sample_count) + " announced");
+  return {s.ring.data() + s.written % s.capacity, slots};
 }
 
 void AllanEngine::commit(std::size_t count) {
   State& s = *state_;
+  if (count > s.room()) throw Error("internal: more samples committed than room() gave");
   // The samples wait in their slots; the block is integrated in place once it is whole.
   s.written += count;
   if (s.written % s.options.block_size == 0) s.block_written();

@@ -334,8 +334,8 @@ TEST(AllanEngine, SameBitsOnEveryThreadCount) {
 }
 
 // A reader writing the samples into the ring (room, then commit, in pieces of any size up to the
-// room given) gives the bits of push(), with and without a second pass; past N samples, room()
-// refuses.
+// room given) gives the bits of push(), with and without a second pass; past N samples, room() and
+// commit() refuse.
 TEST(AllanEngine, RoomAndCommitGiveTheBitsOfPush) {
   const std::vector<double> y = white_and_random_walk(20000, 50.0, 0.01, 43);
   const std::vector<std::size_t> factors = {1, 2, 4, 8, 64, 1000, 6000};
@@ -356,6 +356,7 @@ TEST(AllanEngine, RoomAndCommitGiveTheBitsOfPush) {
       done += count;
     }
     EXPECT_THROW(engine.room(), Error);
+    EXPECT_THROW(engine.commit(1), Error);  // more than room() could have given
     EXPECT_EQ(engine.deferred_factor_count() > 0, ring_limit > 0);
     const auto written = engine.finish([&y](std::size_t first, std::span<double> out) {
       std::copy_n(y.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());

@@ -99,7 +99,6 @@ std::size_t read_binary_rate_record(const RateRecordSource& source, SampleDestin
   return count;
 }
 
-
 void RateRecordSource::set_format(std::string_view text) {
   if (text == "auto") {
     format = RateRecordFormat::kAuto;

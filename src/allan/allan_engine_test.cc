@@ -333,6 +333,32 @@ TEST(AllanEngine, SameBitsOnEveryThreadCount) {
   }
 }
 
+// TOTDEV's right end of a factor (its m - 1 last centres) is summed in pieces of 2^18 centres that
+// either worker takes: ends of one and of two pieces agree with the definition and give the same
+// bits on any thread count.
+TEST(AllanEngine, TotalDeviationEndsInPiecesOnEveryThreadCount) {
+  const std::vector<double> y = white_and_random_walk(700001, 40.0, 0.01, 53);
+  const Reference reference(y);
+  EstimatorSet total;
+  total.insert(Estimator::kTotdev);
+  const std::vector<std::size_t> factors = {3, std::size_t{1} << 18, (std::size_t{1} << 18) + 2, 350000};
+  const auto one = run_engine(y, factors, 1, 1u << 15, 1u << 16, total);
+  for (const AllanSums& s : one) {
+    EXPECT_NEAR_RELATIVE(s.variance(Estimator::kTotdev),
+                         static_cast<double>(reference.variance(Estimator::kTotdev, s.averaging_factor)), 1e-9)
+        << "m=" << s.averaging_factor;
+  }
+  for (std::size_t workers : {2u, 3u}) {
+    const auto many = run_engine(y, factors, workers, 1u << 15, 1u << 16, total);
+    ASSERT_EQ(many.size(), one.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(many[i].sum(Estimator::kTotdev)),
+                std::bit_cast<std::uint64_t>(one[i].sum(Estimator::kTotdev)))
+          << "m=" << one[i].averaging_factor << " workers=" << workers;
+    }
+  }
+}
+
 // A reader writing the samples into the ring (room, then commit, in pieces of any size up to the
 // room given) gives the bits of push(), with and without a second pass; past N samples, room() and
 // commit() refuse.

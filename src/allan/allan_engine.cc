@@ -880,12 +880,13 @@ struct AllanEngine::State {
     if (!deferred.empty()) checkpoints.push_back(phase);
   }
 
-  // Worker w takes a contiguous range of the factors (sorted by m). Within a block it sweeps the
-  // anchors in sub-blocks of kSweep and, for each, every one of its factors: on an octave grid the
-  // lag 2m of factor m is the lag m of the next factor, so each sub-block of a lagged stream comes
-  // from DRAM once and serves two factors from cache, and the sub-blocks of small lags are in L2.
-  // Each factor is still summed by one worker in the order of its anchors, in the same sub-blocks
-  // whatever the thread count: the same bits on any number of threads.
+  // A job's worker takes groups (contiguous ranges of the factors, sorted by m; TOTDEV's ends in
+  // the last job, end pieces). Within a block it sweeps the anchors in sub-blocks of kSweep and,
+  // for each, every factor of its group: on an octave grid the lag 2m of factor m is the lag m of
+  // the next factor, so each sub-block of a lagged stream comes from DRAM once and serves two
+  // factors from cache, and the sub-blocks of small lags are in L2. Each factor is still summed by
+  // one worker in the order of its anchors, in the same sub-blocks whatever the thread count: the
+  // same bits on any number of threads.
   // 16384 anchors (128 KiB a stream): the streams of a sub-block stay in L2 for the next factor,
   // and a far lag is read in runs long enough for the prefetchers (4096 was measured slower).
   static constexpr std::size_t kSweep = 16384;

@@ -28,18 +28,18 @@
 // few octave factors exceed any limit above N/2 phase values.
 //
 // Speed (issue 15): the reader writes the samples into the ring (room/commit; push() copies them
-// there) and each whole block is integrated there in place, in four Neumaier chains side by side
-// in the lanes of a vector (one chain cost an FP-add latency per sample), the chains' carries
-// added after; the cut depends on the block only, so the phase is the same bits whatever the
-// chunks pushed or the thread count, and the second pass repeats it. The workers take contiguous
-// ranges of the factors and sweep each block in sub-blocks of 16384 anchors, every factor of the
-// range per sub-block: on an octave grid
-// the lag 2m of factor m is the lag m of the next factor, so a sub-block of a far lag comes from
-// DRAM once and serves two factors, and small lags come from L1/L2. Each term is a few flops on 3
-// or 4 phase streams; the sums of the overlapping averages (B1 ratio) ride in the same loops, and
-// the non-overlapping averages are fed to the noise identification in batches whose sums stay in
-// registers. Third differences add the lag 3m: MDEV/HDEV/OHDEV move about twice the data of OADEV
-// per tau. The MDEV window w_k = w_{k-1} + h_k runs as eight chains over parts of each run.
+// there) and each whole block is integrated there in place, in four Neumaier chains side by side in
+// the lanes of a vector (one chain cost an FP-add latency per sample), the chains' carries added
+// after; the cut depends on the block only, so the phase is the same bits whatever the chunks
+// pushed or the thread count, and the second pass repeats it. The workers take contiguous ranges of
+// the factors (and TOTDEV's ends in pieces) and sweep each block in sub-blocks of 16384 anchors,
+// every factor of the range per sub-block: on an octave grid the lag 2m of factor m is the lag m of
+// the next factor, so a sub-block of a far lag comes from DRAM once and serves two factors, and
+// small lags come from L1/L2. Each term is a few flops on 3 or 4 phase streams; the sums of the
+// overlapping averages (B1 ratio) ride in the same loops, and the non-overlapping averages are fed
+// to the noise identification in batches whose sums stay in registers. Third differences add the
+// lag 3m: MDEV/HDEV/OHDEV move about twice the data of OADEV per tau. The MDEV window w_k = w_{k-1}
+// + h_k runs as sixteen chains over parts of each run.
 #pragma once
 
 #include <array>

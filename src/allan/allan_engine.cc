@@ -278,6 +278,42 @@ using Quad = double __attribute__((vector_size(4 * sizeof(double))));
   r3 = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
 }
 
+// Four values each of four sequences, sequence c from row + c * stride, to t[j] = value j of every
+// sequence: four rows loaded whole and transposed, eight shuffles.
+struct ShuffledLoad {
+  [[gnu::always_inline]] static inline void load(const double* row, std::size_t stride, Quad (&t)[4]) {
+    for (std::size_t c = 0; c < 4; ++c) std::memcpy(&t[c], row + c * stride, sizeof t[c]);
+    transpose(t[0], t[1], t[2], t[3]);
+  }
+};
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// The same values for the AVX targets with four shuffles: each register is loaded as two pairs,
+// the second inserted from memory (vinsertf128 with a memory operand runs on any vector ALU port),
+// and four unpacks finish the transpose. The shuffle port bound the MDEV window at half a shuffle a
+// term. GCC does not fold a load into the insert (it inserts from a register, on the shuffle port),
+// hence the asm.
+struct InsertedLoad {
+  using Pair = double __attribute__((vector_size(2 * sizeof(double))));
+  // out = lo[0], lo[1], hi[0], hi[1].
+  [[gnu::always_inline]] static inline void pairs(const double* lo, const double* hi, Quad& out) {
+    Pair low;
+    std::memcpy(&low, lo, sizeof low);
+    asm("vinsertf128 $1, %2, %t1, %t0" : "=x"(out) : "x"(low), "m"(*reinterpret_cast<const double(*)[2]>(hi)));
+  }
+  [[gnu::always_inline]] static inline void load(const double* row, std::size_t stride, Quad (&t)[4]) {
+    for (std::size_t j = 0; j < 2; ++j) {
+      Quad even;  // values 2j, 2j + 1 of sequences 0 and 2
+      Quad odd;   // and of sequences 1 and 3
+      pairs(row + 2 * j, row + 2 * stride + 2 * j, even);
+      pairs(row + stride + 2 * j, row + 3 * stride + 2 * j, odd);
+      t[2 * j] = __builtin_shufflevector(even, odd, 0, 4, 2, 6);
+      t[2 * j + 1] = __builtin_shufflevector(even, odd, 1, 5, 3, 7);
+    }
+  }
+};
+#endif
+
 // Chains of the MDEV window recurrence run side by side, four to a Quad (kChains add latencies
 // overlap: four chains a Quad were held to an add latency per four terms).
 constexpr std::size_t kChainQuads = 4;
@@ -291,8 +327,8 @@ constexpr std::size_t kChains = 4 * kChainQuads;
 // of four h in a register cost three adds and three shuffles). Each w is still a sum of the same h:
 // the rounding differs from the single chain by a few ulp of w, far inside the 1e-9 the estimators
 // are held to.
-INERTEST_VECTOR_CLONES
-double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+template <typename TransposedLoad>
+[[gnu::always_inline]] inline double mdev_window_loop(const double* __restrict h, std::size_t length, double& window) {
   constexpr std::size_t kMinimumChunk = 64;
   // Chains a multiple of 4 KiB apart fall in the same sets of a 32 KiB 8-way L1: a chunk 8 values
   // short of a multiple of 512 staggers them by a cache line each.
@@ -318,10 +354,8 @@ double mdev_window_squares(const double* __restrict h, std::size_t length, doubl
   for (std::size_t i = 0; i < chunk; i += 4) {
 #pragma GCC unroll 4  // the windows and sums stay in registers
     for (std::size_t q = 0; q < kChainQuads; ++q) {
-      const double* row = h + 4 * q * chunk + i;
       Quad t[4];
-      for (std::size_t l = 0; l < 4; ++l) std::memcpy(&t[l], row + l * chunk, sizeof t[l]);
-      transpose(t[0], t[1], t[2], t[3]);
+      TransposedLoad::load(h + 4 * q * chunk + i, chunk, t);
       for (const Quad& next : t) {
         w[q] += next;
         for (std::size_t l = 0; l < 4; ++l) squares[q][l] = fused_multiply_add(w[q][l], w[q][l], squares[q][l]);
@@ -339,6 +373,25 @@ double mdev_window_squares(const double* __restrict h, std::size_t length, doubl
   for (std::size_t q = 1; q < kChainQuads; ++q) total += squares[q];
   return ((total[0] + total[1]) + (total[2] + total[3])) + tail;
 }
+
+// The loop compiled for each target as INERTEST_VECTOR_CLONES would, with the AVX targets' load.
+// All six estimators on 3e7 samples, octave factors, 8 runs alternated: user time 0.52 -> 0.50 s,
+// elapsed median 0.37 -> 0.355 s; the same bits (the same values are summed in the same order).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target("default")]] double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  return mdev_window_loop<ShuffledLoad>(h, length, window);
+}
+[[gnu::target("arch=x86-64-v3")]] double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  return mdev_window_loop<InsertedLoad>(h, length, window);
+}
+[[gnu::target("arch=x86-64-v4")]] double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  return mdev_window_loop<InsertedLoad>(h, length, window);
+}
+#else
+double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
+  return mdev_window_loop<ShuffledLoad>(h, length, window);
+}
+#endif
 
 // The sums of d_k - shift, d_k = X_k - X_{k-m} (m times the overlapping averages), that the B1
 // ratio needs for the factors with few non-overlapping averages: summed in the same loop as the

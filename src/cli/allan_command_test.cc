@@ -48,6 +48,27 @@ TEST(AllanCommand, ScaleFactorTurnsRawOutputIntoDegreesPerHour) {
   EXPECT_EQ(a["noise"]["angle_random_walk"]["unit"], "deg/sqrt(h)");
 }
 
+// Pulses counted per sample interval (--output-unit pulse) are pulse/s times the interval: at
+// 100 Hz the counts of a record are a hundredth of its pulse/s, and give the same figures.
+TEST(AllanCommand, PulseCountsPerSampleIntervalWithTheScaleFactor) {
+  testing::ScratchDirectory dir;
+  const std::string rates = dir.write("rates.csv", white_record(250.0 / 3600.0));
+  const std::string counts = dir.write("counts.csv", white_record(250.0 / 3600.0 / 100.0));
+  const auto of_rates = run_cli({"allan", rates, "--rate", "100", "--scale-factor", "250", "--json"});
+  const auto of_counts =
+      run_cli({"allan", counts, "--rate", "100", "--scale-factor", "250", "--output-unit", "pulse", "--json"});
+  ASSERT_EQ(of_rates.exit_code, 0) << of_rates.err;
+  ASSERT_EQ(of_counts.exit_code, 0) << of_counts.err;
+  const auto a = nlohmann::json::parse(of_rates.out);
+  const auto b = nlohmann::json::parse(of_counts.out);
+  EXPECT_NEAR_RELATIVE(b["mean"]["value"].get<double>(), a["mean"]["value"].get<double>(), 1e-4);
+  EXPECT_NEAR_RELATIVE(b["noise"]["angle_random_walk"]["value"].get<double>(),
+                       a["noise"]["angle_random_walk"]["value"].get<double>(), 1e-3);  // 6 decimals of each count
+  const auto without_k = run_cli({"allan", counts, "--rate", "100", "--output-unit", "pulse"});
+  EXPECT_EQ(without_k.exit_code, 2);
+  EXPECT_THAT(without_k.err, HasSubstr("--output-unit is the unit of the raw output that scale_factor divides"));
+}
+
 TEST(AllanCommand, ScaleFactorAndInputUnitExcludeEachOther) {
   testing::ScratchDirectory dir;
   const std::string raw = dir.write("raw.csv", white_record(1.0));

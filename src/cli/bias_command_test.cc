@@ -122,6 +122,46 @@ TEST(BiasCommandTest, ClearErrors) {
   }
 }
 
+// A pulse counter read each sample interval (--output-unit pulse) gives counts, not pulse/s: the
+// readers make them rates, count x the sample rate, and the figures are those of the rates.
+TEST(BiasCommandTest, PulseCountsPerSampleIntervalAreMadeRates) {
+  ScratchDirectory scratch;
+  std::vector<double> counts = square_wave_record();  // at 10 Hz: output/10 pulses an interval
+  for (double& count : counts) count /= 10.0;
+  const std::string rates = scratch.write("rates.txt", as_text(square_wave_record()));
+  const std::string pulses = scratch.write("pulses.txt", as_text(counts));
+  const std::vector<std::string> bias = {"bias", "--rate", "10", "--scale-factor", "5", "--smoothing", "1", "--json"};
+  const auto run = [&](const std::string& file, const std::string& unit) {
+    std::vector<std::string> arguments = bias;
+    arguments.insert(arguments.begin() + 1, file);
+    arguments.insert(arguments.end(), {"--output-unit", unit});
+    const auto result = run_cli(arguments);
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    return nlohmann::json::parse(result.out);
+  };
+  const nlohmann::json of_rates = run(rates, "pulse/s");
+  const nlohmann::json of_counts = run(pulses, "pulse");
+  EXPECT_NEAR(of_counts.at("bias").at("value").get<double>(), 2.0 / 5.0 * 3600.0, 1e-9);
+  EXPECT_NEAR(of_counts.at("bias_stability")[0].at("value").get<double>(),
+              of_rates.at("bias_stability")[0].at("value").get<double>(), 1e-9);
+  // The counts taken as pulse/s: 10 times too small.
+  EXPECT_NEAR(run(pulses, "pulse/s").at("bias").at("value").get<double>(), 2.0 / 5.0 * 360.0, 1e-9);
+
+  // A timed record: the rate from the time column (0.5 s an interval), and from --rate.
+  const std::string power_on = scratch.write("on.csv", "t,out\n0.5,0.5\n1,0.25\n1.5,0.1\n2,0.025\n2.5,0.005\n");
+  for (const std::vector<std::string>& timing : {std::vector<std::string>{"--run", "0:" + power_on},
+                                                 std::vector<std::string>{"--run", "0:" + power_on, "--rate", "2",
+                                                                          "--column", "out"}}) {
+    std::vector<std::string> arguments = {"turn-on-time", "--scale-factor", "3600", "--rest-band", "0.1",
+                                          "--output-unit", "pulse", "--json"};
+    arguments.insert(arguments.end(), timing.begin(), timing.end());
+    const auto on = run_cli(arguments);
+    ASSERT_EQ(on.exit_code, 0) << on.err;
+    // Rates 1, 0.5, 0.2, 0.05, 0.01 pulse/s: within 0.1 deg/h (0.1 pulse/s) from the 4th sample, at 2 s.
+    EXPECT_DOUBLE_EQ(nlohmann::json::parse(on.out).at("turn_on_time").at("value").get<double>(), 2.0);
+  }
+}
+
 TEST(BiasCommandTest, RepeatabilityAndTemperature) {
   ScratchDirectory scratch;
   std::vector<std::string> files;

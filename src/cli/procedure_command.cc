@@ -231,6 +231,10 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     }
     set_record_readers(call, arguments->source, minimum_samples_of(spec.inputs), arguments->sample_rate_hz,
                        arguments->time_column);
+    if (std::any_of(spec.inputs.begin(), spec.inputs.end(),
+                    [&](const InputSpec& input) { return input.records && is_given(input, *arguments); })) {
+      read_pulse_counts_as_rates(call, arguments->sample_rate_hz);
+    }
     // An error about a parameter's value names it as given here: --input-unit, not input_unit.
     const auto naming_options = [&spec](auto&& work) {
       try {

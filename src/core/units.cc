@@ -1,5 +1,6 @@
 #include "inertest/core/units.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <optional>
@@ -378,6 +379,12 @@ bool converts(std::string_view from, std::string_view to) {
   } catch (const Error&) {
     return false;
   }
+}
+
+bool counts_pulses(std::string_view unit) {
+  std::string lower(unit);
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  return lower == "pulse" || lower == "pulses";
 }
 
 std::string unit_suffix(const std::string& unit) { return unit.empty() || unit == "1" ? "" : " " + unit; }

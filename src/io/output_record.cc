@@ -203,6 +203,46 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
   };
 }
 
+void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sample_rate_hz) {
+  const auto output_unit = call.parameters.find("output_unit");
+  if (output_unit == call.parameters.end() || !output_unit->is_string() ||
+      !counts_pulses(output_unit->get<std::string>())) {
+    return;
+  }
+  const auto to_rate = [](std::vector<double>& counts, double rate_hz) {
+    for (double& count : counts) count *= rate_hz;
+  };
+  const auto given = call.parameters.find("sample_rate_hz");
+  const double rate = sample_rate_hz                                                ? *sample_rate_hz
+                      : given != call.parameters.end() && given->is_number() ? given->get<double>()
+                                                                              : 0.0;
+  call.read_record = [read = call.read_record, sample_rate = call.record_sample_rate, rate,
+                      to_rate](const std::string& file) {
+    std::vector<double> samples = read(file);
+    double rate_hz = 0.0;
+    try {
+      rate_hz = sample_rate(file, rate);
+    } catch (const ParameterError&) {
+      throw Error(SourceLocation{file, 0, 0},
+                  "the output unit pulse counts pulses per sample interval, and the record stores no sample rate to "
+                  "make them pulse/s: give the sample rate (--rate; sample_rate_hz), or the record in pulse/s");
+    }
+    to_rate(samples, rate_hz);
+    return samples;
+  };
+  call.read_timed_record = [read = call.read_timed_record, rate, to_rate](const std::string& file) {
+    TimedRecord record = read(file);
+    const std::size_t n = record.time_s.size();
+    if (rate > 0.0) {
+      to_rate(record.output, rate);
+    } else if (n >= 2) {
+      to_rate(record.output, static_cast<double>(n - 1) / (record.time_s[n - 1] - record.time_s[0]));
+    }
+    return record;
+  };
+  call.parameters["output_unit"] = "pulse/s";
+}
+
 void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& output_unit,
                         const std::string& instead) {
   std::optional<std::string> stored;

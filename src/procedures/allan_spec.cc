@@ -41,6 +41,7 @@ struct AllanParameters {
   std::optional<std::string> input_unit;
   std::string taus = "octave";
   std::optional<double> scale_factor;
+  std::optional<std::string> output_unit;  // of the raw output scale_factor divides
   std::string estimators = "all";
   std::optional<FitRange> fit_range;
   bool psd = false;
@@ -99,6 +100,14 @@ struct AllanParameters {
         }
       }
       options.scale = 3600.0 / *scale_factor;
+      if (output_unit && counts_pulses(*output_unit)) {
+        // Pulses counted per sample interval are pulse/s times the interval: K is output per deg/s.
+        if (options.sample_rate_hz == 0.0) {
+          throw ParameterError("output_unit", "pulses per sample interval need the one sample rate of the channels: "
+                                              "give sample_rate_hz (--rate)");
+        }
+        options.scale *= options.sample_rate_hz;
+      }
       options.input_unit = "deg/h";
     } else if (!columns) {
       // The unit given, else the one the record stores (HDF5 units, TDMS unit_string), else deg/h.
@@ -129,6 +138,9 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     if (!(*parameters.scale_factor != 0.0) || !std::isfinite(*parameters.scale_factor)) {
       throw ParameterError("scale_factor", "scale_factor must be finite and nonzero");
     }
+  } else if (parameters.output_unit) {
+    throw ParameterError("output_unit", "output_unit is the unit of the raw output that scale_factor divides: give "
+                                        "scale_factor, or the samples' unit as input_unit");
   }
   check_parameter("export", [&] {
     if (parameters.export_to.empty()) return;
@@ -273,6 +285,11 @@ bool takes_instrument_scale_factor(const ProcedureCall& call, const nlohmann::js
   return !stored || sensor_kind_of(*stored) == SensorKind::kOther;  // a stored raw unit (pulse/s) takes K
 }
 
+// The step has a scale factor, given or its instrument's (declared before output_unit).
+bool divides_by_scale_factor(const ProcedureCall& call, const nlohmann::json&) {
+  return call.parameters.contains("scale_factor");
+}
+
 }  // namespace
 
 ProcedureSpec allan_spec();
@@ -327,6 +344,12 @@ ProcedureSpec allan_spec() {
                      .instrument_gives("nominal_scale_factor")
                      .instrument_gives_if(takes_instrument_scale_factor),
                  &AllanParameters::scale_factor)
+      .parameter(ParameterSpec("output_unit", "unit of the raw output that scale_factor divides (pulse: counts per "
+                                              "sample interval, read as pulse/s; in a plan, [instrument] output_unit "
+                                              "with its nominal_scale_factor)")
+                     .instrument_gives("output_unit")
+                     .instrument_gives_if(divides_by_scale_factor),
+                 &AllanParameters::output_unit)
       .parameter(ParameterSpec("estimators", "all, or a comma list of adev, oadev, mdev, hdev, ohdev, totdev"),
                  &AllanParameters::estimators)
       .parameter(ParameterSpec("fit_range", "TMIN:TMAX, the taus of the eq. (30) fit (default: chosen automatically, "

@@ -93,7 +93,9 @@ ProcedureSpec bias_spec() {
                      .unit_is("s")
                      .command_line_name_is("smoothing"),
                  &BiasOptions::smoothing_s)
-      .parameter(ParameterSpec("output_unit", "instrument output unit, for the report").instrument_gives("output_unit", true),
+      .parameter(ParameterSpec("output_unit", "instrument output unit, for the report (pulse: counts per sample "
+                                              "interval, read as pulse/s)")
+                     .instrument_gives("output_unit", true),
                  &BiasOptions::output_unit);
   bias_conversion_parameters(definition, +[](BiasOptions& options) -> BiasOptions& { return options; });
   earth_rate_parameters(definition, &BiasOptions::remove_earth_rate);

@@ -55,7 +55,8 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
                  &TurnOnTimeOptions::rest_band_deg_h)
       .parameter(ParameterSpec("smoothing_s", "averaging window before the test (0: none)").unit_is("s").command_line_name_is("smoothing"),
                  &TurnOnTimeOptions::smoothing_s)
-      .parameter(ParameterSpec("output_unit", "instrument output unit").instrument_gives("output_unit", true),
+      .parameter(ParameterSpec("output_unit", "instrument output unit (pulse: counts per sample interval, read as pulse/s)")
+                     .instrument_gives("output_unit", true),
                  &TurnOnTimeOptions::output_unit);
   earth_rate_parameters(definition, &TurnOnTimeOptions::earth_rate);
   return definition

@@ -54,6 +54,9 @@ bool same_unit(std::string_view first, std::string_view second);
 // dimensions, for two bare temperature scales (degC, K) and for a unit inertest does not know.
 bool converts(std::string_view from, std::string_view to);
 
+// Whether `unit` names pulses counted (pulse or pulses, in any case): a counter's accumulation over
+// each sample interval, a rate only per interval. Not count or LSB, which are levels (an ADC's reading).
+bool counts_pulses(std::string_view unit);
 // A unit as it follows a number in a message: " deg/h", and nothing for "1" (a plain number) or "".
 std::string unit_suffix(const std::string& unit);
 

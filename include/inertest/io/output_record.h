@@ -68,6 +68,14 @@ std::optional<std::string> record_unit(const OutputRecordSource& source, const s
 void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,
                         std::optional<double> sample_rate_hz, const std::string& time_column);
 
+// For a call whose output_unit is pulse or pulses (a pulse counter read once a sample interval) and whose
+// inputs are output records (InputSpec::records): its record readers return pulse/s, count x the
+// sample rate, and its output_unit becomes pulse/s. K is output per deg/s and the output of GJB
+// 2426A eq. (19) is a rate: a FOG's counts per 10 ms taken as pulse/s gave a bias 100 times too
+// small. The rate is the one given or the record stores (a timed record's: its mean interval); a
+// record without one is an Error naming it. Call after set_record_readers; another unit: nothing.
+void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sample_rate_hz);
+
 // For a procedure that divides the instrument's output by its scale factor K: throws Error naming
 // the file when the record stores its samples in a unit of angular rate or of acceleration (HDF5
 // units, TDMS unit_string) other than the instrument's `output_unit` (an instrument whose output is

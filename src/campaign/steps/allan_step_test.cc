@@ -118,6 +118,9 @@ TEST(AllanStep, TakesTheInstrumentsOutputUnitOrNominalScaleFactor) {
   EXPECT_EQ(oadev_of_plan("", "").second, "deg/h");
   EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"pulse/s\"\nnominal_scale_factor = 36000.0\n", "").first,
                    oadev_direct(0.1));  // pulse/s / 36000 (pulse/s)/(deg/s) * 3600 = deg/h
+  // Pulses counted per sample interval: times 10 Hz, pulse/s.
+  EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"pulse\"\nnominal_scale_factor = 36000.0\n", "").first,
+                   oadev_direct(1.0));
   // The step's keys win over the instrument's; an accelerometer's nominal scale factor is per g,
   // no gyro's K: not taken; neither is the dimensionless default output unit.
   EXPECT_DOUBLE_EQ(oadev_of_plan("output_unit = \"deg/s\"\n", "input_unit = \"deg/h\"\n").first, oadev_direct(1.0));

@@ -67,6 +67,9 @@ TEST(AllanCommand, PulseCountsPerSampleIntervalWithTheScaleFactor) {
   const auto without_k = run_cli({"allan", counts, "--rate", "100", "--output-unit", "pulse"});
   EXPECT_EQ(without_k.exit_code, 2);
   EXPECT_THAT(without_k.err, HasSubstr("--output-unit is the unit of the raw output that scale_factor divides"));
+  const auto unknown = run_cli({"allan", counts, "--rate", "100", "--scale-factor", "250", "--output-unit", "pulsse"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("pulsse"));
 }
 
 TEST(AllanCommand, ScaleFactorAndInputUnitExcludeEachOther) {

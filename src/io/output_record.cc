@@ -213,9 +213,9 @@ void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sampl
     for (double& count : counts) count *= rate_hz;
   };
   const auto given = call.parameters.find("sample_rate_hz");
-  const double rate = sample_rate_hz                                                ? *sample_rate_hz
+  const double rate = sample_rate_hz                                         ? *sample_rate_hz
                       : given != call.parameters.end() && given->is_number() ? given->get<double>()
-                                                                              : 0.0;
+                                                                             : 0.0;
   call.read_record = [read = call.read_record, sample_rate = call.record_sample_rate, rate,
                       to_rate](const std::string& file) {
     std::vector<double> samples = read(file);

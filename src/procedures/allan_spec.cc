@@ -147,6 +147,7 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     if (parameters.export_to.size() != 2) throw Error("export takes FORMAT and FILE");
     parse_filter_format(parameters.export_to[0]);
   });
+  if (parameters.output_unit) check_parameter("output_unit", [&] { Unit::parse(*parameters.output_unit); });
   check_parameter("estimators", [&] { EstimatorSet::parse(parameters.estimators); });
   check_parameter("taus", [&] { TauGrid::parse(parameters.taus); });
   check_parameter("fit_range", [&] {

@@ -39,7 +39,8 @@
 // overlapping averages (B1 ratio) ride in the same loops, and the non-overlapping averages are fed
 // to the noise identification in batches whose sums stay in registers. Third differences add the
 // lag 3m: MDEV/HDEV/OHDEV move about twice the data of OADEV per tau. The MDEV window w_k = w_{k-1}
-// + h_k runs as sixteen chains over parts of each run.
+// + h_k runs as sixteen chains over parts of each run, each from zero; a part's sum of squares is
+// then taken about the window before it.
 #pragma once
 
 #include <array>

@@ -186,6 +186,7 @@ struct FactorState {
 // glibc's correctly rounded fma() in the baseline one, so the sums are bit for bit those of the
 // baseline build.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define INERTEST_X86_64_VERSIONS 1  // GCC builds x86-64 functions for several targets
 #define INERTEST_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define INERTEST_VECTOR_CLONES
@@ -276,7 +277,7 @@ struct ShuffledLoad {
   }
 };
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#ifdef INERTEST_X86_64_VERSIONS
 // The same values for the AVX targets with four shuffles: each register is loaded as two pairs,
 // the second inserted from memory (vinsertf128 with a memory operand runs on any vector ALU port),
 // and four unpacks finish the transpose. The shuffle port bound the MDEV window at half a shuffle a
@@ -373,7 +374,7 @@ template <typename TransposedLoad>
 // The loop compiled for each target as INERTEST_VECTOR_CLONES would, with the AVX targets' load.
 // All six estimators on 3e7 samples, octave factors, 8 runs alternated: user time 0.52 -> 0.50 s,
 // elapsed median 0.37 -> 0.355 s; the same bits (the same values are summed in the same order).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#ifdef INERTEST_X86_64_VERSIONS
 [[gnu::target("default")]] double mdev_window_squares(const double* __restrict h, std::size_t length, double& window) {
   return mdev_window_loop<ShuffledLoad>(h, length, window);
 }

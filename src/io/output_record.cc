@@ -216,27 +216,32 @@ void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sampl
   const double rate = sample_rate_hz                                         ? *sample_rate_hz
                       : given != call.parameters.end() && given->is_number() ? given->get<double>()
                                                                              : 0.0;
-  call.read_record = [read = call.read_record, sample_rate = call.record_sample_rate, rate,
-                      to_rate](const std::string& file) {
-    std::vector<double> samples = read(file);
+  const auto no_rate = [](const std::string& file) {
+    return Error(SourceLocation{file, 0, 0},
+                 "the output unit pulse counts pulses per sample interval, and the record stores no sample rate to "
+                 "make them pulse/s: give the sample rate (--rate; sample_rate_hz), or the record in pulse/s");
+  };
+  call.read_record = [read = call.read_record, sample_rate = call.record_sample_rate, rate, to_rate,
+                      no_rate](const std::string& file) {
     double rate_hz = 0.0;
     try {
-      rate_hz = sample_rate(file, rate);
+      rate_hz = sample_rate(file, rate);  // before the samples: a record of 10^9 is not read for nothing
     } catch (const ParameterError&) {
-      throw Error(SourceLocation{file, 0, 0},
-                  "the output unit pulse counts pulses per sample interval, and the record stores no sample rate to "
-                  "make them pulse/s: give the sample rate (--rate; sample_rate_hz), or the record in pulse/s");
+      throw no_rate(file);
     }
+    std::vector<double> samples = read(file);
     to_rate(samples, rate_hz);
     return samples;
   };
-  call.read_timed_record = [read = call.read_timed_record, rate, to_rate](const std::string& file) {
+  call.read_timed_record = [read = call.read_timed_record, rate, to_rate, no_rate](const std::string& file) {
     TimedRecord record = read(file);
     const std::size_t n = record.time_s.size();
     if (rate > 0.0) {
       to_rate(record.output, rate);
     } else if (n >= 2) {
       to_rate(record.output, static_cast<double>(n - 1) / (record.time_s[n - 1] - record.time_s[0]));
+    } else {
+      throw no_rate(file);  // one time stamp is no interval
     }
     return record;
   };

@@ -33,6 +33,13 @@ TEST(OutputRecord, PulseCountsNeedASampleRate) {
   EXPECT_EQ(reading(bare, 100.0, "pulse/s").read_record(bare), (std::vector<double>{3.0, 5.0, 4.0}));
   EXPECT_EQ(reading(bare, 100.0, "count").read_record(bare), (std::vector<double>{3.0, 5.0, 4.0}));  // levels
   EXPECT_EQ(reading(bare, 100.0, "LSB").read_record(bare), (std::vector<double>{3.0, 5.0, 4.0}));
+  const std::string one_stamp = scratch.write("one.csv", "time_s,output\n0.01,3\n");
+  try {
+    reading(one_stamp, std::nullopt, "pulse").read_timed_record(one_stamp);
+    ADD_FAILURE() << "one count without an interval was read";
+  } catch (const Error& e) {
+    EXPECT_NE(e.message().find("stores no sample rate"), std::string::npos) << e.message();
+  }
   try {
     reading(bare, std::nullopt, "pulse").read_record(bare);
     ADD_FAILURE() << "counts without a rate were read";

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "bindings.h"
+#include "inertest/io/output_record.h"
 #include "inertest/misalignment/accelerometer_misalignment.h"
 #include "inertest/misalignment/gyro_misalignment.h"
 #include "inertest/misalignment/misalignment_files.h"
@@ -53,6 +54,7 @@ ResultOf<GyroMisalignmentTag> gyro_misalignment_of(const DoubleArray& alpha_deg,
                          {"beta_deg", beta.size()},
                          {"rate_dps", rate.size()}});
   const std::vector<std::size_t> lines = lines_of(line, outputs.size());
+  require_outputs_per_second(output_unit, "the output array");
   GyroMisalignmentOptions options;
   options.scale_factor = scale_factor;
   options.output_unit = output_unit;
@@ -72,6 +74,7 @@ ResultOf<AccelerometerMisalignmentTag> accelerometer_misalignment_of(
   const std::vector<long> runs = run ? whole_numbers<long>(*run, "run", -9.0e15, outputs.size())
                                      : std::vector<long>(outputs.size(), 1);
   const std::vector<std::size_t> lines = lines_of(line, outputs.size());
+  require_outputs_per_second(output_unit, "the output array");
   AccelerometerMisalignmentOptions options;
   options.scale_factor = scale_factor;
   options.output_unit = output_unit;

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "inertest/core/units.h"
+#include "inertest/io/output_record.h"
 #include "inertest/procedures/bandwidth_and_delay.h"
 #include "inertest/procedures/bias.h"
 #include "inertest/procedures/bias_repeatability.h"
@@ -36,6 +37,7 @@ ResultOf<ScaleFactorTag> scale_factor_of(const DoubleArray& rate, const DoubleAr
                                          const std::string& rate_unit, const std::string& output_unit,
                                          std::size_t recommended_rates_per_direction,
                                          const std::optional<std::string>& source) {
+  require_outputs_per_second(output_unit, "the output array");
   ScaleFactorOptions options;
   options.rate_unit = rate_unit;
   options.output_unit = output_unit;
@@ -51,7 +53,7 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
                           bool input_in_deg_h, const std::string& output_unit, const std::vector<double>& smoothing_s,
                           bool random_walk, bool remove_earth_rate, std::optional<double> latitude_deg,
                           double heading_deg, double elevation_deg, const std::optional<std::string>& source) {
-  const auto samples = with_source(source, [&] { return as_span(output, "output"); });
+  std::span<const double> samples = with_source(source, [&] { return as_span(output, "output"); });
   BiasOptions options;
   options.sample_rate_hz = sample_rate_hz;
   options.scale_factor = scale_factor.value_or(0.0);
@@ -77,6 +79,13 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
   given.parameters["output_unit"] = output_unit;
   check_bias_conversion(given, options, "bias");
   check_unit_parameters(given);
+  std::vector<double> rates;  // pulses counted per sample interval as pulse/s (read_pulse_counts_as_rates)
+  if (counts_pulses(output_unit)) {
+    rates.assign(samples.begin(), samples.end());
+    pulse_counts_as_rates(rates, sample_rate_hz);
+    samples = rates;
+    options.output_unit = "pulse/s";
+  }
   BiasResult result;
   {
     py::gil_scoped_release release;
@@ -90,6 +99,7 @@ struct MaximumInputRateTag {};
 ResultOf<MaximumInputRateTag> maximum_input_rate_of(const DoubleArray& rate, const DoubleArray& output,
                                                     double nonlinearity_limit_ppm, const std::string& rate_unit,
                                                     const std::string& output_unit) {
+  require_outputs_per_second(output_unit, "the output array");
   MaximumInputRateOptions options;
   options.nonlinearity_limit_ppm = nonlinearity_limit_ppm;
   options.scale_factor.rate_unit = rate_unit;
@@ -174,6 +184,7 @@ ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray&
     positions[i].output_positive = positive[i];
     positions[i].output_negative = negative[i];
   }
+  require_outputs_per_second(output_unit, "the output arrays");
   InputAxisMisalignmentOptions options;
   options.scale_factor = scale_factor;
   options.rate = rate;

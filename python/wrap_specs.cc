@@ -162,6 +162,8 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
   if (keywords.contains("sample_rate_hz")) rate = keywords["sample_rate_hz"].cast<double>();
   const std::string time_column = keywords.contains("time_column") ? py::str(keywords["time_column"]).cast<std::string>() : "";
   set_record_readers(call, source, minimum_samples_of(spec.inputs), rate, time_column);
+  read_pulse_counts_as_rates(
+      call, spec, [&](const InputSpec& input) { return keywords.contains(keyword_of(input)); }, rate);
   return call;
 }
 
@@ -264,8 +266,9 @@ void wrap_specs(py::module_& module) {
     module.def(
         spec.kind.c_str(),
         [&spec](const py::kwargs& keywords) {
-          const ProcedureCall call = call_of(spec, keywords);
+          ProcedureCall call;
           try {
+            call = call_of(spec, keywords);
             spec.check(call);
           } catch (const ParameterError& e) {
             throw Error(e.message_naming(spec.find_parameter(e.parameter)->plan_name()));

@@ -218,3 +218,16 @@ def test_integers_and_single_precision_convert_to_the_same_figures():
     expected = inertest.scale_factor(rate.astype(float), output.astype(float)).to_dict()
     assert inertest.scale_factor(rate.astype(np.int16), output.astype(np.float32)).to_dict() == expected
     assert inertest.scale_factor(list(rate), list(output)).to_dict() == expected
+
+
+def test_pulse_counts_per_sample_interval_are_rates_as_on_the_cli():
+    """output_unit pulse: a counter read once an interval, counts x the sample rate (pulse/s); a
+    table of mean outputs has no interval and is refused."""
+    rates = np.linspace(0.99, 1.01, 4000)  # pulse/s, K = 1 per deg/s
+    of_rates = inertest.bias(rates, sample_rate_hz=10.0, scale_factor=1.0, output_unit="pulse/s", smoothing_s=[1.0])
+    of_counts = inertest.bias(rates / 10.0, sample_rate_hz=10.0, scale_factor=1.0, output_unit="pulse", smoothing_s=[1.0])
+    assert of_counts.bias.value == pytest.approx(of_rates.bias.value, rel=1e-12)
+    assert of_counts.bias_stability[0].value == pytest.approx(of_rates.bias_stability[0].value, rel=1e-9)
+    points = np.array([0, 1, -1, 2, -2, 0], dtype=float)
+    with pytest.raises(inertest.Error, match="pulse counts pulses per sample interval, and a table of mean outputs"):
+        inertest.scale_factor(points, 5.0 * points, output_unit="pulse")

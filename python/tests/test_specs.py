@@ -219,3 +219,19 @@ def test_a_bad_cell_in_a_plan_step_keeps_its_place(tmp_path):
     assert (raised.value.file, raised.value.line, raised.value.column) == (str(tmp_path / "points.csv"), 3, 3)
     assert "procedure 'sf'" in str(raised.value)
     assert not (tmp_path / "out" / "results.json").exists()
+
+
+def test_pulse_counts_of_a_generic_function_are_the_cli_json(tmp_path):
+    # turn_on_time's case above, as counts per 0.5 s interval: the figures of the rates; a table of
+    # mean outputs (resolution's steps) is refused, naming output_unit.
+    timed = tmp_path / "on.csv"
+    timed.write_text("t,out\n0.5,0.5\n1,0.25\n1.5,0.1\n2,0.025\n2.5,0.005\n")
+    expected = cli_json("turn-on-time", "--run", f"0:{timed}", "--scale-factor", "3600", "--rest-band", "0.1",
+                        "--output-unit", "pulse")
+    result = inertest.turn_on_time(run=[(0, str(timed))], scale_factor=3600, rest_band_deg_h=0.1, output_unit="pulse")
+    assert result.to_dict() == expected
+    assert result.turn_on_time.value == pytest.approx(2.0)
+    steps = tmp_path / "steps.csv"
+    steps.write_text("base_rate,base_output,rate,output\n10,36007,10.002,36017\n")
+    with pytest.raises(inertest.Error, match="output_unit: pulse counts pulses per sample interval"):
+        inertest.resolution(file=str(steps), scale_factor=3600, output_unit="pulse")

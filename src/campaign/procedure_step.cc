@@ -189,11 +189,8 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     if (rate && !time_column.empty()) step.fail_at("time_column", "is not used with sample_rate_hz");
   }
   set_record_readers(call, source, minimum_samples_of(spec.inputs), rate, time_column);
-  if (std::any_of(spec.inputs.begin(), spec.inputs.end(),
-                  [&](const InputSpec& input) { return input.records && is_given(input); })) {
-    read_pulse_counts_as_rates(call, rate);
-  }
   try {
+    read_pulse_counts_as_rates(call, spec, is_given, rate);
     spec.check(call);
   } catch (const ParameterError& e) {
     step.fail_at(spec.find_parameter(e.parameter)->plan_name(), e.message());

@@ -231,10 +231,6 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
     }
     set_record_readers(call, arguments->source, minimum_samples_of(spec.inputs), arguments->sample_rate_hz,
                        arguments->time_column);
-    if (std::any_of(spec.inputs.begin(), spec.inputs.end(),
-                    [&](const InputSpec& input) { return input.records && is_given(input, *arguments); })) {
-      read_pulse_counts_as_rates(call, arguments->sample_rate_hz);
-    }
     // An error about a parameter's value names it as given here: --input-unit, not input_unit.
     const auto naming_options = [&spec](auto&& work) {
       try {
@@ -243,7 +239,11 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
         throw Error(e.message_naming(spec.find_parameter(e.parameter)->command_line_option()));
       }
     };
-    naming_options([&] { spec.check(call); });
+    naming_options([&] {
+      read_pulse_counts_as_rates(
+          call, spec, [&](const InputSpec& input) { return is_given(input, *arguments); }, arguments->sample_rate_hz);
+      spec.check(call);
+    });
     // A file the procedure would write over one of its inputs: said before a record of 10^9 samples
     // is analysed, not after (ProcedureCall::output_path refuses it again when it writes).
     for (const ParameterSpec& parameter : spec.parameters) {

@@ -203,25 +203,36 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
   };
 }
 
-void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sample_rate_hz) {
+void read_pulse_counts_as_rates(ProcedureCall& call, const ProcedureSpec& spec,
+                                const std::function<bool(const InputSpec&)>& given,
+                                std::optional<double> sample_rate_hz) {
   const auto output_unit = call.parameters.find("output_unit");
   if (output_unit == call.parameters.end() || !output_unit->is_string() ||
       !counts_pulses(output_unit->get<std::string>())) {
     return;
   }
-  const auto to_rate = [](std::vector<double>& counts, double rate_hz) {
-    for (double& count : counts) count *= rate_hz;
-  };
-  const auto given = call.parameters.find("sample_rate_hz");
-  const double rate = sample_rate_hz                                         ? *sample_rate_hz
-                      : given != call.parameters.end() && given->is_number() ? given->get<double>()
-                                                                             : 0.0;
+  bool records = false;
+  bool raw_samples = false;
+  for (const InputSpec& input : spec.inputs) {
+    if (input.kind == InputKind::value_or_record || !given(input)) continue;
+    if (!input.raw_samples) require_outputs_per_second(output_unit->get<std::string>(), input.doc);
+    records = records || input.records;
+    raw_samples = true;
+  }
+  if (!raw_samples) return;
+  call.pulse_counts = true;
+  call.parameters["output_unit"] = "pulse/s";
+  if (!records) return;
+  const auto given_rate = call.parameters.find("sample_rate_hz");
+  const double rate = sample_rate_hz                                                   ? *sample_rate_hz
+                      : given_rate != call.parameters.end() && given_rate->is_number() ? given_rate->get<double>()
+                                                                                       : 0.0;
   const auto no_rate = [](const std::string& file) {
     return Error(SourceLocation{file, 0, 0},
                  "the output unit pulse counts pulses per sample interval, and the record stores no sample rate to "
                  "make them pulse/s: give the sample rate (--rate; sample_rate_hz), or the record in pulse/s");
   };
-  call.read_record = [read = call.read_record, sample_rate = call.record_sample_rate, rate, to_rate,
+  call.read_record = [read = call.read_record, sample_rate = call.record_sample_rate, rate,
                       no_rate](const std::string& file) {
     double rate_hz = 0.0;
     try {
@@ -230,22 +241,32 @@ void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sampl
       throw no_rate(file);
     }
     std::vector<double> samples = read(file);
-    to_rate(samples, rate_hz);
+    pulse_counts_as_rates(samples, rate_hz);
     return samples;
   };
-  call.read_timed_record = [read = call.read_timed_record, rate, to_rate, no_rate](const std::string& file) {
+  call.read_timed_record = [read = call.read_timed_record, rate, no_rate](const std::string& file) {
     TimedRecord record = read(file);
-    const std::size_t n = record.time_s.size();
-    if (rate > 0.0) {
-      to_rate(record.output, rate);
-    } else if (n >= 2) {
-      to_rate(record.output, static_cast<double>(n - 1) / (record.time_s[n - 1] - record.time_s[0]));
-    } else {
-      throw no_rate(file);  // one time stamp is no interval
-    }
+    if (rate == 0.0 && record.time_s.size() < 2) throw no_rate(file);  // one time stamp is no interval
+    pulse_counts_as_rates(record.output, rate > 0.0 ? rate : mean_sample_rate_hz(record.time_s));
     return record;
   };
-  call.parameters["output_unit"] = "pulse/s";
+}
+
+void require_outputs_per_second(const std::string& output_unit, const std::string& what) {
+  if (!counts_pulses(output_unit)) return;
+  throw ParameterError("output_unit",
+                       fmt::format("{} counts pulses per sample interval, and a table of mean outputs ({}) "
+                                   "has no interval to make them a rate: give them in pulse/s (output unit pulse/s)",
+                                   output_unit, what));
+}
+
+void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz) {
+  for (double& count : outputs) count *= sample_rate_hz;
+}
+
+double mean_sample_rate_hz(std::span<const double> time_s) {
+  if (time_s.size() < 2) throw Error("one time stamp has no sample interval");
+  return static_cast<double>(time_s.size() - 1) / (time_s.back() - time_s.front());
 }
 
 void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& output_unit,

@@ -24,7 +24,10 @@ TEST(OutputRecord, PulseCountsNeedASampleRate) {
     OutputRecordSource source;
     source.path = file;
     set_record_readers(call, source, 1, std::nullopt, "");
-    read_pulse_counts_as_rates(call, rate);
+    ProcedureSpec spec;
+    spec.inputs = {InputSpec("record", "output record").read_from_file("FILE", "file").output_records()};
+    read_pulse_counts_as_rates(
+        call, spec, [](const InputSpec&) { return true; }, rate);
     return call;
   };
   EXPECT_EQ(reading(bare, 100.0, "pulse").read_record(bare), (std::vector<double>{300.0, 500.0, 400.0}));
@@ -47,6 +50,38 @@ TEST(OutputRecord, PulseCountsNeedASampleRate) {
     EXPECT_EQ(e.location().value().file, bare);
     EXPECT_NE(e.message().find("stores no sample rate"), std::string::npos) << e.message();
   }
+}
+
+// A table of mean outputs has no interval: pulse counts are refused there, naming output_unit. Raw
+// samples a procedure reads itself are its to convert (call.pulse_counts); values alone (polarity's
+// signs) are left as they are.
+TEST(OutputRecord, PulseCountsAreRefusedInTablesAndLeftToOwnReaders) {
+  const auto call_with = [](const InputSpec& input, const std::string& unit) {
+    ProcedureCall call;
+    call.parameters["output_unit"] = unit;
+    ProcedureSpec spec;
+    spec.inputs = {input};
+    read_pulse_counts_as_rates(
+        call, spec, [](const InputSpec&) { return true; }, std::nullopt);
+    return call;
+  };
+  const InputSpec table = InputSpec("points", "CSV of test points").read_from_file("POINTS", "file");
+  try {
+    call_with(table, "pulse");
+    ADD_FAILURE() << "a table of mean counts was taken";
+  } catch (const ParameterError& e) {
+    EXPECT_EQ(e.parameter, "output_unit");
+    EXPECT_NE(e.message().find("a table of mean outputs (CSV of test points)"), std::string::npos) << e.message();
+  }
+  EXPECT_FALSE(call_with(table, "pulse/s").pulse_counts);
+  const ProcedureCall own =
+      call_with(InputSpec("record", "long record").read_from_file("--record", "record").holds_raw_samples(), "pulses");
+  EXPECT_TRUE(own.pulse_counts);
+  EXPECT_EQ(own.parameters.at("output_unit"), "pulse/s");
+  EXPECT_FALSE(own.read_record);  // no output records: the procedure reads and converts them
+  const ProcedureCall values = call_with(InputSpec("positive", "the output at the positive rate"), "pulse");
+  EXPECT_FALSE(values.pulse_counts);
+  EXPECT_EQ(values.parameters.at("output_unit"), "pulse");
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <string_view>
 
 #include "inertest/core/error.h"
+#include "inertest/core/procedure_spec.h"
 #include "inertest/io/mapped_file.h"
+#include "inertest/io/output_record.h"
 #include "inertest/io/text_table.h"
 #include "inertest/misalignment/revolution_average.h"
 
@@ -49,7 +51,7 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_positions(const std::str
   return rows;
 }
 
-std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::string& listing_path) {
+std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::string& listing_path, bool pulse_counts) {
   const MappedFile listing(listing_path);
   const std::filesystem::path directory = std::filesystem::path(listing_path).parent_path();
   const std::string_view text = listing.text();
@@ -101,6 +103,13 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::strin
                   "record: needs a 'table_angle_deg' or a 'time_s' column to cut whole revolutions");
     }
     row.output = mean.mean;
+    if (pulse_counts) {
+      if (!table.has_column("time_s")) {
+        throw Error(SourceLocation{record, table.first_data_line > 0 ? table.first_data_line - 1 : 0, 0},
+                    "record: pulses counted per sample interval need a 'time_s' column for their interval");
+      }
+      row.output *= with_file_context(record, [&] { return mean_sample_rate_hz(table.column("time_s")); });
+    }
     rows.push_back(row);
   }
   if (index_of.empty()) throw Error(SourceLocation{listing_path, 0, 0}, "record listing: no header line");

@@ -62,7 +62,8 @@ struct AllanParameters {
   // record's time column) or, failing that, the one the record stores (HDF5 sample_rate_hz, TDMS
   // wf_increment, a text record's time column named with its unit, as bias reads it), else an Error
   // naming the file and what a time column shows.
-  AllanOptions options(const RateRecordSource& source) const {
+  // `pulse_counts`: the output counts pulses per sample interval (ProcedureCall::pulse_counts).
+  AllanOptions options(const RateRecordSource& source, bool pulse_counts) const {
     AllanOptions options;
     const RateRecordFormat stored_as = resolve_rate_record_format(source);
     const bool text = stored_as == RateRecordFormat::kCsv;
@@ -100,7 +101,7 @@ struct AllanParameters {
         }
       }
       options.scale = 3600.0 / *scale_factor;
-      if (output_unit && counts_pulses(*output_unit)) {
+      if (pulse_counts) {
         // Pulses counted per sample interval are pulse/s times the interval: K is output per deg/s.
         if (options.sample_rate_hz == 0.0) {
           throw ParameterError("output_unit", "pulses per sample interval need the one sample rate of the channels: "
@@ -181,7 +182,7 @@ void check(const ProcedureCall& call, const AllanParameters& parameters) {
     }
     Unit::parse(*parameters.input_unit);
   });
-  AllanOptions options = parameters.options(source);
+  AllanOptions options = parameters.options(source, call.pulse_counts);
   if (options.sample_rate_hz == 0.0) options.sample_rate_hz = 1.0;  // each channel's own, read with the channels
   options.validate();
   if (resolve_rate_record_format(source) == RateRecordFormat::kCsv) {
@@ -235,7 +236,7 @@ std::string command_line(const ProcedureCall& call) {
 AllanRun run(const ProcedureCall& call, const AllanParameters& parameters) {
   const std::string& file = call.files.at("record");
   const RateRecordSource source = parameters.source(file);
-  const AllanOptions options = parameters.options(source);
+  const AllanOptions options = parameters.options(source, call.pulse_counts);
   AllanRun result;
   if (!parameters.columns) {
     result.channels.channels.push_back(
@@ -312,7 +313,7 @@ ProcedureSpec allan_spec() {
           "noise model σ²(τ) = Σ A_m·τ^m (m = −2…2) is fitted and each term read at its characteristic slope.",
           "对角速率记录计算重叠 Allan 方差（IEEE Std 952-1997 附录 C）及其置信区间；拟合噪声模型 σ²(τ) = Σ A_m τ^m（m = "
           "-2..2），各噪声项按其特征斜率读取。")
-      .input(InputSpec("record", "rate record").read_from_file("FILE", "file"))
+      .input(InputSpec("record", "rate record").read_from_file("FILE", "file").holds_raw_samples())
       .parameter(ParameterSpec("format", "how FILE is stored: auto (.mat, HDF5 or TDMS by magic bytes, else text), csv, "
                                          "mat, hdf5, tdms, or raw binary: f64, f32, i32 or i16, optionally with le/be "
                                          "(e.g. i32be; little-endian without)"),

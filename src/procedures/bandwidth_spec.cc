@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/units.h"
+#include "inertest/io/output_record.h"
 #include "inertest/io/procedure_inputs.h"
 #include "inertest/procedures/bandwidth_and_delay.h"
 
@@ -80,6 +81,7 @@ ProcedureSpec bandwidth_spec() {
       .input(InputSpec("records", "a raw record per frequency (time, gyro output, interferometer angle), increasing")
                  .numbered_runs("frequency_hz", "10:vib_10Hz.csv")
                  .listed_on_command_line("--records", "freq_hz")
+                 .holds_raw_samples()
                  .alternative_in("data"))
       .parameter(ParameterSpec("time_column", "time column of the records (s)"), &Options::time_column)
       .parameter(ParameterSpec("output_column", "gyro output column of the records"), &Options::output_column)
@@ -153,8 +155,14 @@ ProcedureSpec bandwidth_spec() {
         if (call.files.contains("gains")) {
           return bandwidth_and_delay(read_frequency_response(call.files.at("gains")), options.bandwidth);
         }
-        const auto records = read_angular_vibration_records(listed_files(call.runs.at("records")), options.time_column,
-                                                            options.output_column, options.angle_column);
+        auto records = read_angular_vibration_records(listed_files(call.runs.at("records")), options.time_column,
+                                                      options.output_column, options.angle_column);
+        if (call.pulse_counts) {
+          for (AngularVibrationRecord& record : records) {
+            with_file_context(record.source,
+                              [&] { pulse_counts_as_rates(record.output, mean_sample_rate_hz(record.time_s)); });
+          }
+        }
         return bandwidth_and_delay(std::span<const AngularVibrationRecord>(records), options.bandwidth);
       });
 }

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inertest/core/citations.h"
+#include "inertest/io/output_record.h"
 #include "inertest/misalignment/gyro_misalignment.h"
 #include "inertest/misalignment/misalignment_files.h"
 #include "inertest/procedures/instrument_sensor.h"
@@ -45,7 +46,7 @@ ProcedureSpec gyro_misalignment_spec() {
           "differences V(+) − V(−) give the table, fixture and input-axis error angles by least squares.",
           "陀螺在单轴速率转台上以 +ω、−ω 分别在五个夹具位置 (α, β) 测试；由 V(+) − V(−) "
           "以最小二乘法分离台面、夹具面和输入轴失准角。")
-      .input(InputSpec("positions", "CSV of positions (or of records with --records)").read_from_file("POSITIONS", "file"))
+      .input(InputSpec("positions", "CSV of positions (or of records with --records)").read_from_file("POSITIONS", "file").holds_raw_samples())
       .parameter(ParameterSpec("scale_factor", "kI, output units per deg/s")
                      .required_on_command_line()
                      .instrument_gives("nominal_scale_factor")
@@ -85,7 +86,10 @@ ProcedureSpec gyro_misalignment_spec() {
                            "dy1 + dz2 sin a - dy2 cos a)";
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
-      .checked_by([](const ProcedureCall&, const Options& options) { options.misalignment.validate(); })
+      .checked_by([](const ProcedureCall& call, const Options& options) {
+        options.misalignment.validate();
+        if (call.pulse_counts && !options.records) require_outputs_per_second("pulse", "CSV of positions");
+      })
       .unit_of("delta_theta_y0", "arcsec")
       .unit_of("delta_theta_x0", "arcsec")
       .unit_of("delta_theta_y1", "arcsec")
@@ -99,7 +103,7 @@ ProcedureSpec gyro_misalignment_spec() {
         GyroMisalignmentOptions misalignment = options.misalignment;
         misalignment.source = file;
         return gyro_misalignment(
-            options.records ? read_gyro_misalignment_records(file) : read_gyro_misalignment_positions(file),
+            options.records ? read_gyro_misalignment_records(file, call.pulse_counts) : read_gyro_misalignment_positions(file),
             misalignment);
       });
 }

@@ -47,10 +47,12 @@ ProcedureSpec scale_factor_spec() {
                  .alternative_in("data"))
       .input(InputSpec("record", "one long record with a table-rate column")
                  .read_from_file("--record", "record")
+                 .holds_raw_samples()
                  .alternative_in("data"))
       .input(InputSpec("point_records", "a record per test point, in test order")
                  .numbered_runs("rate", "100:p100.csv")
                  .listed_on_command_line("--records")
+                 .holds_raw_samples()
                  .alternative_in("data"))
       .parameter(ParameterSpec("rate_column", "table-rate column of the long record"), &Options::rate_column)
       .parameter(ParameterSpec("output_column", "output column of the records"), &Options::output_column)
@@ -128,16 +130,20 @@ ProcedureSpec scale_factor_spec() {
       .compute([](const ProcedureCall& call, const Options& options) {
         if (call.files.contains("points"))
           return scale_factor(read_scale_factor_points(call.files.at("points")), options.scale_factor);
+        std::vector<ScaleFactorPoint> points;
         if (call.files.contains("record")) {
           RateSegmentOptions segments = options.segments;
           segments.timing = options.timing;
-          return scale_factor(
-              read_scale_factor_record(call.files.at("record"), options.rate_column, options.output_column, segments),
-              options.scale_factor);
+          points = read_scale_factor_record(call.files.at("record"), options.rate_column, options.output_column, segments);
+        } else {
+          points = read_scale_factor_point_records(listed_files(call.runs.at("point_records")), options.output_column,
+                                                   options.timing);
         }
-        const auto records = read_scale_factor_point_records(listed_files(call.runs.at("point_records")),
-                                                             options.output_column, options.timing);
-        return scale_factor(records, options.scale_factor);
+        // Pulse counts per sample interval become pulse/s, as bias reads them: K is per deg/s (eq. 5).
+        if (call.pulse_counts) {
+          for (ScaleFactorPoint& point : points) point.output *= options.timing.sample_rate_hz;
+        }
+        return scale_factor(points, options.scale_factor);
       });
 }
 

@@ -71,7 +71,7 @@ ProcedureSpec threshold_spec() {
       .report_method(
           "The input is decreased step by step; the threshold is the smallest input whose output is within 50 % of the expected output K·Ω (IEEE Std 952-1997; GJB 2426A eq. (15) as printed, relative to the measured output, on request), the largest over the directions.",
           "逐级减小输入角速度；阈值为输出与理论输出 K·Ω 之差不超过理论输出 50 % 的最小输入（IEEE Std 952-1997；按需采用 GJB 2426A 式 (15) 原式，相对实测输出），取各方向中的最大值。")
-      .input(InputSpec("file", "test points or record").read_from_file("FILE", "file"))
+      .input(InputSpec("file", "test points or record").read_from_file("FILE", "file").holds_raw_samples())
       .parameter(
           ParameterSpec("method", "1 (rate table), 2 (dividing head), 3 (slow rotation)")
               .one_of({"1", "2", "3"})
@@ -134,9 +134,12 @@ ProcedureSpec threshold_spec() {
                     return fmt::format("GJB 2426A-2004 5.10.4.{}, eqs. (14)-(17); IEEE Std 952-1997", result.method);
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &ThresholdResult::warnings)
-      .checked_by([](const ProcedureCall&, const Options& options) {
+      .checked_by([](const ProcedureCall& call, const Options& options) {
         if (options.method < 1 || options.method > 3) {
           throw ParameterError("method", "must be 1 (rate table), 2 (dividing head) or 3 (slow rotation)");
+        }
+        if (call.pulse_counts && options.method != 3) {
+          require_outputs_per_second("pulse", "the test points of methods 1 and 2");
         }
         options.threshold.validate();
         if (options.method != 3) return;
@@ -161,7 +164,10 @@ ProcedureSpec threshold_spec() {
         ProcedureCall reading;  // the record readers of a timed input, for the unit the record stores
         set_record_readers(reading, source, 4, options.sample_rate_hz, options.time_column);
         require_raw_output(reading, file, options.threshold.output_unit, "method 3 divides the output by K");
-        const TimedRecord record = read_timed_record(source, options.sample_rate_hz, options.time_column, 4);
+        TimedRecord record = read_timed_record(source, options.sample_rate_hz, options.time_column, 4);
+        if (call.pulse_counts) {
+          pulse_counts_as_rates(record.output, options.sample_rate_hz.value_or(mean_sample_rate_hz(record.time_s)));
+        }
         return threshold_rotating(record.time_s, record.output, options.table_rate_deg_s, options.threshold);
       });
 }

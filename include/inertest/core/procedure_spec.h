@@ -251,14 +251,24 @@ struct InputSpec {
   InputSpec& number_defaults_to(double value) { number_default = value; return *this; }
   // The file (file) or each run's file (runs) is an instrument-output record (call.read_record): read
   // with --column/--format on the command line and the keys column/format in a plan.
-  InputSpec& output_records() { records = true; return *this; }
+  InputSpec& output_records() {
+    records = true;
+    raw_samples = true;
+    return *this;
+  }
+  // The file (file) or each run's file (runs) may hold the instrument's raw samples, which the
+  // procedure reads itself (a scale factor's long record, angular-vibration records; threshold's
+  // file with method 3). With an output unit that counts pulses per sample interval, the call's
+  // pulse_counts is then set and the procedure multiplies the outputs by their sample rate (a
+  // procedure whose file is a table this time refuses it). A given file or runs input that holds no
+  // raw samples is a table of means: such a call is refused (io/output_record.h).
+  InputSpec& holds_raw_samples() { raw_samples = true; return *this; }
   // Output records with the time of each sample (call.read_timed_record): a time column (--time-column,
   // time_column; default the first) beside the output column, or the output column alone sampled at
   // --rate HZ (sample_rate_hz), sample i (from 0) at (i + 1)/HZ. Also output_records().
   InputSpec& timed_records() {
-    records = true;
     timed = true;
-    return *this;
+    return output_records();
   }
   // A record (output_records, timed_records) of fewer samples is an error of its reader, naming the file.
   InputSpec& samples_at_least(std::size_t count) { minimum_samples = count; return *this; }
@@ -284,6 +294,7 @@ struct InputSpec {
   std::string alternatives;  // "" : always given; else the group of alternatives it belongs to
   bool records = false;  // file, runs: the files are output records, read by call.read_record
   bool timed = false;    // file, runs: the records are timed, read by call.read_timed_record
+  bool raw_samples = false;  // file, runs: the instrument's raw samples (holds_raw_samples, output_records)
   std::size_t minimum_runs = 1;
   std::string minimum_why;
   std::size_t minimum_samples = 1;  // output and timed records
@@ -402,6 +413,11 @@ struct ProcedureCall {
   // named channels): a contradiction is an Error naming both. Set with read_record.
   std::function<std::optional<std::string>(const std::string& file, const std::optional<std::string>& given)>
       record_unit;
+  // The instrument's raw samples count pulses per sample interval: the call's output_unit was pulse
+  // and is now pulse/s (io/output_record.h read_pulse_counts_as_rates). read_record and
+  // read_timed_record return pulse/s already; a procedure that reads its records itself multiplies
+  // their outputs by their sample rate.
+  bool pulse_counts = false;
   // Progress of a long computation (a terminal's on the command line, the campaign's in a plan).
   ProgressCallback progress;
   // Where a plan's exports go (the campaign's staging directory, moved beside its results.json once

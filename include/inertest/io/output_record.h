@@ -4,13 +4,17 @@
 // channel of a MATLAB .mat, HDF5 or NI TDMS record (io/channel_record.h), found by its magic bytes.
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace inertest {
 
+struct InputSpec;
 struct ProcedureCall;
+struct ProcedureSpec;
 
 struct OutputRecordSource {
   std::string path;
@@ -68,13 +72,32 @@ std::optional<std::string> record_unit(const OutputRecordSource& source, const s
 void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, std::size_t minimum_samples,
                         std::optional<double> sample_rate_hz, const std::string& time_column);
 
-// For a call whose output_unit is pulse or pulses (a pulse counter read once a sample interval) and whose
-// inputs are output records (InputSpec::records): its record readers return pulse/s, count x the
-// sample rate, and its output_unit becomes pulse/s. K is output per deg/s and the output of GJB
-// 2426A eq. (19) is a rate: a FOG's counts per 10 ms taken as pulse/s gave a bias 100 times too
-// small. The rate is the one given or the record stores (a timed record's: its mean interval); a
-// record without one is an Error naming it. Call after set_record_readers; another unit: nothing.
-void read_pulse_counts_as_rates(ProcedureCall& call, std::optional<double> sample_rate_hz);
+// An output unit of pulse or pulses is a pulse counter read once a sample interval, and K is output
+// per deg/s: the output of GJB 2426A eq. (19) is a rate. A FOG's counts per 10 ms taken as pulse/s
+// gave a bias 100 times too small. For a call whose output_unit counts pulses (counts_pulses), by the
+// inputs of `spec` that `given` says are given:
+//  - a given file or runs input holding no raw samples (a table of mean outputs: test points,
+//    positions, gains) has no sample interval: a ParameterError on output_unit;
+//  - with raw samples (InputSpec::raw_samples), output_unit becomes pulse/s and call.pulse_counts is
+//    set; output records (InputSpec::records) are read as pulse/s, count x the sample rate: the one
+//    given or the record stores (a timed record's: its mean interval); a record without one is an
+//    Error naming it. Call after set_record_readers.
+// Another unit, or values alone (polarity's outputs, whose sign is the same in counts): nothing.
+void read_pulse_counts_as_rates(ProcedureCall& call, const ProcedureSpec& spec,
+                                const std::function<bool(const InputSpec&)>& given,
+                                std::optional<double> sample_rate_hz);
+
+// A table of mean outputs (`what`: "CSV of test points", an array of them) has no sample interval:
+// an output unit that counts pulses is a ParameterError on output_unit (read_pulse_counts_as_rates).
+void require_outputs_per_second(const std::string& output_unit, const std::string& what);
+
+// For a procedure that reads its raw records itself, when call.pulse_counts: each output times the
+// record's `sample_rate_hz` (> 0), pulse/s.
+void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz);
+
+// The mean sample rate of time stamps (s, increasing; fewer than 2 is an Error): (n - 1) / (t[n-1] - t[0]). A pulse
+// counter's interval is the nominal one: each stamp's own would carry the logger's jitter into the count.
+double mean_sample_rate_hz(std::span<const double> time_s);
 
 // For a procedure that divides the instrument's output by its scale factor K: throws Error naming
 // the file when the record stores its samples in a unit of angular rate or of acceleration (HDF5

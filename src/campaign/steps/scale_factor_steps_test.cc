@@ -1,7 +1,8 @@
 // Plan steps scale_factor (raw records), scale_factor_repeatability, scale_factor_temperature and
 // maximum_input_rate, run through inertest::run_campaign.
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "inertest/campaign/campaign.h"
@@ -62,6 +63,38 @@ TEST(ScaleFactorStep, ARecordPerPoint) {
   }
   const auto result = run_plan(scratch, "[[procedure]]\nkind = \"scale_factor\"\nsettling_time_s = 0.2\n" + runs);
   EXPECT_NEAR(result.at("scale_factor").at("value").get<double>(), 3.0, 3e-12);
+}
+
+// [instrument] output_unit = "pulse": a record per point holds counts per sample interval (10 Hz),
+// whose K is that of the counts times 10, pulse/s per deg/s; a table of mean outputs has no
+// interval and is a plan error at the step before anything runs, naming output_unit.
+TEST(ScaleFactorStep, PulseCountsOfTheInstrument) {
+  ScratchDirectory scratch;
+  std::string runs;
+  for (std::size_t j = 0; j < kRates.size(); ++j) {
+    std::string record = "output\n";
+    for (int k = 0; k < 20; ++k) record += fmt::format("{:.17g}\n", (3.0 * kRates[j] + 0.5) / 10.0);
+    scratch.write(fmt::format("p{}.csv", j), record);
+    runs += fmt::format("[[procedure.run]]\nrate = {}\nfile = \"p{}.csv\"\n", kRates[j], j);
+  }
+  std::string header = kHeader;
+  header.replace(header.find("pulse/s"), 7, "pulse");
+  const auto plan = scratch.write("plan.toml", header + "[[procedure]]\nkind = \"scale_factor\"\n" + runs);
+  const auto result = run_campaign(plan, scratch.path() + "/out").results.at("procedures").at(0).at("result");
+  EXPECT_NEAR(result.at("scale_factor").at("value").get<double>(), 3.0, 3e-12);
+  EXPECT_EQ(result.at("scale_factor").at("unit"), "pulse/s/(deg/s)");
+
+  scratch.write("points.csv", points_csv(3.0));
+  const auto table =
+      scratch.write("table.toml", header + "[[procedure]]\nkind = \"scale_factor\"\nfile = \"points.csv\"\n");
+  try {
+    run_campaign(table, scratch.path() + "/table");
+    FAIL() << "a table of mean counts was taken";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("table.toml:"));
+    EXPECT_THAT(e.what(), HasSubstr("'output_unit' pulse counts pulses per sample interval"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/table"));
 }
 
 TEST(ScaleFactorStep, FileAndRecordTogetherIsRejectedBeforeRunning) {

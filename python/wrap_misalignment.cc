@@ -54,10 +54,9 @@ ResultOf<GyroMisalignmentTag> gyro_misalignment_of(const DoubleArray& alpha_deg,
                          {"beta_deg", beta.size()},
                          {"rate_dps", rate.size()}});
   const std::vector<std::size_t> lines = lines_of(line, outputs.size());
-  require_outputs_per_second(output_unit, "the output array");
   GyroMisalignmentOptions options;
   options.scale_factor = scale_factor;
-  options.output_unit = output_unit;
+  options.output_unit = output_unit_as_rate(output_unit);
   options.source = source.value_or("");
   options.validate();
   std::vector<GyroMisalignmentRow> rows(outputs.size());
@@ -74,10 +73,9 @@ ResultOf<AccelerometerMisalignmentTag> accelerometer_misalignment_of(
   const std::vector<long> runs = run ? whole_numbers<long>(*run, "run", -9.0e15, outputs.size())
                                      : std::vector<long>(outputs.size(), 1);
   const std::vector<std::size_t> lines = lines_of(line, outputs.size());
-  require_outputs_per_second(output_unit, "the output array");
   AccelerometerMisalignmentOptions options;
   options.scale_factor = scale_factor;
-  options.output_unit = output_unit;
+  options.output_unit = output_unit_as_rate(output_unit);
   options.source = source.value_or("");
   options.validate();
   std::vector<AccelerometerMisalignmentRow> rows(outputs.size());
@@ -168,13 +166,15 @@ void wrap_misalignment(py::module_& module) {
       "1-based lines, 'source': path}; gyro_misalignment(**rows, scale_factor=k) does what the CLI does.");
   module.def(
       "read_gyro_misalignment_records",
-      [](const std::filesystem::path& listing_path) {
-        return gyro_rows_as_arguments(read_gyro_misalignment_records(listing_path.string()), listing_path.string());
+      [](const std::filesystem::path& listing_path, bool pulse_counts) {
+        return gyro_rows_as_arguments(read_gyro_misalignment_records(listing_path.string(), pulse_counts),
+                                      listing_path.string());
       },
-      "listing_path"_a,
+      "listing_path"_a, py::kw_only(), "pulse_counts"_a = false,
       "Reads a listing CSV (header alpha_deg,beta_deg,rate_dps,file) of raw records, each averaged over\n"
       "whole revolutions (by table_angle_deg or time_s), as the keyword arguments of gyro_misalignment\n"
-      "(the CLI's --records).");
+      "(the CLI's --records). pulse_counts=True: the outputs count pulses per sample interval, and each\n"
+      "mean is times its record's sample rate (time_s needed), pulse/s, as output_unit='pulse' on the CLI.");
   module.def(
       "read_accelerometer_misalignment_positions",
       [](const std::filesystem::path& path) {

@@ -37,10 +37,9 @@ ResultOf<ScaleFactorTag> scale_factor_of(const DoubleArray& rate, const DoubleAr
                                          const std::string& rate_unit, const std::string& output_unit,
                                          std::size_t recommended_rates_per_direction,
                                          const std::optional<std::string>& source) {
-  require_outputs_per_second(output_unit, "the output array");
   ScaleFactorOptions options;
   options.rate_unit = rate_unit;
-  options.output_unit = output_unit;
+  options.output_unit = output_unit_as_rate(output_unit);
   options.recommended_rates_per_direction = recommended_rates_per_direction;
   // The arrays' own errors (a NaN, unequal lengths) name the source too.
   return make_spec_result<ScaleFactorTag>(
@@ -77,10 +76,11 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
   ProcedureCall given;
   if (scale_factor) given.parameters["scale_factor"] = *scale_factor;
   given.parameters["output_unit"] = output_unit;
+  given.pulse_counts = counts_pulses(output_unit);  // with input_in_deg_h an error
   check_bias_conversion(given, options, "bias");
   check_unit_parameters(given);
   std::vector<double> rates;  // pulses counted per sample interval as pulse/s (read_pulse_counts_as_rates)
-  if (counts_pulses(output_unit)) {
+  if (given.pulse_counts) {
     rates.assign(samples.begin(), samples.end());
     pulse_counts_as_rates(rates, sample_rate_hz);
     samples = rates;
@@ -99,11 +99,10 @@ struct MaximumInputRateTag {};
 ResultOf<MaximumInputRateTag> maximum_input_rate_of(const DoubleArray& rate, const DoubleArray& output,
                                                     double nonlinearity_limit_ppm, const std::string& rate_unit,
                                                     const std::string& output_unit) {
-  require_outputs_per_second(output_unit, "the output array");
   MaximumInputRateOptions options;
   options.nonlinearity_limit_ppm = nonlinearity_limit_ppm;
   options.scale_factor.rate_unit = rate_unit;
-  options.scale_factor.output_unit = output_unit;
+  options.scale_factor.output_unit = output_unit_as_rate(output_unit);
   return make_spec_result<MaximumInputRateTag>(maximum_input_rate_spec(),
                                                maximum_input_rate(points_of(rate, output), options));
 }
@@ -184,12 +183,11 @@ ResultOf<InputAxisMisalignmentTag> input_axis_misalignment_of(const DoubleArray&
     positions[i].output_positive = positive[i];
     positions[i].output_negative = negative[i];
   }
-  require_outputs_per_second(output_unit, "the output arrays");
   InputAxisMisalignmentOptions options;
   options.scale_factor = scale_factor;
   options.rate = rate;
   options.rate_unit = rate_unit;
-  options.output_unit = output_unit;
+  options.output_unit = output_unit_as_rate(output_unit);
   return make_spec_result<InputAxisMisalignmentTag>(input_axis_misalignment_spec(), input_axis_misalignment(positions, options));
 }
 

@@ -99,3 +99,18 @@ def test_closed_forms_refuse_an_output_that_is_not_finite():
         inertest.four_position_misalignment(float("nan"), 2.0, 3.0, 4.0, 1.0)
     with pytest.raises(inertest.Error, match="an output at position 3 is not a finite number"):
         inertest.five_position_misalignment([1, 2, float("inf"), 4, 5], [1, 2, 3, 4, 5], 1.0, 10.0)
+
+
+def test_gyro_records_of_pulse_counts_are_read_per_second(tmp_path):
+    # One whole revolution at +-20 deg/s, 50 Hz: counts per interval are the rates / 50.
+    listing = "alpha_deg,beta_deg,rate_dps,file\n"
+    for index, rate in enumerate((20.0, -20.0)):
+        times = np.arange(1000) * 0.02
+        record = tmp_path / f"r{index}.csv"
+        record.write_text("time_s,output\n" + "".join(f"{t!r},{(100.0 * rate + 0.3) / 50.0!r}\n" for t in times))
+        listing += f"0,0,{rate},{record.name}\n"
+    (tmp_path / "listing.csv").write_text(listing)
+    counts = inertest.read_gyro_misalignment_records(tmp_path / "listing.csv")
+    rates = inertest.read_gyro_misalignment_records(tmp_path / "listing.csv", pulse_counts=True)
+    assert rates["output"] == pytest.approx([2000.3, -1999.7], rel=1e-12)
+    assert rates["output"] == pytest.approx(counts["output"] * 50.0, rel=1e-12)

@@ -222,12 +222,15 @@ def test_integers_and_single_precision_convert_to_the_same_figures():
 
 def test_pulse_counts_per_sample_interval_are_rates_as_on_the_cli():
     """output_unit pulse: a counter read once an interval, counts x the sample rate (pulse/s); a
-    table of mean outputs has no interval and is refused."""
+    table's mean outputs are taken per second and named so; records in deg/h are no counts."""
     rates = np.linspace(0.99, 1.01, 4000)  # pulse/s, K = 1 per deg/s
     of_rates = inertest.bias(rates, sample_rate_hz=10.0, scale_factor=1.0, output_unit="pulse/s", smoothing_s=[1.0])
     of_counts = inertest.bias(rates / 10.0, sample_rate_hz=10.0, scale_factor=1.0, output_unit="pulse", smoothing_s=[1.0])
     assert of_counts.bias.value == pytest.approx(of_rates.bias.value, rel=1e-12)
     assert of_counts.bias_stability[0].value == pytest.approx(of_rates.bias_stability[0].value, rel=1e-9)
     points = np.array([0, 1, -1, 2, -2, 0], dtype=float)
-    with pytest.raises(inertest.Error, match="pulse counts pulses per sample interval, and a table of mean outputs"):
-        inertest.scale_factor(points, 5.0 * points, output_unit="pulse")
+    per_second = inertest.scale_factor(points, 5.0 * points + 0.1, output_unit="pulse/s").to_dict()
+    assert inertest.scale_factor(points, 5.0 * points + 0.1, output_unit="pulse").to_dict() == per_second
+    assert per_second["scale_factor"]["unit"] == "pulse/s/(deg/s)"
+    with pytest.raises(inertest.Error, match="records in deg/h .* are no pulse counts"):
+        inertest.bias(rates, sample_rate_hz=10.0, input_in_deg_h=True, output_unit="pulse")

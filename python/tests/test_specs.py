@@ -222,8 +222,9 @@ def test_a_bad_cell_in_a_plan_step_keeps_its_place(tmp_path):
 
 
 def test_pulse_counts_of_a_generic_function_are_the_cli_json(tmp_path):
-    # turn_on_time's case above, as counts per 0.5 s interval: the figures of the rates; a table of
-    # mean outputs (resolution's steps) is refused, naming output_unit.
+    # turn_on_time's case above, as counts per 0.5 s interval (the rates 1, 0.5, 0.2, 0.05, 0.01
+    # pulse/s settle into 0.1 at 2 s; the counts taken as pulse/s would at 1.5 s); a table of mean
+    # outputs (resolution's steps) is taken per second.
     timed = tmp_path / "on.csv"
     timed.write_text("t,out\n0.5,0.5\n1,0.25\n1.5,0.1\n2,0.025\n2.5,0.005\n")
     expected = cli_json("turn-on-time", "--run", f"0:{timed}", "--scale-factor", "3600", "--rest-band", "0.1",
@@ -232,6 +233,9 @@ def test_pulse_counts_of_a_generic_function_are_the_cli_json(tmp_path):
     assert result.to_dict() == expected
     assert result.turn_on_time.value == pytest.approx(2.0)
     steps = tmp_path / "steps.csv"
-    steps.write_text("base_rate,base_output,rate,output\n10,36007,10.002,36017\n")
-    with pytest.raises(inertest.Error, match="output_unit: pulse counts pulses per sample interval"):
-        inertest.resolution(file=str(steps), scale_factor=3600, output_unit="pulse")
+    b, f0 = 10.0, 36007.0
+    rows = [(b, f0, b + 10 / 3600, f0 + 10), (b, f0, b + 5 / 3600, f0 + 5.5), (b, f0, b + 2 / 3600, f0 + 1.2),
+            (-b, -f0, -b - 10 / 3600, -f0 - 10), (-b, -f0, -b - 4 / 3600, -f0 - 2.5), (-b, -f0, -b - 3 / 3600, -f0 - 1)]
+    steps.write_text("base_rate,base_output,rate,output\n" + "".join(f"{r[0]!r},{r[1]!r},{r[2]!r},{r[3]!r}\n" for r in rows))
+    per_second = inertest.resolution(file=str(steps), scale_factor=3600, output_unit="pulse/s").to_dict()
+    assert inertest.resolution(file=str(steps), scale_factor=3600, output_unit="pulse").to_dict() == per_second

@@ -188,26 +188,30 @@ INSTANTIATE_TEST_SUITE_P(RawRecords, PulseCountsCommand,
                                            PulseCase{"misalignment_records", 50.0, misalignment_records}),
                          [](const auto& test) { return std::string(test.param.name); });
 
-// Tables of mean outputs hold no interval: pulse counts there are refused, naming --output-unit,
-// with nothing on stdout.
-TEST(PulseCountsCommand, TablesOfMeanOutputsAreRefused) {
+// A table of mean outputs has no interval left to convert by: its means are taken per second, as a
+// lab reports a counter's, and named pulse/s (output_unit_as_rate); the figures are those of pulse/s.
+TEST(PulseCountsCommand, TablesOfMeanOutputsArePerSecond) {
   ScratchDirectory scratch;
   const std::string points =
-      scratch.write("points.csv", "rate,output\n0,0.3\n10,1000.3\n-10,-999.7\n20,2000.3\n-20,-1999.7\n0,0.3\n");
+      scratch.write("points.csv", "rate,output\n0,0.3\n10,1000.3\n-10,-999.7\n20,2000.4\n-20,-1999.7\n0,0.3\n");
   const std::string positions =
-      scratch.write("positions.csv", "alpha_deg,beta_deg,rate_dps,output\n0,0,20,2000\n0,0,-20,-2000\n");
+      scratch.write("positions.csv", "position,output_positive,output_negative\n1,2.1,-1.9\n2,2.3,-1.6\n");
   for (const std::vector<std::string>& arguments :
        {std::vector<std::string>{"scale-factor", points},
-        std::vector<std::string>{"maximum-input-rate", points, "--nonlinearity-limit", "5"},
-        std::vector<std::string>{"threshold", points, "--method", "1", "--scale-factor", "100"},
-        std::vector<std::string>{"misalignment", "gyro", positions, "--scale-factor", "100"}}) {
-    std::vector<std::string> pulse = arguments;
-    pulse.insert(pulse.end(), {"--output-unit", "pulse"});
-    const auto run = run_cli(pulse);
-    EXPECT_EQ(run.exit_code, 2) << arguments[0];
-    EXPECT_THAT(run.err, HasSubstr("--output-unit: pulse counts pulses per sample interval")) << arguments[0];
-    EXPECT_THAT(run.err, HasSubstr("a table of mean outputs")) << arguments[0];
-    EXPECT_TRUE(run.out.empty()) << arguments[0];
+        std::vector<std::string>{"maximum-input-rate", points, "--nonlinearity-limit", "50"},
+        std::vector<std::string>{"input-axis-misalignment", positions, "--scale-factor", "100", "--rate", "20"}}) {
+    const auto run = [&](const std::string& unit) {
+      std::vector<std::string> with_unit = arguments;
+      with_unit.insert(with_unit.end(), {"--output-unit", unit, "--json"});
+      const auto result = run_cli(with_unit);
+      EXPECT_EQ(result.exit_code, 0) << result.err;
+      return result.out;
+    };
+    const std::string per_second = run("pulse/s");
+    EXPECT_EQ(run("pulse"), per_second) << arguments[0];
+    if (arguments[0] != "input-axis-misalignment") {  // its figures are angles
+      EXPECT_THAT(per_second, HasSubstr("pulse/s")) << arguments[0];
+    }
   }
 }
 

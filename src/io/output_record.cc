@@ -212,16 +212,15 @@ void read_pulse_counts_as_rates(ProcedureCall& call, const ProcedureSpec& spec,
     return;
   }
   bool records = false;
-  bool raw_samples = false;
+  bool files = false;
   for (const InputSpec& input : spec.inputs) {
     if (input.kind == InputKind::value_or_record || !given(input)) continue;
-    if (!input.raw_samples) require_outputs_per_second(output_unit->get<std::string>(), input.doc);
+    files = true;
     records = records || input.records;
-    raw_samples = true;
+    call.pulse_counts = call.pulse_counts || input.raw_samples;
   }
-  if (!raw_samples) return;
-  call.pulse_counts = true;
-  call.parameters["output_unit"] = "pulse/s";
+  if (!files) return;
+  call.parameters["output_unit"] = output_unit_as_rate(output_unit->get<std::string>());
   if (!records) return;
   const auto given_rate = call.parameters.find("sample_rate_hz");
   const double rate = sample_rate_hz                                                   ? *sample_rate_hz
@@ -252,12 +251,8 @@ void read_pulse_counts_as_rates(ProcedureCall& call, const ProcedureSpec& spec,
   };
 }
 
-void require_outputs_per_second(const std::string& output_unit, const std::string& what) {
-  if (!counts_pulses(output_unit)) return;
-  throw ParameterError("output_unit",
-                       fmt::format("{} counts pulses per sample interval, and a table of mean outputs ({}) "
-                                   "has no interval to make them a rate: give them in pulse/s (output unit pulse/s)",
-                                   output_unit, what));
+std::string output_unit_as_rate(const std::string& output_unit) {
+  return counts_pulses(output_unit) ? "pulse/s" : output_unit;
 }
 
 void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz) {

@@ -217,7 +217,9 @@ std::string command_line(const ProcedureCall& call) {
     words.push_back(parameter.command_line_option());
     const auto text_of = [](const nlohmann::json& value) { return value.is_string() ? value.get<std::string>() : json_text(value); };
     if (parameter.type == ParameterType::boolean) continue;  // the flag alone
-    if (!given->is_array()) {
+    if (parameter.name == "output_unit" && call.pulse_counts) {
+      words.push_back("pulse");  // the counts the record holds (pulse/s is the unit they were read as)
+    } else if (!given->is_array()) {
       words.push_back(text_of(*given));
     } else if (parameter.cli_values > 0) {
       for (const nlohmann::json& value : *given) words.push_back(text_of(value));

@@ -42,6 +42,10 @@ void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options
     throw ParameterError("scale_factor", procedure + ": the scale factor K and records in deg/h (--input-deg-h; input = "
                                                      "\"deg/h\") exclude each other: records in deg/h are not divided by K");
   }
+  if (options.input_in_deg_h && call.pulse_counts) {
+    throw ParameterError("output_unit", procedure + ": records in deg/h (--input-deg-h; input = \"deg/h\") are no pulse "
+                                                    "counts: leave the output unit out");
+  }
   if (!options.input_in_deg_h && !call.parameters.contains("scale_factor")) {
     throw Error(procedure + ": missing the scale factor K (--scale-factor; in a plan scale_factor or [instrument] "
                             "nominal_scale_factor), or records in deg/h (--input-deg-h; input = \"deg/h\")");

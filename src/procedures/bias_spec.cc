@@ -76,27 +76,10 @@ ProcedureSpec bias_spec() {
           "The bias is the mean output over the record; the bias stability is the standard deviation of the output averaged over the smoothing time, expressed as an input rate.",
           "零偏为记录时间内输出的平均值折算成输入角速度；零偏稳定性为按平滑时间平均后输出的标准偏差折算成输入角速度。")
       .input(InputSpec("record", "instrument output record").read_from_file("FILE", "file").output_records().samples_at_least(2))
-      .parameter(ParameterSpec("sample_rate_hz", "sample rate (default: the rate the record stores, an HDF5 or TDMS "
-                                                 "channel's; one that contradicts it is an error)")
-                     .unit_is("Hz")
-                     .command_line_name_is("rate")
-                     .instrument_gives("sample_rate_hz"),
-                 [](BiasOptions& options, const nlohmann::json& value) {
-                   // Given, it must be a rate: 0 stands for none given (the record's, at compute).
-                   options.sample_rate_hz = value.get<double>();
-                   if (!(options.sample_rate_hz > 0.0) || !std::isfinite(options.sample_rate_hz)) {
-                     throw ParameterError("sample_rate_hz", fmt::format("sample_rate_hz must be positive, got {} Hz",
-                                                                        options.sample_rate_hz));
-                   }
-                 })
       .parameter(ParameterSpec("smoothing_s", "smoothing times for the bias stability")
                      .unit_is("s")
                      .command_line_name_is("smoothing"),
-                 &BiasOptions::smoothing_s)
-      .parameter(ParameterSpec("output_unit", "instrument output unit, for the report (pulse: counts per sample "
-                                              "interval, read as pulse/s)")
-                     .instrument_gives("output_unit", true),
-                 &BiasOptions::output_unit);
+                 &BiasOptions::smoothing_s);
   bias_conversion_parameters(definition, +[](BiasOptions& options) -> BiasOptions& { return options; });
   earth_rate_parameters(definition, &BiasOptions::remove_earth_rate);
   return definition

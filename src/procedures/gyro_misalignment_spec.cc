@@ -86,10 +86,7 @@ ProcedureSpec gyro_misalignment_spec() {
                            "dy1 + dz2 sin a - dy2 cos a)";
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
-      .checked_by([](const ProcedureCall& call, const Options& options) {
-        options.misalignment.validate();
-        if (call.pulse_counts && !options.records) require_outputs_per_second("pulse", "CSV of positions");
-      })
+      .checked_by([](const ProcedureCall&, const Options& options) { options.misalignment.validate(); })
       .unit_of("delta_theta_y0", "arcsec")
       .unit_of("delta_theta_x0", "arcsec")
       .unit_of("delta_theta_y1", "arcsec")

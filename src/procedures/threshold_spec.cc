@@ -84,7 +84,7 @@ ProcedureSpec threshold_spec() {
                      .instrument_gives_if(instrument_is_gyro),
                  &Options::threshold, &ThresholdOptions::scale_factor)
       .parameter(
-          ParameterSpec("zero", "zero output (output at zero input)").plan_key_is("zero_output"),
+          ParameterSpec("zero", "zero output (output at zero input; pulse/s for a pulse counter)").plan_key_is("zero_output"),
           [](Options& options, const nlohmann::json& value) { options.threshold.zero_output = value.get<double>(); })
       .parameter(ParameterSpec("criterion_denominator",
                                "50 % criterion relative to the 'expected' output (IEEE Std 952-1997) or the "
@@ -134,12 +134,9 @@ ProcedureSpec threshold_spec() {
                     return fmt::format("GJB 2426A-2004 5.10.4.{}, eqs. (14)-(17); IEEE Std 952-1997", result.method);
                   })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &ThresholdResult::warnings)
-      .checked_by([](const ProcedureCall& call, const Options& options) {
+      .checked_by([](const ProcedureCall&, const Options& options) {
         if (options.method < 1 || options.method > 3) {
           throw ParameterError("method", "must be 1 (rate table), 2 (dividing head) or 3 (slow rotation)");
-        }
-        if (call.pulse_counts && options.method != 3) {
-          require_outputs_per_second("pulse", "the test points of methods 1 and 2");
         }
         options.threshold.validate();
         if (options.method != 3) return;

@@ -48,7 +48,7 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
                      .instrument_gives("nominal_scale_factor")
                      .instrument_gives_if(instrument_is_gyro),
                  &TurnOnTimeOptions::scale_factor)
-      .parameter(ParameterSpec("zero_output", "calibrated zero output F0").unit_is("output units").command_line_name_is("zero"),
+      .parameter(ParameterSpec("zero_output", "calibrated zero output F0 (pulse/s for a pulse counter)").unit_is("output units").command_line_name_is("zero"),
                  &TurnOnTimeOptions::zero_output)
       .parameter(ParameterSpec("rate_band", "allowed rate error relative to the input rate"), &TurnOnTimeOptions::rate_band)
       .parameter(ParameterSpec("rest_band_deg_h", "allowed indicated rate at rest").unit_is("deg/h").command_line_name_is("rest-band"),

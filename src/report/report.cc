@@ -12,6 +12,7 @@
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
 #include "inertest/io/atomic_write.h"
+#include "inertest/io/output_record.h"
 #include "report/figure_format.h"
 #include "report/labels.h"
 #include "report/procedure_plots.h"
@@ -609,7 +610,8 @@ class ReportWriter {
       const json readable = labels_("ui." + type->get<std::string>());
       fact_row("ui.type", &readable);
     }
-    const std::string output_unit = pretty_unit(instrument.value("output_unit", ""));
+    // K divides a rate: a counter's pulses per sample interval are read as pulse/s (output_unit_as_rate).
+    const std::string output_unit = pretty_unit(output_unit_as_rate(instrument.value("output_unit", "")));
     fact_row("ui.output_unit", member(instrument, "output_unit"));
     const bool gyro = instrument.value("type", "gyro") == "gyro";
     fact_row("ui.nominal_scale_factor", member(instrument, "nominal_scale_factor"),

@@ -113,6 +113,8 @@ struct ParameterSpec {
   ParameterSpec& writes_file() { output_file = true; return *this; }
   // A yes/no parameter stored through a binder (a bool member is one already).
   ParameterSpec& boolean() { type = ParameterType::boolean; return *this; }
+  // A text parameter stored through a binder (a std::string member is one already).
+  ParameterSpec& text() { type = ParameterType::text; return *this; }
   // Plans default to the [instrument] key; with only = true they have no key of their own for it.
   ParameterSpec& instrument_gives(std::string key, bool only = false) {
     instrument_default = std::move(key);

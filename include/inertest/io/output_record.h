@@ -76,20 +76,22 @@ void set_record_readers(ProcedureCall& call, const OutputRecordSource& source, s
 // per deg/s: the output of GJB 2426A eq. (19) is a rate. A FOG's counts per 10 ms taken as pulse/s
 // gave a bias 100 times too small. For a call whose output_unit counts pulses (counts_pulses), by the
 // inputs of `spec` that `given` says are given:
-//  - a given file or runs input holding no raw samples (a table of mean outputs: test points,
-//    positions, gains) has no sample interval: a ParameterError on output_unit;
-//  - with raw samples (InputSpec::raw_samples), output_unit becomes pulse/s and call.pulse_counts is
-//    set; output records (InputSpec::records) are read as pulse/s, count x the sample rate: the one
-//    given or the record stores (a timed record's: its mean interval); a record without one is an
-//    Error naming it. Call after set_record_readers.
+//  - output_unit becomes pulse/s (output_unit_as_rate: a table of mean outputs, test points or
+//    positions, is taken as per second, as a lab reports a counter's means);
+//  - with raw samples (InputSpec::raw_samples) call.pulse_counts is set; output records
+//    (InputSpec::records) are read as pulse/s, count x the sample rate: the one given or the record
+//    stores (a timed record's: its mean interval); a record without one is an Error naming it.
+// Call after set_record_readers.
 // Another unit, or values alone (polarity's outputs, whose sign is the same in counts): nothing.
 void read_pulse_counts_as_rates(ProcedureCall& call, const ProcedureSpec& spec,
                                 const std::function<bool(const InputSpec&)>& given,
                                 std::optional<double> sample_rate_hz);
 
-// A table of mean outputs (`what`: "CSV of test points", an array of them) has no sample interval:
-// an output unit that counts pulses is a ParameterError on output_unit (read_pulse_counts_as_rates).
-void require_outputs_per_second(const std::string& output_unit, const std::string& what);
+// The unit outputs are reported in: pulse/s for an output unit that counts pulses per sample
+// interval (records are converted; a table's mean outputs, test points or positions, are taken as
+// per second, as a lab reports a counter's means: a mean has no interval left to convert it by);
+// another unit as it is.
+std::string output_unit_as_rate(const std::string& output_unit);
 
 // For a procedure that reads its raw records itself, when call.pulse_counts: each output times the
 // record's `sample_rate_hz` (> 0), pulse/s.

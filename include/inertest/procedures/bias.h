@@ -21,6 +21,9 @@
 // (earth_rate.h) is subtracted from the bias. Stability and random walk are unaffected.
 #pragma once
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <optional>
 #include <span>
 #include <string>
@@ -104,14 +107,36 @@ void check_bias_conversion(const ProcedureCall& call, const BiasOptions& options
 std::vector<double> read_bias_record(const ProcedureCall& call, const std::string& file, const BiasOptions& options);
 
 // Declares eq. (19)'s conversion on `definition`, alike for bias, its repeatability and temperature
-// sensitivity: scale_factor (K; a plan without it takes [instrument] nominal_scale_factor, unless its
-// records hold deg/h) and input
-// ("output", or "deg/h" for records in deg/h already: the flag --input-deg-h), stored in the
+// sensitivity: sample_rate_hz (--rate), output_unit (pulse: counts per sample interval, read as
+// pulse/s at that rate or the record's), scale_factor (K; a plan without it takes [instrument]
+// nominal_scale_factor, unless its records hold deg/h, which take neither K nor the output unit) and
+// input ("output", or "deg/h" for records in deg/h already: the flag --input-deg-h), stored in the
 // BiasOptions that `conversion` gives of the procedure's Options.
 template <typename Options, typename Result>
 ProcedureDefinition<Options, Result>& bias_conversion_parameters(ProcedureDefinition<Options, Result>& definition,
                                                                   BiasOptions& (*conversion)(Options&)) {
   return definition
+      .parameter(ParameterSpec("sample_rate_hz", "sample rate (default: the rate the record stores, an HDF5 or TDMS "
+                                                 "channel's; one that contradicts it is an error)")
+                     .unit_is("Hz")
+                     .command_line_name_is("rate")
+                     .instrument_gives("sample_rate_hz"),
+                 [conversion](Options& options, const nlohmann::json& value) {
+                   // Given, it must be a rate: 0 stands for none given (the record's, at compute).
+                   const double rate = value.get<double>();
+                   if (!(rate > 0.0) || !std::isfinite(rate)) {
+                     throw ParameterError("sample_rate_hz", fmt::format("sample_rate_hz must be positive, got {} Hz", rate));
+                   }
+                   conversion(options).sample_rate_hz = rate;
+                 })
+      .parameter(ParameterSpec("output_unit", "instrument output unit, for the report (pulse: counts per sample "
+                                              "interval, read as pulse/s)")
+                     .text()
+                     .instrument_gives("output_unit", true)
+                     .instrument_gives_when("input", "output"),
+                 [conversion](Options& options, const nlohmann::json& value) {
+                   conversion(options).output_unit = value.get<std::string>();
+                 })
       .parameter(ParameterSpec("scale_factor", "K")
                      .unit_is("output units per deg/s")
                      .instrument_gives("nominal_scale_factor")

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "inertest/campaign/campaign.h"
@@ -85,6 +86,62 @@ file = "t60.txt"
     EXPECT_EQ(verdict.at("pass").get<bool>(), verdict.at("figure") == "bias") << verdict.dump();
   }
   EXPECT_EQ(summary.results.at("verdict"), "FAIL");
+}
+
+// [instrument] output_unit = "pulse": every bias step's records hold counts per sample interval (4 Hz),
+// read as pulse/s, so counts a quarter of the rates give the rates' figures; records in deg/h are
+// no counts and are read as they are.
+TEST(BiasStepTest, PulseCountsOfTheInstrumentInEveryBiasStep) {
+  ScratchDirectory scratch;
+  for (int i = 1; i <= 6; ++i) {
+    scratch.write("rates" + std::to_string(i) + ".txt", constant_record(0.1 * i + 0.01 * (i % 2), 8));
+    scratch.write("counts" + std::to_string(i) + ".txt", constant_record((0.1 * i + 0.01 * (i % 2)) / 4.0, 8));
+  }
+  const auto figures = [&](const std::string& unit, const std::string& prefix) {
+    std::string header = kHeader;
+    header.replace(header.find("pulse/s"), 7, unit);
+    const std::string plan = scratch.write(prefix + ".toml", header + fmt::format(R"(
+[[procedure]]
+kind = "bias"
+file = "{0}1.txt"
+smoothing_s = [1]
+
+[[procedure]]
+kind = "bias_repeatability"
+files = ["{0}1.txt", "{0}2.txt", "{0}3.txt", "{0}4.txt", "{0}5.txt", "{0}6.txt"]
+
+[[procedure]]
+kind = "bias_temperature"
+[[procedure.run]]
+temperature_degC = 20
+file = "{0}1.txt"
+[[procedure.run]]
+temperature_degC = 60
+file = "{0}2.txt"
+
+[[procedure]]
+kind = "bias"
+name = "rates in deg per h"
+file = "rates1.txt"
+input = "deg/h"
+smoothing_s = [1]
+)", prefix));
+    const CampaignSummary summary = run_campaign(plan, scratch.path() + "/" + prefix);
+    nlohmann::json results = nlohmann::json::array();
+    for (const auto& procedure : summary.results.at("procedures")) results.push_back(procedure.at("result"));
+    return results;
+  };
+  const nlohmann::json of_rates = figures("pulse/s", "rates");
+  const nlohmann::json of_counts = figures("pulse", "counts");
+  for (std::size_t step = 0; step < 4; ++step) {
+    for (const char* figure : {"bias", "bias_repeatability", "bias_temperature_sensitivity"}) {
+      if (!of_rates.at(step).contains(figure)) continue;
+      EXPECT_NEAR(of_counts.at(step).at(figure).at("value").get<double>(),
+                  of_rates.at(step).at(figure).at("value").get<double>(), 1e-12)
+          << step << " " << figure;
+    }
+  }
+  EXPECT_NEAR(of_counts.at(3).at("bias").at("value").get<double>(), 0.11, 1e-12);  // deg/h as read
 }
 
 void expect_plan_error(const std::string& body, const std::string& message) {

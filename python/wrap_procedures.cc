@@ -84,7 +84,7 @@ ResultOf<BiasTag> bias_of(const DoubleArray& output, double sample_rate_hz, std:
     rates.assign(samples.begin(), samples.end());
     pulse_counts_as_rates(rates, sample_rate_hz);
     samples = rates;
-    options.output_unit = "pulse/s";
+    options.output_unit = output_unit_as_rate(output_unit);
   }
   BiasResult result;
   {

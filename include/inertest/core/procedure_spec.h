@@ -261,9 +261,9 @@ struct InputSpec {
   // The file (file) or each run's file (runs) may hold the instrument's raw samples, which the
   // procedure reads itself (a scale factor's long record, angular-vibration records; threshold's
   // file with method 3). With an output unit that counts pulses per sample interval, the call's
-  // pulse_counts is then set and the procedure multiplies the outputs by their sample rate (a
-  // procedure whose file is a table this time refuses it). A given file or runs input that holds no
-  // raw samples is a table of means: such a call is refused (io/output_record.h).
+  // pulse_counts is then set and the procedure multiplies the outputs by their sample rate. A file
+  // or runs input without raw samples is a table of mean outputs, taken per second
+  // (io/output_record.h read_pulse_counts_as_rates).
   InputSpec& holds_raw_samples() { raw_samples = true; return *this; }
   // Output records with the time of each sample (call.read_timed_record): a time column (--time-column,
   // time_column; default the first) beside the output column, or the output column alone sampled at

@@ -97,8 +97,9 @@ std::string output_unit_as_rate(const std::string& output_unit);
 // record's `sample_rate_hz` (> 0), pulse/s.
 void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz);
 
-// The mean sample rate of time stamps (s, increasing; fewer than 2 is an Error): (n - 1) / (t[n-1] - t[0]). A pulse
-// counter's interval is the nominal one: each stamp's own would carry the logger's jitter into the count.
+// The mean sample rate of time stamps (s, increasing; fewer than 2 is an Error): (n - 1) /
+// (t[n-1] - t[0]). A pulse counter's interval is the nominal one: each stamp's own would carry the
+// logger's jitter into the count.
 double mean_sample_rate_hz(std::span<const double> time_s);
 
 // For a procedure that divides the instrument's output by its scale factor K: throws Error naming

@@ -246,7 +246,7 @@ void read_pulse_counts_as_rates(ProcedureCall& call, const ProcedureSpec& spec,
   call.read_timed_record = [read = call.read_timed_record, rate, no_rate](const std::string& file) {
     TimedRecord record = read(file);
     if (rate == 0.0 && record.time_s.size() < 2) throw no_rate(file);  // one time stamp is no interval
-    pulse_counts_as_rates(record.output, rate > 0.0 ? rate : mean_sample_rate_hz(record.time_s));
+    pulse_counts_as_rates(record, rate > 0.0 ? std::optional<double>(rate) : std::nullopt);
     return record;
   };
 }
@@ -257,6 +257,10 @@ std::string output_unit_as_rate(const std::string& output_unit) {
 
 void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz) {
   for (double& count : outputs) count *= sample_rate_hz;
+}
+
+void pulse_counts_as_rates(TimedRecord& record, std::optional<double> sample_rate_hz) {
+  pulse_counts_as_rates(record.output, sample_rate_hz ? *sample_rate_hz : mean_sample_rate_hz(record.time_s));
 }
 
 double mean_sample_rate_hz(std::span<const double> time_s) {

@@ -93,19 +93,20 @@ std::vector<GyroMisalignmentRow> read_gyro_misalignment_records(const std::strin
     }
     const TextTable table = read_with_header(record);
     const RecordSource source{record, table.row_lines};
+    const SourceLocation header{record, table.first_data_line > 0 ? table.first_data_line - 1 : 0, 0};
     RevolutionMean mean;
     if (table.has_column("table_angle_deg")) {
       mean = whole_revolution_mean_by_angle(table.column("table_angle_deg"), table.column("output"), source);
     } else if (table.has_column("time_s")) {
       mean = whole_revolution_mean_by_time(table.column("time_s"), table.column("output"), row.rate_dps, source);
     } else {
-      throw Error(SourceLocation{record, table.first_data_line > 0 ? table.first_data_line - 1 : 0, 0},
+      throw Error(header,
                   "record: needs a 'table_angle_deg' or a 'time_s' column to cut whole revolutions");
     }
     row.output = mean.mean;
     if (pulse_counts) {
       if (!table.has_column("time_s")) {
-        throw Error(SourceLocation{record, table.first_data_line > 0 ? table.first_data_line - 1 : 0, 0},
+        throw Error(header,
                     "record: pulses counted per sample interval need a 'time_s' column for their interval");
       }
       row.output *= with_file_context(record, [&] { return mean_sample_rate_hz(table.column("time_s")); });

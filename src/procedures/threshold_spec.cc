@@ -162,9 +162,7 @@ ProcedureSpec threshold_spec() {
         set_record_readers(reading, source, 4, options.sample_rate_hz, options.time_column);
         require_raw_output(reading, file, options.threshold.output_unit, "method 3 divides the output by K");
         TimedRecord record = read_timed_record(source, options.sample_rate_hz, options.time_column, 4);
-        if (call.pulse_counts) {
-          pulse_counts_as_rates(record.output, options.sample_rate_hz.value_or(mean_sample_rate_hz(record.time_s)));
-        }
+        if (call.pulse_counts) pulse_counts_as_rates(record, options.sample_rate_hz);
         return threshold_rotating(record.time_s, record.output, options.table_rate_deg_s, options.threshold);
       });
 }

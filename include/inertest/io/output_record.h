@@ -96,6 +96,8 @@ std::string output_unit_as_rate(const std::string& output_unit);
 // For a procedure that reads its raw records itself, when call.pulse_counts: each output times the
 // record's `sample_rate_hz` (> 0), pulse/s.
 void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz);
+// The same for a timed record: at `sample_rate_hz` when given, else at its mean sample rate.
+void pulse_counts_as_rates(TimedRecord& record, std::optional<double> sample_rate_hz);
 
 // The mean sample rate of time stamps (s, increasing; fewer than 2 is an Error): (n - 1) /
 // (t[n-1] - t[0]). A pulse counter's interval is the nominal one: each stamp's own would carry the

@@ -1,11 +1,13 @@
 // An output unit of pulse is a pulse counter read once a sample interval (io/output_record.h
 // read_pulse_counts_as_rates): every command that reads the instrument's raw records takes the
-// counts times the sample rate, so a record of counts with --output-unit pulse gives the figures of
-// the same record in pulse/s; a table of mean outputs, which has no interval, is refused.
+// counts times the sample rate, so a record of counts with --output-unit pulse (an IMU's --gyro-unit
+// pulse) gives the figures of the same record in pulse/s; a table of mean outputs, which has no
+// interval, is taken per second.
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -56,6 +58,7 @@ struct PulseCase {
   const char* name;
   double sample_rate_hz;
   DataSet data;
+  const char* unit_flag = "--output-unit";
 };
 
 // A record per test point at 100 Hz: K = 100 pulse/s per deg/s, static runs at both ends.
@@ -147,6 +150,69 @@ std::vector<std::string> misalignment_records(ScratchDirectory& directory,
   return {"misalignment", "gyro", directory.write("listing.csv", listing), "--records", "--scale-factor", "100"};
 }
 
+// The example `example` of the source tree written to `name` in `directory` with the columns
+// `columns` (0-based) of every row after the header passed through `output`.
+std::string example_with(ScratchDirectory& directory, const std::string& example, const std::string& name,
+                         const std::vector<std::size_t>& columns, const std::function<double(double)>& output) {
+  const std::string text = testing::read_file(testing::source_path(example));
+  std::string record = text.substr(0, text.find('\n') + 1);
+  for (std::size_t start = record.size(), end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
+    std::vector<std::string> cells;
+    for (std::size_t from = start, comma;; from = comma + 1) {
+      comma = std::min(text.find(',', from), end);
+      cells.push_back(text.substr(from, comma - from));
+      if (comma == end) break;
+    }
+    for (std::size_t column : columns) cells[column] = fmt::format("{:.17g}", output(std::stod(cells[column])));
+    record += fmt::format("{}\n", fmt::join(cells, ","));
+  }
+  return directory.write(name, record);
+}
+
+// The example chamber ramp (0.1 Hz, pulse/s, K = 36000) with its output column passed through `output`.
+std::string chamber_ramp(ScratchDirectory& directory, const std::function<double(double)>& output) {
+  return example_with(directory, "examples/temperature_model/ramp.csv", "ramp.csv", {1}, output);
+}
+
+// Bias temperature model (IEEE Std 952-1997 Annex B) of the chamber ramp.
+std::vector<std::string> temperature_model(ScratchDirectory& directory, const std::function<double(double)>& output) {
+  return {"temperature-model",    chamber_ramp(directory, output),
+          "--temperature-column", "coil",
+          "--scale-factor",       "36000",
+          "--interval",           "60",
+          "--stability-window",   "600",
+          "--rate-window",        "600"};
+}
+
+// The example coefficients applied to the chamber ramp.
+std::vector<std::string> temperature_apply(ScratchDirectory& directory, const std::function<double(double)>& output) {
+  return {"temperature-apply",  chamber_ramp(directory, output),
+          "--coefficients",     testing::source_path("examples/temperature_model/coefficients.json"),
+          "--scale-factor",     "36000",
+          "--interval",         "60",
+          "--stability-window", "600"};
+}
+
+// The example IMU tumble (25 Hz) with its gyro columns passed through `output`: delta angles counted
+// per sample interval (Tedaldi, Pretto and Menegatti, ICRA 2014).
+std::string imu_tumble(ScratchDirectory& directory, const std::function<double(double)>& output) {
+  return example_with(directory, "examples/imu_calibration/tumble.csv", "tumble.csv", {4, 5, 6}, output);
+}
+
+std::vector<std::string> imu_calibration(ScratchDirectory& directory, const std::function<double(double)>& output) {
+  return {"imu-calibration", imu_tumble(directory, output)};
+}
+
+// The calibration of the tumble in pulse/s, applied.
+std::vector<std::string> imu_apply(ScratchDirectory& directory, const std::function<double(double)>& output) {
+  ScratchDirectory rates;
+  const std::string calibration = directory.path() + "/calibration.json";
+  const auto made = run_cli({"imu-calibration", imu_tumble(rates, [](double rate) { return rate; }), "--gyro-unit",
+                             "pulse/s", "--export", calibration});
+  EXPECT_EQ(made.exit_code, 0) << made.err;
+  return {"imu-apply", calibration, imu_tumble(directory, output)};
+}
+
 class PulseCountsCommand : public ::testing::TestWithParam<PulseCase> {};
 
 TEST_P(PulseCountsCommand, CountsPerIntervalGiveTheFiguresOfTheRates) {
@@ -155,7 +221,7 @@ TEST_P(PulseCountsCommand, CountsPerIntervalGiveTheFiguresOfTheRates) {
   const auto figures = [&](ScratchDirectory& directory, const std::function<double(double)>& output,
                            const std::string& unit) {
     std::vector<std::string> arguments = c.data(directory, output);
-    arguments.insert(arguments.end(), {"--output-unit", unit, "--json"});
+    arguments.insert(arguments.end(), {c.unit_flag, unit, "--json"});
     const auto run = run_cli(arguments);
     if (run.exit_code != 0) return nlohmann::json();
     std::string text = run.out;  // the files' places are not figures
@@ -185,7 +251,11 @@ INSTANTIATE_TEST_SUITE_P(RawRecords, PulseCountsCommand,
                                            PulseCase{"scale_factor_record", 100.0, scale_factor_record},
                                            PulseCase{"threshold_slow_rotation", 10.0, slow_rotation},
                                            PulseCase{"bandwidth_records", 10000.0, vibration},
-                                           PulseCase{"misalignment_records", 50.0, misalignment_records}),
+                                           PulseCase{"misalignment_records", 50.0, misalignment_records},
+                                           PulseCase{"temperature_model", 0.1, temperature_model},
+                                           PulseCase{"temperature_apply", 0.1, temperature_apply},
+                                           PulseCase{"imu_calibration", 25.0, imu_calibration, "--gyro-unit"},
+                                           PulseCase{"imu_apply", 25.0, imu_apply, "--gyro-unit"}),
                          [](const auto& test) { return std::string(test.param.name); });
 
 // A table of mean outputs has no interval left to convert by: its means are taken per second, as a

@@ -21,6 +21,9 @@ namespace {
 
 struct ImuApplyOptions {
   std::string columns = ImuCalibrationOptions().columns;
+  // The record's output units; "" (the default): the unit its channels store, else the calibration's.
+  std::string accelerometer_unit;
+  std::string gyro_unit;
   double gravity_m_s2 = constants::kStandardGravity;
   std::string output_file;  // "" : the calibrated record is not written
 
@@ -99,6 +102,12 @@ ProcedureSpec imu_apply_spec() {
       .input(InputSpec("record", "IMU record: time and six outputs").read_from_file("RECORD", "file"))
       .parameter(ParameterSpec("columns", "time, ax, ay, az, gx, gy, gz: header names or 1-based positions"),
                  &Options::columns)
+      .parameter(ParameterSpec("accelerometer_unit", "the record's accelerometer output unit (default: the unit its "
+                                                     "channels store, else the calibration's; pulse: read as pulse/s)"),
+                 &Options::accelerometer_unit)
+      .parameter(ParameterSpec("gyro_unit", "the record's gyro output unit (default: the unit its channels store, else "
+                                            "the calibration's; pulse: read as pulse/s)"),
+                 &Options::gyro_unit)
       .parameter(ParameterSpec("gravity_m_s2", "local gravity")
                      .unit_is("m/s^2")
                      .command_line_name_is("gravity")
@@ -121,21 +130,31 @@ ProcedureSpec imu_apply_spec() {
         // In a plan, into the campaign's staging directory: beside results.json once every step has run.
         if (!options.output_file.empty()) options.output_file = call.output_path(options.output_file);
         const std::array<TriadCalibration, 2> calibration = read_imu_calibration(call.files.at("calibration"));
-        const ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
-        // A record that stores its units must store the calibration's output units; a calibration in
-        // count (the label of every calibration made before records' units were read) is applied to
-        // the record's samples as they are, and said.
+        ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
+        // The record's units (pulses per sample interval read as pulse/s, as imu-calibration reads
+        // them) must be the calibration's output units; a calibration in count (the label of every
+        // calibration made before records' units were read) is applied to the samples of a record
+        // that stores another unit as they are, and said.
         std::vector<std::string> warnings;
         for (std::size_t triad = 0; triad < 2; ++triad) {
+          const char* name = triad == 0 ? "accelerometer" : "gyro";
           const std::string& unit = calibration[triad].output_unit;
-          if (unit == kUnstatedOutputUnit && !record.stored_units[triad].empty() &&
-              unit != record.stored_units[triad]) {
+          const std::string& given = triad == 0 ? options.accelerometer_unit : options.gyro_unit;
+          const std::string& stored = record.stored_units[triad];
+          if (given.empty() && unit == kUnstatedOutputUnit && !stored.empty() && unit != stored) {
             warnings.push_back(fmt::format("the calibration's {} output unit is count, the record's {}: its figures are "
                                            "applied to the samples as they are (imu-calibration now calibrates in the "
                                            "record's unit)",
-                                           triad == 0 ? "accelerometer" : "gyro", record.stored_units[triad]));
-          } else {
-            imu_output_unit(record, triad, unit);
+                                           name, stored));
+            continue;
+          }
+          const std::string record_unit =
+              imu_pulse_counts_as_rates(record, triad, given.empty() && stored.empty() ? unit : given);
+          if (!same_unit(record_unit, unit)) {
+            throw Error(SourceLocation{record.source, 0, 0},
+                        fmt::format("the record's {0} output unit is {1}, the calibration's {2}: give the record's "
+                                    "unit (--{0}-unit; {0}_unit) or a calibration made in it",
+                                    name, record_unit, unit));
           }
         }
         ImuApplyResult result = apply_imu_calibration(calibration, record, options);

@@ -20,6 +20,7 @@
 #include "inertest/core/surface_gravity.h"
 #include "inertest/io/channel_record.h"
 #include "inertest/io/mapped_file.h"
+#include "inertest/io/output_record.h"
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
 #include "inertest/numerics/least_squares.h"
@@ -586,6 +587,14 @@ std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const st
                                                     triad == 0 ? "accelerometer" : "gyro", given, stored));
   }
   return stored;
+}
+
+std::string imu_pulse_counts_as_rates(ImuRecord& record, std::size_t triad, const std::string& given) {
+  const std::string unit = imu_output_unit(record, triad, given);
+  if (!counts_pulses(unit)) return unit;
+  const double rate = with_file_context(record.source, [&] { return mean_sample_rate_hz(record.time_s); });
+  for (std::vector<double>& axis : triad == 0 ? record.accelerometer : record.gyro) pulse_counts_as_rates(axis, rate);
+  return record.stored_units.at(triad) = output_unit_as_rate(unit);
 }
 
 ImuRecord read_imu_record(const std::string& path, const std::string& columns) {

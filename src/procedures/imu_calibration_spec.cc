@@ -95,9 +95,11 @@ ProcedureSpec imu_calibration_spec() {
       .parameter(ParameterSpec("columns", "time, ax, ay, az, gx, gy, gz: header names or 1-based positions"),
                  &Options::columns)
       .parameter(ParameterSpec("accelerometer_unit",
-                               "the record's accelerometer output unit (default: the unit its channels store, else count)"),
+                               "the record's accelerometer output unit (default: the unit its channels store, else "
+                               "count; pulse: delta velocities counted per sample interval, read as pulse/s)"),
                  &Options::accelerometer_unit)
-      .parameter(ParameterSpec("gyro_unit", "the record's gyro output unit (default: the unit its channels store, else count)"),
+      .parameter(ParameterSpec("gyro_unit", "the record's gyro output unit (default: the unit its channels store, else count; "
+                                            "pulse: delta angles counted per sample interval, read as pulse/s)"),
                  &Options::gyro_unit)
       .parameter(ParameterSpec("gravity_m_s2", "local gravity")
                      .unit_is("m/s^2")
@@ -144,8 +146,10 @@ ProcedureSpec imu_calibration_spec() {
                    "各次转动后重力方向残差", "", {"time", "residual"}},
                   [](const Result& result) { return residual_curve(result, true); })
       .field({"warnings", FieldRole::hidden, "warnings", "警告", ""}, &Result::warnings)
-      .compute([](const ProcedureCall& call, const Options& options) {
-        const ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
+      .compute([](const ProcedureCall& call, Options options) {
+        ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
+        options.accelerometer_unit = imu_pulse_counts_as_rates(record, 0, options.accelerometer_unit);
+        options.gyro_unit = imu_pulse_counts_as_rates(record, 1, options.gyro_unit);
         Result result = calibrate_imu(record, options);
         if (!options.export_file.empty()) {
           write_file_atomically(call.output_path(options.export_file), json_text(calibration_file_json(result), 2) + "\n");

@@ -26,7 +26,9 @@ ProcedureSpec temperature_apply_spec() {
           "用温箱试验拟合的零偏温度模型，按各区间的温度与温度变化率从记录的零偏中扣除；给出补偿后与补偿前同窗口的零偏稳定性。")
       .example({"examples/temperature_model/ramp.csv", "--coefficients", "examples/temperature_model/coefficients.json",
                 "--scale-factor", "36000", "--interval", "60", "--stability-window", "600"})
-      .input(InputSpec("record", "record: time, output and temperature columns").read_from_file("RECORD", "file"))
+      .input(InputSpec("record", "record: time, output and temperature columns")
+                 .read_from_file("RECORD", "file")
+                 .holds_raw_samples())
       .input(InputSpec("coefficients", "the exported coefficients (.json or .csv)").read_from_file("--coefficients", "coefficients"));
   thermal::record_parameters(definition);
   definition.parameter(ParameterSpec("temperature_column", "the temperature column (default: the exported sensor)"),
@@ -55,11 +57,11 @@ ProcedureSpec temperature_apply_spec() {
       .compute([](const ProcedureCall& call, const Options& options) {
         const ThermalCompensation compensation = read_thermal_compensation(call.files.at("coefficients"));
         const std::string sensor = options.temperature_columns.empty() ? compensation.sensor : options.temperature_columns.front();
-        const std::string& path = call.files.at("record");
-        const ThermalRecord record = read_thermal_record(path, options.time_column, options.output_column, {sensor});
+        const ThermalRecord record = thermal::read_record(call, options, {sensor});
         // A complaint about the record (too short for its windows) names it: of the two files the
         // command reads, the coefficients' errors already name theirs.
-        return with_file_context(path, [&] { return apply_thermal_compensation(record, compensation, options); });
+        return with_file_context(call.files.at("record"),
+                                 [&] { return apply_thermal_compensation(record, compensation, options); });
       });
 }
 

@@ -14,6 +14,7 @@
 #include "inertest/core/test_temperature.h"
 #include "inertest/core/units.h"
 #include "inertest/io/mapped_file.h"
+#include "inertest/io/output_record.h"
 #include "inertest/io/text_table.h"
 #include "inertest/io/time_stamps.h"
 #include "inertest/numerics/least_squares.h"
@@ -312,6 +313,16 @@ double number_cell(const TextField& cell, const std::string& path, std::size_t l
 }  // namespace
 
 namespace thermal {
+
+ThermalRecord read_record(const ProcedureCall& call, const TemperatureModelOptions& options,
+                          const std::vector<std::string>& temperature_columns) {
+  const std::string& path = call.files.at("record");
+  ThermalRecord record = read_thermal_record(path, options.time_column, options.output_column, temperature_columns);
+  if (call.pulse_counts) {
+    with_file_context(path, [&] { pulse_counts_as_rates(record.output, mean_sample_rate_hz(record.time_s)); });
+  }
+  return record;
+}
 
 std::vector<Interval> intervals_of(const ThermalRecord& record, double interval_s, double scale_factor) {
   const std::size_t sensors = record.temperature_degC.size();

@@ -30,8 +30,17 @@ void set_rates(std::vector<Interval>& intervals, std::size_t sensor, double rate
 double compensated_bias(const Interval& interval, std::size_t sensor, std::span<const ThermalCoefficient> coefficients,
                         double reference_temperature_degC);
 
-// The parameters of a spec reading a chamber record: K, the time and output columns, the averaging
-// interval and the stability window (temperature_model_spec.cc, temperature_apply_spec.cc).
+// The chamber record of `call` (read_thermal_record) with the columns of `options` and the given
+// temperature columns. Its outputs in an output unit that counts pulses per sample interval
+// (call.pulse_counts) are made pulse/s at the record's mean sample rate, which K, output per deg/s,
+// divides (GJB 2426A-2004 eq. (19)): counts per 1 s interval taken as pulse/s gave the right bias
+// only by the accident of a 1 Hz log.
+ThermalRecord read_record(const ProcedureCall& call, const TemperatureModelOptions& options,
+                          const std::vector<std::string>& temperature_columns);
+
+// The parameters of a spec reading a chamber record: K and the output unit, the time and output
+// columns, the averaging interval and the stability window (temperature_model_spec.cc,
+// temperature_apply_spec.cc). The record input holds raw samples (InputSpec::holds_raw_samples).
 template <typename Result>
 void record_parameters(ProcedureDefinition<TemperatureModelOptions, Result>& definition) {
   using Options = TemperatureModelOptions;
@@ -42,6 +51,10 @@ void record_parameters(ProcedureDefinition<TemperatureModelOptions, Result>& def
                      .instrument_gives("nominal_scale_factor")
                      .instrument_gives_if(instrument_is_gyro),
                  &Options::scale_factor)
+      .parameter(ParameterSpec("output_unit", "instrument output unit (pulse: counts per sample interval, read as "
+                                              "pulse/s at the record's mean sample rate)")
+                     .instrument_gives("output_unit", true),
+                 &Options::output_unit)
       .parameter(ParameterSpec("time_column", "the time column (s) by name or 1-based index"), &Options::time_column)
       .parameter(ParameterSpec("output_column", "the output column by name or 1-based index"), &Options::output_column)
       .parameter(ParameterSpec("interval_s", "averaging interval").unit_is("s").command_line_name_is("interval"),

@@ -76,7 +76,8 @@ ProcedureSpec temperature_model_spec() {
                 "chamber", "--scale-factor", "36000", "--interval", "60", "--stability-window", "600",
                 "--rate-window", "600"})
       .input(InputSpec("record", "chamber ramp record: time, output and temperature columns")
-                 .read_from_file("RECORD", "file"));
+                 .read_from_file("RECORD", "file")
+                 .holds_raw_samples());
   thermal::record_parameters(definition);
   definition
       .parameter(ParameterSpec("temperature_column", "a temperature column (degC) by name or 1-based index; repeat for "
@@ -148,8 +149,7 @@ ProcedureSpec temperature_model_spec() {
       .unit_of("residual_rms", "deg/h")
       .unit_of("bias_temperature_sensitivity", "deg/h/degC");
   return definition.compute([](const ProcedureCall& call, const Options& options) {
-    const ThermalRecord record = read_thermal_record(call.files.at("record"), options.time_column,
-                                                     options.output_column, options.temperature_columns);
+    const ThermalRecord record = thermal::read_record(call, options, options.temperature_columns);
     Result result = temperature_model(record, options);
     if (!options.export_file.empty()) {
       const std::string path = call.output_path(options.export_file);

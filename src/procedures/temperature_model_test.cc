@@ -406,6 +406,61 @@ reference_temperature = nan
   }
 }
 
+// [instrument] output_unit = "pulse": the chamber record's outputs are counts per sample interval
+// (4 Hz), which both steps read as pulse/s at the record's mean rate, so counts a quarter of the
+// rates give the rates' figures (K = nominal_scale_factor, pulse/s per deg/s).
+TEST(TemperatureModel, PulseCountsOfTheInstrumentInAPlan) {
+  sim::ThermalGyroParameters gyro;
+  gyro.sample_rate_hz = 4.0;
+  sim::Random random(5);
+  sim::ThermalRecordSamples samples = sim::simulate_thermal_record(short_chamber(), gyro, random);
+  const testing::ScratchDirectory scratch;
+  scratch.write("rates.csv", sim::thermal_record_csv(samples));
+  for (double& output : samples.output) output /= gyro.sample_rate_hz;
+  scratch.write("counts.csv", sim::thermal_record_csv(samples));
+  const auto results = [&](const std::string& unit, const std::string& records) {
+    const std::string plan =
+        scratch.write(records + ".toml",
+                      fmt::format(R"([instrument]
+id = "FOG-7"
+output_unit = "{0}"
+nominal_scale_factor = 36000
+
+[[procedure]]
+kind = "temperature_model"
+file = "{1}.csv"
+temperature_column = ["coil"]
+
+[[procedure]]
+kind = "temperature_apply"
+file = "{1}.csv"
+coefficients = "{2}"
+)",
+                                  unit, records, testing::source_path("examples/temperature_model/coefficients.json")));
+    return run_campaign(plan, scratch.path() + "/" + records).results.at("procedures");
+  };
+  const nlohmann::json of_rates = results("pulse/s", "rates");
+  const nlohmann::json of_counts = results("pulse", "counts");
+  for (std::size_t step = 0; step < 2; ++step) {
+    for (const char* figure : {"residual_bias_stability", "raw_bias_stability"}) {
+      const double rates = of_rates.at(step).at("result").at(figure).at("value").get<double>();
+      EXPECT_NEAR(of_counts.at(step).at("result").at(figure).at("value").get<double>(), rates, 1e-9 * rates)
+          << step << " " << figure;
+    }
+  }
+  const nlohmann::json& coefficients = of_rates.at(0).at("result").at("bias_coefficients");
+  for (const auto& [name, coefficient] : coefficients.items()) {
+    const double rates = coefficient.at("value").get<double>();
+    EXPECT_NEAR(of_counts.at(0).at("result").at("bias_coefficients").at(name).at("value").get<double>(), rates,
+                1e-9 * std::abs(rates))
+        << name;
+  }
+  // Taken as pulse/s, the counts are a bias four times smaller.
+  const double raw = of_rates.at(0).at("result").at("raw_bias_stability").at("value").get<double>();
+  EXPECT_NEAR(results("pulse/s", "counts").at(0).at("result").at("raw_bias_stability").at("value").get<double>(),
+              raw / 4.0, 1e-9 * raw);
+}
+
 // A bias that changes with temperature by less than the record resolves (D_T = 3e-5 deg/h/degC
 // under 0.002 deg/sqrt(h) of noise): cross-validation chooses order 0 on these seeds, and the
 // sensitivity is the order-1 fit's |D_T| with its 1-sigma (it was reported as 0 +- 0), within 3

@@ -136,6 +136,15 @@ ImuRecord read_imu_record(const std::string& path, const std::string& columns);
 // both (a deg/s gyro calibrated as count reported 57.3 count/(rad/s)).
 std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given);
 
+// An IMU that counts pulses per sample interval (delta angles or delta velocities in pulses: an
+// output unit of pulse or pulses, core/units.h counts_pulses) gives rates at its sample rate: the
+// samples of the record's triad (0 the accelerometer, 1 the gyro) whose output unit, imu_output_unit
+// of `given`, counts pulses are multiplied by the record's mean sample rate, and the triad's unit
+// becomes pulse/s, which the record then stores. A scale factor in pulse/s per rad/s is the pulse/rad
+// of a data sheet; in counts per interval it changed with the logging rate. Returns the triad's
+// output unit as the record now holds it.
+std::string imu_pulse_counts_as_rates(ImuRecord& record, std::size_t triad, const std::string& given);
+
 struct StaticDetection {
   std::vector<StaticInterval> intervals;
   double accelerometer_noise_variance = 0.0;  // the median of the quietest tenth of the windows

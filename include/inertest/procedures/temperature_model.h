@@ -53,6 +53,7 @@ struct ThermalRecord {
 // and the stability window).
 struct TemperatureModelOptions {
   double scale_factor = 0.0;                 // K, output units per deg/s (bias = output / K)
+  std::string output_unit;                   // the instrument's; pulse: counts per sample interval
   std::string time_column = "time";          // the record's columns, by header name or 1-based index
   std::string output_column = "output";
   std::vector<std::string> temperature_columns;  // temperature_apply: empty takes the exported sensor

@@ -4,8 +4,9 @@
 // value-or-record input `NAME` takes a number or an array of samples (their mean, as NAME_file
 // takes a record's mean in a plan), each file input takes its plan key (a path), and each runs input
 // its plan key: a list of paths (runs 1, 2, ...) or of (number, path) pairs; output records are read
-// as a plan reads them, with the keywords `column` and `format`. The type stubs of these functions
-// are generated from procedure_specs() at build time (generate_stubs.py).
+// as a plan reads them, with the keywords `column` and `format`. `inertest.procedure(kind, **keywords)`
+// runs any declared procedure so, also those with an array-based function. The type stubs of these
+// functions are generated from procedure_specs() at build time (generate_stubs.py).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -240,6 +241,28 @@ const char* python_type(FieldValue value) {
   return "Any";
 }
 
+// The procedure of `spec` run with `keywords` as the command and the plan step run it.
+ResultOf<SpecTag> run_spec(const ProcedureSpec& spec, const py::kwargs& keywords) {
+  ProcedureCall call;
+  try {
+    call = call_of(spec, keywords);
+    spec.check(call);
+  } catch (const ParameterError& e) {
+    throw Error(e.message_naming(spec.find_parameter(e.parameter)->plan_name()));
+  }
+  ProcedureOutput output;
+  nlohmann::json json;
+  {
+    py::gil_scoped_release release;
+    // As the command and the plan step: a complaint about the data of its one file names it.
+    json = with_call_file_context(call, [&] {
+      output = spec.run(call);
+      return procedure_json(spec, output.fields);
+    });
+  }
+  return ResultOf<SpecTag>(json, procedure_text(spec, output));
+}
+
 }  // namespace
 
 std::string result_doc(const ProcedureSpec& spec) {
@@ -264,29 +287,25 @@ void wrap_specs(py::module_& module) {
     if (py::hasattr(module, spec.kind.c_str())) continue;  // it has an array-based function of its own
     generic.insert(spec.kind);
     module.def(
-        spec.kind.c_str(),
-        [&spec](const py::kwargs& keywords) {
-          ProcedureCall call;
-          try {
-            call = call_of(spec, keywords);
-            spec.check(call);
-          } catch (const ParameterError& e) {
-            throw Error(e.message_naming(spec.find_parameter(e.parameter)->plan_name()));
-          }
-          ProcedureOutput output;
-          nlohmann::json json;
-          {
-            py::gil_scoped_release release;
-            // As the command and the plan step: a complaint about the data of its one file names it.
-            json = with_call_file_context(call, [&] {
-              output = spec.run(call);
-              return procedure_json(spec, output.fields);
-            });
-          }
-          return ResultOf<SpecTag>(json, procedure_text(spec, output));
-        },
+        spec.kind.c_str(), [&spec](const py::kwargs& keywords) { return run_spec(spec, keywords); },
         docstring_of(spec).c_str());
   }
+  module.def(
+      "procedure",
+      [](const std::string& kind, const py::kwargs& keywords) {
+        const ProcedureSpec* spec = find_procedure_spec(kind);
+        if (spec == nullptr) {
+          throw Error(fmt::format("unknown procedure kind '{}' (inertest.plan_kinds() lists them)", kind));
+        }
+        return run_spec(*spec, keywords);
+      },
+      py::arg("kind"),
+      "Runs the declared procedure `kind` (a plan kind) with the keywords of its spec, as\n"
+      "inertest.<kind> does for the functions made from specs: the spec's plan keys\n"
+      "(inertest.procedure_specs()), each file input its plan key, records with column and format.\n"
+      "It reaches every input of the procedures that have an array-based function of their own, e.g.\n"
+      "a scale factor from one long record: procedure(\"scale_factor\", record=\"long.csv\",\n"
+      "sample_rate_hz=100). Returns a ProcedureResult; raises inertest.Error.");
   module.def(
       "procedure_specs",
       [generic] {

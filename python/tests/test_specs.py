@@ -239,3 +239,26 @@ def test_pulse_counts_of_a_generic_function_are_the_cli_json(tmp_path):
     steps.write_text("base_rate,base_output,rate,output\n" + "".join(f"{r[0]!r},{r[1]!r},{r[2]!r},{r[3]!r}\n" for r in rows))
     per_second = inertest.resolution(file=str(steps), scale_factor=3600, output_unit="pulse/s").to_dict()
     assert inertest.resolution(file=str(steps), scale_factor=3600, output_unit="pulse").to_dict() == per_second
+
+
+def test_procedure_reaches_every_input_of_a_kind_with_an_array_function(tmp_path):
+    # scale_factor's array function takes points; inertest.procedure takes its spec's every input:
+    # one long record at 100 Hz (K = 100 pulse/s per deg/s, 10 s at each rate), as rates and as counts.
+    rates = [0.0, 10.0, -10.0, 20.0, -20.0, 50.0, -50.0, 0.0]
+    record, counts = tmp_path / "long.csv", tmp_path / "counts.csv"
+    rows = [(rate, 100.0 * rate * (1.0 + 1e-5 * rate) + 0.3 + 0.01 * (k % 7)) for rate in rates for k in range(1000)]
+    record.write_text("rate,output\n" + "".join(f"{rate!r},{output!r}\n" for rate, output in rows))
+    counts.write_text("rate,output\n" + "".join(f"{rate!r},{output / 100.0!r}\n" for rate, output in rows))
+    expected = cli_json("scale-factor", "--record", str(record), "--sample-rate", "100", "--output-unit", "pulse/s")
+    result = inertest.procedure("scale_factor", record=str(record), sample_rate_hz=100, output_unit="pulse/s")
+    assert result.to_dict() == expected
+    assert result.scale_factor.value == pytest.approx(100.0, rel=1e-3)
+    assert inertest.procedure("scale_factor", record=str(counts), sample_rate_hz=100, output_unit="pulse").to_dict() == (
+        cli_json("scale-factor", "--record", str(counts), "--sample-rate", "100", "--output-unit", "pulse"))
+    # A generic function's kind runs alike either way.
+    assert inertest.procedure("polarity", positive=-3, negative=3.0).to_dict() == inertest.polarity(
+        positive=-3, negative=3.0).to_dict()
+    with pytest.raises(inertest.Error, match="unknown procedure kind 'scale_factors'"):
+        inertest.procedure("scale_factors", record=str(record))
+    with pytest.raises(inertest.Error, match="sample_rate_hz"):
+        inertest.procedure("scale_factor", record=str(record))

@@ -265,7 +265,14 @@ void pulse_counts_as_rates(TimedRecord& record, std::optional<double> sample_rat
 
 double mean_sample_rate_hz(std::span<const double> time_s) {
   if (time_s.size() < 2) throw Error("one time stamp has no sample interval");
-  return static_cast<double>(time_s.size() - 1) / (time_s.back() - time_s.front());
+  // Between the gaps the steps telescope; at least half the steps are none (no longer than the median).
+  double span = time_s.back() - time_s.front();
+  std::size_t steps = time_s.size() - 1;
+  for (const TimeGap& gap : find_time_gaps(time_s, {}, TimeStampOptions{}).gaps) {
+    span -= gap.time_after - gap.time_before;
+    --steps;
+  }
+  return static_cast<double>(steps) / span;
 }
 
 void require_raw_output(const ProcedureCall& call, const std::string& file, const std::string& output_unit,

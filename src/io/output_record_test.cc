@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <span>
+#include <vector>
+
 #include "inertest/core/error.h"
 #include "inertest/core/procedure_spec.h"
 #include "test_util/test_util.h"
@@ -78,6 +81,18 @@ TEST(OutputRecord, PulseCountsOfTablesAndOfOwnReaders) {
   EXPECT_FALSE(values.pulse_counts);
   EXPECT_EQ(values.parameters.at("output_unit"), "pulse");
   EXPECT_EQ(output_unit_as_rate("V"), "V");
+}
+
+// A counter's interval is the mean step between the gaps: stamps with a logger's jitter (+-3 ms at
+// 25 Hz) average to it, and a 5 s gap does not lower it.
+TEST(OutputRecord, MeanSampleRateLeavesOutTheGaps) {
+  std::vector<double> time_s;
+  for (int i = 0; i < 1000; ++i) time_s.push_back(0.04 * i + (i % 3 == 1 ? 0.003 : i % 3 == 2 ? -0.003 : 0.0));
+  EXPECT_NEAR(mean_sample_rate_hz(time_s), 25.0, 1e-12);
+  for (double& t : std::span(time_s).subspan(500)) t += 5.0;
+  // The step across the gap, 5 s and a jittered 0.034 s, is left out; 5 s kept gave 22.2 Hz.
+  EXPECT_NEAR(mean_sample_rate_hz(time_s), 998.0 / (0.04 * 999 - 0.034), 1e-9);
+  EXPECT_NEAR(mean_sample_rate_hz(std::vector<double>{2.0, 2.5}), 2.0, 1e-15);
 }
 
 }  // namespace

@@ -7,7 +7,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -150,28 +149,9 @@ std::vector<std::string> misalignment_records(ScratchDirectory& directory,
   return {"misalignment", "gyro", directory.write("listing.csv", listing), "--records", "--scale-factor", "100"};
 }
 
-// The example `example` of the source tree written to `name` in `directory` with the columns
-// `columns` (0-based) of every row after the header passed through `output`.
-std::string example_with(ScratchDirectory& directory, const std::string& example, const std::string& name,
-                         const std::vector<std::size_t>& columns, const std::function<double(double)>& output) {
-  const std::string text = testing::read_file(testing::source_path(example));
-  std::string record = text.substr(0, text.find('\n') + 1);
-  for (std::size_t start = record.size(), end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
-    std::vector<std::string> cells;
-    for (std::size_t from = start, comma;; from = comma + 1) {
-      comma = std::min(text.find(',', from), end);
-      cells.push_back(text.substr(from, comma - from));
-      if (comma == end) break;
-    }
-    for (std::size_t column : columns) cells[column] = fmt::format("{:.17g}", output(std::stod(cells[column])));
-    record += fmt::format("{}\n", fmt::join(cells, ","));
-  }
-  return directory.write(name, record);
-}
-
 // The example chamber ramp (0.1 Hz, pulse/s, K = 36000) with its output column passed through `output`.
 std::string chamber_ramp(ScratchDirectory& directory, const std::function<double(double)>& output) {
-  return example_with(directory, "examples/temperature_model/ramp.csv", "ramp.csv", {1}, output);
+  return testing::write_example_with(directory, "examples/temperature_model/ramp.csv", "ramp.csv", {1}, output);
 }
 
 // Bias temperature model (IEEE Std 952-1997 Annex B) of the chamber ramp.
@@ -196,7 +176,7 @@ std::vector<std::string> temperature_apply(ScratchDirectory& directory, const st
 // The example IMU tumble (25 Hz) with its gyro columns passed through `output`: delta angles counted
 // per sample interval (Tedaldi, Pretto and Menegatti, ICRA 2014).
 std::string imu_tumble(ScratchDirectory& directory, const std::function<double(double)>& output) {
-  return example_with(directory, "examples/imu_calibration/tumble.csv", "tumble.csv", {4, 5, 6}, output);
+  return testing::write_example_with(directory, "examples/imu_calibration/tumble.csv", "tumble.csv", {4, 5, 6}, output);
 }
 
 std::vector<std::string> imu_calibration(ScratchDirectory& directory, const std::function<double(double)>& output) {

@@ -85,6 +85,58 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
   return result;
 }
 
+// Brings each triad of `record` to its calibration's output unit, returning the warnings. The
+// record's unit is the one given, else the one it stores, else the calibration's; pulses counted
+// per sample interval are read as pulse/s, as imu-calibration reads them. A unit other than the
+// calibration's is an Error, except for calibrations made before: in count (before records' units
+// were read) or in pulse (counts per sample interval, before they were read as pulse/s), whose
+// figures apply to the samples as they are, said in a warning. A calibration in pulse/s applied to a
+// record that states no unit is an Error: its samples may be counts or rates.
+std::vector<std::string> read_in_calibration_units(ImuRecord& record,
+                                                   const std::array<TriadCalibration, 2>& calibration,
+                                                   const ImuApplyOptions& options) {
+  std::vector<std::string> warnings;
+  for (std::size_t triad = 0; triad < 2; ++triad) {
+    const char* name = triad == 0 ? "accelerometer" : "gyro";
+    const std::string& unit = calibration[triad].output_unit;
+    const std::string& given = triad == 0 ? options.accelerometer_unit : options.gyro_unit;
+    const bool stated = !given.empty() || !record.stored_units[triad].empty();
+    const std::string& taken = stated ? given : unit;  // imu_output_unit prefers the stored unit to ""
+    if (unit == kUnstatedOutputUnit || counts_pulses(unit)) {
+      const std::string read = imu_output_unit(record, triad, taken);
+      if (counts_pulses(unit)) {
+        warnings.push_back(
+            fmt::format("the calibration's {} output unit is {}, counts per sample interval (made before "
+                        "imu-calibration read them as pulse/s): its figures are applied to the samples "
+                        "as they are, right only at its record's sample rate; calibrate again",
+                        name, unit));
+      } else if (!same_unit(read, unit)) {
+        warnings.push_back(
+            fmt::format("the calibration's {} output unit is count, the record's {}: its figures are "
+                        "applied to the samples as they are (imu-calibration now calibrates in the "
+                        "record's unit)",
+                        name, read));
+      }
+      continue;
+    }
+    if (!stated && same_unit(unit, "pulse/s")) {
+      throw Error(SourceLocation{record.source, 0, 0},
+                  fmt::format("the calibration's {0} output unit is pulse/s and the record states none: give it "
+                              "(--{0}-unit pulse for counts per sample interval, pulse/s for rates; {0}_unit)",
+                              name));
+    }
+    const std::string read = imu_output_unit(record, triad, taken);
+    const std::string rate = imu_pulse_counts_as_rates(record, triad, taken);
+    if (!same_unit(rate, unit)) {
+      throw Error(SourceLocation{record.source, 0, 0},
+                  fmt::format("the record's {0} output unit is {1}{2}, the calibration's {3}: give the record's unit "
+                              "(--{0}-unit; {0}_unit) or a calibration made in it",
+                              name, read, rate == read ? "" : " (read as " + rate + ")", unit));
+    }
+  }
+  return warnings;
+}
+
 }  // namespace
 
 ProcedureSpec imu_apply_spec() {
@@ -131,32 +183,7 @@ ProcedureSpec imu_apply_spec() {
         if (!options.output_file.empty()) options.output_file = call.output_path(options.output_file);
         const std::array<TriadCalibration, 2> calibration = read_imu_calibration(call.files.at("calibration"));
         ImuRecord record = read_imu_record(call.files.at("record"), options.columns);
-        // The record's units (pulses per sample interval read as pulse/s, as imu-calibration reads
-        // them) must be the calibration's output units; a calibration in count (the label of every
-        // calibration made before records' units were read) is applied to the samples of a record
-        // that stores another unit as they are, and said.
-        std::vector<std::string> warnings;
-        for (std::size_t triad = 0; triad < 2; ++triad) {
-          const char* name = triad == 0 ? "accelerometer" : "gyro";
-          const std::string& unit = calibration[triad].output_unit;
-          const std::string& given = triad == 0 ? options.accelerometer_unit : options.gyro_unit;
-          const std::string& stored = record.stored_units[triad];
-          if (given.empty() && unit == kUnstatedOutputUnit && !stored.empty() && unit != stored) {
-            warnings.push_back(fmt::format("the calibration's {} output unit is count, the record's {}: its figures are "
-                                           "applied to the samples as they are (imu-calibration now calibrates in the "
-                                           "record's unit)",
-                                           name, stored));
-            continue;
-          }
-          const std::string record_unit =
-              imu_pulse_counts_as_rates(record, triad, given.empty() && stored.empty() ? unit : given);
-          if (!same_unit(record_unit, unit)) {
-            throw Error(SourceLocation{record.source, 0, 0},
-                        fmt::format("the record's {0} output unit is {1}, the calibration's {2}: give the record's "
-                                    "unit (--{0}-unit; {0}_unit) or a calibration made in it",
-                                    name, record_unit, unit));
-          }
-        }
+        const std::vector<std::string> warnings = read_in_calibration_units(record, calibration, options);
         ImuApplyResult result = apply_imu_calibration(calibration, record, options);
         result.warnings.insert(result.warnings.begin(), warnings.begin(), warnings.end());
         return result;

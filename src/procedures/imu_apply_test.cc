@@ -122,5 +122,60 @@ TEST(ImuApply, APlanWritesTheOutputBesideItsResults) {
   EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/failed"));
 }
 
+// Units of a calibration and of the record it is applied to. The example tumble (25 Hz) with its gyro
+// as counts per sample interval (the samples / 25), calibrated with --gyro-unit pulse: the
+// calibration is in pulse/s, and the record must say what it holds (its counts taken as pulse/s gave
+// a rest rate of 8.7 rad/s). A calibration in pulse, made before pulses were read as pulse/s,
+// applies to the samples as they are, with a warning; one in count likewise to a record in deg/s.
+TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
+  const testing::ScratchDirectory scratch;
+  const std::string counts = testing::write_example_with(scratch, "examples/imu_calibration/tumble.csv", "counts.csv",
+                                                         {4, 5, 6}, [](double rate) { return rate / 25.0; });
+  const std::string tumble = testing::source_path("examples/imu_calibration/tumble.csv");
+  const std::string calibration = scratch.path() + "/calibration.json";
+  const testing::CliRun made =
+      testing::run_cli({"imu-calibration", counts, "--gyro-unit", "pulse", "--export", calibration, "--json"});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_EQ(nlohmann::json::parse(made.out).at("gyro").at("bias").at("unit"), "pulse/s");
+  const auto rest_rate = [](const testing::CliRun& run) {
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out).at("rest_rate_rms").at("value").get<double>();
+  };
+  const double of_counts =
+      rest_rate(testing::run_cli({"imu-apply", calibration, counts, "--gyro-unit", "pulse", "--json"}));
+  EXPECT_LT(of_counts, 1e-3);  // rad/s: the tumble's statics are at rest
+  EXPECT_NEAR(rest_rate(testing::run_cli({"imu-apply", calibration, tumble, "--gyro-unit", "pulse/s", "--json"})),
+              of_counts, 1e-9);
+  const testing::CliRun unstated = testing::run_cli({"imu-apply", calibration, counts});
+  EXPECT_EQ(unstated.exit_code, 2);
+  EXPECT_EQ(unstated.err, "inertest: error: " + counts +
+                              ": the calibration's gyro output unit is pulse/s and the record states none: give it "
+                              "(--gyro-unit pulse for counts per sample interval, pulse/s for rates; gyro_unit)\n");
+  const testing::CliRun other = testing::run_cli({"imu-apply", calibration, counts, "--gyro-unit", "deg/s"});
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_EQ(other.err,
+            "inertest: error: " + counts +
+                ": the record's gyro output unit is deg/s, the calibration's pulse/s: give the record's unit "
+                "(--gyro-unit; gyro_unit) or a calibration made in it\n");
+  // The same calibration labelled pulse, as made before: applied to the counts as they are.
+  nlohmann::json before = nlohmann::json::parse(testing::read_file(calibration));
+  for (auto& [key, figure] : before.at("gyro").items()) {
+    if (key == "bias") {
+      figure.at("unit") = "pulse";
+      for (auto& value : figure.at("value")) value = value.get<double>() / 25.0;
+    } else if (key == "scale_factor") {
+      figure.at("unit") = "pulse/(rad/s)";
+      for (auto& value : figure.at("value")) value = value.get<double>() / 25.0;
+    }
+  }
+  const std::string old = scratch.write("before.json", before.dump());
+  const testing::CliRun legacy = testing::run_cli({"imu-apply", old, counts, "--json"});
+  EXPECT_NEAR(rest_rate(legacy), of_counts, 1e-9);
+  EXPECT_NE(legacy.out.find("the calibration's gyro output unit is pulse, counts per sample interval (made before "
+                            "imu-calibration read them as pulse/s)"),
+            std::string::npos)
+      << legacy.out;
+}
+
 }  // namespace
 }  // namespace inertest

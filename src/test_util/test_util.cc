@@ -1,15 +1,18 @@
 #include "test_util/test_util.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+#include <algorithm>
 #include <bit>
 #include <cstdio>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <regex>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include <fmt/format.h>
 
 #include "inertest/core/procedure_spec.h"
 
@@ -123,6 +126,24 @@ std::string source_path(const std::string& relative) {
   std::string path = INERTEST_SOURCE_DIR;
   path.append("/").append(relative);
   return path;
+}
+
+std::string write_example_with(const ScratchDirectory& directory, const std::string& example, const std::string& name,
+                               const std::vector<std::size_t>& columns,
+                               const std::function<double(double)>& transform) {
+  const std::string text = read_file(source_path(example));
+  std::string record = text.substr(0, text.find('\n') + 1);
+  for (std::size_t start = record.size(), end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
+    std::vector<std::string> cells;
+    for (std::size_t from = start, comma;; from = comma + 1) {
+      comma = std::min(text.find(',', from), end);
+      cells.push_back(text.substr(from, comma - from));
+      if (comma == end) break;
+    }
+    for (std::size_t column : columns) cells[column] = fmt::format("{:.17g}", transform(std::stod(cells[column])));
+    record += fmt::format("{}\n", fmt::join(cells, ","));
+  }
+  return directory.write(name, record);
 }
 
 }  // namespace inertest::testing

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -95,5 +96,10 @@ std::string f64_bytes(const std::vector<double>& values);
 
 // Path of a file in the source tree, e.g. source_path("data/scale_factor/points.csv").
 std::string source_path(const std::string& relative);
+
+// The source tree's CSV record `example` (a header, then rows) written as `name` in `directory`, with
+// the columns `columns` (0-based) of every row passed through `transform`; returns its path.
+std::string write_example_with(const ScratchDirectory& directory, const std::string& example, const std::string& name,
+                               const std::vector<std::size_t>& columns, const std::function<double(double)>& transform);
 
 }  // namespace inertest::testing

@@ -126,12 +126,14 @@ std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input,
   return runs;
 }
 
-ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
+// `function` names the call in messages: "scale_factor()" or "procedure('scale_factor')".
+ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords, const std::string& function) {
   const std::vector<std::string> accepted = keywords_of(spec);
   for (const auto& [key, value] : keywords) {
     const auto name = key.cast<std::string>();
     if (std::find(accepted.begin(), accepted.end(), name) == accepted.end()) {
-      throw Error(fmt::format("{}() got an unknown keyword '{}'; it takes {}", spec.kind, name, fmt::join(accepted, ", ")));
+      throw Error(
+          fmt::format("{} got an unknown keyword '{}'; it takes {}", function, name, fmt::join(accepted, ", ")));
     }
   }
   ProcedureCall call;
@@ -140,15 +142,15 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords) {
     if (const std::string& keyword = parameter.plan_name(); keywords.contains(keyword)) {
       call.parameters[parameter.name] = parameter_value(parameter, keywords[keyword.c_str()]);
     } else if (parameter.required) {
-      throw Error(fmt::format("{}() needs {} ({})", spec.kind, parameter.plan_name(), parameter.doc));
+      throw Error(fmt::format("{} needs {} ({})", function, parameter.plan_name(), parameter.doc));
     }
   }
-  check_alternatives(spec, spec.kind + "(): ", [&](const InputSpec& input) { return keywords.contains(keyword_of(input)); },
-                     keyword_of);
+  check_alternatives(
+      spec, function + ": ", [&](const InputSpec& input) { return keywords.contains(keyword_of(input)); }, keyword_of);
   for (const InputSpec& input : spec.inputs) {
     const std::string& key = keyword_of(input);
     if (!keywords.contains(key) && !input.alternatives.empty()) continue;
-    if (!keywords.contains(key)) throw Error(fmt::format("{}() needs {} ({})", spec.kind, key, input.doc));
+    if (!keywords.contains(key)) throw Error(fmt::format("{} needs {} ({})", function, key, input.doc));
     const py::handle value = keywords[key.c_str()];
     switch (input.kind) {
       case InputKind::file: call.files[input.name] = py::str(value).cast<std::string>(); break;
@@ -241,11 +243,12 @@ const char* python_type(FieldValue value) {
   return "Any";
 }
 
-// The procedure of `spec` run with `keywords` as the command and the plan step run it.
-ResultOf<SpecTag> run_spec(const ProcedureSpec& spec, const py::kwargs& keywords) {
+// The procedure of `spec` run with `keywords` as the command and the plan step run it; `function`
+// names the call in messages.
+ResultOf<SpecTag> run_spec(const ProcedureSpec& spec, const py::kwargs& keywords, const std::string& function) {
   ProcedureCall call;
   try {
-    call = call_of(spec, keywords);
+    call = call_of(spec, keywords, function);
     spec.check(call);
   } catch (const ParameterError& e) {
     throw Error(e.message_naming(spec.find_parameter(e.parameter)->plan_name()));
@@ -287,7 +290,7 @@ void wrap_specs(py::module_& module) {
     if (py::hasattr(module, spec.kind.c_str())) continue;  // it has an array-based function of its own
     generic.insert(spec.kind);
     module.def(
-        spec.kind.c_str(), [&spec](const py::kwargs& keywords) { return run_spec(spec, keywords); },
+        spec.kind.c_str(), [&spec](const py::kwargs& keywords) { return run_spec(spec, keywords, spec.kind + "()"); },
         docstring_of(spec).c_str());
   }
   module.def(
@@ -295,12 +298,15 @@ void wrap_specs(py::module_& module) {
       [](const std::string& kind, const py::kwargs& keywords) {
         const ProcedureSpec* spec = find_procedure_spec(kind);
         if (spec == nullptr) {
-          throw Error(fmt::format("unknown procedure kind '{}' (inertest.plan_kinds() lists them)", kind));
+          throw Error(
+              fmt::format("no declared procedure '{}': inertest.procedure_specs() lists the kinds it runs (a "
+                          "plan's other kinds have functions of their own, e.g. inertest.hand_checks)",
+                          kind));
         }
-        return run_spec(*spec, keywords);
+        return run_spec(*spec, keywords, fmt::format("procedure('{}')", kind));
       },
       py::arg("kind"),
-      "Runs the declared procedure `kind` (a plan kind) with the keywords of its spec, as\n"
+      "Runs the declared procedure `kind` (one inertest.procedure_specs() lists) with the keywords of its spec, as\n"
       "inertest.<kind> does for the functions made from specs: the spec's plan keys\n"
       "(inertest.procedure_specs()), each file input its plan key, records with column and format.\n"
       "It reaches every input of the procedures that have an array-based function of their own, e.g.\n"

@@ -258,7 +258,9 @@ def test_procedure_reaches_every_input_of_a_kind_with_an_array_function(tmp_path
     # A generic function's kind runs alike either way.
     assert inertest.procedure("polarity", positive=-3, negative=3.0).to_dict() == inertest.polarity(
         positive=-3, negative=3.0).to_dict()
-    with pytest.raises(inertest.Error, match="unknown procedure kind 'scale_factors'"):
+    with pytest.raises(inertest.Error, match="no declared procedure 'scale_factors'"):
         inertest.procedure("scale_factors", record=str(record))
+    with pytest.raises(inertest.Error, match=r"procedure\('scale_factor'\) got an unknown keyword 'rates'"):
+        inertest.procedure("scale_factor", rates=[1.0])
     with pytest.raises(inertest.Error, match="sample_rate_hz"):
         inertest.procedure("scale_factor", record=str(record))

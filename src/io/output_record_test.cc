@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -83,16 +85,33 @@ TEST(OutputRecord, PulseCountsOfTablesAndOfOwnReaders) {
   EXPECT_EQ(output_unit_as_rate("V"), "V");
 }
 
-// A counter's interval is the mean step between the gaps: stamps with a logger's jitter (+-3 ms at
-// 25 Hz) average to it, and a 5 s gap does not lower it.
-TEST(OutputRecord, MeanSampleRateLeavesOutTheGaps) {
-  std::vector<double> time_s;
-  for (int i = 0; i < 1000; ++i) time_s.push_back(0.04 * i + (i % 3 == 1 ? 0.003 : i % 3 == 2 ? -0.003 : 0.0));
-  EXPECT_NEAR(mean_sample_rate_hz(time_s), 25.0, 1e-12);
-  for (double& t : std::span(time_s).subspan(500)) t += 5.0;
-  // The step across the gap, 5 s and a jittered 0.034 s, is left out; 5 s kept gave 22.2 Hz.
-  EXPECT_NEAR(mean_sample_rate_hz(time_s), 998.0 / (0.04 * 999 - 0.034), 1e-9);
-  EXPECT_NEAR(mean_sample_rate_hz(std::vector<double>{2.0, 2.5}), 2.0, 1e-15);
+// A counter's interval is the mean step between a logger's gaps (5 s lost at 25 Hz does not lower
+// the rate, also with +-3 ms of jitter), and the steps over the span where the long steps are no
+// dropped samples: stamps rounded to 1 ms at 800 Hz (steps of 1 and 2 ms, a quarter of them over 1.5
+// median steps), +-12 ms of jitter at 25 Hz, packets of 4 stamps 1 ms apart at 25 Hz, and three
+// stamps of which one step is twice the other (each read too high when their long steps were left out).
+TEST(OutputRecord, MeanSampleRateLeavesOutTheGapsOfALogger) {
+  const auto stamps = [](double rate, std::size_t n, const std::function<double(std::size_t)>& offset) {
+    std::vector<double> time_s;
+    for (std::size_t i = 0; i < n; ++i) time_s.push_back(static_cast<double>(i) / rate + offset(i));
+    return time_s;
+  };
+  const auto none = [](std::size_t) { return 0.0; };
+  testing::UniformSequence uniform(7);
+  for (const double jitter_s : {0.0, 0.006}) {
+    std::vector<double> time_s = stamps(25.0, 2000, [&](std::size_t) { return jitter_s * uniform.next(); });
+    for (double& t : std::span(time_s).subspan(1000)) t += 5.0;
+    // 5 s kept in the span gave 23.5 Hz; the jitter of the four stamps that bound the runs, 12 ms at most over
+    // 80 s, moves the rate by up to 0.004 Hz.
+    EXPECT_NEAR(mean_sample_rate_hz(time_s), 25.0, jitter_s == 0.0 ? 1e-9 : 0.004) << jitter_s;
+  }
+  std::vector<double> rounded = stamps(800.0, 8000, none);
+  for (double& t : rounded) t = std::round(t * 1000.0) / 1000.0;
+  EXPECT_NEAR(mean_sample_rate_hz(rounded), 800.0, 0.1);
+  EXPECT_NEAR(mean_sample_rate_hz(stamps(25.0, 2000, [&](std::size_t) { return 0.024 * uniform.next(); })), 25.0, 0.01);
+  EXPECT_NEAR(mean_sample_rate_hz(stamps(25.0, 2001, [](std::size_t i) { return (i % 4) * (0.001 - 0.04); })), 25.0,
+              0.01);
+  EXPECT_NEAR(mean_sample_rate_hz(std::vector<double>{0.0, 0.01, 0.03}), 2.0 / 0.03, 1e-12);
 }
 
 }  // namespace

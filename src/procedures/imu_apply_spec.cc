@@ -88,9 +88,10 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
 // Brings each triad of `record` to its calibration's output unit, returning the warnings. The
 // record's unit is the one given, else the one it stores, else the calibration's; pulses counted
 // per sample interval are read as pulse/s, as imu-calibration reads them. A unit other than the
-// calibration's is an Error, except for calibrations made before: in count (before records' units
-// were read) or in pulse (counts per sample interval, before they were read as pulse/s), whose
-// figures apply to the samples as they are, said in a warning. A calibration in pulse/s applied to a
+// calibration's is an Error, except for calibrations made before, whose figures apply to the
+// samples as they are, said in a warning: in count (before records' units were read), to a record
+// in any unit, and in pulse (counts per sample interval, before they were read as pulse/s), to a
+// record in pulse. A calibration in pulse/s applied to a
 // record that states no unit is an Error: its samples may be counts or rates.
 std::vector<std::string> read_in_calibration_units(ImuRecord& record,
                                                    const std::array<TriadCalibration, 2>& calibration,
@@ -102,15 +103,10 @@ std::vector<std::string> read_in_calibration_units(ImuRecord& record,
     const std::string& given = triad == 0 ? options.accelerometer_unit : options.gyro_unit;
     const bool stated = !given.empty() || !record.stored_units[triad].empty();
     const std::string& taken = stated ? given : unit;  // imu_output_unit prefers the stored unit to ""
-    if (unit == kUnstatedOutputUnit || counts_pulses(unit)) {
-      const std::string read = imu_output_unit(record, triad, taken);
-      if (counts_pulses(unit)) {
-        warnings.push_back(
-            fmt::format("the calibration's {} output unit is {}, counts per sample interval (made before "
-                        "imu-calibration read them as pulse/s): its figures are applied to the samples "
-                        "as they are, right only at its record's sample rate; calibrate again",
-                        name, unit));
-      } else if (!same_unit(read, unit)) {
+    const std::string read = imu_output_unit(record, triad, taken);
+    if (unit == kUnstatedOutputUnit) {
+      // Compared as text: count and pulse are one unit to core/units.h, yet pulses count per interval.
+      if (read != unit) {
         warnings.push_back(
             fmt::format("the calibration's {} output unit is count, the record's {}: its figures are "
                         "applied to the samples as they are (imu-calibration now calibrates in the "
@@ -119,13 +115,20 @@ std::vector<std::string> read_in_calibration_units(ImuRecord& record,
       }
       continue;
     }
+    if (counts_pulses(unit) && counts_pulses(read)) {
+      warnings.push_back(
+          fmt::format("the calibration's {} output unit is {}, counts per sample interval (made before "
+                      "imu-calibration read them as pulse/s): its figures are applied to the samples "
+                      "as they are, right only at its record's sample rate; calibrate again",
+                      name, unit));
+      continue;
+    }
     if (!stated && same_unit(unit, "pulse/s")) {
       throw Error(SourceLocation{record.source, 0, 0},
                   fmt::format("the calibration's {0} output unit is pulse/s and the record states none: give it "
                               "(--{0}-unit pulse for counts per sample interval, pulse/s for rates; {0}_unit)",
                               name));
     }
-    const std::string read = imu_output_unit(record, triad, taken);
     const std::string rate = imu_pulse_counts_as_rates(record, triad, taken);
     if (!same_unit(rate, unit)) {
       throw Error(SourceLocation{record.source, 0, 0},

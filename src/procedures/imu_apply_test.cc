@@ -125,8 +125,8 @@ TEST(ImuApply, APlanWritesTheOutputBesideItsResults) {
 // Units of a calibration and of the record it is applied to. The example tumble (25 Hz) with its gyro
 // as counts per sample interval (the samples / 25), calibrated with --gyro-unit pulse: the
 // calibration is in pulse/s, and the record must say what it holds (its counts taken as pulse/s gave
-// a rest rate of 8.7 rad/s). A calibration in pulse, made before pulses were read as pulse/s,
-// applies to the samples as they are, with a warning; one in count likewise to a record in deg/s.
+// a rest rate of 8.7 rad/s). A calibration in count applies to samples in any unit as they are, one
+// in pulse (made before pulses were read as pulse/s) to samples in pulse, each with a warning.
 TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
   const testing::ScratchDirectory scratch;
   const std::string counts = testing::write_example_with(scratch, "examples/imu_calibration/tumble.csv", "counts.csv",
@@ -157,7 +157,15 @@ TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
             "inertest: error: " + counts +
                 ": the record's gyro output unit is deg/s, the calibration's pulse/s: give the record's unit "
                 "(--gyro-unit; gyro_unit) or a calibration made in it\n");
-  // The same calibration labelled pulse, as made before: applied to the counts as they are.
+  // The example calibration in count (made before records' units were read) applies to a record in
+  // any unit, as it is, and says so.
+  const testing::CliRun count =
+      testing::run_cli({"imu-apply", testing::source_path("examples/imu_calibration/calibration.json"), tumble,
+                        "--gyro-unit", "pulse", "--json"});
+  ASSERT_EQ(count.exit_code, 0) << count.err;
+  EXPECT_NE(count.out.find("the calibration's gyro output unit is count, the record's pulse"), std::string::npos)
+      << count.out;
+  // The same calibration labelled pulse, as made before: applied to counts as they are, not to rates.
   nlohmann::json before = nlohmann::json::parse(testing::read_file(calibration));
   for (auto& [key, figure] : before.at("gyro").items()) {
     if (key == "bias") {
@@ -175,6 +183,12 @@ TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
                             "imu-calibration read them as pulse/s)"),
             std::string::npos)
       << legacy.out;
+  const testing::CliRun rates = testing::run_cli({"imu-apply", old, tumble, "--gyro-unit", "pulse/s"});
+  EXPECT_EQ(rates.exit_code, 2);
+  EXPECT_EQ(rates.err,
+            "inertest: error: " + tumble +
+                ": the record's gyro output unit is pulse/s, the calibration's pulse: give the record's unit "
+                "(--gyro-unit; gyro_unit) or a calibration made in it\n");
 }
 
 }  // namespace

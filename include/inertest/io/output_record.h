@@ -100,10 +100,11 @@ void pulse_counts_as_rates(std::span<double> outputs, double sample_rate_hz);
 void pulse_counts_as_rates(TimedRecord& record, std::optional<double> sample_rate_hz);
 
 // The mean sample rate of time stamps (s, increasing; fewer than 2 is an Error): the steps over
-// their span, leaving out the gaps (steps over 1.5 median steps, as `inspect` finds them). A pulse
-// counter's interval is the nominal one: each stamp's own would carry the logger's jitter into the
-// count, and each count after a gap still covers one interval (a gap kept in the span lowered the
-// rate: 5 s lost from a 25 Hz IMU record made its gyro scale factors 5.3 % small).
+// their span, leaving out the gaps (steps over 1.5 median steps, as `inspect` finds them) when they
+// are a logger's dropped samples: rare, each a whole number of intervals. A pulse counter's interval
+// is the nominal one: each stamp's own would carry the logger's jitter into the count, and each
+// count after a gap still covers one interval (a gap kept in the span lowered the rate: 5 s lost
+// from a 25 Hz IMU record made its gyro scale factors 5.3 % small).
 double mean_sample_rate_hz(std::span<const double> time_s);
 
 // For a procedure that divides the instrument's output by its scale factor K: throws Error naming

@@ -1,16 +1,16 @@
 #include "test_util/test_util.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
 #include <algorithm>
 #include <bit>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <regex>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 

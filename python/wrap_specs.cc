@@ -92,8 +92,9 @@ InputValue input_value(const InputSpec& input, const py::handle& value) {
   return {mean.mean, mean.standard_error};
 }
 
-// A list of paths (numbered 1, 2, ...) or of (number, path) pairs; at least the input's minimum.
-std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input, const py::handle& value) {
+// A list of paths (numbered 1, 2, ...) or of (number, path) pairs; at least the input's minimum
+// (`function` names the call in the message).
+std::vector<RunInput> runs_of(const std::string& function, const InputSpec& input, const py::handle& value) {
   if (py::isinstance<py::str>(value)) throw Error(fmt::format("{} must be a list of runs, not one path", input.plan_key));
   std::vector<RunInput> runs;
   for (const py::handle item : value) {
@@ -120,8 +121,8 @@ std::vector<RunInput> runs_of(const ProcedureSpec& spec, const InputSpec& input,
     }
   }
   if (runs.size() < input.minimum_runs) {
-    throw Error(fmt::format("{}: needs at least {} runs ({}), got {}", spec.kind, input.minimum_runs, input.minimum_why,
-                            runs.size()));
+    throw Error(fmt::format("{} needs at least {} runs in {} ({}), got {}", function, input.minimum_runs, input.plan_key,
+                            input.minimum_why, runs.size()));
   }
   return runs;
 }
@@ -154,7 +155,7 @@ ProcedureCall call_of(const ProcedureSpec& spec, const py::kwargs& keywords, con
     const py::handle value = keywords[key.c_str()];
     switch (input.kind) {
       case InputKind::file: call.files[input.name] = py::str(value).cast<std::string>(); break;
-      case InputKind::runs: call.runs[input.name] = runs_of(spec, input, value); break;
+      case InputKind::runs: call.runs[input.name] = runs_of(function, input, value); break;
       case InputKind::value_or_record: call.inputs[input.name] = input_value(input, value); break;
     }
   }

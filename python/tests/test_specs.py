@@ -159,6 +159,10 @@ def test_scale_factor_temperature_from_runs_is_the_cli_json(tmp_path):
     with pytest.raises(inertest.Error) as raised:
         inertest.scale_factor_temperature(run=runs, reference_temperature_degC=25)
     assert "matches no run" in str(raised.value)
+    with pytest.raises(inertest.Error, match=r"^bias_temperature\(\) needs at least 2 runs in run \(room temperature"):
+        inertest.bias_temperature(run=runs[:1], scale_factor=100)
+    with pytest.raises(inertest.Error, match=r"^procedure\('bias_temperature'\) needs at least 2 runs in run"):
+        inertest.procedure("bias_temperature", run=runs[:1], scale_factor=100)
 
 
 def test_generated_stubs_name_every_function_class_and_member():

@@ -1,6 +1,7 @@
 // imu-apply (procedures/imu_apply_spec.cc) through the command: what it writes.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -146,17 +147,20 @@ TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
   EXPECT_LT(of_counts, 1e-3);  // rad/s: the tumble's statics are at rest
   EXPECT_NEAR(rest_rate(testing::run_cli({"imu-apply", calibration, tumble, "--gyro-unit", "pulse/s", "--json"})),
               of_counts, 1e-9);
-  const testing::CliRun unstated = testing::run_cli({"imu-apply", calibration, counts});
-  EXPECT_EQ(unstated.exit_code, 2);
-  EXPECT_EQ(unstated.err, "inertest: error: " + counts +
-                              ": the calibration's gyro output unit is pulse/s and the record states none: give it "
-                              "(--gyro-unit pulse for counts per sample interval, pulse/s for rates; gyro_unit)\n");
-  const testing::CliRun other = testing::run_cli({"imu-apply", calibration, counts, "--gyro-unit", "deg/s"});
-  EXPECT_EQ(other.exit_code, 2);
-  EXPECT_EQ(other.err,
-            "inertest: error: " + counts +
-                ": the record's gyro output unit is deg/s, the calibration's pulse/s: give the record's unit "
-                "(--gyro-unit; gyro_unit) or a calibration made in it\n");
+  // imu-apply CALIB RECORD [ARGUMENTS] fails with `message` about RECORD.
+  const auto refused = [](const std::string& calib, const std::string& record, std::vector<std::string> arguments,
+                          const std::string& message) {
+    arguments.insert(arguments.begin(), {"imu-apply", calib, record});
+    const testing::CliRun run = testing::run_cli(arguments);
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_EQ(run.err, "inertest: error: " + record + ": " + message + "\n");
+  };
+  refused(calibration, counts, {},
+          "the calibration's gyro output unit is pulse/s and the record states none: give it (--gyro-unit pulse for "
+          "counts per sample interval, pulse/s for rates; gyro_unit)");
+  refused(calibration, counts, {"--gyro-unit", "deg/s"},
+          "the record's gyro output unit is deg/s, the calibration's pulse/s: give the record's unit (--gyro-unit; "
+          "gyro_unit) or a calibration made in it");
   // The example calibration in count (made before records' units were read) applies to a record in
   // any unit, as it is, and says so.
   const testing::CliRun count =
@@ -167,14 +171,10 @@ TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
       << count.out;
   // The same calibration labelled pulse, as made before: applied to counts as they are, not to rates.
   nlohmann::json before = nlohmann::json::parse(testing::read_file(calibration));
-  for (auto& [key, figure] : before.at("gyro").items()) {
-    if (key == "bias") {
-      figure.at("unit") = "pulse";
-      for (auto& value : figure.at("value")) value = value.get<double>() / 25.0;
-    } else if (key == "scale_factor") {
-      figure.at("unit") = "pulse/(rad/s)";
-      for (auto& value : figure.at("value")) value = value.get<double>() / 25.0;
-    }
+  for (const auto& [key, unit] : {std::pair{"bias", "pulse"}, std::pair{"scale_factor", "pulse/(rad/s)"}}) {
+    nlohmann::json& figure = before.at("gyro").at(key);
+    figure.at("unit") = unit;
+    for (auto& value : figure.at("value")) value = value.get<double>() / 25.0;
   }
   const std::string old = scratch.write("before.json", before.dump());
   const testing::CliRun legacy = testing::run_cli({"imu-apply", old, counts, "--json"});
@@ -183,12 +183,9 @@ TEST(ImuApply, TheRecordsUnitsAgainstTheCalibrations) {
                             "imu-calibration read them as pulse/s)"),
             std::string::npos)
       << legacy.out;
-  const testing::CliRun rates = testing::run_cli({"imu-apply", old, tumble, "--gyro-unit", "pulse/s"});
-  EXPECT_EQ(rates.exit_code, 2);
-  EXPECT_EQ(rates.err,
-            "inertest: error: " + tumble +
-                ": the record's gyro output unit is pulse/s, the calibration's pulse: give the record's unit "
-                "(--gyro-unit; gyro_unit) or a calibration made in it\n");
+  refused(old, tumble, {"--gyro-unit", "pulse/s"},
+          "the record's gyro output unit is pulse/s, the calibration's pulse: give the record's unit (--gyro-unit; "
+          "gyro_unit) or a calibration made in it");
 }
 
 }  // namespace

@@ -472,6 +472,19 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
                             base.size(), options.interval_s, options.folds, options.maximum_order));
   }
   TemperatureModelResult result;
+  // A logger's gap leaves the intervals about it with fewer samples, or none: each is still fitted as
+  // one full interval mean, so the fit weighs a partial interval as much as a full one. Said, not refused.
+  if (const TimeGaps found = find_time_gaps(record.time_s, {}, {}); !found.gaps.empty()) {
+    std::size_t missing = 0;
+    for (const TimeGap& gap : found.gaps) missing += gap.missing;
+    const TimeGap& longest = *std::max_element(found.gaps.begin(), found.gaps.end(), [](const auto& a, const auto& b) {
+      return a.time_after - a.time_before < b.time_after - b.time_before;
+    });
+    result.warnings.push_back(fmt::format(
+        "{} gap(s) in the time stamps, {} sample(s) of {:.6g} s missing in all, the longest from {:.6g} s to {:.6g} s: "
+        "the {} s intervals about them hold fewer samples, or none, and are fitted as full ones",
+        found.gaps.size(), missing, found.sample_interval, longest.time_before, longest.time_after, options.interval_s));
+  }
   // D_0 is the bias at T_ref: outside the temperatures the record holds, it is an extrapolation.
   const auto [coldest, hottest] = std::minmax_element(record.temperature_degC[chosen_sensor].begin(),
                                                       record.temperature_degC[chosen_sensor].end());

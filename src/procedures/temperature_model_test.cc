@@ -3,6 +3,7 @@
 // often as a normal error is, the compensated residual at the simulated noise floor, a model
 // without dT/dt failing on the same data), the smoothed rate of a quantised ramp, the export's round
 // trip and temperature-apply through the declared command.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -187,6 +188,44 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
       EXPECT_THAT(e.what(), ::testing::HasSubstr(banana + ":5:15: rate_window: unknown unit 'banana'"));
     }
   }
+}
+
+// A logger's gap (300 s lost in the first ramp) is said with its size; the fit bridges it, and D_0 stays
+// within its sigma of the gapless record's (the samples lost are 5 % of the record).
+TEST(TemperatureModel, AGapInTheRecordIsSaid) {
+  const sim::ThermalGyroParameters gyro;
+  sim::Random random(5);
+  const ThermalRecord whole = thermal_record(sim::simulate_thermal_record(short_chamber(), gyro, random));
+  ThermalRecord gapped = whole;
+  gapped.time_s.clear();
+  gapped.output.clear();
+  for (auto& sensor : gapped.temperature_degC) sensor.clear();
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < whole.time_s.size(); ++i) {
+    if (whole.time_s[i] >= 1200.0 && whole.time_s[i] < 1500.0) {
+      ++missing;
+      continue;
+    }
+    gapped.time_s.push_back(whole.time_s[i]);
+    gapped.output.push_back(whole.output[i]);
+    for (std::size_t s = 0; s < whole.temperature_degC.size(); ++s) {
+      gapped.temperature_degC[s].push_back(whole.temperature_degC[s][i]);
+    }
+  }
+  TemperatureModelOptions options;
+  options.scale_factor = gyro.scale_factor;
+  const TemperatureModelResult full = temperature_model(whole, options);
+  const TemperatureModelResult result = temperature_model(gapped, options);
+  const auto gap_warning = [](const TemperatureModelResult& r) {
+    return std::find_if(r.warnings.begin(), r.warnings.end(),
+                        [](const std::string& w) { return w.find("gap(s) in the time stamps") != std::string::npos; });
+  };
+  EXPECT_EQ(gap_warning(full), full.warnings.end());
+  ASSERT_NE(gap_warning(result), result.warnings.end());
+  EXPECT_THAT(*gap_warning(result), HasSubstr(fmt::format("1 gap(s) in the time stamps, {} sample(s) of", missing)));
+  ASSERT_EQ(result.coefficients.front().name, "D_0");
+  EXPECT_NEAR(result.coefficients.front().value.value, full.coefficients.front().value.value,
+              *full.coefficients.front().value.uncertainty);
 }
 
 // A temperature column whose name states kelvin ("coil_K", "chamber [K]") is read in kelvin: the

@@ -268,17 +268,20 @@ double mean_sample_rate_hz(std::span<const double> time_s) {
   const std::size_t steps = time_s.size() - 1;
   const double span = time_s.back() - time_s.front();
   // Gaps are a logger's dropped samples: rare (at most 1 % of the steps), each a whole number of
-  // intervals (within a quarter). Stamps that are coarse (800 Hz in ms: steps of 1 and 2 ms),
-  // jittered or sent in bursts have many long steps, or long steps of no whole number, and keep
-  // the steps over the span, which telescope to the right rate.
-  const std::vector<TimeGap> gaps = find_time_gaps(time_s, {}, TimeStampOptions{}).gaps;
+  // intervals (within a quarter, and the stamps' rounding where they are coarse: 0.8 Hz in s).
+  // Stamps that are jittered or sent in bursts have many long steps, or long steps of no whole
+  // number, and keep the steps over the span, which telescope to the right rate.
+  const TimeGaps found = find_time_gaps(time_s, {}, TimeStampOptions{});
+  const std::vector<TimeGap>& gaps = found.gaps;
   if (gaps.empty() || gaps.size() * 100 > steps) return static_cast<double>(steps) / span;
   double gap_span = 0.0;
   for (const TimeGap& gap : gaps) gap_span += gap.time_after - gap.time_before;
   const double interval = (span - gap_span) / static_cast<double>(steps - gaps.size());
   for (const TimeGap& gap : gaps) {
     const double intervals = (gap.time_after - gap.time_before) / interval;
-    if (std::abs(intervals - std::round(intervals)) > 0.25) return static_cast<double>(steps) / span;
+    if (std::abs(intervals - std::round(intervals)) > 0.25 + found.stamp_quantum / interval) {
+      return static_cast<double>(steps) / span;
+    }
   }
   return 1.0 / interval;
 }

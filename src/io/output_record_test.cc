@@ -108,6 +108,13 @@ TEST(OutputRecord, MeanSampleRateLeavesOutTheGapsOfALogger) {
   std::vector<double> rounded = stamps(800.0, 8000, none);
   for (double& t : rounded) t = std::round(t * 1000.0) / 1000.0;
   EXPECT_NEAR(mean_sample_rate_hz(rounded), 800.0, 0.1);
+  // Coarse stamps and a logger's gap together (0.8 Hz in whole seconds, 10 % lost in one outage): the
+  // outage is left out, to the rounding of its two stamps (it read 0.72 Hz, every figure 10 % low).
+  std::vector<double> seconds;
+  for (const double t : stamps(0.8, 16800, none)) {
+    if (t < 10000.0 || t >= 10000.0 + 1680 / 0.8) seconds.push_back(std::floor(t));
+  }
+  EXPECT_NEAR(mean_sample_rate_hz(seconds), 0.8, 0.8 * 2.0 / 15120.0);
   EXPECT_NEAR(mean_sample_rate_hz(stamps(25.0, 2000, [&](std::size_t) { return 0.024 * uniform.next(); })), 25.0, 0.01);
   EXPECT_NEAR(mean_sample_rate_hz(stamps(25.0, 2001, [](std::size_t i) { return (i % 4) * (0.001 - 0.04); })), 25.0,
               0.01);

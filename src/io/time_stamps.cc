@@ -108,6 +108,31 @@ TimeSegment segment(const TextTable& table, std::size_t begin, std::size_t end) 
   return {begin, end, line_of(table, begin), line_of(table, end - 1)};
 }
 
+// The interval of stamps rounded coarser than it (800 Hz to 1 ms, 0.8 Hz to 1 s): their steps are the
+// quantum below the interval and the one above (1 and 2 ms), the lower median the shorter, and the longer
+// steps, no gaps, are as frequent as the interval's fraction of a quantum. Recognised when at least 1 in 20
+// of the steps up to 2.5 medians is over 1.5 medians and every one of them lies within a median of their
+// mean, which is then the interval; otherwise nothing. (A logger that loses more than 1 in 20 samples one
+// at a time, on fine stamps, reads so too: its stamps are those of a slower rate, rounded.)
+std::optional<double> coarse_stamps_interval(std::span<const double> time, double median) {
+  double sum = 0.0;
+  std::size_t steps = 0, longer = 0;
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    const double step = time[i] - time[i - 1];
+    if (step > 2.5 * median) continue;
+    sum += step;
+    ++steps;
+    if (step > 1.5 * median) ++longer;
+  }
+  if (longer == 0 || longer * 20 < steps) return std::nullopt;
+  const double mean = sum / static_cast<double>(steps);
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    const double step = time[i] - time[i - 1];
+    if (step <= 2.5 * median && std::abs(step - mean) >= median) return std::nullopt;
+  }
+  return mean;
+}
+
 // The sample interval of increasing time stamps: the mean step between gaps (a step longer than 2.5
 // median steps: samples lost), so that stamps rounded coarser than the interval (400 Hz to 1 ms: steps
 // of 2 and 3 ms) give it as well as fine ones, and one lost sample changes it by a step in the rows.
@@ -325,12 +350,18 @@ void TimeStampOptions::validate() const {
 TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,
                         const TimeStampOptions& options) {
   TimeGaps found;
-  const double nominal = options.sample_interval.value_or(median_step(time));
+  const double median = median_step(time);
+  const std::optional<double> coarse = options.sample_interval ? std::nullopt : coarse_stamps_interval(time, median);
+  const double nominal = options.sample_interval.value_or(coarse.value_or(median));
+  // Coarse stamps are rounded by up to one quantum (the median step) either way: a gap is a step longer than
+  // the interval by more than that, so that a step to the next quantum is none.
+  const double factor = coarse ? std::max(options.gap_factor, 1.0 + median / nominal) : options.gap_factor;
   std::vector<std::size_t> gap_rows;
   for (std::size_t i = 1; i < time.size(); ++i) {
-    if ((time[i] - time[i - 1]) / nominal > options.gap_factor) gap_rows.push_back(i);
+    if ((time[i] - time[i - 1]) / nominal > factor) gap_rows.push_back(i);
   }
-  found.sample_interval = options.sample_interval ? nominal : refined_step(time, gap_rows, nominal);
+  found.stamp_quantum = coarse ? median : 0.0;
+  found.sample_interval = options.sample_interval || coarse ? nominal : refined_step(time, gap_rows, nominal);
   for (std::size_t i : gap_rows) {
     const double ratio = (time[i] - time[i - 1]) / found.sample_interval;
     found.gaps.push_back({i, i < lines.size() ? lines[i] : 0, time[i - 1], time[i], missing_samples(ratio)});

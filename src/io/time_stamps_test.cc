@@ -60,6 +60,33 @@ TEST(TimeStamps, CoarseEpochStampsGiveTheIntervalAndTheMissingCount) {
   EXPECT_EQ(report.gaps[0].missing, 100u);
 }
 
+// Stamps rounded coarser than the interval: 800 Hz written to the millisecond steps 1 and 2 ms, 0.8 Hz
+// written to the second 1 and 2 s. Neither long step is a gap (each was one, and a whole record was
+// refused); the interval is the mean step, and samples lost are still found: 2 at 800 Hz (a step of 3 or
+// 4 ms), and 1680 at 0.8 Hz, counted to within the rounding of the stamps either side (a sample).
+TEST(TimeStamps, StampsCoarserThanTheIntervalAreNoGaps) {
+  const auto record = [](double rate, double quantum, int n, int lost_from, int lost) {
+    std::string text = "time,gyro\n";
+    for (int i = 0; i < n; ++i) {
+      if (i >= lost_from && i < lost_from + lost) continue;
+      text += fmt::format("{:.6g},{}\n", std::floor(i / rate / quantum) * quantum, i);
+    }
+    return text;
+  };
+  TextTable whole = table_of(record(800.0, 1e-3, 8000, 0, 0));
+  const TimeStampReport report = check_time_stamps(whole, 0, {});
+  EXPECT_TRUE(report.gaps.empty());
+  EXPECT_NEAR(report.sample_interval, 1.25e-3, 1e-3 / 7999.0);
+  EXPECT_THAT(error_of(record(800.0, 1e-3, 8000, 4000, 2)), HasSubstr("rec.csv:4002: gap in the time stamps: 4.998 to "));
+  TimeStampOptions split;
+  split.policy = GapPolicy::kSplit;
+  TextTable slow = table_of(record(0.8, 1.0, 16800, 8000, 1680));
+  const TimeStampReport outage = check_time_stamps(slow, 0, split);
+  ASSERT_EQ(outage.gaps.size(), 1u);
+  EXPECT_NEAR(static_cast<double>(outage.gaps[0].missing), 1680.0, 1.0);
+  EXPECT_NEAR(outage.sample_interval, 1.25, 2.0 / 15118.0);
+}
+
 // Steps that truly vary (0.9, 1.1, ...) keep the median step (the lower: 0.9): the mean is no
 // rounding of it.
 TEST(TimeStamps, VaryingStepsKeepTheMedian) {

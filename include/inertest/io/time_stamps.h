@@ -64,10 +64,14 @@ struct TimeStampReport {
 };
 
 // The gaps of increasing time stamps: steps longer than options.gap_factor sample intervals (the
-// options' interval, else the median step), in order; `lines` (empty: unknown) gives the file line
+// options' interval, else the median step; coarse stamps' own rule: stamp_quantum), in order; `lines` (empty: unknown) gives the file line
 // of each sample. The policy is not applied. Needs at least 2 time stamps.
 struct TimeGaps {
   double sample_interval = 0.0;
+  // Stamps rounded coarser than the interval (800 Hz in ms: steps of 1 and 2 ms): the rounding, a
+  // median step, by which each gap's length is uncertain; the interval is then the mean step between
+  // the gaps, and a gap a step longer than the interval by over a quantum. 0 for fine stamps.
+  double stamp_quantum = 0.0;
   std::vector<TimeGap> gaps;
 };
 TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_t> lines,

@@ -123,6 +123,33 @@ TEST(ImuApply, APlanWritesTheOutputBesideItsResults) {
   EXPECT_FALSE(std::filesystem::exists(scratch.path() + "/failed"));
 }
 
+// A calibration states the gravity it was made at, and imu-apply checks at it: the example tumble (made at
+// 9.80665 m/s^2) calibrated at 9.81744 has scale factors 0.11 % small, which its statics hold at 9.81744
+// (checked at the default 9.80665, every static read the difference: a residual of 0.0108 m/s^2). Given
+// another gravity, the check is at it, with a warning naming both.
+TEST(ImuApply, ChecksAtTheGravityOfTheCalibration) {
+  const testing::ScratchDirectory scratch;
+  const std::string tumble = testing::source_path("examples/imu_calibration/tumble.csv");
+  const std::string calibration = scratch.path() + "/calibration.json";
+  ASSERT_EQ(testing::run_cli({"imu-calibration", tumble, "--gravity", "9.81744", "--export", calibration}).exit_code, 0);
+  EXPECT_EQ(nlohmann::json::parse(testing::read_file(calibration)).at("gravity"),
+            (nlohmann::json{{"value", 9.81744}, {"unit", "m/s^2"}}));
+  const auto applied = [&](std::vector<std::string> arguments) {
+    arguments.insert(arguments.begin(), {"imu-apply", calibration, tumble, "--json"});
+    const testing::CliRun run = testing::run_cli(arguments);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out);
+  };
+  const nlohmann::json own = applied({});
+  EXPECT_LT(own.at("gravity_residual_rms").at("value").get<double>(), 1e-3);
+  EXPECT_EQ(own.at("warnings"), nlohmann::json::array());
+  const nlohmann::json standard = applied({"--gravity", "9.80665"});
+  EXPECT_NEAR(standard.at("gravity_residual_rms").at("value").get<double>(), 9.81744 - 9.80665, 5e-4);
+  EXPECT_EQ(standard.at("warnings"),
+            (nlohmann::json{"the calibration was made at a gravity of 9.81744 m/s^2, and is checked here at 9.80665 "
+                            "m/s^2: the gravity residual holds the difference"}));
+}
+
 // Units of a calibration and of the record it is applied to. The example tumble (25 Hz) with its gyro
 // as counts per sample interval (the samples / 25), calibrated with --gyro-unit pulse: the
 // calibration is in pulse/s, and the record must say what it holds (its counts taken as pulse/s gave

@@ -517,18 +517,28 @@ nlohmann::json calibration_file_json(const ImuCalibrationResult& result) {
   return {{"procedure", "imu_calibration"},
           {"model", "input = (I + misalignment) diag(1 / scale_factor) (output - bias); accelerometer input in m/s^2, "
                     "gyro input in rad/s"},
+          {"gravity", Figure{result.gravity_m_s2, "m/s^2", std::nullopt}},
           {"accelerometer", triad_json(result.accelerometer)},
           {"gyro", triad_json(result.gyro)}};
 }
 
-std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
+ImuCalibrationFile read_imu_calibration(const std::string& path) {
   const MappedFile file(path);
-  std::array<TriadCalibration, 2> triads;
+  ImuCalibrationFile read;
   try {
     const nlohmann::json json = nlohmann::json::parse(file.bytes());
+    if (json.contains("gravity")) {
+      const nlohmann::json& gravity = json.at("gravity");
+      const std::string unit = gravity.at("unit").get<std::string>();
+      try {
+        read.gravity_m_s2 = convert(gravity.at("value").get<double>(), Unit::parse(unit), Unit::parse("m/s^2"));
+      } catch (const Error& e) {
+        throw Error(at_file(path), fmt::format("gravity: the unit '{}' does not convert to m/s^2: {}", unit, e.message()));
+      }
+    }
     for (std::size_t t = 0; t < 2; ++t) {
       const nlohmann::json& triad = json.at(t == 0 ? "accelerometer" : "gyro");
-      TriadCalibration& calibration = triads[t];
+      TriadCalibration& calibration = read.triads[t];
       calibration.input_unit = t == 0 ? "m/s^2" : "rad/s";
       calibration.output_unit = triad.at("bias").at("unit").get<std::string>();
       calibration.bias = triad.at("bias").at("value").get<Vector3>();
@@ -575,7 +585,7 @@ std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path) {
   } catch (const nlohmann::json::exception& e) {
     throw Error(at_file(path), fmt::format("not an IMU calibration (inertest imu-calibration --export): {}", e.what()));
   }
-  return triads;
+  return read;
 }
 
 std::string imu_output_unit(const ImuRecord& record, std::size_t triad, const std::string& given) {
@@ -716,6 +726,7 @@ ImuCalibrationResult calibrate_imu(const ImuRecord& record, const ImuCalibration
   const std::array<std::string, 2> output_units = {imu_output_unit(record, 0, options.accelerometer_unit),
                                                    imu_output_unit(record, 1, options.gyro_unit)};
   ImuCalibrationResult result;
+  result.gravity_m_s2 = options.gravity_m_s2;
   StaticDetection detection = detect_static_intervals(record, options);
   result.static_intervals = std::move(detection.intervals);
   result.accelerometer_noise_variance = detection.accelerometer_noise_variance;

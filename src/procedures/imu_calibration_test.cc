@@ -145,7 +145,7 @@ TEST(ImuCalibration, TheCalibrationFileIsReadInTheUnitsItStates) {
 }})json",
                                                          6258.0 * degree, gyro_scale_factor_unit));
   };
-  const std::array<TriadCalibration, 2> triads = read_imu_calibration(file("count/(deg/s)"));
+  const std::array<TriadCalibration, 2> triads = read_imu_calibration(file("count/(deg/s)")).triads;
   EXPECT_EQ(triads[0].scale_factor[1], 410.0);
   EXPECT_EQ(triads[0].misalignment[0][1], 0.004);
   const TriadCalibration& gyro = triads[1];

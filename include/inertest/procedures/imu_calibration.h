@@ -113,18 +113,25 @@ struct ImuCalibrationResult {
   double gyro_residual_rms_rad = 0.0;
   double accelerometer_noise_variance = 0.0;  // the quietest windows' variance (output unit^2, summed over the axes)
   double gyro_noise_variance = 0.0;
+  double gravity_m_s2 = 0.0;  // the gravity it was made at (options.gravity_m_s2)
   std::vector<std::string> warnings;
 };
 
 // The calibration file (`--export`, read by `inertest imu-apply`): {"procedure": "imu_calibration",
-// "model", "accelerometer", "gyro"}, each triad as the result's JSON gives it:
+// "model", "gravity": {"value", "unit": "m/s^2"} (the gravity it was made at), "accelerometer", "gyro"}, each triad as the result's JSON gives it:
 // {"bias": {"value": [x, y, z], "unit", "uncertainty": [...]}, "scale_factor": {the same, unit
 // "<output>/(<input>)"}, "misalignment": {"value": 3x3, "unit": "rad", "uncertainty": 3x3}}.
 nlohmann::json triad_json(const TriadCalibration& triad);
 nlohmann::json calibration_file_json(const ImuCalibrationResult& result);
+// A calibration file read: its triads (accelerometer, gyro), and the gravity it was made at (none in a
+// file written before inertest stated it, or in imu-calibration's --json output).
+struct ImuCalibrationFile {
+  std::array<TriadCalibration, 2> triads;
+  std::optional<double> gravity_m_s2;
+};
 // Reads a calibration file, or any JSON object with the keys "accelerometer" and "gyro" as above (the
 // --json output of imu-calibration). Throws Error naming the file and the key that is wrong.
-std::array<TriadCalibration, 2> read_imu_calibration(const std::string& path);
+ImuCalibrationFile read_imu_calibration(const std::string& path);
 
 // The record's columns named by `columns` (a comma list of seven selectors: time, ax, ay, az, gx,
 // gy, gz, by header name or 1-based position): a text record, or a record of named channels (MAT,

@@ -620,6 +620,15 @@ TemperatureApplyResult apply_thermal_compensation(const ThermalRecord& record, c
   }
   thermal::set_rates(intervals, 0, compensation.rate_window_s, compensation.soak_rate_degC_per_min);
   TemperatureApplyResult result;
+  // The coefficients are in deg/h: a record read with another K has its bias in another scale (fitted
+  // with K = 1 and applied with 36000, the stability after compensation read 2983 deg/h for 0.083).
+  if (compensation.scale_factor &&
+      std::abs(options.scale_factor - *compensation.scale_factor) > 1e-6 * std::abs(*compensation.scale_factor)) {
+    result.warnings.push_back(fmt::format("the coefficients were fitted with a scale factor K of {:.10g}, and are "
+                                          "applied with {:.10g} (output units per deg/s): the bias is read in another "
+                                          "scale",
+                                          *compensation.scale_factor, options.scale_factor));
+  }
   result.sensor = record.sensor_names.front();
   std::vector<double> raw, residual;
   for (const thermal::Interval& interval : intervals) {
@@ -656,6 +665,7 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
     return json_text(nlohmann::json{{"model", "inertest temperature model"},
                           {"sensor", result.sensor},
                           {"order", result.order},
+                          {"scale_factor", options.scale_factor},
                           {"reference_temperature_degC", options.reference_temperature_degC},
                           {"rate_window_s", options.rate_window_s},
                           {"soak_rate_degC_per_min", options.soak_rate_degC_per_min},
@@ -665,9 +675,9 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
   }
   if (extension != ".csv") throw Error(fmt::format("{}: the export is .json or .csv, not '{}'", path, extension));
   std::string text = fmt::format("name,value,unit,uncertainty\nsensor,{},,\norder,{},,\nreference_temperature,{},degC,\n"
-                                 "rate_window,{},s,\nsoak_rate,{},degC/min,\n",
+                                 "rate_window,{},s,\nsoak_rate,{},degC/min,\nscale_factor,{},,\n",
                                  result.sensor, result.order, options.reference_temperature_degC,
-                                 options.rate_window_s, options.soak_rate_degC_per_min);
+                                 options.rate_window_s, options.soak_rate_degC_per_min, options.scale_factor);
   for (const auto& c : result.coefficients) {
     text += fmt::format("{},{},{},{}\n", c.name, c.value.value, c.value.unit, c.value.uncertainty.value_or(0.0));
   }
@@ -691,6 +701,7 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
       const nlohmann::json json = nlohmann::json::parse(text);
       compensation.sensor = json.at("sensor").get<std::string>();
       if (json.contains("order")) set_order(json.at("order").get<double>(), file_location);
+      if (json.contains("scale_factor")) compensation.scale_factor = json.at("scale_factor").get<double>();
       compensation.reference_temperature_degC = json.at("reference_temperature_degC").get<double>();
       compensation.rate_window_s = json.at("rate_window_s").get<double>();
       compensation.soak_rate_degC_per_min = json.at("soak_rate_degC_per_min").get<double>();
@@ -740,6 +751,8 @@ ThermalCompensation read_thermal_compensation(const std::string& path) {
       compensation.soak_rate_degC_per_min = in_unit("degC/min");
     } else if (name == "order") {
       set_order(value, SourceLocation{path, line_number, cells[1].column});
+    } else if (name == "scale_factor") {
+      compensation.scale_factor = value;
     } else if (name.starts_with("D_")) {
       const SourceLocation where{path, line_number, 1};
       const bool repeated = std::any_of(compensation.coefficients.begin(), compensation.coefficients.end(),

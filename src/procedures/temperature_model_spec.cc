@@ -56,10 +56,11 @@ ProcedureSpec temperature_model_spec() {
       "raw one, over the same windows. RECORD is a text record with a time column (s), an output column\n"
       "and one or more temperature columns (degC, or K where the name says so: coil_K, coil [K]; the first\n"
       "compensates, the others are compared).\n"
-      "--export FILE writes the coefficients: FILE.json {\"model\", \"sensor\", \"order\", \"reference_temperature_degC\",\n"
-      "\"rate_window_s\", \"soak_rate_degC_per_min\", \"coefficients\": {name: {value, unit, uncertainty}}} or\n"
-      "FILE.csv 'name,value,unit,uncertainty' (rows sensor, order, reference_temperature, rate_window,\n"
-      "soak_rate, then D_0, D_T, D_T2, ..., D_dT, D_TdT, D_H); `inertest temperature-apply` applies them.");
+      "--export FILE writes the coefficients: FILE.json {\"model\", \"sensor\", \"order\", \"scale_factor\",\n"
+      "\"reference_temperature_degC\", \"rate_window_s\", \"soak_rate_degC_per_min\", \"coefficients\": {name: {value,\n"
+      "unit, uncertainty}}} or FILE.csv 'name,value,unit,uncertainty' (rows sensor, order, reference_temperature,\n"
+      "rate_window, soak_rate, scale_factor, then D_0, D_T, D_T2, ..., D_dT, D_TdT, D_H); `inertest temperature-apply`\n"
+      "applies them, and warns when its K is not the scale_factor they were fitted with.");
   definition.chinese_title("零偏温度模型")
       .report_method(
           "A chamber record with soaks and ramps, heating and cooling, is averaged into short intervals; the "

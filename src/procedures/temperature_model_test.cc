@@ -163,6 +163,14 @@ TEST(TemperatureModel, ExportAppliesToTheRecord) {
     // The same record and windows: the residual stability temperature-model reported.
     EXPECT_NEAR(applied.at("residual_bias_stability").at("value").get<double>(),
                 nlohmann::json::parse(model.out).at("residual_bias_stability").at("value").get<double>(), 1e-6);
+    // Applied with another K, the record's bias is in another scale: said (it was silent).
+    const testing::CliRun other_k = testing::run_cli(
+        {"temperature-apply", record, "--coefficients", coefficients, "--scale-factor", "1", "--json"});
+    ASSERT_EQ(other_k.exit_code, 0) << other_k.err;
+    EXPECT_EQ(applied.at("warnings"), nlohmann::json::array());
+    EXPECT_EQ(nlohmann::json::parse(other_k.out).at("warnings"),
+              (nlohmann::json{"the coefficients were fitted with a scale factor K of 36000, and are applied with 1 "
+                              "(output units per deg/s): the bias is read in another scale"}));
     if (std::string(name) != "coefficients.csv") continue;
     // The settings of a .csv in the units their rows state (they were read as degC, s and degC/min
     // whatever the row said: 293.15 K as 293.15 degC made the residual 0.55 deg/h for 0.0098).

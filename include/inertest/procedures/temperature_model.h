@@ -134,7 +134,8 @@ std::vector<double> smoothed_rate_degC_per_min(std::span<const double> time_s, s
                                                double window_s);
 
 // The exported compensation coefficients (--export), documented in the spec's help:
-// JSON {"model": "inertest temperature model", "sensor", "order", "reference_temperature_degC",
+// JSON {"model": "inertest temperature model", "sensor", "order", "scale_factor" (K, output units per
+// deg/s, which temperature-apply's is held against), "reference_temperature_degC",
 // "rate_window_s", "soak_rate_degC_per_min", "coefficients": {name: {value, unit, uncertainty}}};
 // CSV with the header 'name,value,unit,uncertainty' and the settings (sensor, order, ...) as rows whose
 // unit column names them. By the file's extension (.json or .csv).
@@ -146,6 +147,8 @@ struct ThermalCompensation {
   double reference_temperature_degC = 20.0;
   double rate_window_s = 120.0;
   double soak_rate_degC_per_min = 0.05;
+  // The K the bias was read with (output units per deg/s); none in files written before exports stated it.
+  std::optional<double> scale_factor;
   std::vector<ThermalCoefficient> coefficients;
 };
 

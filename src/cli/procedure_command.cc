@@ -49,6 +49,7 @@ std::string help_text(const ProcedureSpec& spec) {
 std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& parameter) {
   std::string text = parameter.doc;
   if (!parameter.unit.empty()) text += ", " + parameter.unit;
+  if (!parameter.needed_when.empty()) return text + " (needed for " + parameter.needed_when + ")";
   const auto found = spec.defaults.find(parameter.name);
   // An empty list or text is no default to tell (the parameter's documentation says what is taken).
   if (found != spec.defaults.end() && !found->second.empty() && found->second != "") {
@@ -184,9 +185,11 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   for (const ParameterSpec& parameter : spec.parameters) {
     if (!parameter.cli_flag.empty()) {
       command->add_flag("--" + parameter.cli_flag, arguments->flags[parameter.name],
-                        fmt::format("{} (the flag sets {} = {})", parameter.doc, parameter.name,
+                        // What the flag does first: "--no-compensation  compensate ..." read as its opposite.
+                        fmt::format("sets {} = {}; {}: {}", parameter.name,
                                     parameter.cli_flag_value.is_string() ? parameter.cli_flag_value.get<std::string>()
-                                                                         : parameter.cli_flag_value.dump()));
+                                                                         : parameter.cli_flag_value.dump(),
+                                    parameter.name, parameter.doc));
       continue;
     }
     CLI::Option* option = add_parameter_option(*command, *arguments, spec, parameter);

@@ -59,7 +59,8 @@ ProcedureSpec scale_factor_spec() {
       .parameter(ParameterSpec("sample_rate", "sample rate of the records")
                      .unit_is("Hz")
                      .plan_key_is("sample_rate_hz")
-                     .instrument_gives("sample_rate_hz"),
+                     .instrument_gives("sample_rate_hz")
+                     .needed_for("--record and --records"),
                  &Options::timing, &RecordTiming::sample_rate_hz)
       .parameter(ParameterSpec("settling_time", "dropped at the start of each record / after each change of rate")
                      .unit_is("s")

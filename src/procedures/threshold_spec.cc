@@ -105,7 +105,10 @@ ProcedureSpec threshold_spec() {
               .plan_key_is("heading_deg")
               .site_gives("heading_deg"),
           &Options::threshold, &ThresholdOptions::heading_deg)
-      .parameter(ParameterSpec("table_rate", "method 3: table rate").unit_is("deg/s").plan_key_is("table_rate_deg_s"),
+      .parameter(ParameterSpec("table_rate", "method 3: table rate")
+                     .unit_is("deg/s")
+                     .plan_key_is("table_rate_deg_s")
+                     .needed_for("method 3"),
                  &Options::table_rate_deg_s)
       .parameter(ParameterSpec("rate", "method 3: sample rate (record without time column)")
                      .unit_is("Hz")

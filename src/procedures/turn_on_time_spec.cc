@@ -50,8 +50,12 @@ ProcedureSpec power_on_time_spec(bool warm_up) {
                  &TurnOnTimeOptions::scale_factor)
       .parameter(ParameterSpec("zero_output", "calibrated zero output F0 (pulse/s for a pulse counter)").unit_is("output units").command_line_name_is("zero"),
                  &TurnOnTimeOptions::zero_output)
-      .parameter(ParameterSpec("rate_band", "allowed rate error relative to the input rate"), &TurnOnTimeOptions::rate_band)
-      .parameter(ParameterSpec("rest_band_deg_h", "allowed indicated rate at rest").unit_is("deg/h").command_line_name_is("rest-band"),
+      .parameter(ParameterSpec("rate_band", "allowed rate error relative to the input rate").needed_for("runs at rate"),
+                 &TurnOnTimeOptions::rate_band)
+      .parameter(ParameterSpec("rest_band_deg_h", "allowed indicated rate at rest")
+                     .unit_is("deg/h")
+                     .command_line_name_is("rest-band")
+                     .needed_for("runs at rest"),
                  &TurnOnTimeOptions::rest_band_deg_h)
       .parameter(ParameterSpec("smoothing_s", "averaging window before the test (0: none)").unit_is("s").command_line_name_is("smoothing"),
                  &TurnOnTimeOptions::smoothing_s)

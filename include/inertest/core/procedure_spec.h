@@ -146,6 +146,9 @@ struct ParameterSpec {
   // The command-line option when it is a contract that differs from --kebab-case(name) (e.g. "rate"
   // for sample_rate_hz: --rate).
   ParameterSpec& command_line_name_is(std::string option) { cli_option = std::move(option); return *this; }
+  // A parameter whose default (0) stands for "not given", which `when` needs (e.g. "runs at rate"):
+  // the help says "needed for runs at rate" where it would show the default.
+  ParameterSpec& needed_for(std::string when) { needed_when = std::move(when); return *this; }
   // On the command line a flag without a value, `--flag`, that gives `value` (e.g. --input-deg-h for
   // input = "deg/h", --no-compensation for compensation = false: contracts); without it the
   // parameter has its default.
@@ -174,6 +177,7 @@ struct ParameterSpec {
   std::string doc;
   std::vector<std::string> choices;  // the accepted values of a text parameter, empty when free
   bool required = false;             // no default: the command line must give it
+  std::string needed_when;           // needed_for(): what needs it, "" for none
   // In a plan, the [instrument] key ("output_unit", "nominal_scale_factor", "sample_rate_hz") that gives the value
   // when the step does not; with `instrument_only` the step has no key for it at all.
   std::string instrument_default;

@@ -179,7 +179,8 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
       step.fail(fmt::format("missing '{}'{}", parameter.plan_name(), where));
     }
   }
-  const OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
+  OutputRecordSource source = reads_records ? read_record_keys(step, "") : OutputRecordSource{};
+  source.instrument_sample_rate_hz = context.instrument.sample_rate_hz;
   std::optional<double> rate;
   std::string time_column;
   if (reads_timed_records) {

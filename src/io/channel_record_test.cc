@@ -104,7 +104,7 @@ TEST(ChannelRecord, Hdf5WrittenByH5pyWithUnitsRateAndChunks) {
 }
 
 TEST(ChannelRecord, RateRecordAndOutputRecordReadChannelsByName) {
-  const std::vector<double> direct = read_output_record({lab_file("record_v7.mat"), "", "imu.gyro_x"});
+  const std::vector<double> direct = read_output_record({lab_file("record_v7.mat"), "", "imu.gyro_x", std::nullopt});
   EXPECT_EQ(direct[10], known_gyro_x(10));
   std::vector<double> streamed;
   const std::size_t count = read_rate_record({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")},
@@ -113,10 +113,10 @@ TEST(ChannelRecord, RateRecordAndOutputRecordReadChannelsByName) {
   EXPECT_EQ(streamed[9999], known_rate(999));
   EXPECT_EQ(stored_sample_rate({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")}), 200.0);
   // The stored rate gives the times; a rate that contradicts it is an error naming both.
-  const TimedRecord timed = read_timed_record({lab_file("record.h5"), "auto", "imu/gyro_x"}, std::nullopt);
+  const TimedRecord timed = read_timed_record({lab_file("record.h5"), "auto", "imu/gyro_x", std::nullopt}, std::nullopt);
   EXPECT_DOUBLE_EQ(timed.time_s[199], 1.0);
   try {
-    read_timed_record({lab_file("record.h5"), "", "imu/gyro_x"}, 100.0);
+    read_timed_record({lab_file("record.h5"), "", "imu/gyro_x", std::nullopt}, 100.0);
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.message(), HasSubstr("the sample rate given, 100 Hz, contradicts the 200 Hz stored for channel 'imu/gyro_x'"));

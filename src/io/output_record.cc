@@ -127,6 +127,7 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
     for (std::size_t i = 0; i < record.output.size(); ++i) record.time_s[i] = static_cast<double>(i + 1) / rate;
     return record;
   }
+  if (!sample_rate_hz && !is_text(source.format)) sample_rate_hz = source.instrument_sample_rate_hz;
   if (sample_rate_hz) {
     if (!(*sample_rate_hz > 0.0)) throw Error(fmt::format("sample rate must be positive, got {} Hz", *sample_rate_hz));
     if (is_text(source.format)) check_sample_rate_against_time_column(source.path, *sample_rate_hz);
@@ -141,7 +142,8 @@ TimedRecord read_timed_record(const OutputRecordSource& source, std::optional<do
   }
   if (!is_text(source.format)) {
     throw Error(SourceLocation{source.path, 0, 0},
-                "a binary record has no time column: give the sample rate (--rate / sample_rate_hz)");
+                "a binary record has no time column: give the sample rate (--rate; in a plan sample_rate_hz in the "
+                "step or in [instrument])");
   }
   TextTableOptions options;
   options.columns = {selector_or(time_column, 1), selector_or(source.column, 2)};

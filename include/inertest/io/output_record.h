@@ -27,6 +27,9 @@ struct OutputRecordSource {
   // name ("group/channel", "struct.field") or 1-based index; empty means the only numeric channel.
   // Ignored for binary records.
   std::string column;
+  // A binary record's sample rate (Hz) where neither the command nor the step gives one: a plan's
+  // [instrument] sample_rate_hz. Timed readers only; a text record keeps its time column.
+  std::optional<double> instrument_sample_rate_hz;
 };
 
 // Checks a format as OutputRecordSource::format takes it; throws Error naming the formats known.

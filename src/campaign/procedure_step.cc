@@ -194,7 +194,13 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     read_pulse_counts_as_rates(call, spec, is_given, rate);
     spec.check(call);
   } catch (const ParameterError& e) {
-    step.fail_at(spec.find_parameter(e.parameter)->plan_name(), e.message());
+    const ParameterSpec& parameter = *spec.find_parameter(e.parameter);
+    // A parameter the step has no key for is given in [site] or [instrument]: the message says so.
+    if (parameter.instrument_only) {
+      step.fail(fmt::format("{} (give it as [{}] {})", e.message(), parameter.site_default ? "site" : "instrument",
+                            parameter.instrument_default));
+    }
+    step.fail_at(parameter.plan_name(), e.message());
   } catch (const Error& e) {
     if (e.location()) throw;  // already at its place, e.g. a run's (RunInput::where)
     step.fail(e.message());

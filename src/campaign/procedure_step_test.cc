@@ -125,6 +125,14 @@ TEST(ProcedureStep, ChoicesAndUnknownKeysAreCheckedBeforeAnythingRuns) {
       "output_unit");
 }
 
+// A parameter the step has no key for (threshold's latitude, [site]'s) is asked for where it is given,
+// before anything runs (it was found by the run, with no word of [site]).
+TEST(ProcedureStep, AParameterOfTheSiteIsAskedForInTheSite) {
+  expect_plan_error("[[procedure]]\nkind = \"threshold\"\nmethod = 2\nfile = \"plan.toml\"\nscale_factor = 1\n",
+                    "latitude is needed by method 2: its input is the Earth rate's horizontal component, Omega_e "
+                    "cos(latitude) (GJB 2426A eqs. 16-17) (give it as [site] latitude_deg)");
+}
+
 TEST(ProcedureStep, LimitOnAnUndeclaredFigureIsAPlanErrorBeforeAnythingRuns) {
   // validate_plan runs nothing: the declared fields decide.
   expect_plan_error("[[procedure]]\nkind = \"polarity\"\nname = \"pol\"\npositive_output = 1\nnegative_output = 2\n"

@@ -142,6 +142,8 @@ ProcedureSpec threshold_spec() {
           throw ParameterError("method", "must be 1 (rate table), 2 (dividing head) or 3 (slow rotation)");
         }
         options.threshold.validate();
+        // Before anything runs (a plan names [site] latitude_deg): methods 2 and 3 take the Earth rate's input.
+        if (options.method != 1) options.threshold.latitude_for(options.method == 2 ? "method 2" : "method 3");
         if (options.method != 3) return;
         if (options.table_rate_deg_s == 0.0) throw ParameterError("table_rate", "must be nonzero with method 3");
         if (options.sample_rate_hz && !(*options.sample_rate_hz > 0.0))

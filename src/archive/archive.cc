@@ -589,6 +589,18 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
   return {name.substr(0, slash), name.substr(slash + 1)};
 }
 
+// The archived figures (PROCEDURE/FIGURE) a message about one that is not names: the procedure's own
+// when it is archived, else all, as a comma list.
+std::string figures_to_name(const std::vector<std::string>& known, const std::string& procedure) {
+  const auto own = [&](const std::string& name) { return name.starts_with(procedure + "/"); };
+  const bool procedure_known = std::any_of(known.begin(), known.end(), own);
+  std::string names;
+  for (const std::string& name : known) {
+    if (!procedure_known || own(name)) names += (names.empty() ? "" : ", ") + name;
+  }
+  return names;
+}
+
 // Throws NotOneQuantity unless every row's unit (column 4) converts to the first's, and every row
 // that says where it lies in its table (column 8, the abscissa; null where unknown: a campaign the
 // migration could not read again) lies at one place.
@@ -752,14 +764,10 @@ class DatabaseArchive final : public Archive {
       if (known.empty() && db_->query("SELECT id FROM campaign WHERE instrument = $1", {instrument}).empty()) {
         throw Error("instrument '" + instrument + "' has no campaign in the archive");
       }
-      // The procedure's own figures when it is archived, else every figure of the instrument.
-      const bool procedure_known = std::any_of(known.begin(), known.end(),
-                                               [&](const Row& row) { return row.text(0) == procedure; });
-      std::string names;
-      for (const auto& row : known) {
-        if (!procedure_known || row.text(0) == procedure) names += (names.empty() ? "" : ", ") + row.text(0) + "/" + row.text(1);
-      }
-      throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " + names + ")");
+      std::vector<std::string> names;
+      for (const auto& row : known) names.push_back(row.text(0) + "/" + row.text(1));
+      throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " +
+                  figures_to_name(names, procedure) + ")");
     }
     require_one_quantity(rows, figure);
     FigureHistory history{instrument, figure, rows.front().text(4), {}, place_of(rows), std::nullopt, std::nullopt, false};
@@ -777,7 +785,9 @@ class DatabaseArchive final : public Archive {
                                          {procedure, name, *since})
                             : db_->query(std::string(figure_columns) + where + order, {procedure, name});
     if (rows.empty()) {
-      throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()));
+      const std::vector<std::string> known = figures(false);
+      throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()) +
+                  (known.empty() ? std::string() : " (archived: " + figures_to_name(known, procedure) + ")"));
     }
     require_one_quantity(rows, figure);
     FleetFigure fleet{figure, rows.front().text(4), {}, place_of(rows), std::nullopt, std::nullopt, false};

@@ -534,7 +534,12 @@ TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
             "bias_static/noise/white, scale_factor/nonlinearity, scale_factor/scale_factor)");
   EXPECT_THAT(error([&] { archive->history("FOG-0417", "scale_factor"); }),
               HasSubstr("name it PROCEDURE/FIGURE as in results.json"));
-  EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }), "figure 'nope/nope' is not archived");
+  // Across the fleet too (it said only "is not archived").
+  EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }),
+            "figure 'nope/nope' is not archived (archived: bias_static/bias, bias_static/noise/white, "
+            "scale_factor/nonlinearity, scale_factor/scale_factor)");
+  EXPECT_EQ(error([&] { archive->fleet("scale_factor/bias", std::nullopt); }),
+            "figure 'scale_factor/bias' is not archived (archived: scale_factor/nonlinearity, scale_factor/scale_factor)");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),
             "--since '2026-13': expected YYYY-MM-DD");
   for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29", "2026-04-04x", "2026-04-04T00:00:00Z"}) {

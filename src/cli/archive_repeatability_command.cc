@@ -63,7 +63,7 @@ CommandAction setup(CLI::App& archive) {
   command->add_option("ID", arguments->instrument, "instrument id")->required();
   command->add_option("--figure", arguments->figure,
                       "PROCEDURE/FIGURE: a scale factor (e.g. scale_factor/scale_factor) or a bias "
-                      "(e.g. bias_static/bias)")
+                      "(e.g. bias/bias, as `archive instruments` and results.json name them)")
       ->required();
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "inertest/core/error.h"
 
@@ -187,18 +188,24 @@ Parsed named(std::string_view name, std::string_view whole) {
   const std::string lowered = lower(name);
   if (const std::optional<std::string_view> word = word_for_unit(lowered)) return *exactly_named(*word);
   if (all_capitals(whole)) {
-    std::optional<std::string_view> any_case;
-    bool ambiguous = false;
+    std::vector<std::string_view> any_case;  // the known names of this spelling, of different sizes
     const auto consider = [&](std::string_view known) {
       if (lower(known) != lowered) return;
-      if (any_case && exactly_named(*any_case)->factor != exactly_named(known)->factor) ambiguous = true;
-      any_case = known;
+      if (any_case.empty() || exactly_named(any_case.front())->factor != exactly_named(known)->factor) {
+        any_case.push_back(known);
+      }
     };
     for (const auto& entry : simple_units()) consider(entry.first);
     for (std::string_view known : {"g", "mg", "ug", "W", "mW", "ohm", "kohm", "Mohm", "mohm", "rpm", "dps", "dph"}) {
       consider(known);
     }
-    if (any_case && !ambiguous) return *exactly_named(*any_case);
+    if (any_case.size() == 1) return *exactly_named(any_case.front());
+    if (any_case.size() > 1) {
+      std::string names;
+      for (std::string_view known : any_case) names += (names.empty() ? "" : " or ") + std::string(known);
+      throw Error("unit '" + std::string(name) + "' in '" + std::string(whole) + "' is ambiguous in capitals: write " +
+                  names);
+    }
   }
   const std::size_t digits = name.find_first_of("0123456789");
   if (digits > 0 && digits + 1 == name.size()) {  // one digit: s2, not a number's digits

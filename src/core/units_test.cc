@@ -98,6 +98,14 @@ TEST(Units, UnknownNamesAreAnErrorNotAGuess) {
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr("unknown unit 'fortnight'"));
   }
+  try {
+    Unit::parse("MOHM");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("unit 'MOHM' in 'MOHM' is ambiguous in capitals: write "));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("Mohm"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("mohm"));
+  }
 }
 
 TEST(Units, DimensionsOfDerivedUnits) {

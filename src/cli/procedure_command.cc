@@ -49,6 +49,15 @@ std::string help_text(const ProcedureSpec& spec) {
 std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& parameter) {
   std::string text = parameter.doc;
   if (!parameter.unit.empty()) text += ", " + parameter.unit;
+  // Where a plan's key (and Python's keyword) is not the option's name in snake_case, the help names it
+  // (--rate is sample_rate_hz, --rest-band rest_band_deg_h).
+  std::string snake = parameter.command_line_option().substr(2);
+  std::replace(snake.begin(), snake.end(), '-', '_');
+  if (parameter.instrument_only) {
+    text += fmt::format(" [plan: [{}] {}]", parameter.site_default ? "site" : "instrument", parameter.instrument_default);
+  } else if (parameter.plan_name() != snake) {
+    text += " [plan: " + parameter.plan_name() + "]";
+  }
   if (!parameter.needed_when.empty()) return text + " (needed for " + parameter.needed_when + ")";
   const auto found = spec.defaults.find(parameter.name);
   // An empty list or text is no default to tell (the parameter's documentation says what is taken).

@@ -142,6 +142,22 @@ TEST(ProcedureCommand, RepeatedRunsAndAFlagThatGivesAParameter) {
   EXPECT_THAT(run.err, HasSubstr(bad + ":2:1: expected a number"));
 }
 
+// The help of a parameter says what a plan calls it where that is not the option's name (--rate is
+// sample_rate_hz; the latitude is [site]'s), what a flag sets before what its parameter means, and what
+// needs a parameter whose 0 stands for "not given" instead of showing that 0 as a default.
+TEST(ProcedureCommand, TheHelpNamesThePlanKeyWhatAFlagSetsAndWhatNeedsAParameter) {
+  const testing::CliRun threshold = run_cli({"threshold", "--help"});
+  EXPECT_THAT(threshold.out, HasSubstr("[plan: sample_rate_hz]"));
+  EXPECT_THAT(threshold.out, HasSubstr("site latitude (methods 2, 3), deg [plan: [site] latitude_deg]"));
+  EXPECT_THAT(threshold.out, HasSubstr("method 3: table rate, deg/s [plan: table_rate_deg_s] (needed for method 3)"));
+  const testing::CliRun centrifuge = run_cli({"centrifuge", "--help"});
+  EXPECT_THAT(centrifuge.out, HasSubstr("--no-compensation           sets compensation = false; compensation: "));
+  const testing::CliRun turn_on = run_cli({"turn-on-time", "--help"});
+  EXPECT_THAT(turn_on.out, HasSubstr("allowed rate error relative to the input rate (needed for runs at rate)"));
+  EXPECT_THAT(turn_on.out, ::testing::Not(HasSubstr("--rate-band FLOAT           allowed rate error relative to the "
+                                                    "input rate (default")));
+}
+
 // NUMBER:FILE with a number out of a double's range (1e400) was a run at 0 (a room temperature of
 // 0 degC, a run at rest), and "inf" was taken as a number.
 TEST(ProcedureCommand, ARunNumberMustBeFinite) {

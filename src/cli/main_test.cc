@@ -32,6 +32,20 @@ TEST(CommandLine, ErrorsOfTheCommandLineExitWithStatusTwo) {
   EXPECT_EQ(run_cli({"allan", "--help"}).exit_code, 0);
 }
 
+// A slip of the keys is answered with the nearest command or option (it was "unknown command" and
+// "arguments were not expected" alone); a word near none gets no guess.
+TEST(CommandLine, AMistypedCommandOrOptionIsAnsweredWithTheNearest) {
+  auto run = run_cli({"scalefactor"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.err, "inertest: error: unknown command 'scalefactor' (did you mean scale-factor?) (see inertest --help)\n");
+  run = run_cli({"scale-factor", testing::source_path("examples/scale_factor/points.csv"), "--rateunit", "deg/s"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("--rateunit (did you mean --rate-unit?) (see inertest scale-factor --help)"));
+  run = run_cli({"scale-factor", testing::source_path("examples/scale_factor/points.csv"), "--wobble", "1"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, ::testing::Not(HasSubstr("did you mean")));
+}
+
 TEST(CommandLine, OutputThatCannotBeWrittenIsAnError) {
   const auto run = run_cli({"scale-factor", testing::source_path("examples/scale_factor/points.csv"), "--json"},
                            "/dev/full");

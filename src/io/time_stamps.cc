@@ -108,29 +108,53 @@ TimeSegment segment(const TextTable& table, std::size_t begin, std::size_t end) 
   return {begin, end, line_of(table, begin), line_of(table, end - 1)};
 }
 
-// The interval of stamps rounded coarser than it (800 Hz to 1 ms, 0.8 Hz to 1 s): their steps are the
-// quantum below the interval and the one above (1 and 2 ms), the lower median the shorter, and the longer
-// steps, no gaps, are as frequent as the interval's fraction of a quantum. Recognised when at least 1 in 20
-// of the steps up to 2.5 medians is over 1.5 medians and every one of them lies within a median of their
-// mean, which is then the interval; otherwise nothing. (A logger that loses more than 1 in 20 samples one
-// at a time, on fine stamps, reads so too: its stamps are those of a slower rate, rounded.)
-std::optional<double> coarse_stamps_interval(std::span<const double> time, double median) {
+// Stamps rounded coarser than their interval d (800 Hz to 1 ms, 0.8 Hz to 1 s, 400 Hz to 1 ms): every
+// step up to 2.5 medians is one of two values a quantum q apart, floor(d/q)q and the next (1 and 2 ms,
+// 2 and 3 ms), and the stamps stay within 2q of the line of equal steps d along each run between longer
+// steps (the rounding moves a stamp by less than q, the line's slope by q over the run). d is then the
+// mean of those steps. Fine stamps with lost samples (steps of T and 2T) drift from that line by a whole
+// interval at each loss, and a record whose rate changes runs away from it: neither is recognised, nor a
+// record with fewer than 20 longer steps, too few to tell rounding from loss.
+struct CoarseStamps {
+  double interval = 0.0;
+  double quantum = 0.0;
+};
+std::optional<CoarseStamps> coarse_stamps(std::span<const double> time, double median) {
+  const double largest = std::max(std::abs(time.front()), std::abs(time.back()));
+  const double tolerance = 4.0 * (std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest);
+  const auto is_step = [&](std::size_t i) { return time[i] - time[i - 1] <= 2.5 * median; };
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+  for (std::size_t i = 1; i < time.size(); ++i) {
+    if (is_step(i)) shortest = std::min(shortest, time[i] - time[i - 1]), longest = std::max(longest, time[i] - time[i - 1]);
+  }
+  const double quantum = longest - shortest;
+  if (!(quantum > tolerance)) return std::nullopt;  // one step: fine stamps
   double sum = 0.0;
   std::size_t steps = 0, longer = 0;
   for (std::size_t i = 1; i < time.size(); ++i) {
+    if (!is_step(i)) continue;
     const double step = time[i] - time[i - 1];
-    if (step > 2.5 * median) continue;
+    const bool is_longer = std::abs(step - longest) <= tolerance;
+    if (!is_longer && std::abs(step - shortest) > tolerance) return std::nullopt;  // a third value
     sum += step;
     ++steps;
-    if (step > 1.5 * median) ++longer;
+    if (is_longer) ++longer;
   }
-  if (longer == 0 || longer * 20 < steps) return std::nullopt;
-  const double mean = sum / static_cast<double>(steps);
-  for (std::size_t i = 1; i < time.size(); ++i) {
-    const double step = time[i] - time[i - 1];
-    if (step <= 2.5 * median && std::abs(step - mean) >= median) return std::nullopt;
+  constexpr std::size_t kFewestLonger = 20;
+  if (longer < kFewestLonger) return std::nullopt;
+  const double interval = sum / static_cast<double>(steps);
+  for (std::size_t start = 0; start + 1 < time.size();) {
+    double low = 0.0, high = 0.0;
+    std::size_t i = start + 1;
+    for (; i < time.size() && is_step(i); ++i) {
+      const double off_line = time[i] - time[start] - static_cast<double>(i - start) * interval;
+      low = std::min(low, off_line);
+      high = std::max(high, off_line);
+    }
+    if (high - low > 2.0 * quantum + tolerance) return std::nullopt;
+    start = i;
   }
-  return mean;
+  return CoarseStamps{interval, quantum};
 }
 
 // The sample interval of increasing time stamps: the mean step between gaps (a step longer than 2.5
@@ -351,16 +375,16 @@ TimeGaps find_time_gaps(std::span<const double> time, std::span<const std::size_
                         const TimeStampOptions& options) {
   TimeGaps found;
   const double median = median_step(time);
-  const std::optional<double> coarse = options.sample_interval ? std::nullopt : coarse_stamps_interval(time, median);
-  const double nominal = options.sample_interval.value_or(coarse.value_or(median));
-  // Coarse stamps are rounded by up to one quantum (the median step) either way: a gap is a step longer than
-  // the interval by more than that, so that a step to the next quantum is none.
-  const double factor = coarse ? std::max(options.gap_factor, 1.0 + median / nominal) : options.gap_factor;
+  const std::optional<CoarseStamps> coarse = options.sample_interval ? std::nullopt : coarse_stamps(time, median);
+  const double nominal = options.sample_interval.value_or(coarse ? coarse->interval : median);
+  // A coarse stamp is off by up to one quantum: a gap is a step longer than the interval by more than
+  // that, so that a step to the next quantum is none.
+  const double factor = coarse ? std::max(options.gap_factor, 1.0 + coarse->quantum / nominal) : options.gap_factor;
   std::vector<std::size_t> gap_rows;
   for (std::size_t i = 1; i < time.size(); ++i) {
     if ((time[i] - time[i - 1]) / nominal > factor) gap_rows.push_back(i);
   }
-  found.stamp_quantum = coarse ? median : 0.0;
+  found.stamp_quantum = coarse ? coarse->quantum : 0.0;
   found.sample_interval = options.sample_interval || coarse ? nominal : refined_step(time, gap_rows, nominal);
   for (std::size_t i : gap_rows) {
     const double ratio = (time[i] - time[i - 1]) / found.sample_interval;

@@ -85,6 +85,39 @@ TEST(TimeStamps, StampsCoarserThanTheIntervalAreNoGaps) {
   ASSERT_EQ(outage.gaps.size(), 1u);
   EXPECT_NEAR(static_cast<double>(outage.gaps[0].missing), 1680.0, 1.0);
   EXPECT_NEAR(outage.sample_interval, 1.25, 2.0 / 15118.0);
+  // 400 Hz in ms steps 2 and 3 ms: the interval is 2.5 ms (it was 2, and an outage of 100 samples 125).
+  TextTable four_hundred = table_of(record(400.0, 1e-3, 20000, 10000, 100));
+  const TimeStampReport quarter = check_time_stamps(four_hundred, 0, split);
+  EXPECT_NEAR(quarter.sample_interval, 2.5e-3, 1e-3 / 9999.0);
+  ASSERT_EQ(quarter.gaps.size(), 1u);
+  EXPECT_EQ(quarter.gaps[0].missing, 100u);
+}
+
+// What is not rounding: fine stamps that lose 6 % of their samples one at a time (steps of T and 2T, as
+// rounded stamps have, but drifting a whole interval from the line at each loss), a record whose rate
+// changes (100 Hz, then 50 Hz), and a short record with one lost sample. Each long step stays a gap.
+TEST(TimeStamps, LostSamplesAndAChangeOfRateAreNoCoarseStamps) {
+  testing::UniformSequence uniform(3);
+  std::string lost = "time,gyro\n";
+  std::size_t kept = 0;
+  for (int i = 0; i < 20000; ++i) {
+    if (i > 0 && uniform.next() + 0.5 < 0.06) continue;  // 6 % of the samples
+    lost += fmt::format("{:.3f},{}\n", i / 1000.0, i);
+    ++kept;
+  }
+  TimeStampOptions split;
+  split.policy = GapPolicy::kSplit;
+  TextTable fine = table_of(lost);
+  const TimeStampReport losses = check_time_stamps(fine, 0, split);
+  EXPECT_NEAR(losses.sample_interval, 1e-3, 1e-12);
+  std::size_t missing = 0;
+  for (const TimeGap& gap : losses.gaps) missing += gap.missing;
+  EXPECT_EQ(missing + kept, 20000u);
+  std::string changing = "time,gyro\n";
+  for (int i = 0; i < 5000; ++i) changing += fmt::format("{:.2f},0\n", i / 100.0);
+  for (int i = 0; i < 5000; ++i) changing += fmt::format("{:.2f},0\n", 50.0 + i / 50.0);
+  EXPECT_THAT(error_of(changing), HasSubstr("gap in the time stamps"));
+  EXPECT_THAT(error_of("time,gyro\n0,1\n1,2\n3,3\n"), HasSubstr("rec.csv:4: gap in the time stamps"));
 }
 
 // Steps that truly vary (0.9, 1.1, ...) keep the median step (the lower: 0.9): the mean is no

@@ -1,5 +1,6 @@
 // Checking the time column of a record: time stamps must increase; a step of more than 1.5 sample
-// intervals is a gap (a logger that dropped samples). What happens at a gap is the user's choice:
+// intervals is a gap (a logger that dropped samples), and of stamps rounded coarser than the interval
+// (800 Hz in ms) a step longer than the interval by more than their quantum. What happens at a gap is the user's choice:
 // stop with an error, split the record into its contiguous segments, or fill the missing samples
 // by linear interpolation. Procedures that take a time column call check_time_stamps() after
 // read_text_table() and work on the segments it returns.
@@ -64,13 +65,14 @@ struct TimeStampReport {
 };
 
 // The gaps of increasing time stamps: steps longer than options.gap_factor sample intervals (the
-// options' interval, else the median step; coarse stamps' own rule: stamp_quantum), in order; `lines` (empty: unknown) gives the file line
-// of each sample. The policy is not applied. Needs at least 2 time stamps.
+// options' interval, else the median step; coarse stamps: see stamp_quantum), in order; `lines`
+// (empty: unknown) gives the file line of each sample. The policy is not applied. Needs at least 2
+// time stamps.
 struct TimeGaps {
   double sample_interval = 0.0;
-  // Stamps rounded coarser than the interval (800 Hz in ms: steps of 1 and 2 ms): the rounding, a
-  // median step, by which each gap's length is uncertain; the interval is then the mean step between
-  // the gaps, and a gap a step longer than the interval by over a quantum. 0 for fine stamps.
+  // Stamps rounded coarser than the interval (800 Hz in ms: steps of 1 and 2 ms): their quantum (1 ms),
+  // by which each gap's length is uncertain; the interval is then the mean step between the gaps, and a
+  // gap a step longer than the interval by more than a quantum (and than gap_factor). 0 for fine stamps.
   double stamp_quantum = 0.0;
   std::vector<TimeGap> gaps;
 };

@@ -164,7 +164,8 @@ ProcedureSpec imu_apply_spec() {
       .parameter(ParameterSpec("gyro_unit", "the record's gyro output unit (default: the unit its channels store, else "
                                             "the calibration's; pulse: read as pulse/s)"),
                  &Options::gyro_unit)
-      .parameter(ParameterSpec("gravity_m_s2", "local gravity (default: the gravity the calibration was made at)")
+      .parameter(ParameterSpec("gravity_m_s2", "local gravity (default: the gravity the calibration states, else the "
+                                               "standard 9.80665)")
                      .unit_is("m/s^2")
                      .command_line_name_is("gravity")
                      .site_gives("gravity_m_s2"),
@@ -193,6 +194,11 @@ ProcedureSpec imu_apply_spec() {
         // at another, every static shows the difference (9.81744 against the default 9.80665 read as a
         // residual of 0.0108 m/s^2 for 0.0002).
         if (!options.gravity_m_s2) {
+          if (!file.gravity_m_s2) {
+            warnings.emplace_back("the calibration states no gravity (imu-calibration's --json output, or an export "
+                                  "written before exports stated it): checked at the standard 9.80665 m/s^2; give "
+                                  "--gravity for the site's");
+          }
           options.gravity_m_s2 = file.gravity_m_s2;
         } else if (file.gravity_m_s2 && std::abs(*options.gravity_m_s2 - *file.gravity_m_s2) > 1e-6 * *file.gravity_m_s2) {
           warnings.push_back(fmt::format("the calibration was made at a gravity of {:.8g} m/s^2, and is checked here "

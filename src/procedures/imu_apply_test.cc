@@ -148,6 +148,14 @@ TEST(ImuApply, ChecksAtTheGravityOfTheCalibration) {
   EXPECT_EQ(standard.at("warnings"),
             (nlohmann::json{"the calibration was made at a gravity of 9.81744 m/s^2, and is checked here at 9.80665 "
                             "m/s^2: the gravity residual holds the difference"}));
+  // imu-calibration's --json output states no gravity: the standard one, said.
+  const testing::CliRun printed = testing::run_cli({"imu-calibration", tumble, "--json"});
+  ASSERT_EQ(printed.exit_code, 0) << printed.err;
+  const testing::CliRun unstated =
+      testing::run_cli({"imu-apply", scratch.write("printed.json", printed.out), tumble, "--json"});
+  ASSERT_EQ(unstated.exit_code, 0) << unstated.err;
+  EXPECT_THAT(nlohmann::json::parse(unstated.out).at("warnings").at(0).get<std::string>(),
+              ::testing::StartsWith("the calibration states no gravity (imu-calibration's --json output"));
 }
 
 // Units of a calibration and of the record it is applied to. The example tumble (25 Hz) with its gyro

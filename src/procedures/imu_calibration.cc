@@ -438,8 +438,8 @@ std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals)
   return accepted;
 }
 
-// Gaps in the time stamps, as `inspect` reports them (io/time_stamps.h: a step of more than 1.5 times the
-// median step). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
+// Gaps in the time stamps, as `inspect` reports them (io/time_stamps.h: a step of more than 1.5 sample
+// intervals, or of coarse stamps more than a quantum over one). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
 // rate interpolated over it), the turn made while samples were missing is lost and the
 // rotation's residual with it: an Error at the line after the gap. Elsewhere (in a static interval, or
 // in a motion between statics that no fit uses) it changes nothing the fits use: a warning.
@@ -532,8 +532,9 @@ ImuCalibrationFile read_imu_calibration(const std::string& path) {
       const std::string unit = gravity.at("unit").get<std::string>();
       try {
         read.gravity_m_s2 = convert(gravity.at("value").get<double>(), Unit::parse(unit), Unit::parse("m/s^2"));
+        check_surface_gravity("gravity", *read.gravity_m_s2);
       } catch (const Error& e) {
-        throw Error(at_file(path), fmt::format("gravity: the unit '{}' does not convert to m/s^2: {}", unit, e.message()));
+        throw Error(at_file(path), fmt::format("gravity: {} {}: {}", gravity.at("value").dump(), unit, e.message()));
       }
     }
     for (std::size_t t = 0; t < 2; ++t) {

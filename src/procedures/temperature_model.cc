@@ -324,6 +324,21 @@ ThermalRecord read_record(const ProcedureCall& call, const TemperatureModelOptio
   return record;
 }
 
+std::optional<std::string> gap_warning(const ThermalRecord& record, double interval_s) {
+  const TimeGaps found = find_time_gaps(record.time_s, {}, {});
+  if (found.gaps.empty()) return std::nullopt;
+  std::size_t missing = 0;
+  for (const TimeGap& gap : found.gaps) missing += gap.missing;
+  const TimeGap& longest = *std::max_element(found.gaps.begin(), found.gaps.end(), [](const auto& a, const auto& b) {
+    return a.time_after - a.time_before < b.time_after - b.time_before;
+  });
+  return fmt::format("{} gap(s) in the time stamps, {} sample(s) of {:.6g} s missing in all, the longest from {:.6g} s "
+                     "to {:.6g} s: the {} s intervals about them hold fewer samples (those a gap spans are missing) "
+                     "and are weighed as full ones",
+                     found.gaps.size(), missing, found.sample_interval, longest.time_before, longest.time_after,
+                     interval_s);
+}
+
 std::vector<Interval> intervals_of(const ThermalRecord& record, double interval_s, double scale_factor) {
   const std::size_t sensors = record.temperature_degC.size();
   std::vector<Interval> intervals;
@@ -472,18 +487,8 @@ TemperatureModelResult temperature_model(const ThermalRecord& record, const Temp
                             base.size(), options.interval_s, options.folds, options.maximum_order));
   }
   TemperatureModelResult result;
-  // A logger's gap leaves the intervals about it with fewer samples, or none: each is still fitted as
-  // one full interval mean, so the fit weighs a partial interval as much as a full one. Said, not refused.
-  if (const TimeGaps found = find_time_gaps(record.time_s, {}, {}); !found.gaps.empty()) {
-    std::size_t missing = 0;
-    for (const TimeGap& gap : found.gaps) missing += gap.missing;
-    const TimeGap& longest = *std::max_element(found.gaps.begin(), found.gaps.end(), [](const auto& a, const auto& b) {
-      return a.time_after - a.time_before < b.time_after - b.time_before;
-    });
-    result.warnings.push_back(fmt::format(
-        "{} gap(s) in the time stamps, {} sample(s) of {:.6g} s missing in all, the longest from {:.6g} s to {:.6g} s: "
-        "the {} s intervals about them hold fewer samples, or none, and are fitted as full ones",
-        found.gaps.size(), missing, found.sample_interval, longest.time_before, longest.time_after, options.interval_s));
+  if (std::optional<std::string> gaps = thermal::gap_warning(record, options.interval_s)) {
+    result.warnings.push_back(std::move(*gaps));
   }
   // D_0 is the bias at T_ref: outside the temperatures the record holds, it is an extrapolation.
   const auto [coldest, hottest] = std::minmax_element(record.temperature_degC[chosen_sensor].begin(),
@@ -620,6 +625,9 @@ TemperatureApplyResult apply_thermal_compensation(const ThermalRecord& record, c
   }
   thermal::set_rates(intervals, 0, compensation.rate_window_s, compensation.soak_rate_degC_per_min);
   TemperatureApplyResult result;
+  if (std::optional<std::string> gaps = thermal::gap_warning(record, options.interval_s)) {
+    result.warnings.push_back(std::move(*gaps));
+  }
   // The coefficients are in deg/h: a record read with another K has its bias in another scale (fitted
   // with K = 1 and applied with 36000, the stability after compensation read 2983 deg/h for 0.083).
   if (compensation.scale_factor &&

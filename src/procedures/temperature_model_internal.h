@@ -3,7 +3,9 @@
 // record parameters and the stability figures. Private to src/procedures.
 #pragma once
 
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "inertest/core/procedure_spec.h"
@@ -19,6 +21,10 @@ struct Interval {
   double rate_degC_per_min = 0.0;          // of the sensor set_rates was given
   int leg = 0;                             // +1 heating, −1 cooling, 0 soak
 };
+
+// A logger's gaps in the record (io/time_stamps.h), said and not refused: the intervals about one hold
+// fewer samples, or are missing, and each is still one interval mean of the fit. None without a gap.
+std::optional<std::string> gap_warning(const ThermalRecord& record, double interval_s);
 
 // Step 1: means over consecutive intervals of interval_s from the record's first time.
 std::vector<Interval> intervals_of(const ThermalRecord& record, double interval_s, double scale_factor);

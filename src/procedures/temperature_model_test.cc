@@ -234,6 +234,12 @@ TEST(TemperatureModel, AGapInTheRecordIsSaid) {
   ASSERT_EQ(result.coefficients.front().name, "D_0");
   EXPECT_NEAR(result.coefficients.front().value.value, full.coefficients.front().value.value,
               *full.coefficients.front().value.uncertainty);
+  // temperature-apply on the same record says it too.
+  ThermalCompensation compensation;
+  compensation.sensor = full.sensor;
+  compensation.coefficients = full.coefficients;
+  const TemperatureApplyResult applied = apply_thermal_compensation(gapped, compensation, options);
+  EXPECT_THAT(applied.warnings, ::testing::Contains(*gap_warning(result)));
 }
 
 // A temperature column whose name states kelvin ("coil_K", "chamber [K]") is read in kelvin: the

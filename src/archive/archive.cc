@@ -590,15 +590,23 @@ std::pair<std::string, std::string> split_figure(const std::string& name) {
 }
 
 // The archived figures (PROCEDURE/FIGURE) a message about one that is not names: the procedure's own
-// when it is archived, else all, as a comma list.
+// when it is archived, else all, as a comma list of at most 20 and the count of the others.
 std::string figures_to_name(const std::vector<std::string>& known, const std::string& procedure) {
+  constexpr std::size_t kMostNamed = 20;
   const auto own = [&](const std::string& name) { return name.starts_with(procedure + "/"); };
   const bool procedure_known = std::any_of(known.begin(), known.end(), own);
   std::string names;
+  std::size_t named = 0, others = 0;
   for (const std::string& name : known) {
-    if (!procedure_known || own(name)) names += (names.empty() ? "" : ", ") + name;
+    if (procedure_known && !own(name)) continue;
+    if (named == kMostNamed) {
+      ++others;
+      continue;
+    }
+    names += (names.empty() ? "" : ", ") + name;
+    ++named;
   }
-  return names;
+  return others == 0 ? names : fmt::format("{} and {} more", names, others);
 }
 
 // Throws NotOneQuantity unless every row's unit (column 4) converts to the first's, and every row
@@ -786,6 +794,9 @@ class DatabaseArchive final : public Archive {
                             : db_->query(std::string(figure_columns) + where + order, {procedure, name});
     if (rows.empty()) {
       const std::vector<std::string> known = figures(false);
+      if (std::find(known.begin(), known.end(), figure) != known.end()) {
+        throw Error("figure '" + figure + "' has no test archived since " + since.value_or(""));
+      }
       throw Error("figure '" + figure + "' is not archived" + (since ? " for tests since " + *since : std::string()) +
                   (known.empty() ? std::string() : " (archived: " + figures_to_name(known, procedure) + ")"));
     }

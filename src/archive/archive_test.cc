@@ -540,6 +540,8 @@ TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
             "scale_factor/nonlinearity, scale_factor/scale_factor)");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/bias", std::nullopt); }),
             "figure 'scale_factor/bias' is not archived (archived: scale_factor/nonlinearity, scale_factor/scale_factor)");
+  EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2099-01-01")); }),
+            "figure 'scale_factor/scale_factor' has no test archived since 2099-01-01");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),
             "--since '2026-13': expected YYYY-MM-DD");
   for (const char* no_day : {"2026-13-45", "2026-02-30", "2025-02-29", "2026-04-04x", "2026-04-04T00:00:00Z"}) {

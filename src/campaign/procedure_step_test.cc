@@ -131,6 +131,18 @@ TEST(ProcedureStep, AParameterOfTheSiteIsAskedForInTheSite) {
   expect_plan_error("[[procedure]]\nkind = \"threshold\"\nmethod = 2\nfile = \"plan.toml\"\nscale_factor = 1\n",
                     "latitude is needed by method 2: its input is the Earth rate's horizontal component, Omega_e "
                     "cos(latitude) (GJB 2426A eqs. 16-17) (give it as [site] latitude_deg)");
+  // A message that names [site] already is not told again.
+  ScratchDirectory scratch;
+  const std::string plan = scratch.write("plan.toml", std::string(kHeader) +
+                                                          "[[procedure]]\nkind = \"bias\"\nfile = \"plan.toml\"\n"
+                                                          "scale_factor = 1\nremove_earth_rate = true\n");
+  try {
+    validate_plan(plan);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("[site] latitude_deg"));
+    EXPECT_THAT(e.what(), ::testing::Not(::testing::HasSubstr("(give it as")));
+  }
 }
 
 TEST(ProcedureStep, LimitOnAnUndeclaredFigureIsAPlanErrorBeforeAnythingRuns) {

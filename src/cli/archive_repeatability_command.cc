@@ -63,7 +63,7 @@ CommandAction setup(CLI::App& archive) {
   command->add_option("ID", arguments->instrument, "instrument id")->required();
   command->add_option("--figure", arguments->figure,
                       "PROCEDURE/FIGURE: a scale factor (e.g. scale_factor/scale_factor) or a bias "
-                      "(e.g. bias/bias, as `archive instruments` and results.json name them)")
+                      "(e.g. bias/bias: the step's name, then the figure's key in results.json)")
       ->required();
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,

@@ -20,7 +20,7 @@
 namespace {
 
 // The name of `names` nearest `word` by edit distance (Levenshtein), when a slip of the keys apart:
-// at most 2 edits, and fewer than half the word's letters.
+// at most 2 edits, and fewer than half the word's characters (an option's "--" counted).
 std::optional<std::string> nearest(const std::string& word, const std::vector<std::string>& names) {
   std::optional<std::string> best;
   std::size_t best_distance = std::min<std::size_t>(3, (word.size() + 1) / 2);
@@ -53,7 +53,7 @@ std::string option_suggestion(const CLI::App& command, int argc, char** argv) {
     if (!argument.starts_with("--")) continue;
     const std::string given = argument.substr(0, argument.find('='));
     if (std::find(names.begin(), names.end(), given) != names.end()) continue;
-    if (const auto near = nearest(given, names)) return fmt::format(" (did you mean {}?)", *near);
+    if (const auto near = nearest(given, names)) return fmt::format(" ({}: did you mean {}?)", given, *near);
   }
   return "";
 }
@@ -68,7 +68,15 @@ int refuse_command_line(const CLI::App& app, const CLI::ParseError& e, int argc,
       app.get_subcommands([&](const CLI::App* c) { return c->check_name(first); });
   std::string message = e.what();
   if (!matched.empty()) {
-    message += option_suggestion(*matched.front(), argc, argv);
+    // The command the options belong to: `archive fleet`'s, not `archive`'s.
+    const CLI::App* command = matched.front();
+    for (int i = 2; i < argc; ++i) {
+      const std::string word = argv[i];
+      const auto sub = command->get_subcommands([&](const CLI::App* c) { return c->check_name(word); });
+      if (sub.empty()) break;
+      command = sub.front();
+    }
+    message += option_suggestion(*command, argc, argv);
   } else if (!first.empty() && first.front() != '-') {
     // A first word that is no option and no command: CLI11 says only that a command is required.
     std::vector<std::string> commands;

@@ -40,7 +40,10 @@ TEST(CommandLine, AMistypedCommandOrOptionIsAnsweredWithTheNearest) {
   EXPECT_EQ(run.err, "inertest: error: unknown command 'scalefactor' (did you mean scale-factor?) (see inertest --help)\n");
   run = run_cli({"scale-factor", testing::source_path("examples/scale_factor/points.csv"), "--rateunit", "deg/s"});
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_THAT(run.err, HasSubstr("--rateunit (did you mean --rate-unit?) (see inertest scale-factor --help)"));
+  EXPECT_THAT(run.err, HasSubstr("(--rateunit: did you mean --rate-unit?) (see inertest scale-factor --help)"));
+  run = run_cli({"archive", "fleet", "--figur", "x/y"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("(--figur: did you mean --figure?)"));
   run = run_cli({"scale-factor", testing::source_path("examples/scale_factor/points.csv"), "--wobble", "1"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, ::testing::Not(HasSubstr("did you mean")));

@@ -207,7 +207,9 @@ CommandAction add_procedure_command(CLI::App& root, const ProcedureSpec& spec) {
   }
   if (reads_records) add_record_options(*command, arguments->source);
   if (reads_timed_records) {
-    command->add_option("--rate", arguments->sample_rate_hz, "sample rate, Hz (records without a time column)");
+    command->add_option("--rate", arguments->sample_rate_hz,
+                        "sample rate, Hz (records without a time column) [plan: sample_rate_hz, else [instrument]'s "
+                        "for a binary record]");
     command->add_option("--time-column", arguments->time_column, "time column by name or 1-based index");
   }
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");

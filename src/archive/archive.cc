@@ -774,8 +774,8 @@ class DatabaseArchive final : public Archive {
       }
       std::vector<std::string> names;
       for (const auto& row : known) names.push_back(row.text(0) + "/" + row.text(1));
-      throw Error("figure '" + figure + "' is not archived for instrument '" + instrument + "' (archived: " +
-                  figures_to_name(names, procedure) + ")");
+      throw Error("figure '" + figure + "' is not archived for instrument '" + instrument +
+                  "' (archived: " + figures_to_name(names, procedure) + ")");
     }
     require_one_quantity(rows, figure);
     FigureHistory history{instrument, figure, rows.front().text(4), {}, place_of(rows), std::nullopt, std::nullopt, false};

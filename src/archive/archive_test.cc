@@ -538,8 +538,9 @@ TEST_P(ArchiveBackend, UnknownNamesGiveClearErrors) {
   EXPECT_EQ(error([&] { archive->fleet("nope/nope", std::nullopt); }),
             "figure 'nope/nope' is not archived (archived: bias_static/bias, bias_static/noise/white, "
             "scale_factor/nonlinearity, scale_factor/scale_factor)");
-  EXPECT_EQ(error([&] { archive->fleet("scale_factor/bias", std::nullopt); }),
-            "figure 'scale_factor/bias' is not archived (archived: scale_factor/nonlinearity, scale_factor/scale_factor)");
+  EXPECT_EQ(
+      error([&] { archive->fleet("scale_factor/bias", std::nullopt); }),
+      "figure 'scale_factor/bias' is not archived (archived: scale_factor/nonlinearity, scale_factor/scale_factor)");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2099-01-01")); }),
             "figure 'scale_factor/scale_factor' has no test archived since 2099-01-01");
   EXPECT_EQ(error([&] { archive->fleet("scale_factor/scale_factor", std::string("2026-13")); }),

@@ -197,8 +197,8 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     const ParameterSpec& parameter = *spec.find_parameter(e.parameter);
     // A parameter the step has no key for is given in [site] or [instrument]: the message says so
     // (unless it does already).
-    const bool placed = e.message().find("[site]") != std::string::npos ||
-                        e.message().find("[instrument]") != std::string::npos;
+    const bool placed =
+        e.message().find("[site]") != std::string::npos || e.message().find("[instrument]") != std::string::npos;
     if (parameter.instrument_only && !placed) {
       step.fail(fmt::format("{} (give it as [{}] {})", e.message(), parameter.site_default ? "site" : "instrument",
                             parameter.instrument_default));

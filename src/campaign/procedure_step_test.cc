@@ -85,8 +85,7 @@ file = "runs/../runs/power_on.csv"
 // an error naming the record). A text record keeps its own stamps (1 s apart here, against 2 Hz).
 TEST(ProcedureStep, ABinaryRecordTakesTheInstrumentsSampleRate) {
   ScratchDirectory scratch;
-  const std::vector<double> outputs = {5.0, 0.1, 0.0, 0.0, 0.0};
-  scratch.write("power_on.f64", std::string(reinterpret_cast<const char*>(outputs.data()), outputs.size() * sizeof(double)));
+  scratch.write("power_on.f64", testing::f64_bytes({5.0, 0.1, 0.0, 0.0, 0.0}));
   scratch.write("power_on.csv", "time_s,output\n1,5\n2,0.1\n3,0\n4,0\n5,0\n");
   const auto turn_on = [&](const std::string& name, const std::string& instrument_rate, const std::string& step) {
     const std::string plan = scratch.write(name + ".toml", std::string(kHeader) + instrument_rate + R"(
@@ -97,15 +96,19 @@ rest_band_deg_h = 1
 )" + step);
     run_campaign(plan, scratch.path() + "/" + name);
     return nlohmann::json::parse(testing::read_file(scratch.path() + "/" + name + "/results.json"))
-        .at("procedures").at(0).at("result").at("turn_on_time");
+        .at("procedures")
+        .at(0)
+        .at("result")
+        .at("turn_on_time");
   };
   const std::string binary = "format = \"f64\"\n[[procedure.run]]\nfile = \"power_on.f64\"\n";
   const nlohmann::json of_instrument = turn_on("instrument", "sample_rate_hz = 2\n", binary);
   EXPECT_EQ(of_instrument, turn_on("step", "", "sample_rate_hz = 2\n" + binary));
   EXPECT_EQ(of_instrument.at("value"), 1.5);  // the third sample is the first at rest: t = (i + 1) / 2 Hz
   EXPECT_EQ(turn_on("text", "", "[[procedure.run]]\nfile = \"power_on.csv\"\n").at("value"), 3.0);
-  EXPECT_EQ(turn_on("text_with_rate", "sample_rate_hz = 2\n", "[[procedure.run]]\nfile = \"power_on.csv\"\n").at("value"),
-            3.0);
+  EXPECT_EQ(
+      turn_on("text_with_rate", "sample_rate_hz = 2\n", "[[procedure.run]]\nfile = \"power_on.csv\"\n").at("value"),
+      3.0);
 }
 
 TEST(ProcedureStep, EachInputFromExactlyOneSource) {

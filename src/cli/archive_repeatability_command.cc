@@ -61,9 +61,10 @@ CommandAction setup(CLI::App& archive) {
       "(any figure in a rate unit) by 5.12.3 eq. (21), Br = [Σ(B0i − B̄0)²/(Q − 1)]^½ in deg/h. The standard\n"
       "asks for Q >= 6: fewer campaigns give a warning, fewer than 2 an error (no deviation from one).");
   command->add_option("ID", arguments->instrument, "instrument id")->required();
-  command->add_option("--figure", arguments->figure,
-                      "PROCEDURE/FIGURE: a scale factor (e.g. scale_factor/scale_factor) or a bias "
-                      "(e.g. bias/bias: the step's name, then the figure's key in results.json)")
+  command
+      ->add_option("--figure", arguments->figure,
+                   "PROCEDURE/FIGURE: a scale factor (e.g. scale_factor/scale_factor) or a bias "
+                   "(e.g. bias/bias: the step's name, then the figure's key in results.json)")
       ->required();
   add_db_option(*command, arguments->db);
   command->add_flag("--json", arguments->json,

@@ -129,8 +129,8 @@ CommandAction setup(CLI::App& root) {
       "channel with its stored type, length, unit and sample rate, and the statistics of the numeric ones.\n"
       "--time-column checks the time stamps: going backwards is an error; a step of more than 1.5 sample\n"
       "intervals is a gap (of stamps rounded coarser than the interval, 800 Hz in ms, a step longer than the\n"
-      "interval by more than their quantum), and --gaps says what to do: stop (an error), split (report the contiguous\n"
-      "segments) or interpolate (fill the missing samples linearly and count them).");
+      "interval by more than their quantum), and --gaps says what to do: stop (an error), split (report the\n"
+      "contiguous segments) or interpolate (fill the missing samples linearly and count them).");
   command->add_option("FILE", arguments->file, "record to read")->required();
   command->add_option("--format", arguments->format,
                       "auto (.mat, HDF5, TDMS by magic bytes, else text), csv (any text table), mat, hdf5, tdms, or a "
@@ -143,8 +143,8 @@ CommandAction setup(CLI::App& root) {
       ->check(CLI::IsMember({"stop", "split", "interpolate"}))
       ->capture_default_str();
   command->add_option("--sample-interval", arguments->sample_interval,
-                      "nominal sample interval in the time column's unit (default: the median step, or the mean step between gaps where "
-                      "the stamps are coarse, e.g. epoch seconds or 800 Hz in ms)");
+                      "nominal sample interval in the time column's unit (default: the median step, or the mean step "
+                      "between gaps where the stamps are coarse, e.g. epoch seconds or 800 Hz in ms)");
   command->add_flag("--json", arguments->json, "print one JSON object on stdout");
   return [arguments] {
     nlohmann::json columns = nlohmann::json::array();

@@ -37,7 +37,8 @@ TEST(CommandLine, ErrorsOfTheCommandLineExitWithStatusTwo) {
 TEST(CommandLine, AMistypedCommandOrOptionIsAnsweredWithTheNearest) {
   auto run = run_cli({"scalefactor"});
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_EQ(run.err, "inertest: error: unknown command 'scalefactor' (did you mean scale-factor?) (see inertest --help)\n");
+  EXPECT_EQ(run.err,
+            "inertest: error: unknown command 'scalefactor' (did you mean scale-factor?) (see inertest --help)\n");
   run = run_cli({"scale-factor", testing::source_path("examples/scale_factor/points.csv"), "--rateunit", "deg/s"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("(--rateunit: did you mean --rate-unit?) (see inertest scale-factor --help)"));

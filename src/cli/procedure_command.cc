@@ -54,7 +54,8 @@ std::string parameter_help(const ProcedureSpec& spec, const ParameterSpec& param
   std::string snake = parameter.command_line_option().substr(2);
   std::replace(snake.begin(), snake.end(), '-', '_');
   if (parameter.instrument_only) {
-    text += fmt::format(" [plan: [{}] {}]", parameter.site_default ? "site" : "instrument", parameter.instrument_default);
+    text +=
+        fmt::format(" [plan: [{}] {}]", parameter.site_default ? "site" : "instrument", parameter.instrument_default);
   } else if (parameter.plan_name() != snake) {
     text += " [plan: " + parameter.plan_name() + "]";
   }

@@ -28,8 +28,12 @@ CommandAction setup(CLI::App& root) {
       "step in plan.toml ([procedure.limits]), which inertest run checks (a PASS/FAIL verdict per limit).");
   command->add_option("PLAN", arguments->plan, "simulation plan, TOML")->required();
   command->add_option("--out", arguments->out, "output directory")->required();
-  CLI::Option* seed = command->add_option("--seed", arguments->seed, "seed of the noise instead of the plan's (another run of the same gyro: its parameters are the plan's)")
-                              ->type_name("UINT");
+  CLI::Option* seed =
+      command
+          ->add_option(
+              "--seed", arguments->seed,
+              "seed of the noise instead of the plan's (another run of the same gyro: its parameters are the plan's)")
+          ->type_name("UINT");
   CLI::Option* instrument = command->add_option("--instrument", arguments->instrument, "the gyro's id instead of the plan's");
   command->add_option("--date", arguments->date, "test date written into the processing plan, YYYY-MM-DD");
   return [arguments, seed, instrument] {

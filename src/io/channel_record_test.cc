@@ -113,7 +113,8 @@ TEST(ChannelRecord, RateRecordAndOutputRecordReadChannelsByName) {
   EXPECT_EQ(streamed[9999], known_rate(999));
   EXPECT_EQ(stored_sample_rate({lab_file("record.h5"), RateRecordFormat::kAuto, ColumnSelector::parse("imu/gyro_x")}), 200.0);
   // The stored rate gives the times; a rate that contradicts it is an error naming both.
-  const TimedRecord timed = read_timed_record({lab_file("record.h5"), "auto", "imu/gyro_x", std::nullopt}, std::nullopt);
+  const TimedRecord timed =
+      read_timed_record({lab_file("record.h5"), "auto", "imu/gyro_x", std::nullopt}, std::nullopt);
   EXPECT_DOUBLE_EQ(timed.time_s[199], 1.0);
   try {
     read_timed_record({lab_file("record.h5"), "", "imu/gyro_x", std::nullopt}, 100.0);

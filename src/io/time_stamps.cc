@@ -125,7 +125,9 @@ std::optional<CoarseStamps> coarse_stamps(std::span<const double> time, double m
   const auto is_step = [&](std::size_t i) { return time[i] - time[i - 1] <= 2.5 * median; };
   double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
   for (std::size_t i = 1; i < time.size(); ++i) {
-    if (is_step(i)) shortest = std::min(shortest, time[i] - time[i - 1]), longest = std::max(longest, time[i] - time[i - 1]);
+    if (!is_step(i)) continue;
+    shortest = std::min(shortest, time[i] - time[i - 1]);
+    longest = std::max(longest, time[i] - time[i - 1]);
   }
   const double quantum = longest - shortest;
   if (!(quantum > tolerance)) return std::nullopt;  // one step: fine stamps

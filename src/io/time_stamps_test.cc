@@ -77,7 +77,8 @@ TEST(TimeStamps, StampsCoarserThanTheIntervalAreNoGaps) {
   const TimeStampReport report = check_time_stamps(whole, 0, {});
   EXPECT_TRUE(report.gaps.empty());
   EXPECT_NEAR(report.sample_interval, 1.25e-3, 1e-3 / 7999.0);
-  EXPECT_THAT(error_of(record(800.0, 1e-3, 8000, 4000, 2)), HasSubstr("rec.csv:4002: gap in the time stamps: 4.998 to "));
+  EXPECT_THAT(error_of(record(800.0, 1e-3, 8000, 4000, 2)),
+              HasSubstr("rec.csv:4002: gap in the time stamps: 4.998 to "));
   TimeStampOptions split;
   split.policy = GapPolicy::kSplit;
   TextTable slow = table_of(record(0.8, 1.0, 16800, 8000, 1680));

@@ -131,7 +131,8 @@ TEST(ImuApply, ChecksAtTheGravityOfTheCalibration) {
   const testing::ScratchDirectory scratch;
   const std::string tumble = testing::source_path("examples/imu_calibration/tumble.csv");
   const std::string calibration = scratch.path() + "/calibration.json";
-  ASSERT_EQ(testing::run_cli({"imu-calibration", tumble, "--gravity", "9.81744", "--export", calibration}).exit_code, 0);
+  ASSERT_EQ(testing::run_cli({"imu-calibration", tumble, "--gravity", "9.81744", "--export", calibration}).exit_code,
+            0);
   EXPECT_EQ(nlohmann::json::parse(testing::read_file(calibration)).at("gravity"),
             (nlohmann::json{{"value", 9.81744}, {"unit", "m/s^2"}}));
   const auto applied = [&](std::vector<std::string> arguments) {

@@ -439,10 +439,10 @@ std::vector<StaticInterval*> accepted_of(std::vector<StaticInterval>& intervals)
 }
 
 // Gaps in the time stamps, as `inspect` reports them (io/time_stamps.h: a step of more than 1.5 sample
-// intervals, or of coarse stamps more than a quantum over one). Inside a rotation the gyro's fit integrates (RK4 across the step, with the
-// rate interpolated over it), the turn made while samples were missing is lost and the
-// rotation's residual with it: an Error at the line after the gap. Elsewhere (in a static interval, or
-// in a motion between statics that no fit uses) it changes nothing the fits use: a warning.
+// intervals, or of coarse stamps more than a quantum over one). Inside a rotation the gyro's fit integrates (RK4 across
+// the step, with the rate interpolated over it), the turn made while samples were missing is lost and the rotation's
+// residual with it: an Error at the line after the gap. Elsewhere (in a static interval, or in a motion between statics
+// that no fit uses) it changes nothing the fits use: a warning.
 void check_time_gaps(const ImuRecord& record, const std::vector<Motion>& motions, std::vector<std::string>& warnings) {
   const TimeGaps found = find_time_gaps(record.time_s, record.lines, {});
   for (const TimeGap& time_gap : found.gaps) {
@@ -515,8 +515,9 @@ nlohmann::json triad_json(const TriadCalibration& triad) {
 
 nlohmann::json calibration_file_json(const ImuCalibrationResult& result) {
   return {{"procedure", "imu_calibration"},
-          {"model", "input = (I + misalignment) diag(1 / scale_factor) (output - bias); accelerometer input in m/s^2, "
-                    "gyro input in rad/s"},
+          {"model",
+           "input = (I + misalignment) diag(1 / scale_factor) (output - bias); accelerometer input in m/s^2, "
+           "gyro input in rad/s"},
           {"gravity", Figure{result.gravity_m_s2, "m/s^2", std::nullopt}},
           {"accelerometer", triad_json(result.accelerometer)},
           {"gyro", triad_json(result.gyro)}};

@@ -332,11 +332,11 @@ std::optional<std::string> gap_warning(const ThermalRecord& record, double inter
   const TimeGap& longest = *std::max_element(found.gaps.begin(), found.gaps.end(), [](const auto& a, const auto& b) {
     return a.time_after - a.time_before < b.time_after - b.time_before;
   });
-  return fmt::format("{} gap(s) in the time stamps, {} sample(s) of {:.6g} s missing in all, the longest from {:.6g} s "
-                     "to {:.6g} s: the {} s intervals about them hold fewer samples (those a gap spans are missing) "
-                     "and are weighed as full ones",
-                     found.gaps.size(), missing, found.sample_interval, longest.time_before, longest.time_after,
-                     interval_s);
+  return fmt::format(
+      "{} gap(s) in the time stamps, {} sample(s) of {:.6g} s missing in all, the longest from {:.6g} s "
+      "to {:.6g} s: the {} s intervals about them hold fewer samples (those a gap spans are missing) "
+      "and are weighed as full ones",
+      found.gaps.size(), missing, found.sample_interval, longest.time_before, longest.time_after, interval_s);
 }
 
 std::vector<Interval> intervals_of(const ThermalRecord& record, double interval_s, double scale_factor) {
@@ -632,10 +632,10 @@ TemperatureApplyResult apply_thermal_compensation(const ThermalRecord& record, c
   // with K = 1 and applied with 36000, the stability after compensation read 2983 deg/h for 0.083).
   if (compensation.scale_factor &&
       std::abs(options.scale_factor - *compensation.scale_factor) > 1e-6 * std::abs(*compensation.scale_factor)) {
-    result.warnings.push_back(fmt::format("the coefficients were fitted with a scale factor K of {:.10g}, and are "
-                                          "applied with {:.10g} (output units per deg/s): the bias is read in another "
-                                          "scale",
-                                          *compensation.scale_factor, options.scale_factor));
+    result.warnings.push_back(
+        fmt::format("the coefficients were fitted with a scale factor K of {:.10g}, and are applied with {:.10g} "
+                    "(output units per deg/s): the bias is read in another scale",
+                    *compensation.scale_factor, options.scale_factor));
   }
   result.sensor = record.sensor_names.front();
   std::vector<double> raw, residual;
@@ -671,21 +671,22 @@ std::string thermal_coefficients_text(const TemperatureModelResult& result, cons
     nlohmann::json coefficients = nlohmann::json::object();
     for (const auto& c : result.coefficients) coefficients[c.name] = c.value;
     return json_text(nlohmann::json{{"model", "inertest temperature model"},
-                          {"sensor", result.sensor},
-                          {"order", result.order},
-                          {"scale_factor", options.scale_factor},
-                          {"reference_temperature_degC", options.reference_temperature_degC},
-                          {"rate_window_s", options.rate_window_s},
-                          {"soak_rate_degC_per_min", options.soak_rate_degC_per_min},
-                          {"coefficients", coefficients}},
+                                    {"sensor", result.sensor},
+                                    {"order", result.order},
+                                    {"scale_factor", options.scale_factor},
+                                    {"reference_temperature_degC", options.reference_temperature_degC},
+                                    {"rate_window_s", options.rate_window_s},
+                                    {"soak_rate_degC_per_min", options.soak_rate_degC_per_min},
+                                    {"coefficients", coefficients}},
                      2) +
            "\n";
   }
   if (extension != ".csv") throw Error(fmt::format("{}: the export is .json or .csv, not '{}'", path, extension));
-  std::string text = fmt::format("name,value,unit,uncertainty\nsensor,{},,\norder,{},,\nreference_temperature,{},degC,\n"
-                                 "rate_window,{},s,\nsoak_rate,{},degC/min,\nscale_factor,{},,\n",
-                                 result.sensor, result.order, options.reference_temperature_degC,
-                                 options.rate_window_s, options.soak_rate_degC_per_min, options.scale_factor);
+  std::string text = fmt::format(
+      "name,value,unit,uncertainty\nsensor,{},,\norder,{},,\nreference_temperature,{},degC,\n"
+      "rate_window,{},s,\nsoak_rate,{},degC/min,\nscale_factor,{},,\n",
+      result.sensor, result.order, options.reference_temperature_degC, options.rate_window_s,
+      options.soak_rate_degC_per_min, options.scale_factor);
   for (const auto& c : result.coefficients) {
     text += fmt::format("{},{},{},{}\n", c.name, c.value.value, c.value.unit, c.value.uncertainty.value_or(0.0));
   }

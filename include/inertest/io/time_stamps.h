@@ -1,9 +1,9 @@
 // Checking the time column of a record: time stamps must increase; a step of more than 1.5 sample
 // intervals is a gap (a logger that dropped samples), and of stamps rounded coarser than the interval
-// (800 Hz in ms) a step longer than the interval by more than their quantum. What happens at a gap is the user's choice:
-// stop with an error, split the record into its contiguous segments, or fill the missing samples
-// by linear interpolation. Procedures that take a time column call check_time_stamps() after
-// read_text_table() and work on the segments it returns.
+// (800 Hz in ms) a step longer than the interval by more than their quantum. What happens at a gap is
+// the user's choice: stop with an error, split the record into its contiguous segments, or fill the
+// missing samples by linear interpolation. Procedures that take a time column call
+// check_time_stamps() after read_text_table() and work on the segments it returns.
 #pragma once
 
 #include <cstddef>

@@ -118,7 +118,8 @@ struct ImuCalibrationResult {
 };
 
 // The calibration file (`--export`, read by `inertest imu-apply`): {"procedure": "imu_calibration",
-// "model", "gravity": {"value", "unit": "m/s^2"} (the gravity it was made at), "accelerometer", "gyro"}, each triad as the result's JSON gives it:
+// "model", "gravity": {"value", "unit": "m/s^2"} (the gravity it was made at), "accelerometer", "gyro"},
+// each triad as the result's JSON gives it:
 // {"bias": {"value": [x, y, z], "unit", "uncertainty": [...]}, "scale_factor": {the same, unit
 // "<output>/(<input>)"}, "misalignment": {"value": 3x3, "unit": "rad", "uncertainty": 3x3}}.
 nlohmann::json triad_json(const TriadCalibration& triad);

@@ -195,11 +195,8 @@ PreparedAction prepare_procedure_step(const ProcedureSpec& spec, PlanTable& step
     spec.check(call);
   } catch (const ParameterError& e) {
     const ParameterSpec& parameter = *spec.find_parameter(e.parameter);
-    // A parameter the step has no key for is given in [site] or [instrument]: the message says so
-    // (unless it does already).
-    const bool placed =
-        e.message().find("[site]") != std::string::npos || e.message().find("[instrument]") != std::string::npos;
-    if (parameter.instrument_only && !placed) {
+    // A parameter the step has no key for is given in [site] or [instrument]: the message says so.
+    if (parameter.instrument_only) {
       step.fail(fmt::format("{} (give it as [{}] {})", e.message(), parameter.site_default ? "site" : "instrument",
                             parameter.instrument_default));
     }

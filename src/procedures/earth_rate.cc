@@ -11,7 +11,8 @@ namespace inertest {
 
 void AxisOrientation::validate() const {
   if (std::isnan(latitude_deg)) {
-    throw ParameterError("latitude_deg", "latitude_deg is needed to remove the Earth rate (in a plan, [site] latitude_deg)");
+    // A plan's step adds where it is given ([site] latitude_deg: campaign/procedure_step.cc).
+    throw ParameterError("latitude_deg", "latitude_deg is needed to remove the Earth rate");
   }
   if (!std::isfinite(latitude_deg) || std::abs(latitude_deg) > 90.0) {
     throw Error(fmt::format("latitude {} deg is not in [-90, 90]", latitude_deg));

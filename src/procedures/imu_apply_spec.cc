@@ -54,12 +54,13 @@ ImuApplyResult apply_imu_calibration(const std::array<TriadCalibration, 2>& cali
   ImuApplyResult result;
   result.samples = record.time_s.size();
   double gravity_squares = 0.0, rate_squares = 0.0;
-  for (const StaticInterval& interval : detect_static_intervals(record, options.detection()).intervals) {
+  const ImuCalibrationOptions detection = options.detection();
+  for (const StaticInterval& interval : detect_static_intervals(record, detection).intervals) {
     if (!interval.accepted) continue;
     ++result.static_intervals;
     const Vector3 a = calibration[0].apply(interval.accelerometer_mean);
     const Vector3 w = calibration[1].apply(interval.gyro_mean);
-    gravity_squares += std::pow(std::hypot(a[0], a[1], a[2]) - options.detection().gravity_m_s2, 2);
+    gravity_squares += std::pow(std::hypot(a[0], a[1], a[2]) - detection.gravity_m_s2, 2);
     rate_squares += w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
   }
   if (result.static_intervals == 0) {
